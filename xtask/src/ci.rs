@@ -1,0 +1,129 @@
+//! `cargo xtask ci`: the README's test command. Runs every check CI runs, in order, and
+//! stops at the first failure.
+//!
+//! Each step is one command line. Steps that need tools a fresh machine may lack (QEMU,
+//! Chromium, Node packages) install them through `.ci/install` first.
+
+use anyhow::{bail, Result};
+use std::process::Command;
+
+#[derive(clap::Args)]
+pub struct Args {
+    /// Skip the slow steps (browser, firmware, asset regeneration); for quick local runs.
+    #[arg(long)]
+    quick: bool,
+}
+
+struct Step {
+    name: &'static str,
+    cmd: &'static [&'static str],
+    slow: bool,
+}
+
+/// The checks, in order. Keep each a plain command so that it can be run by hand.
+const STEPS: &[Step] = &[
+    Step {
+        name: "format",
+        cmd: &["cargo", "fmt", "--all", "--", "--check"],
+        slow: false,
+    },
+    Step {
+        name: "clippy",
+        cmd: &[
+            "cargo",
+            "clippy",
+            "--workspace",
+            "--all-targets",
+            "--",
+            "-D",
+            "warnings",
+        ],
+        slow: false,
+    },
+    Step {
+        name: "tests",
+        cmd: &["cargo", "test", "--workspace"],
+        slow: false,
+    },
+    Step {
+        name: "no_std thumbv7em (libm)",
+        cmd: &[
+            "cargo",
+            "build",
+            "-p",
+            "brdf-core",
+            "--target",
+            "thumbv7em-none-eabihf",
+        ],
+        slow: false,
+    },
+    Step {
+        name: "no_std thumbv7em (micromath)",
+        cmd: &[
+            "cargo",
+            "build",
+            "-p",
+            "brdf-core",
+            "--target",
+            "thumbv7em-none-eabihf",
+            "--features",
+            "micromath",
+        ],
+        slow: false,
+    },
+    Step {
+        name: "wasm32 (libm)",
+        cmd: &[
+            "cargo",
+            "build",
+            "-p",
+            "brdf-core",
+            "--target",
+            "wasm32-unknown-unknown",
+        ],
+        slow: false,
+    },
+    Step {
+        name: "wasm32 (micromath)",
+        cmd: &[
+            "cargo",
+            "build",
+            "-p",
+            "brdf-core",
+            "--target",
+            "wasm32-unknown-unknown",
+            "--features",
+            "micromath",
+        ],
+        slow: false,
+    },
+    Step {
+        name: "tests with micromath",
+        cmd: &[
+            "cargo",
+            "test",
+            "-p",
+            "brdf-core",
+            "--features",
+            "micromath",
+        ],
+        slow: false,
+    },
+];
+
+pub fn run(a: Args) -> Result<()> {
+    let mut failed = Vec::new();
+    for s in STEPS.iter().filter(|s| !(a.quick && s.slow)) {
+        eprintln!("==> {}: {}", s.name, s.cmd.join(" "));
+        let ok = Command::new(s.cmd[0]).args(&s.cmd[1..]).status()?.success();
+        if !ok {
+            failed.push(s.name);
+            break;
+        }
+    }
+    if !failed.is_empty() {
+        bail!("failed: {}", failed.join(", "));
+    }
+    eprintln!("==> all checks passed");
+    Ok(())
+}

@@ -1,0 +1,141 @@
+//! `cargo xtask eval g`: rows `theta_i_deg,theta_r_deg,sigma` in, the modified G with Blinn's
+//! and Smith's G out, computed with the f64 kernels and printed to 17 significant digits.
+
+use anyhow::{bail, Context, Result};
+use brdf_core::masking::{
+    g_blinn, g_smith_beckmann_correlated, g_smith_beckmann_separable, Convention, ModifiedG,
+};
+use brdf_core::quadrature::{GaussLegendre, Rule, DEFAULT_NODES, NODE_COUNTS};
+use std::io::{BufRead, Write};
+
+#[derive(clap::Args)]
+pub struct Args {
+    /// `reciprocal` (default) or `printed` (eq 12 as printed).
+    #[arg(long, default_value = "reciprocal")]
+    convention: String,
+    /// Gauss–Legendre node count per integral, one of those compiled in.
+    #[arg(long, default_value_t = DEFAULT_NODES)]
+    nodes: usize,
+}
+
+/// The output header.
+pub const HEADER: &str =
+    "theta_i_deg,theta_r_deg,sigma,GM,GS,G,G_blinn,G_smith_separable,G_smith_correlated";
+
+/// Formats to 17 significant digits (round-trips every f64).
+pub fn fmt17(x: f64) -> String {
+    format!("{x:.16e}")
+}
+
+/// One parsed input row: the three fields as typed and their values.
+pub struct Row<'a> {
+    pub fields: [&'a str; 3],
+    pub ti_deg: f64,
+    pub tr_deg: f64,
+    pub sigma: f64,
+}
+
+/// Parses `theta_i_deg,theta_r_deg,sigma`. `Ok(None)` for a header or blank line.
+pub fn parse_row(line: &str, lineno: usize) -> Result<Option<Row<'_>>> {
+    let t = line.trim();
+    if t.is_empty() || (lineno == 1 && t.starts_with("theta_i")) {
+        return Ok(None);
+    }
+    let f: Vec<&str> = t.split(',').map(str::trim).collect();
+    if f.len() != 3 {
+        bail!(
+            "line {lineno}: expected 3 fields theta_i_deg,theta_r_deg,sigma, found {}",
+            f.len()
+        );
+    }
+    let num = |i: usize, name: &str| -> Result<f64> {
+        let v: f64 = f[i]
+            .parse()
+            .with_context(|| format!("line {lineno}: {name} `{}` is not a number", f[i]))?;
+        if !v.is_finite() {
+            bail!("line {lineno}: {name} is not finite");
+        }
+        Ok(v)
+    };
+    let (ti, tr, s) = (
+        num(0, "theta_i_deg")?,
+        num(1, "theta_r_deg")?,
+        num(2, "sigma")?,
+    );
+    if !(0.0..=90.0).contains(&ti) {
+        bail!("line {lineno}: theta_i_deg {ti} outside [0, 90]");
+    }
+    if !(-90.0..=90.0).contains(&tr) {
+        bail!("line {lineno}: theta_r_deg {tr} outside [-90, 90]");
+    }
+    if s <= 0.0 {
+        bail!("line {lineno}: sigma {s} must be > 0");
+    }
+    Ok(Some(Row {
+        fields: [f[0], f[1], f[2]],
+        ti_deg: ti,
+        tr_deg: tr,
+        sigma: s,
+    }))
+}
+
+/// The direct-kernel columns GM, GS, G, G_blinn, G_smith_separable, G_smith_correlated.
+pub fn direct_columns<R: Rule>(row: &Row<'_>, conv: Convention) -> Result<[f64; 6]> {
+    let (ti, tr) = (row.ti_deg.to_radians(), row.tr_deg.to_radians());
+    let g = ModifiedG::<f64, R>::new(row.sigma)
+        .map_err(|e| anyhow::anyhow!("{e}"))?
+        .with_convention(conv);
+    let t = g.terms(ti, tr);
+    let m = std::f64::consts::SQRT_2 * row.sigma;
+    let (ci, co) = (ti.cos(), tr.cos());
+    Ok([
+        t.gm,
+        t.gs,
+        t.g,
+        g_blinn(ti, tr),
+        g_smith_beckmann_separable(ci, co, m),
+        g_smith_beckmann_correlated(ci, co, m),
+    ])
+}
+
+/// Parses `--convention`.
+pub fn parse_convention(s: &str) -> Result<Convention> {
+    match s {
+        "reciprocal" => Ok(Convention::Reciprocal),
+        "printed" => Ok(Convention::Printed),
+        other => bail!("unknown convention `{other}` (expected reciprocal or printed)"),
+    }
+}
+
+fn run_with<R: Rule>(conv: Convention) -> Result<()> {
+    let stdin = std::io::stdin();
+    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+    writeln!(out, "{HEADER}")?;
+    for (i, line) in stdin.lock().lines().enumerate() {
+        let line = line.with_context(|| format!("line {}: unreadable input", i + 1))?;
+        let Some(row) = parse_row(&line, i + 1)? else {
+            continue;
+        };
+        let cols = direct_columns::<R>(&row, conv).with_context(|| format!("line {}", i + 1))?;
+        let cols: Vec<String> = cols.iter().map(|&x| fmt17(x)).collect();
+        writeln!(out, "{},{}", row.fields.join(","), cols.join(","))?;
+    }
+    out.flush()?;
+    Ok(())
+}
+
+pub fn run(a: Args) -> Result<()> {
+    let conv = parse_convention(&a.convention)?;
+    match a.nodes {
+        4 => run_with::<GaussLegendre<4>>(conv),
+        6 => run_with::<GaussLegendre<6>>(conv),
+        8 => run_with::<GaussLegendre<8>>(conv),
+        10 => run_with::<GaussLegendre<10>>(conv),
+        12 => run_with::<GaussLegendre<12>>(conv),
+        16 => run_with::<GaussLegendre<16>>(conv),
+        20 => run_with::<GaussLegendre<20>>(conv),
+        24 => run_with::<GaussLegendre<24>>(conv),
+        32 => run_with::<GaussLegendre<32>>(conv),
+        n => bail!("--nodes {n} is not compiled in; choose one of {NODE_COUNTS:?}"),
+    }
+}
