@@ -3,8 +3,12 @@
 
 use clap::{Parser, Subcommand};
 
+mod bench;
 mod ci;
 mod eval;
+mod lut;
+mod platforms;
+mod plot;
 
 #[derive(Parser)]
 #[command(name = "cargo xtask", about = "brdf-kernels tasks", version)]
@@ -17,6 +21,18 @@ struct Cli {
 enum Cmd {
     /// Evaluate kernels on CSV rows read from stdin (for scripting).
     Eval(eval::Args),
+    /// Generate, verify, inspect and export the LUT assets (default: generate the default set).
+    Lut(lut::Args),
+    /// Run the benchmark suite with short settings and write docs/benchmarks.md.
+    Bench(bench::Args),
+    /// Build the Cortex-M firmware, run it under QEMU and compare with the host.
+    Firmware(platforms::FirmwareArgs),
+    /// Build the WebAssembly module, optimise it and run the Node tests.
+    Wasm(platforms::WasmArgs),
+    /// Build the web example and run the headless-browser test.
+    Web(platforms::WebArgs),
+    /// Run the validation simulations and write the figures and docs/validation.md.
+    Plot(plot::Args),
     /// Everything CI runs: format, clippy, tests, no_std builds (the README's test command).
     Ci(ci::Args),
 }
@@ -26,6 +42,12 @@ fn main() {
     let res = match cli.cmd {
         Cmd::Eval(a) => eval::run(a),
         Cmd::Ci(a) => ci::run(a),
+        Cmd::Lut(a) => lut::run(a),
+        Cmd::Bench(a) => bench::run(a),
+        Cmd::Firmware(a) => platforms::firmware(a),
+        Cmd::Wasm(a) => platforms::wasm(a),
+        Cmd::Web(a) => platforms::web(a),
+        Cmd::Plot(a) => plot::run(a),
     };
     if let Err(e) = res {
         eprintln!("error: {e:#}");

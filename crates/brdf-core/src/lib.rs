@@ -20,14 +20,19 @@
 #![no_std]
 #![deny(missing_debug_implementations)]
 
+pub mod albedo;
+pub mod batch;
 pub mod distribution;
 pub mod error;
 pub mod fresnel;
 pub mod geometry;
+pub mod lut;
 pub mod masking;
 pub mod models;
 pub mod quadrature;
 mod real;
+pub mod sampling;
+pub mod split_sum;
 
 pub use error::ParamError;
 pub use geometry::{Dots, Frame, Vec3};

@@ -1,0 +1,1 @@
+//! Directional albedo by fixed-size quadrature (owned by the models issue).

@@ -1,0 +1,1 @@
+//! Batch (structure-of-arrays) entry points (owned by the benchmarks issue).

@@ -1,0 +1,1 @@
+//! Zero-copy, no_std LUT view (owned by the LUT issue).

@@ -1,0 +1,1 @@
+//! Split-sum (DFG) and energy-compensation integrals (owned by the LUT issue).
