@@ -12,7 +12,7 @@
 //! total; the same cut is used for the normaliser, so "everything passes" gives exactly 1.
 
 use crate::error::{check_range, ParamError};
-use crate::quadrature::{DefaultRule, Rule};
+use crate::quadrature::{DefaultRule, GaussLegendre, Rule};
 use crate::Real;
 use core::marker::PhantomData;
 
@@ -35,8 +35,13 @@ pub(crate) fn slope_weight<T: Real>(v: T, sqrt2_sigma: T) -> T {
 pub struct SlopeDistribution<T, R = DefaultRule> {
     sigma: T,
     sqrt2_sigma: T,
-    /// 1/(2Z), Z = ∫₀^{V_CUT} √(1+u²) e^{−v²} dv: the half-line mass in the working variable.
+    /// 1/(2Z), Z = ∫₀^{V_CUT} √(1+u²) e^{−v²} dv by the rule `R` itself: the half-line mass
+    /// in the working variable. Using the same rule for the normaliser as for M makes
+    /// "everything passes" exactly 1.
     inv_2z: T,
+    /// C(σ) from Z evaluated to full precision (two 32-point panels), for [`Self::pdf`] and
+    /// [`Self::normalisation_c`].
+    c: T,
     _rule: PhantomData<R>,
 }
 
@@ -46,15 +51,15 @@ impl<T: Real, R: Rule> SlopeDistribution<T, R> {
     pub fn new(sigma: T) -> Result<Self, ParamError> {
         let sigma = check_range("sigma", sigma, T::ZERO, true, T::INFINITY, "(0, ∞)")?;
         let sqrt2_sigma = T::from_f64(core::f64::consts::SQRT_2) * sigma;
-        let z = R::integrate(T::ZERO, T::from_f64(V_CUT), |v| {
-            slope_weight(v, sqrt2_sigma)
-        });
-        Ok(Self {
-            sigma,
-            sqrt2_sigma,
-            inv_2z: T::ONE / (T::TWO * z),
-            _rule: PhantomData,
-        })
+        let vc = T::from_f64(V_CUT);
+        let w = |v| slope_weight(v, sqrt2_sigma);
+        let z = R::integrate(T::ZERO, vc, w);
+        let mid = vc * T::HALF;
+        let z_exact = GaussLegendre::<32>::integrate(T::ZERO, mid, w)
+            + GaussLegendre::<32>::integrate(mid, vc, w);
+        // C = πσ/(√2 Z)
+        let c = T::PI * sigma / (T::from_f64(core::f64::consts::SQRT_2) * z_exact);
+        Ok(Self { sigma, sqrt2_sigma, inv_2z: T::ONE / (T::TWO * z), c, _rule: PhantomData })
     }
     /// The RMS slope σ.
     #[inline]
@@ -74,7 +79,7 @@ impl<T: Real, R: Rule> SlopeDistribution<T, R> {
     /// The normalisation constant C(σ) of eq 2 under ∫p dγ = 1 over [−π/2, π/2]:
     /// C = πσ/(√2 Z) (conventions.md §2; C → √(2π)σ as σ → 0).
     pub fn normalisation_c(&self) -> T {
-        T::PI * self.sigma * T::TWO * self.inv_2z / T::from_f64(core::f64::consts::SQRT_2)
+        self.c
     }
     /// p(γ; σ) = C/(2πσ² cos³γ) · exp(−tan²γ/(2σ²)), eqs 2/5, in 1/rad. 0 outside
     /// (−π/2, π/2); NaN for NaN.
@@ -87,8 +92,7 @@ impl<T: Real, R: Rule> SlopeDistribution<T, R> {
             return T::ZERO;
         }
         let v = gamma.tan() / self.sqrt2_sigma;
-        // C/(2πσ²) = 1/(2√2 σ Z) = inv_2z/(√2σ)
-        (-(v * v)).exp() / (c * c * c) * self.inv_2z / self.sqrt2_sigma
+        (-(v * v)).exp() / (c * c * c) * self.c / (T::TWO * T::PI * self.sigma.sq())
     }
     /// P(γ' ≤ γ) = ∫_{−π/2}^{γ} p dγ' (the fully-passing mass of eq 6 with γ = π/2 − θ).
     pub fn cdf(&self, gamma: T) -> T {
