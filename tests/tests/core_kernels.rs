@@ -38,7 +38,9 @@ fn blinn_matches_eq4_geometry() {
         for j in -18..=18 {
             let (ti, tr) = (i as f64 * 5.0 * DEG, j as f64 * 5.0 * DEG);
             let (wi, wo) = in_plane_directions(ti, tr);
-            let Some(h) = wi.add(wo).normalize() else { continue };
+            let Some(h) = wi.add(wo).normalize() else {
+                continue;
+            };
             let n = Vec3::new(0.0, 0.0, 1.0);
             let want = 1f64
                 .min(2.0 * n.dot(h) * n.dot(wo) / wo.dot(h))
@@ -60,11 +62,21 @@ fn smith_beckmann_lambda_matches_slope_integral() {
         for t in [5.0, 30.0, 60.0, 80.0, 88.0] {
             let got = lambda_beckmann(f64::cos(t * DEG), m);
             let want = lambda_beckmann_ref(t * DEG, m);
-            assert!((got - want).abs() < 1e-9 * (1.0 + want), "m={m} θ={t}: {got} vs {want}");
+            assert!(
+                (got - want).abs() < 1e-9 * (1.0 + want),
+                "m={m} θ={t}: {got} vs {want}"
+            );
             let g32 = lambda_beckmann(f32::cos((t * DEG) as f32), m as f32) as f64;
             // micromath's exp/sqrt are approximations (README accuracy table).
-            let tol32 = if cfg!(feature = "micromath") { 1e-2 } else { 1e-4 };
-            assert!((g32 - want).abs() < tol32 * (1.0 + want), "f32 m={m} θ={t}: {g32} {want}");
+            let tol32 = if cfg!(feature = "micromath") {
+                1e-2
+            } else {
+                1e-4
+            };
+            assert!(
+                (g32 - want).abs() < tol32 * (1.0 + want),
+                "f32 m={m} θ={t}: {g32} {want}"
+            );
         }
     }
     assert_eq!(g1_smith_beckmann(1.0, 0.3), 1.0);
@@ -81,7 +93,10 @@ fn smith_ggx_closed_forms_agree() {
             assert!((g1_smith_ggx(ci, a) - g1(ci)).abs() < 1e-14);
             let g2 = g_smith_ggx_correlated(ci, co, a);
             let v = v_smith_ggx_correlated(ci, co, a);
-            assert!((v - g2 / (4.0 * ci * co)).abs() < 1e-12 * v, "α={a} {ci} {co}");
+            assert!(
+                (v - g2 / (4.0 * ci * co)).abs() < 1e-12 * v,
+                "α={a} {ci} {co}"
+            );
             assert!((g_smith_ggx_separable(ci, co, a) - g1(ci) * g1(co)).abs() < 1e-14);
         }
     }
@@ -153,10 +168,20 @@ fn modified_g_3d_extension() {
             let phi = 2.0 * PI * rng.next();
             let (wi, wo) = in_plane_directions(ti, tr);
             let rot = |v: Vec3<f64>| {
-                Vec3::new(v.x * phi.cos() - v.y * phi.sin(), v.x * phi.sin() + v.y * phi.cos(), v.z)
+                Vec3::new(
+                    v.x * phi.cos() - v.y * phi.sin(),
+                    v.x * phi.sin() + v.y * phi.cos(),
+                    v.z,
+                )
             };
-            let g3 = k.g_vectors(rot(wi), rot(wo), Vec3::new(0.0, 0.0, 1.0)).unwrap();
-            assert!((g3 - k.g(ti, tr)).abs() < 1e-9, "σ={s}: {g3} vs {}", k.g(ti, tr));
+            let g3 = k
+                .g_vectors(rot(wi), rot(wo), Vec3::new(0.0, 0.0, 1.0))
+                .unwrap();
+            assert!(
+                (g3 - k.g(ti, tr)).abs() < 1e-9,
+                "σ={s}: {g3} vs {}",
+                k.g(ti, tr)
+            );
         }
         for _ in 0..300 {
             let (wi, wo) = (rng.dir_upper(), rng.dir_upper());
@@ -197,10 +222,16 @@ fn torrance_sparrow_matches_eq3_and_is_reciprocal() {
                 };
                 let want = d * gv / (4.0 * ti.cos() * tr.cos());
                 let got = ts.eval_in_plane(ti, tr);
-                assert!((got - want).abs() <= 1e-9 * want.max(1.0), "{g:?} ({i},{j}) {got} {want}");
+                assert!(
+                    (got - want).abs() <= 1e-9 * want.max(1.0),
+                    "{g:?} ({i},{j}) {got} {want}"
+                );
                 if g != GeometricTerm::ModifiedPrinted {
                     let back = ts.eval_in_plane(tr.abs(), if tr < 0.0 { -ti } else { ti });
-                    assert!((got - back).abs() <= 1e-9 * got.max(1e-12), "{g:?} not reciprocal");
+                    assert!(
+                        (got - back).abs() <= 1e-9 * got.max(1e-12),
+                        "{g:?} not reciprocal"
+                    );
                 }
             }
         }
@@ -212,7 +243,11 @@ fn torrance_sparrow_matches_eq3_and_is_reciprocal() {
 #[test]
 fn torrance_sparrow_albedo_at_normal_incidence_is_below_one() {
     for sigma in [0.1, 0.3, 0.6] {
-        for g in [GeometricTerm::None, GeometricTerm::Modified, GeometricTerm::SmithCorrelated] {
+        for g in [
+            GeometricTerm::None,
+            GeometricTerm::Modified,
+            GeometricTerm::SmithCorrelated,
+        ] {
             let ts = TorranceSparrow::<f64>::specular(sigma, g).unwrap();
             let wi = Vec3::new(0.0, 0.0, 1.0);
             let albedo = integrate(
@@ -225,7 +260,10 @@ fn torrance_sparrow_albedo_at_normal_incidence_is_below_one() {
                 &[sigma, 2.0 * sigma, 4.0 * sigma],
                 1e-10,
             );
-            assert!(albedo <= 1.0 + 1e-6 && albedo > 0.5, "σ={sigma} {g:?}: {albedo}");
+            assert!(
+                albedo <= 1.0 + 1e-6 && albedo > 0.5,
+                "σ={sigma} {g:?}: {albedo}"
+            );
         }
     }
 }
@@ -234,11 +272,18 @@ fn torrance_sparrow_albedo_at_normal_incidence_is_below_one() {
 fn checked_constructors_reject_bad_parameters() {
     for bad in [0.0, -1.0, f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
         let e = ModifiedG::<f64>::new(bad).unwrap_err();
-        assert!(matches!(e, ParamError::NotFinite { .. } | ParamError::OutOfRange { .. }));
+        assert!(matches!(
+            e,
+            ParamError::NotFinite { .. } | ParamError::OutOfRange { .. }
+        ));
         assert!(TorranceSparrow::<f32>::specular(bad as f32, GeometricTerm::Blinn).is_err());
     }
-    assert!(TorranceSparrow::<f64>::new(0.3, GeometricTerm::Blinn, Fresnel::One, 1.0, 1.5).is_err());
-    assert!(TorranceSparrow::<f64>::new(0.3, GeometricTerm::Blinn, Fresnel::One, -1.0, 0.5).is_err());
+    assert!(
+        TorranceSparrow::<f64>::new(0.3, GeometricTerm::Blinn, Fresnel::One, 1.0, 1.5).is_err()
+    );
+    assert!(
+        TorranceSparrow::<f64>::new(0.3, GeometricTerm::Blinn, Fresnel::One, -1.0, 0.5).is_err()
+    );
 }
 
 /// Documented results for bad evaluation input.
@@ -259,10 +304,24 @@ fn documented_results_for_bad_input() {
     assert_eq!(k.g_vectors(up, Vec3::new(f64::NAN, 0.0, 1.0), up), None);
     // Non-unit vectors are normalised.
     let (wi, wo) = in_plane_directions(0.4, 0.9);
-    assert!((k.g_vectors(wi.scale(3.0), wo.scale(0.2), up.scale(7.0)).unwrap() - k.g(0.4, 0.9)).abs() < 1e-12);
+    assert!(
+        (k.g_vectors(wi.scale(3.0), wo.scale(0.2), up.scale(7.0))
+            .unwrap()
+            - k.g(0.4, 0.9))
+        .abs()
+            < 1e-12
+    );
     // Below the horizon: G = 0 and the BRDF is 0.
-    assert_eq!(k.g_dots(Dots { n_i: -0.2, n_o: 0.5, i_o: 0.0 }), 0.0);
-    let ts = TorranceSparrow::<f64>::new(0.3, GeometricTerm::Modified, Fresnel::One, 1.0, 0.5).unwrap();
+    assert_eq!(
+        k.g_dots(Dots {
+            n_i: -0.2,
+            n_o: 0.5,
+            i_o: 0.0
+        }),
+        0.0
+    );
+    let ts =
+        TorranceSparrow::<f64>::new(0.3, GeometricTerm::Modified, Fresnel::One, 1.0, 0.5).unwrap();
     assert_eq!(ts.eval(Vec3::new(0.0, 0.6, -0.8), up), 0.0);
     // Degenerate pairs: wi = −wo (grazing, opposite), wi = wo = n, grazing both.
     let g1 = Vec3::new(1.0, 0.0, 0.0);
@@ -280,7 +339,10 @@ fn documented_results_for_bad_input() {
         for (ti, tr) in [(0.1, 0.2), (1.5, -1.5), (FRAC_PI_2, FRAC_PI_2), (0.0, 1.0)] {
             let g = k.g(ti, tr);
             let g32 = k32.g(ti as f32, tr as f32);
-            assert!((0.0..=1.0).contains(&g) && (0.0..=1.0).contains(&g32), "σ={s}: {g} {g32}");
+            assert!(
+                (0.0..=1.0).contains(&g) && (0.0..=1.0).contains(&g32),
+                "σ={s}: {g} {g32}"
+            );
         }
     }
 }

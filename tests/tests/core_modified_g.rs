@@ -13,7 +13,9 @@ const DEG: f64 = std::f64::consts::PI / 180.0;
 
 /// σ values spanning [0.05, 1] logarithmically.
 fn sigmas(n: usize) -> Vec<f64> {
-    (0..n).map(|i| 0.05 * 20f64.powf(i as f64 / (n - 1) as f64)).collect()
+    (0..n)
+        .map(|i| 0.05 * 20f64.powf(i as f64 / (n - 1) as f64))
+        .collect()
 }
 
 /// Reference points (σ, θi, θr, G) on a grid plus the kink lines θr = ±θi and the edges.
@@ -67,7 +69,11 @@ fn max_err<R: Rule>(pts: &[(f64, f64, f64, f64)], conv: Convention) -> (f64, f64
 
 /// f32 tolerance: 2e-6 with libm (issue 2). With micromath the f32 transcendentals are
 /// approximations; the bound below is the measured error rounded up (README table).
-const F32_TOL: f64 = if cfg!(feature = "micromath") { 8e-3 } else { 2e-6 };
+const F32_TOL: f64 = if cfg!(feature = "micromath") {
+    8e-3
+} else {
+    2e-6
+};
 
 #[test]
 fn default_rule_meets_accuracy_bounds_both_conventions() {
@@ -89,20 +95,45 @@ fn node_count_table() {
         (4, max_err::<GaussLegendre<4>>(&pts, Convention::Reciprocal)),
         (6, max_err::<GaussLegendre<6>>(&pts, Convention::Reciprocal)),
         (8, max_err::<GaussLegendre<8>>(&pts, Convention::Reciprocal)),
-        (10, max_err::<GaussLegendre<10>>(&pts, Convention::Reciprocal)),
-        (12, max_err::<GaussLegendre<12>>(&pts, Convention::Reciprocal)),
-        (16, max_err::<GaussLegendre<16>>(&pts, Convention::Reciprocal)),
-        (20, max_err::<GaussLegendre<20>>(&pts, Convention::Reciprocal)),
-        (24, max_err::<GaussLegendre<24>>(&pts, Convention::Reciprocal)),
-        (32, max_err::<GaussLegendre<32>>(&pts, Convention::Reciprocal)),
+        (
+            10,
+            max_err::<GaussLegendre<10>>(&pts, Convention::Reciprocal),
+        ),
+        (
+            12,
+            max_err::<GaussLegendre<12>>(&pts, Convention::Reciprocal),
+        ),
+        (
+            16,
+            max_err::<GaussLegendre<16>>(&pts, Convention::Reciprocal),
+        ),
+        (
+            20,
+            max_err::<GaussLegendre<20>>(&pts, Convention::Reciprocal),
+        ),
+        (
+            24,
+            max_err::<GaussLegendre<24>>(&pts, Convention::Reciprocal),
+        ),
+        (
+            32,
+            max_err::<GaussLegendre<32>>(&pts, Convention::Reciprocal),
+        ),
     ];
-    let backend = if cfg!(feature = "micromath") { "micromath" } else { "libm" };
+    let backend = if cfg!(feature = "micromath") {
+        "micromath"
+    } else {
+        "libm"
+    };
     println!("| nodes | max err f64 | max err f32 ({backend}) |");
     for (n, (a, b)) in rows {
         println!("| {n} | {a:.2e} | {b:.2e} |");
     }
     assert!(rows[0].1 .0 > 1e-4, "4 nodes should be visibly inaccurate");
-    assert!(rows[5].1 .0 < rows[2].1 .0 * 1e-3, "16 nodes should beat 8 by 1000x");
+    assert!(
+        rows[5].1 .0 < rows[2].1 .0 * 1e-3,
+        "16 nodes should beat 8 by 1000x"
+    );
     // Beyond 16 nodes the cut of the working variable at v = 4.5 dominates (~2e-10).
     assert!(rows[8].1 .0 < 2e-9);
 }
@@ -118,7 +149,10 @@ fn normalisation_matches_reference_and_small_sigma_limit() {
     }
     // σ → 0: p tends to a Gaussian in γ, C → √(2π)σ.
     let s = 1e-3;
-    let c = ModifiedG::<f64>::new(s).unwrap().distribution().normalisation_c();
+    let c = ModifiedG::<f64>::new(s)
+        .unwrap()
+        .distribution()
+        .normalisation_c();
     assert!((c / ((2.0 * std::f64::consts::PI).sqrt() * s) - 1.0).abs() < 1e-5);
     // The paper's literal reading (C = 1) would make ∫p dγ = 2πσ²/mass ≈ 1.386 at σ = 0.3.
     let d = RefDensity::new(0.3);
@@ -136,7 +170,13 @@ fn pdf_and_cdf_are_a_probability_density() {
             |g| dist.pdf(g),
             -std::f64::consts::FRAC_PI_2,
             std::f64::consts::FRAC_PI_2,
-            &[0.0, s.atan(), -s.atan(), (3.0 * s).atan(), -(3.0 * s).atan()],
+            &[
+                0.0,
+                s.atan(),
+                -s.atan(),
+                (3.0 * s).atan(),
+                -(3.0 * s).atan(),
+            ],
             1e-13,
         );
         assert!((total - 1.0).abs() < 1e-8, "σ={s}: ∫p = {total}");
@@ -184,7 +224,10 @@ fn reciprocal_convention_is_reciprocal_printed_is_not() {
         }
     }
     println!("printed eq 12: max |G(θi,θr) − G(swapped)| = {worst_printed:.3}");
-    assert!(worst_printed > 0.3, "printed form unexpectedly reciprocal: {worst_printed}");
+    assert!(
+        worst_printed > 0.3,
+        "printed form unexpectedly reciprocal: {worst_printed}"
+    );
 }
 
 /// GM and GS are smooth; G = min has kinks where they cross, at θr = ±θi.
@@ -195,16 +238,27 @@ fn kinks_sit_on_the_lines_where_gm_equals_gs() {
         let ti = ti_deg * DEG;
         for tr in [ti, -ti] {
             let t = k.terms(ti, tr);
-            assert!((t.gm - t.gs).abs() < 1e-12, "θi={ti_deg}: GM {} GS {}", t.gm, t.gs);
+            assert!(
+                (t.gm - t.gs).abs() < 1e-12,
+                "θi={ti_deg}: GM {} GS {}",
+                t.gm,
+                t.gs
+            );
             let h = 1e-4;
             let left = (k.g(ti, tr) - k.g(ti, tr - h)) / h;
             let right = (k.g(ti, tr + h) - k.g(ti, tr)) / h;
-            assert!((left - right).abs() > 1e-3, "no kink at θi={ti_deg}, θr={tr}: {left} {right}");
+            assert!(
+                (left - right).abs() > 1e-3,
+                "no kink at θi={ti_deg}, θr={tr}: {left} {right}"
+            );
             // The one-sided factors themselves have matching one-sided slopes (smooth).
             let gm = |x: f64| k.terms(ti, x).gm;
             let l2 = (gm(tr) - gm(tr - h)) / h;
             let r2 = (gm(tr + h) - gm(tr)) / h;
-            assert!((l2 - r2).abs() < 1e-2 * (1.0 + l2.abs()), "GM not smooth: {l2} {r2}");
+            assert!(
+                (l2 - r2).abs() < 1e-2 * (1.0 + l2.abs()),
+                "GM not smooth: {l2} {r2}"
+            );
         }
     }
 }

@@ -98,16 +98,50 @@ const STEPS: &[Step] = &[
         slow: false,
     },
     Step {
-        name: "tests with micromath",
+        name: "core tests with micromath",
         cmd: &[
             "cargo",
             "test",
             "-p",
-            "brdf-core",
+            "brdf-tests",
             "--features",
             "micromath",
+            "--test",
+            "core_modified_g",
+            "--test",
+            "core_kernels",
         ],
         slow: false,
+    },
+    Step {
+        name: "committed LUT assets are reproducible byte for byte",
+        cmd: &["cargo", "xtask", "lut", "--check"],
+        slow: true,
+    },
+    Step {
+        name: "install web tools (binaryen, chromium, playwright-core) when missing",
+        cmd: &["bash", ".ci/install-web.sh"],
+        slow: true,
+    },
+    Step {
+        name: "WASM module: size budget and Node comparison with native",
+        cmd: &["cargo", "xtask", "wasm"],
+        slow: true,
+    },
+    Step {
+        name: "web page in headless Chromium against the native rendering",
+        cmd: &["cargo", "xtask", "web"],
+        slow: true,
+    },
+    Step {
+        name: "firmware on QEMU (libm, bit-exact)",
+        cmd: &["cargo", "xtask", "firmware"],
+        slow: true,
+    },
+    Step {
+        name: "firmware on QEMU (micromath, tolerance)",
+        cmd: &["cargo", "xtask", "firmware", "--micromath"],
+        slow: true,
     },
 ];
 

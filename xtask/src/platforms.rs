@@ -1,18 +1,21 @@
 //! `cargo xtask firmware|wasm|web` (owned by the platforms issue).
 
-#[derive(clap::Args)]
-pub struct FirmwareArgs {}
-#[derive(clap::Args)]
-pub struct WasmArgs {}
-#[derive(clap::Args)]
-pub struct WebArgs {}
+#[path = "firmware.rs"]
+mod firmware_impl;
+pub use firmware_impl::FirmwareArgs;
+#[path = "wasm.rs"]
+mod wasm_impl;
+pub use wasm_impl::WasmArgs;
+#[path = "web.rs"]
+mod web_impl;
+pub use web_impl::WebArgs;
 
-pub fn firmware(_a: FirmwareArgs) -> anyhow::Result<()> {
-    anyhow::bail!("`cargo xtask firmware` is not implemented yet")
+pub fn firmware(a: FirmwareArgs) -> anyhow::Result<()> {
+    firmware_impl::run(a)
 }
-pub fn wasm(_a: WasmArgs) -> anyhow::Result<()> {
-    anyhow::bail!("`cargo xtask wasm` is not implemented yet")
+pub fn wasm(a: WasmArgs) -> anyhow::Result<()> {
+    wasm_impl::run_cmd(a)
 }
-pub fn web(_a: WebArgs) -> anyhow::Result<()> {
-    anyhow::bail!("`cargo xtask web` is not implemented yet")
+pub fn web(a: WebArgs) -> anyhow::Result<()> {
+    web_impl::run_cmd(a)
 }

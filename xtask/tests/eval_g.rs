@@ -13,7 +13,12 @@ fn run(args: &[&str], input: &str) -> (bool, String, String) {
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    child.stdin.take().unwrap().write_all(input.as_bytes()).unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(input.as_bytes())
+        .unwrap();
     let out = child.wait_with_output().unwrap();
     (
         out.status.success(),
@@ -38,7 +43,11 @@ fn values_match_reference_in_both_conventions() {
             assert_eq!(f.len(), 9);
             let d = RefDensity::new(f[2]);
             let (ti, tr) = (f[0].to_radians(), f[1].to_radians());
-            let (gm, gs, g) = if printed { d.g_printed(ti, tr) } else { d.g_reciprocal(ti, tr) };
+            let (gm, gs, g) = if printed {
+                d.g_printed(ti, tr)
+            } else {
+                d.g_reciprocal(ti, tr)
+            };
             for (got, want) in [(f[3], gm), (f[4], gs), (f[5], g)] {
                 assert!((got - want).abs() < 1e-8, "{line}: {got} vs {want}");
             }
@@ -53,7 +62,10 @@ fn values_match_reference_in_both_conventions() {
 #[test]
 fn malformed_rows_name_their_line() {
     for (input, needle) in [
-        ("theta_i_deg,theta_r_deg,sigma\n10,20,0.3\n10,abc,0.3\n", "line 3"),
+        (
+            "theta_i_deg,theta_r_deg,sigma\n10,20,0.3\n10,abc,0.3\n",
+            "line 3",
+        ),
         ("10,20\n", "line 1"),
         ("10,20,0.3\n10,20,-1\n", "line 2"),
         ("95,20,0.3\n", "line 1"),

@@ -59,7 +59,13 @@ impl<T: Real, R: Rule> SlopeDistribution<T, R> {
             + GaussLegendre::<32>::integrate(mid, vc, w);
         // C = πσ/(√2 Z)
         let c = T::PI * sigma / (T::from_f64(core::f64::consts::SQRT_2) * z_exact);
-        Ok(Self { sigma, sqrt2_sigma, inv_2z: T::ONE / (T::TWO * z), c, _rule: PhantomData })
+        Ok(Self {
+            sigma,
+            sqrt2_sigma,
+            inv_2z: T::ONE / (T::TWO * z),
+            c,
+            _rule: PhantomData,
+        })
     }
     /// The RMS slope σ.
     #[inline]
@@ -157,6 +163,7 @@ pub fn d_ggx<T: Real>(cos_h: T, alpha: T) -> T {
     }
     let a2 = alpha * alpha;
     let c2 = (cos_h * cos_h).min(T::ONE);
-    let d = c2 * (a2 - T::ONE) + T::ONE;
+    // c²(α² − 1) + 1 written as (1 − c²) + c²α²: no cancellation for tiny α (f32).
+    let d = (T::ONE - c2) + c2 * a2;
     a2 / (T::PI * d * d)
 }

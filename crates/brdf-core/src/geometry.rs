@@ -45,13 +45,15 @@ impl<T: Real> Vec3<T> {
     pub fn scale(self, s: T) -> Self {
         Self::new(self.x * s, self.y * s, self.z * s)
     }
-    /// Component-wise sum.
+    /// Component-wise sum (a method, so that generic code needs no operator bounds).
     #[inline]
+    #[allow(clippy::should_implement_trait)]
     pub fn add(self, o: Self) -> Self {
         Self::new(self.x + o.x, self.y + o.y, self.z + o.z)
     }
     /// Component-wise difference.
     #[inline]
+    #[allow(clippy::should_implement_trait)]
     pub fn sub(self, o: Self) -> Self {
         Self::new(self.x - o.x, self.y - o.y, self.z - o.z)
     }

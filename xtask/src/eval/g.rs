@@ -16,6 +16,13 @@ pub struct Args {
     /// Gauss–Legendre node count per integral, one of those compiled in.
     #[arg(long, default_value_t = DEFAULT_NODES)]
     nodes: usize,
+    /// Answer GM, GS and G from a G table instead of the kernel (f32 lookups; the Blinn and
+    /// Smith columns stay direct). Default table: assets/g_modified.blut (σ ∈ [0.05, 1]).
+    #[arg(long)]
+    lut: bool,
+    /// The G table for `--lut` (a 3-D table, or a per-σ table whose σ every row must match).
+    #[arg(long, requires = "lut")]
+    lut_file: Option<std::path::PathBuf>,
 }
 
 /// The output header.
@@ -124,8 +131,50 @@ fn run_with<R: Rule>(conv: Convention) -> Result<()> {
     Ok(())
 }
 
+/// `--lut`: the direct columns with GM, GS, G replaced by the table's (3-D table: any σ in
+/// its range, clamped; per-σ table: σ must match).
+fn run_lut(path: &std::path::Path, conv: Convention) -> Result<()> {
+    if conv != Convention::Reciprocal {
+        bail!("--lut tables hold the reciprocal convention only");
+    }
+    let lut =
+        brdf_lut::Lut::from_path(path).with_context(|| format!("loading {}", path.display()))?;
+    let stdin = std::io::stdin();
+    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+    writeln!(out, "{HEADER}")?;
+    for (i, line) in stdin.lock().lines().enumerate() {
+        let line = line.with_context(|| format!("line {}: unreadable input", i + 1))?;
+        let Some(row) = parse_row(&line, i + 1)? else {
+            continue;
+        };
+        let mut cols = direct_columns::<GaussLegendre<4>>(&row, conv)
+            .with_context(|| format!("line {}", i + 1))?;
+        let (gm, gs, g) = lut
+            .g_terms(
+                row.ti_deg.to_radians() as f32,
+                row.tr_deg.to_radians() as f32,
+                row.sigma as f32,
+            )
+            .with_context(|| format!("line {}", i + 1))?;
+        cols[0] = gm as f64;
+        cols[1] = gs as f64;
+        cols[2] = g as f64;
+        let cols: Vec<String> = cols.iter().map(|&x| fmt17(x)).collect();
+        writeln!(out, "{},{}", row.fields.join(","), cols.join(","))?;
+    }
+    out.flush()?;
+    Ok(())
+}
+
 pub fn run(a: Args) -> Result<()> {
     let conv = parse_convention(&a.convention)?;
+    if a.lut {
+        let p = a
+            .lut_file
+            .clone()
+            .unwrap_or_else(|| crate::lut::assets_dir().join("g_modified.blut"));
+        return run_lut(&p, conv);
+    }
     match a.nodes {
         4 => run_with::<GaussLegendre<4>>(conv),
         6 => run_with::<GaussLegendre<6>>(conv),

@@ -1,5 +1,259 @@
 //! Reflection models built from the distribution, masking and Fresnel pieces.
+//!
+//! Every model implements [`Brdf`]: evaluation in the local shading frame (z = normal,
+//! both directions pointing away from the surface, `wi` toward the light, `wo` toward the
+//! viewer), importance sampling and the matching pdf, a Dirac part kept apart
+//! ([`Brdf::delta`]), and [`BrdfFlags`] saying whether the model is reciprocal, energy
+//! conserving and has a Dirac part — the plausibility tests read those flags.
+//!
+//! | model | source |
+//! |---|---|
+//! | [`StandardLighting`] | seed 003, the standard (Phong / Blinn-Phong) lighting equation |
+//! | [`Lambert`], [`PhongNormalized`], [`BlinnPhongNormalized`] | seed 003 / FCG §24.2 |
+//! | [`CookTorrance`] | seed 002 §10.1, with [`TorranceSparrow`] (paper eq 3) |
+//! | [`LambertSpecularMix`], [`ShirleyDamped`], [`CoupledSmooth`] | FCG §24.4, eq 24.3 |
+//! | [`AshikhminShirley`] | FCG eqs 24.5–24.9 |
+//! | [`Bank`], [`Ward`] | seed 002 §10.3–10.4 |
+//! | [`Ggx`] | Trowbridge–Reitz with Smith masking (conventions.md §8) |
 
+// `!(x > 0)` is deliberate throughout: it is true for NaN as well.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
+pub mod ashikhmin_shirley;
+pub mod bank;
+pub mod cook_torrance;
+pub mod coupled;
+pub mod ggx;
+pub mod lambert;
+pub mod mix;
+pub mod phong;
+pub mod rgb;
+pub mod shirley;
+pub mod standard;
 pub mod torrance_sparrow;
+pub mod ward;
 
+pub use ashikhmin_shirley::AshikhminShirley;
+pub use bank::{Bank, BankTangent};
+pub use cook_torrance::CookTorrance;
+pub use coupled::{CoupledK, CoupledSmooth};
+pub use ggx::{Ggx, MicrofacetSampling, SmithForm};
+pub use lambert::Lambert;
+pub use mix::LambertSpecularMix;
+pub use phong::{BlinnPhongNormalized, PhongNormalized};
+pub use rgb::Rgb;
+pub use shirley::ShirleyDamped;
+pub use standard::{Highlight, Light, StandardLighting};
 pub use torrance_sparrow::{GeometricTerm, TorranceSparrow};
+pub use ward::Ward;
+
+use crate::geometry::Vec3;
+use crate::Real;
+
+/// What a model claims about itself. The plausibility suite reads these: reciprocity is
+/// tested only where `reciprocal`, albedo ≤ 1 only where `energy_conserving`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BrdfFlags {
+    /// f(wi, wo) = f(wo, wi) for all pairs.
+    pub reciprocal: bool,
+    /// Directional albedo ≤ 1 for every wo (for the parameters given).
+    pub energy_conserving: bool,
+    /// The model has a Dirac (mirror) part, reported by [`Brdf::delta`] and not by
+    /// [`Brdf::eval`].
+    pub has_delta: bool,
+}
+
+/// One importance sample.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BrdfSample<T> {
+    /// The sampled direction toward the light (unit, local frame). May lie below the horizon;
+    /// its weight is then 0.
+    pub wi: Vec3<T>,
+    /// For a continuous sample: the pdf of `wi` per unit solid angle, equal to
+    /// [`Brdf::pdf`]`(wo, wi)`. For a specular sample: the probability of choosing the Dirac
+    /// part, [`DeltaLobe::prob`].
+    pub pdf: T,
+    /// f(wi, wo)·max(cos θi, 0)/pdf (for a specular sample: the Dirac reflectance / prob).
+    pub weight: Rgb<T>,
+    /// `true` when the sample is the Dirac part.
+    pub specular: bool,
+}
+
+/// The Dirac (mirror) part of a model for one wo.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DeltaLobe<T> {
+    /// The mirror direction 2(n·wo)n − wo.
+    pub wi: Vec3<T>,
+    /// Its reflectance: the Dirac part's contribution to ∫ f cos θi dωi.
+    pub reflectance: Rgb<T>,
+    /// The probability that [`Brdf::sample`] returns it.
+    pub prob: T,
+}
+
+/// The shape of a model's sharpest lobe in half-vector slope space, used by
+/// [`crate::albedo`] to place its quadrature: the lobe around h = n is about `ax` wide
+/// along x and `ay` along y (slopes, i.e. tan θh). Wide lobes use 1.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LobeHint<T> {
+    /// Slope width along the local x axis.
+    pub ax: T,
+    /// Slope width along the local y axis.
+    pub ay: T,
+}
+
+impl<T: Real> LobeHint<T> {
+    /// A lobe as wide as the hemisphere (diffuse models).
+    pub fn wide() -> Self {
+        Self {
+            ax: T::ONE,
+            ay: T::ONE,
+        }
+    }
+    /// An isotropic lobe of slope width `a`, clamped to [1e-4, 1].
+    pub fn iso(a: T) -> Self {
+        Self::aniso(a, a)
+    }
+    /// An anisotropic lobe, each width clamped to [1e-4, 1].
+    pub fn aniso(ax: T, ay: T) -> Self {
+        let c = |a: T| {
+            if a.is_nan() {
+                T::ONE
+            } else {
+                a.clamp(T::from_f64(1e-4), T::ONE)
+            }
+        };
+        Self {
+            ax: c(ax),
+            ay: c(ay),
+        }
+    }
+}
+
+/// A reflection model in the local shading frame (z = normal, directions away from the
+/// surface; `wi` toward the light, `wo` toward the viewer). Object safe.
+pub trait Brdf<T: Real> {
+    /// What the model claims (read by the tests).
+    fn flags(&self) -> BrdfFlags;
+    /// f(wi, wo) in 1/sr, per channel, without the Dirac part. 0 when either direction is at
+    /// or below the horizon. (The standard lighting model returns a lit colour instead, see
+    /// its docs.)
+    fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T>;
+    /// The pdf per unit solid angle over the whole sphere with which [`Brdf::sample`]
+    /// returns a continuous (non-specular) `wi`; it includes directions below the horizon
+    /// that the sampler can produce. Integrates to 1 − (Dirac probability) − (failure
+    /// probability).
+    fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T;
+    /// Draws wi for the given wo from two uniform numbers in [0, 1). `None` when wo is at or
+    /// below the horizon, not finite, or the sample fails (e.g. a half vector facing away
+    /// from wo).
+    fn sample(&self, wo: Vec3<T>, u: [T; 2]) -> Option<BrdfSample<T>>;
+    /// The Dirac part for this wo, if the model has one.
+    fn delta(&self, _wo: Vec3<T>) -> Option<DeltaLobe<T>> {
+        None
+    }
+    /// Where the sharpest lobe is, for the albedo quadrature.
+    fn lobe_hint(&self) -> LobeHint<T> {
+        LobeHint::wide()
+    }
+}
+
+/// `true` when both directions are strictly above the horizon (and not NaN).
+#[inline]
+pub(crate) fn above<T: Real>(wi: Vec3<T>, wo: Vec3<T>) -> bool {
+    wi.z > T::ZERO && wo.z > T::ZERO
+}
+
+/// `true` when `w` is finite and strictly above the horizon.
+#[inline]
+pub(crate) fn valid_wo<T: Real>(w: Vec3<T>) -> bool {
+    w.x.is_finite() && w.y.is_finite() && w.z.is_finite() && w.z > T::ZERO
+}
+
+/// The half vector (wi + wo)/|wi + wo|; `None` when wi = −wo.
+#[inline]
+pub(crate) fn half_vector<T: Real>(wi: Vec3<T>, wo: Vec3<T>) -> Option<Vec3<T>> {
+    wi.add(wo).normalize()
+}
+
+/// Completes a continuous sample: pdf from the model, weight f·max(cos θi, 0)/pdf (0 below
+/// the horizon). `None` when the pdf is not positive and finite.
+pub(crate) fn finish<T: Real, B: Brdf<T> + ?Sized>(
+    b: &B,
+    wo: Vec3<T>,
+    wi: Vec3<T>,
+) -> Option<BrdfSample<T>> {
+    let pdf = b.pdf(wo, wi);
+    if !(pdf > T::ZERO) || !pdf.is_finite() {
+        return None;
+    }
+    let weight = if wi.z > T::ZERO {
+        b.eval(wi, wo).scale(wi.z / pdf)
+    } else {
+        Rgb::zero()
+    };
+    Some(BrdfSample {
+        wi,
+        pdf,
+        weight,
+        specular: false,
+    })
+}
+
+/// Splits u0 ∈ [0, 1) between two lobes chosen with probabilities p and 1 − p, returning
+/// which lobe (`true` = the first) and u0 rescaled to [0, 1).
+#[inline]
+pub(crate) fn pick<T: Real>(u0: T, p: T) -> (bool, T) {
+    if u0 < p {
+        (true, (u0 / p).min(T::ONE - T::EPSILON))
+    } else {
+        let q = T::ONE - p;
+        let v = if q > T::ZERO { (u0 - p) / q } else { T::ZERO };
+        (false, v.clamp(T::ZERO, T::ONE - T::EPSILON))
+    }
+}
+
+/// Probability of the first of two lobes from their (mean) weights; ½ when both are 0.
+#[inline]
+pub(crate) fn lobe_prob<T: Real>(w1: T, w2: T) -> T {
+    let s = w1 + w2;
+    if s > T::ZERO {
+        (w1 / s).clamp(T::ZERO, T::ONE)
+    } else {
+        T::HALF
+    }
+}
+
+/// `true` when every u is finite.
+#[inline]
+pub(crate) fn u_ok<T: Real>(u: [T; 2]) -> bool {
+    u[0].is_finite() && u[1].is_finite()
+}
+
+/// Sampling shared by the smooth-layered models: the Dirac part with probability
+/// `delta.prob`, else the cosine-weighted hemisphere.
+pub(crate) fn sample_delta_or_cosine<T: Real, B: Brdf<T> + ?Sized>(
+    b: &B,
+    wo: Vec3<T>,
+    u: [T; 2],
+) -> Option<BrdfSample<T>> {
+    if !valid_wo(wo) || !u_ok(u) {
+        return None;
+    }
+    let d = b.delta(wo)?;
+    let (spec, u0) = pick(u[0], d.prob);
+    if spec {
+        return Some(BrdfSample {
+            wi: d.wi,
+            pdf: d.prob,
+            weight: d.reflectance.scale(T::ONE / d.prob),
+            specular: true,
+        });
+    }
+    finish(b, wo, crate::sampling::sample_cosine_hemisphere([u0, u[1]]))
+}
+
+/// The mirror direction 2(n·w)n − w about the local normal.
+#[inline]
+pub(crate) fn mirror<T: Real>(w: Vec3<T>) -> Vec3<T> {
+    Vec3::new(-w.x, -w.y, w.z)
+}

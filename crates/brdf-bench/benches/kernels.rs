@@ -1,0 +1,460 @@
+//! The criterion suite. `cargo xtask bench` runs it with short settings and turns
+//! `target/criterion/**/new/estimates.json` into `docs/benchmarks.md`; every group declares
+//! its elements per iteration as criterion throughput, so ns per call = mean / elements.
+//!
+//! Group names carry the scalar type and, for f32 kernels, the math library
+//! (`libm` or `micromath`, brdf-bench's feature `micromath`), so the two runs of the binary
+//! write to different directories.
+
+use brdf_bench::*;
+use brdf_core::batch::{self, DotsSoa, Vec3Soa};
+use brdf_core::fresnel::Fresnel;
+use brdf_core::lut::{DfgTable, GTable, GTable3, LutView};
+use brdf_core::masking::{self, ModifiedG};
+use brdf_core::models::*;
+use brdf_core::quadrature::{GaussLegendre, DEFAULT_NODES};
+use brdf_core::split_sum::{dfg_ggx, InnerRule, OuterRule};
+use brdf_core::{albedo, Real, Vec3};
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use std::hint::black_box;
+
+/// "libm" or "micromath": which library the f32 transcendental functions come from.
+const F32_MATH: &str = if cfg!(feature = "micromath") {
+    "micromath"
+} else {
+    "libm"
+};
+
+fn type_tag<T: Real>() -> String {
+    if core::mem::size_of::<T>() == 4 {
+        format!("f32_{F32_MATH}")
+    } else {
+        "f64".into()
+    }
+}
+
+/// Direct G (modified, by quadrature) at every compiled node count.
+fn g_direct<T: Real>(c: &mut Criterion) {
+    let (ti, tr) = angle_pairs::<T>(BATCH);
+    let mut grp = c.benchmark_group(format!("g_direct_{}", type_tag::<T>()));
+    grp.throughput(Throughput::Elements(BATCH as u64));
+    macro_rules! at {
+        ($($n:literal),*) => {$(
+            let g = ModifiedG::<T, GaussLegendre<$n>>::new(T::from_f64(SIGMA)).unwrap();
+            grp.bench_function(BenchmarkId::from_parameter(format!("n{:02}", $n)), |b| {
+                b.iter(|| {
+                    for (&a, &r) in ti.iter().zip(&tr) {
+                        black_box(g.g(black_box(a), black_box(r)));
+                    }
+                })
+            });
+        )*};
+    }
+    at!(4, 6, 8, 10, 12, 16, 20, 24, 32);
+    grp.finish();
+}
+
+/// Closed forms (Smith, Blinn) and the modified G from dot products, shader inputs.
+fn g_closed<T: Real>(c: &mut Criterion) {
+    let d = dots_pairs::<T>(BATCH);
+    let m = T::from_f64(std::f64::consts::SQRT_2 * SIGMA);
+    let mut grp = c.benchmark_group(format!("g_closed_{}", type_tag::<T>()));
+    grp.throughput(Throughput::Elements(BATCH as u64));
+    grp.bench_function("smith_beckmann_correlated", |b| {
+        b.iter(|| {
+            for x in &d {
+                black_box(masking::g_smith_beckmann_correlated(
+                    black_box(x.n_i),
+                    black_box(x.n_o),
+                    m,
+                ));
+            }
+        })
+    });
+    grp.bench_function("smith_beckmann_separable", |b| {
+        b.iter(|| {
+            for x in &d {
+                black_box(masking::g_smith_beckmann_separable(
+                    black_box(x.n_i),
+                    black_box(x.n_o),
+                    m,
+                ));
+            }
+        })
+    });
+    grp.bench_function("blinn_dots", |b| {
+        b.iter(|| {
+            for x in &d {
+                black_box(masking::g_blinn_dots(black_box(*x)));
+            }
+        })
+    });
+    let g = ModifiedG::<T>::new(T::from_f64(SIGMA)).unwrap();
+    grp.bench_function(format!("modified_dots_n{DEFAULT_NODES}"), |b| {
+        b.iter(|| {
+            for x in &d {
+                black_box(g.g_dots(black_box(*x)));
+            }
+        })
+    });
+    grp.finish();
+}
+
+/// LUT lookups of G: the 3-D (θ, φ, σ) table and the per-σ 2-D table (f32 by design).
+fn g_lut(c: &mut Criterion) {
+    let (ti, tr) = angle_pairs::<f32>(BATCH);
+    let mut grp = c.benchmark_group("g_lut");
+    grp.throughput(Throughput::Elements(BATCH as u64));
+    if let Some(bytes) = read_asset(G3_ASSET) {
+        let t = GTable3::parse(&bytes).unwrap();
+        let s = SIGMA as f32;
+        grp.bench_function("table3d", |b| {
+            b.iter(|| {
+                for (&a, &r) in ti.iter().zip(&tr) {
+                    black_box(t.g(black_box(a), black_box(r), s));
+                }
+            })
+        });
+        if let Some(f) = fast_lut::FastPassing::new(t.view()) {
+            grp.bench_function("table3d_fixed_layout", |b| {
+                b.iter(|| {
+                    for (&a, &r) in ti.iter().zip(&tr) {
+                        black_box(f.g(black_box(a), black_box(r), s));
+                    }
+                })
+            });
+        }
+    }
+    if let Some(bytes) = read_asset(G2_ASSET) {
+        let t = GTable::parse(&bytes).unwrap();
+        grp.bench_function("table2d_sigma0.3", |b| {
+            b.iter(|| {
+                for (&a, &r) in ti.iter().zip(&tr) {
+                    black_box(t.g(black_box(a), black_box(r)));
+                }
+            })
+        });
+        if let Some(f) = fast_lut::FastPassing::new(t.view()) {
+            grp.bench_function("table2d_sigma0.3_fixed_layout", |b| {
+                b.iter(|| {
+                    for (&a, &r) in ti.iter().zip(&tr) {
+                        black_box(f.g(black_box(a), black_box(r), 0.0));
+                    }
+                })
+            });
+        }
+    }
+    grp.finish();
+}
+
+/// Every BRDF model: evaluation at BATCH direction pairs, importance sampling of BATCH wi.
+fn models(c: &mut Criterion) {
+    type T = f32;
+    let wi = directions::<T>(BATCH);
+    let mut wo = directions::<T>(BATCH + 13);
+    wo.drain(..13);
+    let us: Vec<[T; 2]> = (0..BATCH)
+        .map(|k| {
+            let (a, b) = r2(k + 500);
+            [a as T, b as T]
+        })
+        .collect();
+    let rgb = |r: f64, g: f64, b: f64| Rgb::new(r as T, g as T, b as T);
+    let (kd, ks) = (rgb(0.5, 0.4, 0.3), rgb(0.04, 0.04, 0.04));
+    let list: Vec<(&str, Box<dyn Brdf<T>>)> = vec![
+        ("lambert", Box::new(Lambert::new(kd).unwrap())),
+        (
+            "phong_normalized",
+            Box::new(PhongNormalized::new(kd, ks, 50.0).unwrap()),
+        ),
+        (
+            "blinn_phong_normalized",
+            Box::new(BlinnPhongNormalized::new(kd, ks, 50.0).unwrap()),
+        ),
+        (
+            "standard_lighting",
+            Box::new(
+                StandardLighting::new(
+                    rgb(0., 0., 0.),
+                    rgb(0.1, 0.1, 0.1),
+                    kd,
+                    ks,
+                    32.0,
+                    Highlight::Phong,
+                )
+                .unwrap(),
+            ),
+        ),
+        (
+            "ggx",
+            Box::new(
+                Ggx::new(
+                    ks,
+                    0.3,
+                    SmithForm::Correlated,
+                    MicrofacetSampling::VisibleNormals,
+                )
+                .unwrap(),
+            ),
+        ),
+        (
+            "cook_torrance_modified_g",
+            Box::new(CookTorrance::new(kd, ks, 0.3, 0.04, GeometricTerm::Modified).unwrap()),
+        ),
+        (
+            "cook_torrance_smith",
+            Box::new(CookTorrance::new(kd, ks, 0.3, 0.04, GeometricTerm::SmithCorrelated).unwrap()),
+        ),
+        ("ward", Box::new(Ward::new(kd, ks, 0.2, 0.3).unwrap())),
+        (
+            "ashikhmin_shirley",
+            Box::new(AshikhminShirley::new(ks, kd, 100.0, 20.0).unwrap()),
+        ),
+        (
+            "bank",
+            Box::new(Bank::new(kd, ks, 20.0, BankTangent::Azimuth(0.0)).unwrap()),
+        ),
+        (
+            "coupled_smooth",
+            Box::new(CoupledSmooth::new(kd, 0.04, CoupledK::Conserving).unwrap()),
+        ),
+        (
+            "shirley_damped",
+            Box::new(ShirleyDamped::new(kd, 0.04).unwrap()),
+        ),
+        (
+            "lambert_specular_mix",
+            Box::new(LambertSpecularMix::new(kd, 0.04).unwrap()),
+        ),
+    ];
+    let mut ev = c.benchmark_group(format!("model_eval_{}", type_tag::<T>()));
+    ev.throughput(Throughput::Elements(BATCH as u64));
+    for (name, m) in &list {
+        ev.bench_function(*name, |b| {
+            b.iter(|| {
+                for (a, o) in wi.iter().zip(&wo) {
+                    black_box(m.eval(black_box(*a), black_box(*o)));
+                }
+            })
+        });
+    }
+    for gt in GeometricTerm::ALL {
+        let ts =
+            TorranceSparrow::<T>::new(SIGMA as T, gt, Fresnel::schlick(0.04).unwrap(), 1.0, 0.2)
+                .unwrap();
+        ev.bench_function(format!("torrance_sparrow_{}", gt.name()), |b| {
+            b.iter(|| {
+                for (a, o) in wi.iter().zip(&wo) {
+                    black_box(ts.eval(black_box(*a), black_box(*o)));
+                }
+            })
+        });
+    }
+    ev.finish();
+    let mut sm = c.benchmark_group(format!("model_sample_{}", type_tag::<T>()));
+    sm.throughput(Throughput::Elements(BATCH as u64));
+    for (name, m) in &list {
+        sm.bench_function(*name, |b| {
+            b.iter(|| {
+                for (o, u) in wo.iter().zip(&us) {
+                    black_box(m.sample(black_box(*o), black_box(*u)));
+                }
+            })
+        });
+    }
+    sm.finish();
+}
+
+/// DFG: table lookup, Karis's fit, the split-sum integral and the directional albedo.
+fn dfg(c: &mut Criterion) {
+    let pts = mu_roughness(BATCH);
+    let pts32: Vec<(f32, f32)> = pts.iter().map(|&(m, r)| (m as f32, r as f32)).collect();
+    let mut grp = c.benchmark_group("dfg");
+    grp.throughput(Throughput::Elements(BATCH as u64));
+    if let Some(bytes) = read_asset(DFG_ASSET) {
+        let t = DfgTable::parse(&bytes).unwrap();
+        grp.bench_function("lut_f32", |b| {
+            b.iter(|| {
+                for &(m, r) in &pts32 {
+                    black_box(t.ab(black_box(m), black_box(r)));
+                }
+            })
+        });
+    }
+    grp.bench_function("karis_approx_f32", |b| {
+        b.iter(|| {
+            for &(m, r) in &pts32 {
+                black_box(env_brdf_approx(black_box(m), black_box(r)));
+            }
+        })
+    });
+    grp.finish();
+    // The integrals are slow: 4 points per iteration.
+    let few = &pts[..4];
+    let mut slow = c.benchmark_group("dfg_direct");
+    slow.throughput(Throughput::Elements(few.len() as u64));
+    slow.sample_size(10);
+    slow.bench_function("split_sum_f64", |b| {
+        b.iter(|| {
+            for &(m, r) in few {
+                black_box(dfg_ggx::<f64, OuterRule, InnerRule>(
+                    black_box(m),
+                    black_box(r),
+                ));
+            }
+        })
+    });
+    slow.bench_function("split_sum_f32", |b| {
+        b.iter(|| {
+            for &(m, r) in few {
+                black_box(dfg_ggx::<f32, OuterRule, InnerRule>(
+                    black_box(m as f32),
+                    black_box(r as f32),
+                ));
+            }
+        })
+    });
+    let models: Vec<(f64, Ggx<f64>)> = few
+        .iter()
+        .map(|&(m, r)| {
+            let a = (r * r).max(1e-4);
+            let g = Ggx::new(
+                Rgb::splat(1.0),
+                a,
+                SmithForm::Correlated,
+                MicrofacetSampling::VisibleNormals,
+            )
+            .unwrap();
+            (m, g)
+        })
+        .collect();
+    slow.bench_function("directional_albedo_f64", |b| {
+        b.iter(|| {
+            for (m, g) in &models {
+                let wo = Vec3::new((1.0 - m * m).sqrt(), 0.0, *m);
+                black_box(albedo::directional_albedo(g, black_box(wo)));
+            }
+        })
+    });
+    slow.finish();
+}
+
+/// Batch entry points over BATCH_LEN elements.
+fn batches<T: brdf_core::batch::BatchReal>(c: &mut Criterion) {
+    let (ti, tr) = angle_pairs::<T>(BATCH_LEN);
+    let d = dots_pairs::<T>(BATCH_LEN);
+    let n_i: Vec<T> = d.iter().map(|x| x.n_i).collect();
+    let n_o: Vec<T> = d.iter().map(|x| x.n_o).collect();
+    let i_o: Vec<T> = d.iter().map(|x| x.i_o).collect();
+    let soa = DotsSoa {
+        n_i: &n_i,
+        n_o: &n_o,
+        i_o: &i_o,
+    };
+    let wi = directions::<T>(BATCH_LEN);
+    let wo: Vec<Vec3<T>> = directions::<T>(BATCH_LEN + 9).split_off(9);
+    let comp =
+        |v: &[Vec3<T>], k: usize| -> Vec<T> { v.iter().map(|w| [w.x, w.y, w.z][k]).collect() };
+    let (wix, wiy, wiz) = (comp(&wi, 0), comp(&wi, 1), comp(&wi, 2));
+    let (wox, woy, woz) = (comp(&wo, 0), comp(&wo, 1), comp(&wo, 2));
+    let mut out = vec![T::ZERO; BATCH_LEN];
+    let (mut o1, mut o2) = (vec![T::ZERO; BATCH_LEN], vec![T::ZERO; BATCH_LEN]);
+    let g = ModifiedG::<T>::new(T::from_f64(SIGMA)).unwrap();
+    let m = T::from_f64(std::f64::consts::SQRT_2 * SIGMA);
+    let alpha = T::from_f64(0.3);
+    let ts = TorranceSparrow::<T>::new(
+        T::from_f64(SIGMA),
+        GeometricTerm::SmithCorrelated,
+        Fresnel::schlick(T::from_f64(0.04)).unwrap(),
+        T::ONE,
+        T::from_f64(0.2),
+    )
+    .unwrap();
+    let ggx = Ggx::new(
+        Rgb::splat(T::from_f64(0.04)),
+        alpha,
+        SmithForm::Correlated,
+        MicrofacetSampling::VisibleNormals,
+    )
+    .unwrap();
+    let mut grp = c.benchmark_group(format!("batch_{}", type_tag::<T>()));
+    grp.throughput(Throughput::Elements(BATCH_LEN as u64));
+    grp.bench_function("g_modified", |b| {
+        b.iter(|| batch::g_modified(&g, black_box(&ti), black_box(&tr), &mut out).unwrap())
+    });
+    grp.bench_function("g_modified_dots", |b| {
+        b.iter(|| batch::g_modified_dots(&g, black_box(soa), &mut out).unwrap())
+    });
+    grp.bench_function("g_blinn_dots", |b| {
+        b.iter(|| batch::g_blinn_dots(black_box(soa), &mut out).unwrap())
+    });
+    grp.bench_function("g_smith_beckmann_correlated", |b| {
+        b.iter(|| batch::g_smith_beckmann_correlated(black_box(&n_i), &n_o, m, &mut out).unwrap())
+    });
+    grp.bench_function("g_smith_ggx_correlated", |b| {
+        b.iter(|| batch::g_smith_ggx_correlated(black_box(&n_i), &n_o, alpha, &mut out).unwrap())
+    });
+    grp.bench_function("v_smith_ggx_correlated", |b| {
+        b.iter(|| batch::v_smith_ggx_correlated(black_box(&n_i), &n_o, alpha, &mut out).unwrap())
+    });
+    grp.bench_function("torrance_sparrow_smith", |b| {
+        b.iter(|| batch::torrance_sparrow(&ts, black_box(soa), &mut out).unwrap())
+    });
+    grp.bench_function("ggx_eval", |b| {
+        b.iter(|| {
+            batch::brdf_eval(
+                &ggx,
+                Vec3Soa {
+                    x: black_box(&wix),
+                    y: &wiy,
+                    z: &wiz,
+                },
+                Vec3Soa {
+                    x: &wox,
+                    y: &woy,
+                    z: &woz,
+                },
+                [&mut out, &mut o1, &mut o2],
+            )
+            .unwrap()
+        })
+    });
+    grp.finish();
+}
+
+/// Parse + validate (CRC included) of the default assets: the no_std view and the std loader.
+fn lut_parse(c: &mut Criterion) {
+    let mut grp = c.benchmark_group("lut_parse");
+    for name in [G3_ASSET, G2_ASSET, DFG_ASSET] {
+        let Some(bytes) = read_asset(name) else {
+            continue;
+        };
+        grp.throughput(Throughput::Bytes(bytes.len() as u64));
+        grp.bench_function(format!("view/{name}"), |b| {
+            b.iter(|| black_box(LutView::parse(black_box(&bytes)).unwrap().kind()))
+        });
+        grp.bench_function(format!("std_loader/{name}"), |b| {
+            b.iter(|| {
+                let lut = brdf_lut::Lut::from_bytes(black_box(bytes.clone())).unwrap();
+                black_box(lut.bytes().len())
+            })
+        });
+    }
+    grp.finish();
+}
+
+fn all(c: &mut Criterion) {
+    g_direct::<f32>(c);
+    g_direct::<f64>(c);
+    g_closed::<f32>(c);
+    g_closed::<f64>(c);
+    g_lut(c);
+    batches::<f32>(c);
+    batches::<f64>(c);
+    models(c);
+    dfg(c);
+    lut_parse(c);
+}
+
+criterion_group!(benches, all);
+criterion_main!(benches);

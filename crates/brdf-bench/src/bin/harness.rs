@@ -1,0 +1,125 @@
+//! Callgrind harness: `harness <kernel> <n>` calls one kernel `n` times over the benchmark
+//! inputs (cycling through [`brdf_bench::BATCH`] of them). Run it under
+//! `valgrind --tool=callgrind` with `n` and with 0: instructions per call =
+//! (Ir(n) − Ir(0))/n, which removes start-up, input preparation and table loading.
+//! `harness list` prints the kernel names.
+
+use brdf_bench::*;
+use brdf_core::lut::{DfgTable, GTable, GTable3};
+use brdf_core::masking::{self, ModifiedG};
+use brdf_core::split_sum::{dfg_ggx, InnerRule, OuterRule};
+use std::hint::black_box;
+
+const KERNELS: &[&str] = &[
+    "g_direct_f32",
+    "g_direct_f64",
+    "g_lut3d",
+    "g_lut2d",
+    "g_lut3d_fixed",
+    "g_lut2d_fixed",
+    "smith_beckmann_f32",
+    "blinn_f32",
+    "dfg_lut",
+    "dfg_karis",
+    "dfg_direct_f64",
+];
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    if args.len() == 2 && args[1] == "list" {
+        println!("{}", KERNELS.join("\n"));
+        return;
+    }
+    if args.len() != 3 {
+        eprintln!("usage: harness <kernel> <n> | harness list");
+        std::process::exit(2);
+    }
+    let name = args[1].as_str();
+    let n: usize = match args[2].parse() {
+        Ok(n) => n,
+        Err(_) => {
+            eprintln!("n must be a non-negative integer");
+            std::process::exit(2);
+        }
+    };
+    let (ti32, tr32) = angle_pairs::<f32>(BATCH);
+    let (ti64, tr64) = angle_pairs::<f64>(BATCH);
+    let d32 = dots_pairs::<f32>(BATCH);
+    let mr = mu_roughness(BATCH);
+    let mut acc = 0f64;
+    macro_rules! run {
+        ($body:expr) => {{
+            let f = $body;
+            for k in 0..n {
+                acc += f(k % BATCH) as f64;
+            }
+        }};
+    }
+    let asset = |a: &str| {
+        read_asset(a).unwrap_or_else(|| {
+            eprintln!("asset {a} missing");
+            std::process::exit(1)
+        })
+    };
+    match name {
+        "g_direct_f32" => {
+            let g = ModifiedG::<f32>::new(SIGMA as f32).unwrap();
+            run!(|k: usize| g.g(black_box(ti32[k]), black_box(tr32[k])))
+        }
+        "g_direct_f64" => {
+            let g = ModifiedG::<f64>::new(SIGMA).unwrap();
+            run!(|k: usize| g.g(black_box(ti64[k]), black_box(tr64[k])))
+        }
+        "g_lut3d" => {
+            let b = asset(G3_ASSET);
+            let t = GTable3::parse(&b).unwrap();
+            run!(|k: usize| t.g(black_box(ti32[k]), black_box(tr32[k]), SIGMA as f32))
+        }
+        "g_lut2d" => {
+            let b = asset(G2_ASSET);
+            let t = GTable::parse(&b).unwrap();
+            run!(|k: usize| t.g(black_box(ti32[k]), black_box(tr32[k])))
+        }
+        "g_lut3d_fixed" | "g_lut2d_fixed" => {
+            let b = asset(if name == "g_lut3d_fixed" {
+                G3_ASSET
+            } else {
+                G2_ASSET
+            });
+            let v = brdf_core::lut::LutView::parse(&b).unwrap();
+            let t = brdf_bench::fast_lut::FastPassing::new(&v).unwrap();
+            run!(|k: usize| t.g(black_box(ti32[k]), black_box(tr32[k]), SIGMA as f32))
+        }
+        "smith_beckmann_f32" => {
+            let m = (std::f64::consts::SQRT_2 * SIGMA) as f32;
+            run!(|k: usize| masking::g_smith_beckmann_correlated(
+                black_box(d32[k].n_i),
+                black_box(d32[k].n_o),
+                m
+            ))
+        }
+        "blinn_f32" => run!(|k: usize| masking::g_blinn_dots(black_box(d32[k]))),
+        "dfg_lut" => {
+            let b = asset(DFG_ASSET);
+            let t = DfgTable::parse(&b).unwrap();
+            run!(|k: usize| {
+                let (a, b) = t.ab(black_box(mr[k].0 as f32), black_box(mr[k].1 as f32));
+                a + b
+            })
+        }
+        "dfg_karis" => run!(|k: usize| {
+            let (a, b) = env_brdf_approx(black_box(mr[k].0 as f32), black_box(mr[k].1 as f32));
+            a + b
+        }),
+        "dfg_direct_f64" => run!(|k: usize| {
+            let (a, b) =
+                dfg_ggx::<f64, OuterRule, InnerRule>(black_box(mr[k].0), black_box(mr[k].1));
+            a + b
+        }),
+        _ => {
+            eprintln!("unknown kernel {name}; `harness list` prints the names");
+            std::process::exit(2);
+        }
+    }
+    black_box(acc);
+}

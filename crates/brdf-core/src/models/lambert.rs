@@ -1,0 +1,59 @@
+//! The Lambertian BRDF f = ρ/π (seed 003's diffuse term as a BRDF; FCG §24.2), sampled with
+//! the cosine-weighted hemisphere.
+
+use super::rgb::check_rgb;
+use super::{above, finish, u_ok, valid_wo, Brdf, BrdfFlags, BrdfSample, Rgb};
+use crate::geometry::Vec3;
+use crate::sampling::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
+use crate::{ParamError, Real};
+
+/// Lambertian reflector with albedo ρ ∈ [0, 1] per channel. Reciprocal and energy conserving;
+/// its directional albedo is exactly ρ.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Lambert<T> {
+    albedo: Rgb<T>,
+}
+
+impl<T: Real> Lambert<T> {
+    /// Checked constructor: each channel of ρ in [0, 1].
+    pub fn new(albedo: Rgb<T>) -> Result<Self, ParamError> {
+        Ok(Self {
+            albedo: check_rgb("albedo", albedo, T::ZERO, T::ONE, "[0, 1]")?,
+        })
+    }
+    /// The albedo ρ.
+    pub fn albedo(&self) -> Rgb<T> {
+        self.albedo
+    }
+}
+
+impl<T: Real> Brdf<T> for Lambert<T> {
+    fn flags(&self) -> BrdfFlags {
+        BrdfFlags {
+            reciprocal: true,
+            energy_conserving: true,
+            has_delta: false,
+        }
+    }
+    /// f = ρ/π.
+    fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
+        if above(wi, wo) {
+            self.albedo.scale(T::ONE / T::PI)
+        } else {
+            Rgb::zero()
+        }
+    }
+    /// cos θi/π.
+    fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
+        if !valid_wo(wo) {
+            return T::ZERO;
+        }
+        cosine_hemisphere_pdf(wi)
+    }
+    fn sample(&self, wo: Vec3<T>, u: [T; 2]) -> Option<BrdfSample<T>> {
+        if !valid_wo(wo) || !u_ok(u) {
+            return None;
+        }
+        finish(self, wo, sample_cosine_hemisphere(u))
+    }
+}

@@ -1,0 +1,80 @@
+//! Shirley's (1991) damped model, FCG §24.4:
+//!
+//! ρ = R_f(θ) ρ_s + R_d (1 − R_f(θ))/π,  R_f(θ) = R0 + (1 − R0)(1 − cos θ)^5 (Schlick),
+//!
+//! ρ_s the mirror (a Dirac delta). **Not reciprocal by design**: exchanging the directions
+//! changes the damping factor (FCG says so); the type flags it and the reciprocity test
+//! skips it by that flag. Here θ is the angle of `wo`, the direction held fixed in the
+//! directional albedo R(wo) = ∫ f cos θi dωi (for the FCG statement with the fixed direction
+//! as the first argument); with that reading the albedo is R_f(θo) + R_d(1 − R_f(θo)) ≤ 1,
+//! so the model is energy conserving.
+
+use super::rgb::check_rgb;
+use super::{
+    above, lobe_prob, mirror, sample_delta_or_cosine, valid_wo, Brdf, BrdfFlags, BrdfSample,
+    DeltaLobe, Rgb,
+};
+use crate::error::check_range;
+use crate::fresnel::f_schlick;
+use crate::geometry::Vec3;
+use crate::sampling::cosine_hemisphere_pdf;
+use crate::{ParamError, Real};
+
+/// Shirley's damped Lambert-plus-mirror model (non-reciprocal, see the module docs).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShirleyDamped<T> {
+    rd: Rgb<T>,
+    r0: T,
+}
+
+impl<T: Real> ShirleyDamped<T> {
+    /// Checked constructor: R_d ∈ [0, 1] per channel, R0 ∈ [0, 1].
+    pub fn new(rd: Rgb<T>, r0: T) -> Result<Self, ParamError> {
+        Ok(Self {
+            rd: check_rgb("rd", rd, T::ZERO, T::ONE, "[0, 1]")?,
+            r0: check_range("r0", r0, T::ZERO, false, T::ONE, "[0, 1]")?,
+        })
+    }
+    fn prob(&self, rf: T) -> T {
+        lobe_prob(rf, self.rd.mean() * (T::ONE - rf))
+    }
+}
+
+impl<T: Real> Brdf<T> for ShirleyDamped<T> {
+    fn flags(&self) -> BrdfFlags {
+        BrdfFlags {
+            reciprocal: false,
+            energy_conserving: true,
+            has_delta: true,
+        }
+    }
+    /// R_d (1 − R_f(θo))/π.
+    fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
+        if !above(wi, wo) {
+            return Rgb::zero();
+        }
+        let rf = f_schlick(self.r0, wo.z);
+        self.rd.scale((T::ONE - rf) / T::PI)
+    }
+    fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
+        if !valid_wo(wo) {
+            return T::ZERO;
+        }
+        (T::ONE - self.prob(f_schlick(self.r0, wo.z))) * cosine_hemisphere_pdf(wi)
+    }
+    fn sample(&self, wo: Vec3<T>, u: [T; 2]) -> Option<BrdfSample<T>> {
+        sample_delta_or_cosine(self, wo, u)
+    }
+    /// The mirror direction with reflectance R_f(θo).
+    fn delta(&self, wo: Vec3<T>) -> Option<DeltaLobe<T>> {
+        if !valid_wo(wo) {
+            return None;
+        }
+        let rf = f_schlick(self.r0, wo.z);
+        Some(DeltaLobe {
+            wi: mirror(wo),
+            reflectance: Rgb::splat(rf),
+            prob: self.prob(rf),
+        })
+    }
+}

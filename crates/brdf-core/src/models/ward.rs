@@ -1,0 +1,105 @@
+//! Ward's anisotropic model (named in seed 002 §10.4; Ward 1992, "Measuring and modeling
+//! anisotropic reflection"):
+//!
+//! f = ρ_d/π + ρ_s · exp(−tan²θh (cos²φh/αx² + sin²φh/αy²)) / (4π αx αy √(cos θi cos θo)),
+//!
+//! h the half vector, φh its azimuth from the local x axis. Reciprocal. **Not energy
+//! conserving**, and flagged so: the 1/√(cos θi cos θo) normalisation is exact only for small
+//! roughness near normal incidence; at grazing views the albedo exceeds 1 (measured with
+//! [`crate::albedo`], ρ_s = 1, ρ_d = 0, θo = 89.9°: 1.04 for αx = αy = 0.3, 1.50 for 1; the
+//! plausibility suite checks the excess). Sampling: h with
+//! the anisotropic Beckmann density D(h) cos θh of the same exponent
+//! ([`crate::sampling::sample_beckmann_normal`]) and eq 24.12, with probability
+//! mean ρ_s/(mean ρ_s + mean ρ_d), else the cosine-weighted hemisphere.
+
+use super::rgb::check_rgb;
+use super::{
+    above, finish, half_vector, lobe_prob, pick, u_ok, valid_wo, Brdf, BrdfFlags, BrdfSample,
+    LobeHint, Rgb,
+};
+use crate::error::check_range;
+use crate::geometry::Vec3;
+use crate::sampling::{
+    beckmann_normal_pdf, cosine_hemisphere_pdf, reflect_about, sample_beckmann_normal,
+    sample_cosine_hemisphere, wi_pdf_from_h,
+};
+use crate::{ParamError, Real};
+
+/// Ward's anisotropic BRDF (see the module docs).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ward<T> {
+    rd: Rgb<T>,
+    rs: Rgb<T>,
+    ax: T,
+    ay: T,
+}
+
+impl<T: Real> Ward<T> {
+    /// Checked constructor: ρ_d, ρ_s ∈ [0, 1] per channel, αx, αy ∈ [1e-4, 1e4] (RMS slopes).
+    pub fn new(rd: Rgb<T>, rs: Rgb<T>, ax: T, ay: T) -> Result<Self, ParamError> {
+        let (lo, hi) = (T::from_f64(1e-4), T::from_f64(1e4));
+        Ok(Self {
+            rd: check_rgb("rd", rd, T::ZERO, T::ONE, "[0, 1]")?,
+            rs: check_rgb("rs", rs, T::ZERO, T::ONE, "[0, 1]")?,
+            ax: check_range("ax", ax, lo, false, hi, "[1e-4, 1e4]")?,
+            ay: check_range("ay", ay, lo, false, hi, "[1e-4, 1e4]")?,
+        })
+    }
+    fn p_lobe(&self) -> T {
+        lobe_prob(self.rs.mean(), self.rd.mean())
+    }
+}
+
+impl<T: Real> Brdf<T> for Ward<T> {
+    fn flags(&self) -> BrdfFlags {
+        BrdfFlags {
+            reciprocal: true,
+            energy_conserving: false,
+            has_delta: false,
+        }
+    }
+    fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
+        if !above(wi, wo) {
+            return Rgb::zero();
+        }
+        let spec = match half_vector(wi, wo) {
+            Some(h) if h.z > T::ZERO => {
+                let c2 = (h.z * h.z).min(T::ONE);
+                let e = (h.x * h.x / (self.ax * self.ax) + h.y * h.y / (self.ay * self.ay)) / c2;
+                (-e).exp() / (T::from_f64(4.0) * T::PI * self.ax * self.ay * (wi.z * wo.z).sqrt())
+            }
+            _ => T::ZERO,
+        };
+        self.rd.scale(T::ONE / T::PI).add(self.rs.scale(spec))
+    }
+    fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
+        if !valid_wo(wo) {
+            return T::ZERO;
+        }
+        let p = self.p_lobe();
+        let lobe = match half_vector(wi, wo) {
+            Some(h) => wi_pdf_from_h(beckmann_normal_pdf(h, self.ax, self.ay), wo.dot(h)),
+            None => T::ZERO,
+        };
+        p * lobe + (T::ONE - p) * cosine_hemisphere_pdf(wi)
+    }
+    fn sample(&self, wo: Vec3<T>, u: [T; 2]) -> Option<BrdfSample<T>> {
+        if !valid_wo(wo) || !u_ok(u) {
+            return None;
+        }
+        let (lobe, u0) = pick(u[0], self.p_lobe());
+        let wi = if lobe {
+            let h = sample_beckmann_normal(self.ax, self.ay, [u0, u[1]]);
+            if !(wo.dot(h) > T::ZERO) {
+                return None;
+            }
+            reflect_about(wo, h)
+        } else {
+            sample_cosine_hemisphere([u0, u[1]])
+        };
+        finish(self, wo, wi)
+    }
+    fn lobe_hint(&self) -> LobeHint<T> {
+        LobeHint::aniso(self.ax, self.ay)
+    }
+}

@@ -1,0 +1,278 @@
+//! Difference images: each engine's published split-sum (DFG) table in `../shared/anchors/`
+//! (layouts from its MANIFEST.txt) minus the project's converged table, i.e.
+//! `brdf_core::split_sum::dfg_ggx` (GGX, height-correlated Smith, α = r², F90 = 1,
+//! conventions.md §8) with 32 × 32-point Gauss–Legendre rules, at the table's own (μ, r).
+
+use crate::figures::{self, diverging, pe};
+use anyhow::{bail, Context, Result};
+use brdf_core::lut::f16_to_f32;
+use brdf_core::quadrature::GaussLegendre;
+use brdf_core::split_sum::dfg_ggx;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use rayon::prelude::*;
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// One published table, decoded to (μ, r, A, B) texels (possibly subsampled).
+pub struct Table {
+    /// Short name.
+    pub name: &'static str,
+    /// What it is and how it differs from the project's model.
+    pub note: &'static str,
+    /// (μ, r, A, B).
+    pub texels: Vec<(f64, f64, f64, f64)>,
+    /// Texel pitch in μ and r of the shown grid.
+    pub pitch: (f64, f64),
+}
+
+fn f16(b: &[u8], i: usize) -> f64 {
+    f16_to_f32(u16::from_le_bytes([b[2 * i], b[2 * i + 1]])) as f64
+}
+
+fn read_png(bytes: &[u8]) -> Result<(usize, usize, usize, Vec<u8>)> {
+    let dec = png::Decoder::new(bytes);
+    let mut r = dec.read_info().map_err(|e| anyhow::anyhow!("png: {e}"))?;
+    let mut buf = vec![0; r.output_buffer_size()];
+    let info = r
+        .next_frame(&mut buf)
+        .map_err(|e| anyhow::anyhow!("png: {e}"))?;
+    buf.truncate(info.buffer_size());
+    Ok((
+        info.width as usize,
+        info.height as usize,
+        info.color_type.samples(),
+        buf,
+    ))
+}
+
+/// Decodes the anchors found under `anchors` (missing files are skipped).
+pub fn load(anchors: &Path) -> Result<Vec<Table>> {
+    let mut v = Vec::new();
+    if let Ok(f) = std::fs::read(anchors.join("khronos/lut_ggx.png")) {
+        let (w, h, spp, px) = read_png(&f)?;
+        let step = 32;
+        let mut t = Vec::new();
+        for i in (step / 2..h).step_by(step) {
+            for j in (step / 2..w).step_by(step) {
+                let k = (i * w + j) * spp;
+                t.push((
+                    (j as f64 + 0.5) / w as f64,
+                    (i as f64 + 0.5) / h as f64,
+                    px[k] as f64 / 255.0,
+                    px[k + 1] as f64 / 255.0,
+                ));
+            }
+        }
+        v.push(Table {
+            name: "Khronos glTF viewer lut_ggx.png (8-bit, every 32nd texel)",
+            note: "same model; 8-bit quantisation and sampling noise near grazing",
+            texels: t,
+            pitch: (step as f64 / w as f64, step as f64 / h as f64),
+        });
+    }
+    if let Ok(f) = std::fs::read(anchors.join("threejs/three_dfg_lut_16x16_rg16f.bin")) {
+        let mut t = Vec::new();
+        for mi in 0..16 {
+            for rj in 0..16 {
+                let k = (mi * 16 + rj) * 2;
+                t.push((
+                    (mi as f64 + 0.5) / 16.0,
+                    (rj as f64 + 0.5) / 16.0,
+                    f16(&f, k),
+                    f16(&f, k + 1),
+                ));
+            }
+        }
+        v.push(Table {
+            name: "three.js DFGLUT 16×16 (f16)",
+            note: "same model, 4096 samples per texel",
+            texels: t,
+            pitch: (1.0 / 16.0, 1.0 / 16.0),
+        });
+    }
+    if let Ok(f) = std::fs::read(anchors.join("bevy/dfg.ktx2")) {
+        if f.len() < 96 || &f[1..7] != b"KTX 20" {
+            bail!("bevy/dfg.ktx2: not KTX2");
+        }
+        let u32le = |o: usize| u32::from_le_bytes([f[o], f[o + 1], f[o + 2], f[o + 3]]) as usize;
+        let u64le = |o: usize| u32le(o) + (u32le(o + 4) << 32);
+        let (w, h) = (u32le(20), u32le(24));
+        let (off, len) = (u64le(80), u64le(88));
+        let mut dec = ruzstd::decoding::StreamingDecoder::new(&f[off..off + len])
+            .map_err(|e| anyhow::anyhow!("zstd: {e:?}"))?;
+        let mut raw = Vec::new();
+        std::io::Read::read_to_end(&mut dec, &mut raw).context("zstd")?;
+        let mut t = Vec::new();
+        for row in 0..h {
+            for col in 0..w {
+                let k = (row * w + col) * 2;
+                t.push((
+                    (col as f64 + 0.5) / w as f64,
+                    (row as f64 + 0.5) / h as f64,
+                    f16(&raw, k),
+                    f16(&raw, k + 1),
+                ));
+            }
+        }
+        v.push(Table {
+            name: "Bevy dfg.ktx2 64×64 (f16)",
+            note: "same model",
+            texels: t,
+            pitch: (1.0 / w as f64, 1.0 / h as f64),
+        });
+    }
+    if let Ok(f) = std::fs::read(anchors.join("filament/filament_dfg_multiscatter_64_rgba16f.dds"))
+    {
+        let px = &f[148..];
+        let mut t = Vec::new();
+        for y in 0..64 {
+            let r = ((64.0 - y as f64 + 0.5) / 64.0).clamp(0.0, 1.0);
+            if y == 0 {
+                continue; // duplicate r = 1 row (MANIFEST: the top two rows both hold r = 1)
+            }
+            for x in 0..64 {
+                let k = (y * 64 + x) * 4;
+                let (bb, ab) = (f16(px, k), f16(px, k + 1));
+                t.push(((x as f64 + 0.5) / 64.0, r, ab - bb, bb));
+            }
+        }
+        v.push(Table {
+            name: "Filament cmgen DFG 64×64 (f16, multiscatter layout)",
+            note: "same model; its rows are shifted by one texel in r (MANIFEST)",
+            texels: t,
+            pitch: (1.0 / 64.0, 1.0 / 64.0),
+        });
+    }
+    if let Ok(f) = std::fs::read(anchors.join("karis_legacy/brdfLUT_256_rgb8.png")) {
+        let (w, h, spp, px) = read_png(&f)?;
+        let step = 8;
+        let mut t = Vec::new();
+        for y in (step / 2..h).step_by(step) {
+            for x in (step / 2..w).step_by(step) {
+                let k = (y * w + x) * spp;
+                t.push((
+                    (x as f64 + 0.5) / w as f64,
+                    1.0 - (y as f64 + 0.5) / h as f64,
+                    px[k] as f64 / 255.0,
+                    px[k + 1] as f64 / 255.0,
+                ));
+            }
+        }
+        v.push(Table {
+            name: "legacy glTF/Karis brdfLUT.png 256×256 (8-bit, every 8th texel)",
+            note: "a different model: separable Schlick–GGX visibility, k = α/2 — the difference is mostly the model",
+            texels: t,
+            pitch: (step as f64 / w as f64, step as f64 / h as f64),
+        });
+    }
+    Ok(v)
+}
+
+/// (ΔA, ΔB) = published − converged for every texel.
+pub fn differences(t: &Table) -> Vec<(f64, f64, f64, f64)> {
+    t.texels
+        .par_iter()
+        .map(|&(mu, r, a, b)| {
+            let (ca, cb) = dfg_ggx::<f64, GaussLegendre<32>, GaussLegendre<32>>(mu, r);
+            (mu, r, a - ca, b - cb)
+        })
+        .collect()
+}
+
+/// (μ, r, ΔA, ΔB) per texel.
+type Diffs = Vec<(f64, f64, f64, f64)>;
+
+struct DiffFig<'a> {
+    rows: Vec<(&'a Table, Diffs, f64)>,
+}
+
+impl figures::Figure for DiffFig<'_> {
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
+        let panels = root.split_evenly((self.rows.len(), 2));
+        for (i, (t, d, lim)) in self.rows.iter().enumerate() {
+            for c in 0..2 {
+                let area: &DrawingArea<DB, Shift> = &panels[2 * i + c];
+                let mut ch = ChartBuilder::on(area)
+                    .caption(
+                        format!(
+                            "{} {} (colour limit ±{:.3})",
+                            if c == 0 { "ΔA" } else { "ΔB" },
+                            t.name,
+                            lim
+                        ),
+                        ("sans-serif", 13),
+                    )
+                    .margin(6)
+                    .x_label_area_size(26)
+                    .y_label_area_size(34)
+                    .build_cartesian_2d(0f64..1f64, 0f64..1f64)
+                    .map_err(pe)?;
+                ch.configure_mesh()
+                    .disable_mesh()
+                    .x_desc("μ = N·V")
+                    .y_desc("r")
+                    .label_style(("sans-serif", 11))
+                    .draw()
+                    .map_err(pe)?;
+                let (hx, hy) = (t.pitch.0 / 2.0, t.pitch.1 / 2.0);
+                ch.draw_series(d.iter().map(|&(mu, r, da, db)| {
+                    let e = if c == 0 { da } else { db };
+                    Rectangle::new(
+                        [(mu - hx, r - hy), (mu + hx, r + hy)],
+                        diverging(e, *lim).filled(),
+                    )
+                }))
+                .map_err(pe)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Writes `dfg_difference.svg|png` and returns the markdown section (or a note when no
+/// anchor is found).
+pub fn write(dir: &Path, anchors: &Path) -> Result<String> {
+    let tables = load(anchors)?;
+    if tables.is_empty() {
+        return Ok(format!(
+            "No published DFG table found under {}; the difference images were skipped.",
+            anchors.display()
+        ));
+    }
+    let mut md = String::from(
+        "Published split-sum (DFG) tables minus the project's converged table (`brdf_core::split_sum::dfg_ggx`, GGX with \
+         height-correlated Smith, α = r², 32 × 32-point Gauss–Legendre), at each table's own texel centres \
+         (layouts: `../shared/anchors/MANIFEST.txt`). Red: the published table is higher.\n\n\
+         ![DFG differences](figures/dfg_difference.svg)\n\n\
+         | table | texels | max \\|ΔA\\| | max \\|ΔA\\|, μ ≥ 0.1 | max \\|ΔB\\| | RMS ΔA | note |\n|---|---|---|---|---|---|---|\n",
+    );
+    let mut rows = Vec::new();
+    for t in &tables {
+        let d = differences(t);
+        let ma = d.iter().fold(0.0f64, |m, p| m.max(p.2.abs()));
+        let ma1 = d
+            .iter()
+            .filter(|p| p.0 >= 0.1)
+            .fold(0.0f64, |m, p| m.max(p.2.abs()));
+        let mb = d.iter().fold(0.0f64, |m, p| m.max(p.3.abs()));
+        let rms = (d.iter().map(|p| p.2 * p.2).sum::<f64>() / d.len() as f64).sqrt();
+        let _ = writeln!(
+            md,
+            "| {} | {} | {:.4} | {:.4} | {:.4} | {:.4} | {} |",
+            t.name,
+            d.len(),
+            ma,
+            ma1,
+            mb,
+            rms,
+            t.note
+        );
+        let lim = ma.max(mb).max(1e-3);
+        let lim = (lim * 1000.0).ceil() / 1000.0;
+        rows.push((t, d, lim));
+    }
+    let n = rows.len() as u32;
+    figures::write(dir, "dfg_difference", (1100, 330 * n), &DiffFig { rows })?;
+    Ok(md)
+}

@@ -1,0 +1,591 @@
+//! Writes the native (host) results that the Node and browser tests compare the
+//! WebAssembly module with: `cargo run --release -p brdf-wasm --example expected -- OUT_DIR`.
+//!
+//! * `OUT_DIR/expected.json`: for every export, ≥ 1000 pseudo-random inputs (fixed seed) and
+//!   the f32 results, as IEEE-754 bit patterns (u32) so that nothing is lost in JSON. The
+//!   values are computed with brdf-core's API directly (not through this crate's export
+//!   glue), so a wrong argument order or a wrong mapping in the exports shows up as a
+//!   mismatch.
+//! * `OUT_DIR/web-expected.json`: the web page's Fig. 6 curves and the lit-sphere pixels at
+//!   fixed points for a few (model, parameters) settings.
+
+use brdf_core::fresnel::Fresnel;
+use brdf_core::lut::{DfgTable, GTable, GTable3};
+use brdf_core::masking::{
+    g_blinn, g_smith_beckmann_correlated, g_smith_beckmann_separable, Convention, ModifiedG,
+};
+use brdf_core::models::{
+    AshikhminShirley, Bank, BankTangent, BlinnPhongNormalized, Brdf, CookTorrance, CoupledK,
+    CoupledSmooth, GeometricTerm, Ggx, Highlight, Lambert, LambertSpecularMix, MicrofacetSampling,
+    PhongNormalized, Rgb, ShirleyDamped, SmithForm, StandardLighting, TorranceSparrow, Ward,
+};
+use brdf_core::{Dots, Real, Vec3};
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+/// Rows per export.
+const N: usize = 1000;
+
+/// SplitMix64: a small, fixed, portable pseudo-random sequence.
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    /// Uniform f32 in [lo, hi].
+    fn f(&mut self, lo: f32, hi: f32) -> f32 {
+        let u = (self.next() >> 40) as f32 / (1u64 << 24) as f32;
+        lo + (hi - lo) * u
+    }
+    /// A unit direction, above the horizon with probability ~0.9.
+    fn dir(&mut self) -> Vec3<f32> {
+        let z = if self.next().is_multiple_of(10) {
+            self.f(-0.3, 0.05)
+        } else {
+            self.f(0.0, 1.0)
+        };
+        let phi = self.f(0.0, 2.0 * core::f32::consts::PI);
+        let s = Real::sqrt((1.0 - z * z).max(0.0));
+        Vec3::new(s * Real::cos(phi), s * Real::sin(phi), z)
+    }
+}
+
+/// One group of scalar calls: argument kinds ('u' = u32, 'f' = f32 bits) and rows.
+struct Group {
+    name: String,
+    export: &'static str,
+    types: &'static str,
+    rows: Vec<Vec<u32>>,
+    out: Vec<Vec<u32>>,
+}
+
+fn bits(x: f32) -> u32 {
+    x.to_bits()
+}
+
+fn json_u32s(v: &[u32]) -> String {
+    let mut s = String::from("[");
+    for (k, x) in v.iter().enumerate() {
+        if k > 0 {
+            s.push(',');
+        }
+        write!(s, "{x}").unwrap();
+    }
+    s.push(']');
+    s
+}
+
+fn json_group(g: &Group) -> String {
+    let rows: Vec<String> = g.rows.iter().map(|r| json_u32s(r)).collect();
+    let out: Vec<String> = g.out.iter().map(|r| json_u32s(r)).collect();
+    format!(
+        "{{\"name\":\"{}\",\"export\":\"{}\",\"types\":\"{}\",\"rows\":[{}],\"out\":[{}]}}",
+        g.name,
+        g.export,
+        g.types,
+        rows.join(","),
+        out.join(",")
+    )
+}
+
+/// The in-plane G of each kind, from brdf-core directly (Smith: m = √2σ, conventions.md §6).
+fn native_g(kind: u32, sigma: f32, ti: f32, tr: f32) -> f32 {
+    if !(sigma > 0.0 && sigma.is_finite()) || kind > 5 {
+        return f32::NAN; // the exports' documented result for bad parameters
+    }
+    if ti.is_nan() || tr.is_nan() {
+        return f32::NAN;
+    }
+    let ti_c = ti.clamp(0.0, core::f32::consts::FRAC_PI_2);
+    let tr_c = tr.clamp(-core::f32::consts::FRAC_PI_2, core::f32::consts::FRAC_PI_2);
+    let m = f32::from_f64(core::f64::consts::SQRT_2) * sigma;
+    match kind {
+        0 => 1.0,
+        1 => g_blinn(ti, tr),
+        2 => g_smith_beckmann_separable(Real::cos(ti_c), Real::cos(tr_c), m),
+        3 => g_smith_beckmann_correlated(Real::cos(ti_c), Real::cos(tr_c), m),
+        4 => ModifiedG::<f32>::new(sigma).unwrap().g(ti, tr),
+        _ => ModifiedG::<f32>::new(sigma)
+            .unwrap()
+            .with_convention(Convention::Printed)
+            .g(ti, tr),
+    }
+}
+
+/// G from dot products, from brdf-core directly (NaN in, NaN out, also for G = 1).
+fn native_g_dots(kind: u32, sigma: f32, d: Dots<f32>) -> f32 {
+    let Some(&t) = GeometricTerm::ALL.get(kind as usize) else {
+        return f32::NAN;
+    };
+    let Ok(ts) = TorranceSparrow::<f32>::specular(sigma, t) else {
+        return f32::NAN;
+    };
+    if t == GeometricTerm::None && (d.n_i.is_nan() || d.n_o.is_nan() || d.i_o.is_nan()) {
+        return f32::NAN;
+    }
+    ts.g(d)
+}
+
+/// Model `name` with parameters `q` at (wi, wo), RGB, from brdf-core's constructors
+/// directly; `None` when a constructor (or a choice index) rejects the parameters.
+fn native_model(name: &str, q: &[f32], wi: Vec3<f32>, wo: Vec3<f32>) -> Option<[f32; 3]> {
+    let rgb = |k: usize| Rgb::new(q[k], q[k + 1], q[k + 2]);
+    let idx = |x: f32, n: usize| -> Option<usize> {
+        (x.fract() == 0.0 && x >= 0.0 && (x as usize) < n).then_some(x as usize)
+    };
+    let gt = |x: f32| Some(GeometricTerm::ALL[idx(x, 6)?]);
+    let c: Rgb<f32> = match name {
+        "torrance-sparrow" => {
+            let m = TorranceSparrow::<f32>::new(
+                q[0],
+                gt(q[1])?,
+                Fresnel::schlick(q[2]).ok()?,
+                q[3],
+                q[4],
+            )
+            .ok()?;
+            Rgb::splat(m.eval(wi, wo))
+        }
+        "lambert" => Lambert::new(rgb(0)).ok()?.eval(wi, wo),
+        "phong" => PhongNormalized::new(rgb(0), Rgb::splat(q[3]), q[4])
+            .ok()?
+            .eval(wi, wo),
+        "blinn-phong" => BlinnPhongNormalized::new(rgb(0), Rgb::splat(q[3]), q[4])
+            .ok()?
+            .eval(wi, wo),
+        "cook-torrance" => CookTorrance::new(rgb(0), Rgb::splat(q[3]), q[4], q[5], gt(q[6])?)
+            .ok()?
+            .eval(wi, wo),
+        "lambert-mirror" => LambertSpecularMix::new(rgb(0), q[3]).ok()?.eval(wi, wo),
+        "shirley-damped" => ShirleyDamped::new(rgb(0), q[3]).ok()?.eval(wi, wo),
+        "coupled-smooth" => {
+            let k = [CoupledK::Conserving, CoupledK::Printed][idx(q[4], 2)?];
+            CoupledSmooth::new(rgb(0), q[3], k).ok()?.eval(wi, wo)
+        }
+        "ashikhmin-shirley" => AshikhminShirley::new(Rgb::splat(q[3]), rgb(0), q[4], q[5])
+            .ok()?
+            .eval(wi, wo),
+        "bank" => Bank::new(rgb(0), Rgb::splat(q[3]), q[4], BankTangent::Azimuth(q[5]))
+            .ok()?
+            .eval(wi, wo),
+        "ward" => Ward::new(rgb(0), Rgb::splat(q[3]), q[4], q[5])
+            .ok()?
+            .eval(wi, wo),
+        "ggx" => {
+            let s = [SmithForm::Separable, SmithForm::Correlated][idx(q[4], 2)?];
+            Ggx::new(rgb(0), q[3], s, MicrofacetSampling::VisibleNormals)
+                .ok()?
+                .eval(wi, wo)
+        }
+        "standard" => {
+            let h = [Highlight::Phong, Highlight::BlinnPhong][idx(q[5], 2)?];
+            StandardLighting::new(Rgb::zero(), Rgb::zero(), rgb(0), Rgb::splat(q[3]), q[4], h)
+                .ok()?
+                .eval(wi, wo)
+        }
+        _ => panic!("no native mapping for model {name}"),
+    };
+    Some([c.r, c.g, c.b])
+}
+
+fn main() {
+    let out_dir = PathBuf::from(
+        std::env::args()
+            .nth(1)
+            .unwrap_or_else(|| concat!(env!("CARGO_MANIFEST_DIR"), "/pkg").to_string()),
+    );
+    std::fs::create_dir_all(&out_dir).expect("create output directory");
+    let mut rng = Rng(0x5EED_B4DF_2015_0184);
+    let mut groups: Vec<Group> = Vec::new();
+    let r = core::f32::consts::FRAC_PI_2;
+
+    // G, in-plane and from dots, every kind: random σ and angles, a few edge rows first.
+    for kind in 0..6u32 {
+        let mut g = Group {
+            name: format!("g/{}", GeometricTerm::ALL[kind as usize].name()),
+            export: "brdf_g",
+            types: "ufff",
+            rows: vec![],
+            out: vec![],
+        };
+        let edge: [[f32; 3]; 8] = [
+            [0.3, 0.0, 0.0],
+            [0.3, r, -r],
+            [0.3, 2.0, -3.0],
+            [0.3, -0.1, 0.4],
+            [0.3, f32::NAN, 0.2],
+            [0.0, 0.3, 0.3],
+            [-1.0, 0.3, 0.3],
+            [f32::INFINITY, 0.3, 0.3],
+        ];
+        let mut rows: Vec<[f32; 3]> = edge.to_vec();
+        while rows.len() < N + edge.len() {
+            rows.push([rng.f(0.05, 1.0), rng.f(0.0, r), rng.f(-r, r)]);
+        }
+        for [s, ti, tr] in rows {
+            g.rows.push(vec![kind, bits(s), bits(ti), bits(tr)]);
+            g.out.push(vec![bits(native_g(kind, s, ti, tr))]);
+        }
+        groups.push(g);
+
+        // Batch: one σ for the whole array.
+        let mut g = Group {
+            name: format!("g_batch/{}", GeometricTerm::ALL[kind as usize].name()),
+            export: "brdf_g_batch",
+            types: "ufff",
+            rows: vec![],
+            out: vec![],
+        };
+        let s = rng.f(0.05, 1.0);
+        for _ in 0..N {
+            let (ti, tr) = (rng.f(0.0, r), rng.f(-r, r));
+            g.rows.push(vec![kind, bits(s), bits(ti), bits(tr)]);
+            g.out.push(vec![bits(native_g(kind, s, ti, tr))]);
+        }
+        groups.push(g);
+
+        let mut g = Group {
+            name: format!("g_dots/{}", GeometricTerm::ALL[kind as usize].name()),
+            export: "brdf_g_dots",
+            types: "uffff",
+            rows: vec![],
+            out: vec![],
+        };
+        for k in 0..N + 2 {
+            let s = if k == 0 { 0.0 } else { rng.f(0.05, 1.0) };
+            let (wi, wo) = (rng.dir(), rng.dir());
+            let mut d = Dots::from_local(wi, wo);
+            if k == 1 {
+                d.n_i = f32::NAN;
+            }
+            g.rows
+                .push(vec![kind, bits(s), bits(d.n_i), bits(d.n_o), bits(d.i_o)]);
+            g.out.push(vec![bits(native_g_dots(kind, s, d))]);
+        }
+        groups.push(g);
+
+        let mut g = Group {
+            name: format!("g_dots_batch/{}", GeometricTerm::ALL[kind as usize].name()),
+            export: "brdf_g_dots_batch",
+            types: "uffff",
+            rows: vec![],
+            out: vec![],
+        };
+        let s = rng.f(0.05, 1.0);
+        for _ in 0..N {
+            let d = Dots::from_local(rng.dir(), rng.dir());
+            g.rows
+                .push(vec![kind, bits(s), bits(d.n_i), bits(d.n_o), bits(d.i_o)]);
+            g.out.push(vec![bits(native_g_dots(kind, s, d))]);
+        }
+        groups.push(g);
+    }
+
+    // The Torrance–Sparrow shader-form export.
+    let mut g = Group {
+        name: "torrance_sparrow".into(),
+        export: "brdf_torrance_sparrow",
+        types: "fufffff",
+        rows: vec![],
+        out: vec![],
+    };
+    for _ in 0..N {
+        let s = rng.f(0.05, 1.0);
+        let kind = (rng.next() % 6) as u32;
+        let (r0, ks, albedo) = (rng.f(0.0, 1.0), rng.f(0.0, 2.0), rng.f(0.0, 1.0));
+        let d = Dots::from_local(rng.dir(), rng.dir());
+        let v = TorranceSparrow::<f32>::new(
+            s,
+            GeometricTerm::ALL[kind as usize],
+            Fresnel::schlick(r0).unwrap(),
+            ks,
+            albedo,
+        )
+        .unwrap()
+        .eval_dots(d);
+        g.rows.push(vec![
+            bits(s),
+            kind,
+            bits(r0),
+            bits(ks),
+            bits(albedo),
+            bits(d.n_i),
+            bits(d.n_o),
+            bits(d.i_o),
+        ]);
+        g.out.push(vec![bits(v)]);
+    }
+    groups.push(g);
+
+    // Every model through brdf_eval: random parameters in range (integer ones integral),
+    // random directions. Rows: model id, parameters (padded to 8), wi, wo. Out: status, r, g, b.
+    for (id, spec) in brdf_wasm::models::MODELS.iter().enumerate() {
+        let mut g = Group {
+            name: format!("model/{}", spec.name),
+            export: "brdf_eval",
+            types: "u",
+            rows: vec![],
+            out: vec![],
+        };
+        for k in 0..N + 1 {
+            let mut q: Vec<f32> = spec
+                .params
+                .iter()
+                .map(|p| {
+                    if p.step == 1.0 {
+                        (rng.next() % (p.max as u64 + 1 - p.min as u64)) as f32 + p.min
+                    } else {
+                        rng.f(p.min, p.max)
+                    }
+                })
+                .collect();
+            if k == 0 {
+                q[0] = f32::NAN; // must be rejected
+            }
+            let (wi, wo) = (rng.dir(), rng.dir());
+            let mut row = vec![id as u32];
+            row.extend(q.iter().map(|x| bits(*x)));
+            row.extend([wi.x, wi.y, wi.z, wo.x, wo.y, wo.z].map(bits));
+            g.rows.push(row);
+            let res = if q.iter().any(|x| !x.is_finite()) {
+                None
+            } else {
+                native_model(spec.name, &q, wi, wo)
+            };
+            g.out.push(match res {
+                Some(v) => vec![0, bits(v[0]), bits(v[1]), bits(v[2])],
+                None => vec![brdf_wasm::status::BAD_PARAM as u32],
+            });
+        }
+        groups.push(g);
+
+        // Batch: the default parameters for every row.
+        let q: Vec<f32> = spec.params.iter().map(|p| p.default).collect();
+        let mut g = Group {
+            name: format!("model_batch/{}", spec.name),
+            export: "brdf_eval_batch",
+            types: "u",
+            rows: vec![],
+            out: vec![],
+        };
+        for _ in 0..N {
+            let (wi, wo) = (rng.dir(), rng.dir());
+            let mut row = vec![id as u32];
+            row.extend(q.iter().map(|x| bits(*x)));
+            row.extend([wi.x, wi.y, wi.z, wo.x, wo.y, wo.z].map(bits));
+            g.rows.push(row);
+            let v = native_model(spec.name, &q, wi, wo).expect("defaults are valid");
+            g.out.push(vec![0, bits(v[0]), bits(v[1]), bits(v[2])]);
+        }
+        groups.push(g);
+    }
+
+    lut_groups(&mut rng, &mut groups);
+
+    let body: Vec<String> = groups.iter().map(json_group).collect();
+    let luts: Vec<String> = LUTS
+        .iter()
+        .map(|(slot, file)| format!("\"{slot}\":\"assets/{file}\""))
+        .collect();
+    let json = format!(
+        "{{\"generator\":\"brdf-wasm/examples/expected.rs\",\"luts\":{{{}}},\"groups\":[\n{}\n]}}\n",
+        luts.join(","),
+        body.join(",\n")
+    );
+    let p = out_dir.join("expected.json");
+    std::fs::write(&p, json).expect("write expected.json");
+    let total: usize = groups.iter().map(|g| g.rows.len()).sum();
+    println!(
+        "wrote {} ({} groups, {total} rows)",
+        p.display(),
+        groups.len()
+    );
+
+    write_web(&out_dir);
+}
+
+/// The default assets per LUT slot of the module (see src/lut.rs).
+const LUTS: [(u32, &str); 3] = [
+    (0, "g_modified.blut"),
+    (1, "g_modified_sigma0.3.blut"),
+    (2, "dfg_ggx.blut"),
+];
+
+fn asset(file: &str) -> Vec<u8> {
+    let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../assets")
+        .join(file);
+    std::fs::read(&p).unwrap_or_else(|e| panic!("{}: {e} (run `cargo xtask lut`)", p.display()))
+}
+
+/// LUT queries, answered by brdf-core's no_std view over the same asset bytes.
+fn lut_groups(rng: &mut Rng, groups: &mut Vec<Group>) {
+    let r = core::f32::consts::FRAC_PI_2;
+    let g3_bytes = asset(LUTS[0].1);
+    let g3 = GTable3::parse(&g3_bytes).expect("valid G table");
+    let g2_bytes = asset(LUTS[1].1);
+    let g2 = GTable::parse(&g2_bytes).expect("valid per-sigma G table");
+    let dfg_bytes = asset(LUTS[2].1);
+    let dfg = DfgTable::parse(&dfg_bytes).expect("valid DFG table");
+
+    let mut g = Group {
+        name: "lut/g_modified".into(),
+        export: "brdf_g_lut",
+        types: "fff",
+        rows: vec![],
+        out: vec![],
+    };
+    let edge: [[f32; 3]; 4] = [
+        [0.3, f32::NAN, 0.1],
+        [f32::NAN, 0.3, 0.1],
+        [0.01, 0.3, 0.1],
+        [3.0, 2.0, -2.0],
+    ];
+    let mut rows = edge.to_vec();
+    while rows.len() < N + edge.len() {
+        rows.push([rng.f(0.05, 1.0), rng.f(0.0, r), rng.f(-r, r)]);
+    }
+    for [s, ti, tr] in rows {
+        g.rows.push(vec![bits(s), bits(ti), bits(tr)]);
+        g.out.push(vec![bits(g3.g(ti, tr, s))]);
+    }
+    groups.push(g);
+
+    let mut g = Group {
+        name: "lut_batch/g_modified".into(),
+        export: "brdf_g_lut_batch",
+        types: "fff",
+        rows: vec![],
+        out: vec![],
+    };
+    let s = rng.f(0.05, 1.0);
+    for _ in 0..N {
+        let (ti, tr) = (rng.f(0.0, r), rng.f(-r, r));
+        g.rows.push(vec![bits(s), bits(ti), bits(tr)]);
+        g.out.push(vec![bits(g3.g(ti, tr, s))]);
+    }
+    groups.push(g);
+
+    let mut g = Group {
+        name: "lut/g_modified_sigma0.3".into(),
+        export: "brdf_g_lut_fixed",
+        types: "ff",
+        rows: vec![],
+        out: vec![],
+    };
+    for _ in 0..N {
+        let (ti, tr) = (rng.f(0.0, r), rng.f(-r, r));
+        g.rows.push(vec![bits(ti), bits(tr)]);
+        g.out.push(vec![bits(g2.g(ti, tr))]);
+    }
+    groups.push(g);
+
+    for (name, export) in [
+        ("lut/dfg_ggx", "brdf_dfg"),
+        ("lut_batch/dfg_ggx", "brdf_dfg_batch"),
+    ] {
+        let mut g = Group {
+            name: name.into(),
+            export,
+            types: "ff",
+            rows: vec![],
+            out: vec![],
+        };
+        for k in 0..N {
+            let (mu, rough) = if k == 0 {
+                (-0.5, 2.0) // clamped to the table's ranges
+            } else {
+                (rng.f(0.0, 1.0), rng.f(0.0, 1.0))
+            };
+            let (a, b) = dfg.ab(mu, rough);
+            g.rows.push(vec![bits(mu), bits(rough)]);
+            g.out.push(vec![0, bits(a), bits(b)]);
+        }
+        groups.push(g);
+    }
+}
+
+/// Fig. 6 curves (θi = 30°, σ = 0.3, θr = −90°…90° in 1° steps) and sphere pixels.
+fn write_web(out_dir: &std::path::Path) {
+    use brdf_wasm::render::pixel;
+    let mut s = String::from("{\"curves\":{");
+    let sigma = 0.3f32;
+    let ti = (30.0f64 * core::f64::consts::PI / 180.0) as f32;
+    let tr: Vec<f32> = (-90..=90)
+        .map(|d| (d as f64 * core::f64::consts::PI / 180.0) as f32)
+        .collect();
+    for (k, (name, kind)) in [("blinn", 1u32), ("modified", 4), ("smith", 2)]
+        .iter()
+        .enumerate()
+    {
+        let v: Vec<u32> = tr
+            .iter()
+            .map(|&t| bits(native_g(*kind, sigma, ti, t)))
+            .collect();
+        if k > 0 {
+            s.push(',');
+        }
+        write!(s, "\"{name}\":{}", json_u32s(&v)).unwrap();
+    }
+    // The same modified G from the default table over σ.
+    let g3_bytes = asset(LUTS[0].1);
+    let g3 = GTable3::parse(&g3_bytes).expect("valid G table");
+    let v: Vec<u32> = tr.iter().map(|&t| bits(g3.g(ti, t, sigma))).collect();
+    write!(s, ",\"modified_lut\":{}", json_u32s(&v)).unwrap();
+    s.push_str("},\"size\":256,\"spheres\":[");
+    let size = 256u32;
+    let points: Vec<(u32, u32)> = (0..41)
+        .flat_map(|i| (0..41).map(move |j| (3 + 6 * i, 3 + 6 * j)))
+        .filter(|(i, j)| i % 30 == 3 || j % 30 == 3 || (i + j) % 48 == 6)
+        .collect();
+    // (model, parameters): the page's default, then settings reached by moving sliders.
+    let settings: Vec<(&str, Vec<f64>)> = vec![
+        ("torrance-sparrow", vec![0.3, 4.0, 0.04, 1.0, 0.5]),
+        ("torrance-sparrow", vec![0.12, 2.0, 0.5, 0.8, 0.2]),
+        ("ward", vec![0.2, 0.2, 0.3, 0.3, 0.08, 0.4]),
+        ("ashikhmin-shirley", vec![0.3, 0.1, 0.1, 0.4, 200.0, 20.0]),
+        ("standard", vec![0.5, 0.3, 0.2, 0.5, 30.0, 0.0]),
+        ("ggx", vec![0.95, 0.64, 0.54, 0.25, 1.0]),
+    ];
+    let settings: Vec<(u32, Vec<f64>)> = settings
+        .into_iter()
+        .map(|(name, q)| {
+            let id = brdf_wasm::models::MODELS
+                .iter()
+                .position(|m| m.name == name)
+                .expect("model exists") as u32;
+            (id, q)
+        })
+        .collect();
+    for (k, (id, q)) in settings.iter().enumerate() {
+        let q32: Vec<f32> = q.iter().map(|x| *x as f32).collect();
+        let m = brdf_wasm::models::Model::new(*id, &q32).expect("valid web setting");
+        let px: Vec<String> = points
+            .iter()
+            .map(|&(x, y)| {
+                let [r, g, b, a] = pixel(&m, size, x, y);
+                format!("[{x},{y},{r},{g},{b},{a}]")
+            })
+            .collect();
+        if k > 0 {
+            s.push(',');
+        }
+        let qs: Vec<String> = q.iter().map(|x| format!("{x}")).collect();
+        write!(
+            s,
+            "{{\"model\":\"{}\",\"params\":[{}],\"pixels\":[{}]}}",
+            brdf_wasm::models::MODELS[*id as usize].name,
+            qs.join(","),
+            px.join(",")
+        )
+        .unwrap();
+    }
+    s.push_str("]}\n");
+    let p = out_dir.join("web-expected.json");
+    std::fs::write(&p, s).expect("write web-expected.json");
+    println!("wrote {}", p.display());
+}

@@ -1,0 +1,67 @@
+//! Fixed static buffers in linear memory (there is no allocator).
+//!
+//! The host writes inputs into the scratch buffer, passes pointers into it to the array
+//! exports and reads the outputs back. The JavaScript wrapper hands out consecutive,
+//! 16-byte-aligned regions of it per call.
+
+use core::cell::UnsafeCell;
+
+/// Size of the scratch buffer in bytes: a 512 × 512 RGBA image plus 64 KiB for parameters.
+pub const SCRATCH_LEN: usize = (1 << 20) + (1 << 16);
+
+/// A byte buffer with a stable address, written only through raw pointers.
+#[repr(C, align(16))]
+pub struct StaticBuf<const N: usize>(UnsafeCell<[u8; N]>);
+
+// The module is single-threaded; on the host, callers (tests) serialise access themselves.
+unsafe impl<const N: usize> Sync for StaticBuf<N> {}
+
+impl<const N: usize> core::fmt::Debug for StaticBuf<N> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(f, "StaticBuf<{N}>")
+    }
+}
+
+impl<const N: usize> StaticBuf<N> {
+    /// A zeroed buffer.
+    pub const fn new() -> Self {
+        Self(UnsafeCell::new([0; N]))
+    }
+    /// The first byte.
+    pub fn ptr(&self) -> *mut u8 {
+        self.0.get().cast()
+    }
+    /// Length in bytes.
+    pub const fn len(&self) -> usize {
+        N
+    }
+    /// Always false (N > 0 for every buffer here).
+    pub const fn is_empty(&self) -> bool {
+        N == 0
+    }
+}
+
+impl<const N: usize> Default for StaticBuf<N> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+static SCRATCH: StaticBuf<SCRATCH_LEN> = StaticBuf::new();
+
+/// Address of the scratch buffer (16-byte aligned).
+#[no_mangle]
+pub extern "C" fn brdf_scratch_ptr() -> *mut u8 {
+    SCRATCH.ptr()
+}
+
+/// Length of the scratch buffer in bytes.
+#[no_mangle]
+pub extern "C" fn brdf_scratch_len() -> u32 {
+    SCRATCH_LEN as u32
+}
+
+/// `true` when `p` is non-null and aligned for `T` (the arrays the exports take).
+pub(crate) fn usable<T>(p: *const T) -> bool {
+    !p.is_null() && (p as usize).is_multiple_of(core::mem::align_of::<T>())
+}

@@ -1,0 +1,279 @@
+//! The LUT readers: both give the same values, the assets meet their accuracy targets
+//! against the direct kernels at fresh random points, and bad input gives typed errors.
+
+use brdf_core::lut::{AlbedoTable, AverageAlbedoTable};
+use brdf_core::lut::{DfgTable, GTable, GTable3, LutError, LutView};
+use brdf_core::masking::ModifiedG;
+use brdf_core::quadrature::GaussLegendre;
+use brdf_core::split_sum::{
+    dfg_ggx, dfg_ts_modified, dfg_ts_smith, e_avg_beckmann, e_avg_ggx, e_beckmann, e_ggx,
+};
+use brdf_lut::Lut;
+use proptest::prelude::*;
+use std::f64::consts::{FRAC_PI_2, PI};
+use std::path::PathBuf;
+
+fn asset(name: &str) -> Vec<u8> {
+    std::fs::read(
+        PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+            .join("../assets")
+            .join(name),
+    )
+    .unwrap()
+}
+
+/// A tiny deterministic generator (xorshift) for test points.
+struct Xs(u64);
+impl Xs {
+    fn next(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+#[test]
+fn loader_and_view_agree() {
+    let b = asset("g_modified_sigma0.3.blut");
+    let lut = Lut::from_bytes(b.clone()).unwrap();
+    let t = GTable::parse(&b).unwrap();
+    let mut x = Xs(7);
+    for _ in 0..1000 {
+        let (ti, tr) = ((x.next() * 1.6) as f32, (x.next() * 3.2 - 1.6) as f32);
+        assert_eq!(lut.g(ti, tr, 0.3).unwrap().to_bits(), t.g(ti, tr).to_bits());
+    }
+    let b = asset("dfg_ggx.blut");
+    let lut = Lut::from_bytes(b.clone()).unwrap();
+    let t = DfgTable::parse(&b).unwrap();
+    for _ in 0..1000 {
+        let (mu, r) = (x.next() as f32, x.next() as f32);
+        assert_eq!(lut.dfg(mu, r).unwrap(), t.ab(mu, r));
+    }
+    assert!(matches!(
+        lut.g(0.1, 0.1, 0.3),
+        Err(brdf_lut::Error::WrongKind { .. })
+    ));
+}
+
+#[test]
+fn g_tables_meet_1e3_at_fresh_points() {
+    let b3 = asset("g_modified.blut");
+    assert!(b3.len() <= 256 * 1024);
+    let t3 = GTable3::parse(&b3).unwrap();
+    let mut x = Xs(99);
+    let mut worst = 0f64;
+    for _ in 0..3000 {
+        let (ti, tr) = (x.next() * FRAC_PI_2, x.next() * PI - FRAC_PI_2);
+        let s = 0.05 + 0.95 * x.next();
+        let direct = ModifiedG::<f64, GaussLegendre<32>>::new(s)
+            .unwrap()
+            .g(ti, tr);
+        worst = worst.max((t3.g(ti as f32, tr as f32, s as f32) as f64 - direct).abs());
+    }
+    println!("3-D G table: max |err| {worst:.3e}");
+    assert!(worst <= 1e-3);
+    for s in [0.1, 0.3, 0.5] {
+        let b = asset(&format!("g_modified_sigma{s}.blut"));
+        assert!(b.len() <= 32 * 1024);
+        let t = GTable::parse(&b).unwrap();
+        let g = ModifiedG::<f64, GaussLegendre<32>>::new(s).unwrap();
+        let mut worst = 0f64;
+        for _ in 0..2000 {
+            let (ti, tr) = (x.next() * FRAC_PI_2, x.next() * PI - FRAC_PI_2);
+            worst = worst.max((t.g(ti as f32, tr as f32) as f64 - g.g(ti, tr)).abs());
+        }
+        println!("sigma {s}: max |err| {worst:.3e}");
+        assert!(worst <= 1e-3);
+    }
+}
+
+#[test]
+fn dfg_table_meets_1e3_including_grazing() {
+    let b = asset("dfg_ggx.blut");
+    let t = DfgTable::parse(&b).unwrap();
+    let mut x = Xs(5);
+    let mut worst = 0f64;
+    for k in 0..400 {
+        // Every fourth point at grazing (μ ∈ [cos 89°, 0.05]).
+        let mu = if k % 4 == 0 {
+            0.017452406 + 0.033 * x.next()
+        } else {
+            0.017452406 + 0.98 * x.next()
+        };
+        let r = x.next();
+        let (mu32, r32) = (mu as f32, r as f32);
+        // A finer rule than the generator's as the converged reference.
+        let (a, bb) = dfg_ggx::<f64, GaussLegendre<32>, GaussLegendre<32>>(mu32 as f64, r32 as f64);
+        let (ta, tb) = t.ab(mu32, r32);
+        worst = worst.max((ta as f64 - a).abs()).max((tb as f64 - bb).abs());
+    }
+    println!("DFG GGX: max |err| {worst:.3e}");
+    assert!(worst <= 1e-3);
+}
+
+#[test]
+fn torrance_sparrow_and_kulla_conty_tables_match_their_kernels() {
+    type O = GaussLegendre<32>;
+    type I = GaussLegendre<24>;
+    let mut x = Xs(11);
+    let ts_s = asset("dfg_ts_smith.blut");
+    let ts_m = asset("dfg_ts_modified.blut");
+    let (ts_s, ts_m) = (
+        DfgTable::parse(&ts_s).unwrap(),
+        DfgTable::parse(&ts_m).unwrap(),
+    );
+    let (mut ws, mut wm) = (0f64, 0f64);
+    for k in 0..60 {
+        let mu = (0.017_452_406 + 0.98 * x.next()) as f32;
+        let s = (0.05 + 0.95 * x.next()) as f32;
+        let (a, b) = dfg_ts_smith::<f64, O, I>(mu as f64, s as f64);
+        let (ta, tb) = ts_s.ab(mu, s);
+        ws = ws.max((ta as f64 - a).abs()).max((tb as f64 - b).abs());
+        if k % 3 == 0 {
+            let (a, b) = dfg_ts_modified::<f64, O, I>(mu as f64, s as f64);
+            let (ta, tb) = ts_m.ab(mu, s);
+            wm = wm.max((ta as f64 - a).abs()).max((tb as f64 - b).abs());
+        }
+    }
+    println!("TS Smith max |err| {ws:.2e}, TS modified {wm:.2e}");
+    assert!(ws <= 1e-3 && wm <= 2e-3);
+    let (eg, eb) = (asset("kc_e_ggx.blut"), asset("kc_e_beckmann.blut"));
+    let (eg, eb) = (
+        AlbedoTable::parse(&eg).unwrap(),
+        AlbedoTable::parse(&eb).unwrap(),
+    );
+    let (ag, ab) = (asset("kc_eavg_ggx.blut"), asset("kc_eavg_beckmann.blut"));
+    let (ag, ab) = (
+        AverageAlbedoTable::parse(&ag).unwrap(),
+        AverageAlbedoTable::parse(&ab).unwrap(),
+    );
+    let mut we = 0f64;
+    for _ in 0..60 {
+        let mu = (0.017_452_406 + 0.98 * x.next()) as f32;
+        let r = x.next() as f32;
+        we = we
+            .max((eg.e(mu, r) as f64 - e_ggx::<f64, O, I>(mu as f64, r as f64)).abs())
+            .max((eb.e(mu, r) as f64 - e_beckmann::<f64, O, I>(mu as f64, r as f64)).abs());
+    }
+    let mut wa = 0f64;
+    for _ in 0..8 {
+        let r = x.next() as f32;
+        wa = wa
+            .max((ag.e_avg(r) as f64 - e_avg_ggx::<f64, O, I>(r as f64)).abs())
+            .max((ab.e_avg(r) as f64 - e_avg_beckmann::<f64, O, I>(r as f64)).abs());
+    }
+    println!("E max |err| {we:.2e}, E_avg {wa:.2e}");
+    assert!(we <= 1e-3 && wa <= 1e-4);
+}
+
+#[test]
+fn bad_input_gives_typed_errors() {
+    let good = asset("g_modified_sigma0.1.blut");
+    assert_eq!(LutView::parse(&[]).unwrap_err(), LutError::Truncated);
+    assert_eq!(LutView::parse(b"BL").unwrap_err(), LutError::Truncated);
+    assert_eq!(
+        LutView::parse(b"PNG\x0d1234").unwrap_err(),
+        LutError::BadMagic
+    );
+    let mut v = good.clone();
+    v[4] = 2; // version 2
+    assert_eq!(
+        LutView::parse(&v).unwrap_err(),
+        LutError::UnsupportedVersion { found: 2 }
+    );
+    for cut in [5, 20, 60, good.len() - 1] {
+        assert!(LutView::parse(&good[..cut]).is_err(), "cut {cut}");
+    }
+    let mut v = good.clone();
+    v.push(0); // oversized payload
+    assert!(matches!(
+        LutView::parse(&v),
+        Err(LutError::PayloadLength { .. })
+    ));
+    let mut v = good.clone();
+    let n = v.len();
+    v[n - 1] ^= 1; // payload corruption
+    assert!(matches!(LutView::parse(&v), Err(LutError::Checksum { .. })));
+    let d = asset("dfg_ggx.blut");
+    assert!(matches!(GTable::parse(&d), Err(LutError::WrongKind { .. })));
+    assert!(matches!(
+        Lut::from_reader(std::io::repeat(0).take(brdf_lut::MAX_FILE_BYTES + 10)),
+        Err(brdf_lut::Error::TooLarge { .. }) | Err(brdf_lut::Error::Format(_))
+    ));
+}
+
+use std::io::Read;
+
+#[test]
+fn every_single_bit_flip_of_a_header_is_rejected() {
+    let good = asset("g_modified_sigma0.5.blut");
+    let hl = LutView::parse(&good).unwrap().header_len();
+    for byte in 0..hl + 64 {
+        for bit in 0..8 {
+            let mut v = good.clone();
+            v[byte] ^= 1 << bit;
+            assert!(LutView::parse(&v).is_err(), "flip {byte}:{bit} accepted");
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2000))]
+    #[test]
+    fn random_bytes_never_panic(bytes in proptest::collection::vec(any::<u8>(), 0..600)) {
+        let _ = LutView::parse(&bytes);
+        let mut v = b"BLUT\x01".to_vec();
+        v.extend_from_slice(&bytes);
+        let _ = LutView::parse(&v);
+    }
+    #[test]
+    fn bit_flips_of_real_assets_are_errors(idx in 0usize..1_000_000, bit in 0u8..8, which in 0usize..4) {
+        let names = ["g_modified_sigma0.1.blut", "dfg_ggx.blut", "kc_eavg_ggx.blut", "dfg_ts_smith.blut"];
+        let mut v = asset(names[which]);
+        let i = idx % v.len();
+        v[i] ^= 1 << bit;
+        prop_assert!(LutView::parse(&v).is_err());
+    }
+}
+
+/// Counts the bytes allocated on the current thread.
+struct Counting;
+thread_local! {
+    static ALLOCATED: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
+}
+unsafe impl std::alloc::GlobalAlloc for Counting {
+    unsafe fn alloc(&self, l: std::alloc::Layout) -> *mut u8 {
+        let _ = ALLOCATED.try_with(|c| c.set(c.get() + l.size()));
+        unsafe { std::alloc::System.alloc(l) }
+    }
+    unsafe fn dealloc(&self, p: *mut u8, l: std::alloc::Layout) {
+        unsafe { std::alloc::System.dealloc(p, l) }
+    }
+}
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+#[test]
+fn the_view_never_allocates() {
+    let names = ["g_modified.blut", "dfg_ggx.blut", "kc_eavg_beckmann.blut"];
+    let files: Vec<Vec<u8>> = names.iter().map(|n| asset(n)).collect();
+    let mut bad = files[1].clone();
+    bad[10] ^= 0x40;
+    let before = ALLOCATED.with(|c| c.get());
+    let mut acc = 0f32;
+    for f in files.iter().chain(std::iter::once(&bad)) {
+        if let Ok(v) = LutView::parse(f) {
+            acc += v.sample(&[0.3, 0.2, 0.5])[0];
+        }
+        let _ = LutView::parse(&f[..f.len() / 3]);
+    }
+    let after = ALLOCATED.with(|c| c.get());
+    assert_eq!(
+        after - before,
+        0,
+        "parse/sample allocated {} bytes",
+        after - before
+    );
+    assert!(acc.is_finite());
+}

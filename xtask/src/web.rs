@@ -1,0 +1,44 @@
+//! `cargo xtask web`: builds the module as `cargo xtask wasm` does (without its Node tests
+//! unless asked), installs the page's npm packages when missing (`npm ci` in examples/web:
+//! playwright-core only; the browser is Debian's /usr/bin/chromium) and runs the
+//! headless-browser test `node --test examples/web/test/`, which writes
+//! `examples/web/screenshot.png`.
+
+use crate::platforms::WasmArgs;
+use anyhow::{bail, Result};
+use std::process::Command;
+use std::time::Instant;
+
+#[derive(clap::Args)]
+pub struct WebArgs {
+    /// Also run the Node tests of the module first.
+    #[arg(long)]
+    pub with_node_tests: bool,
+}
+
+pub fn run_cmd(a: WebArgs) -> Result<()> {
+    let root = super::wasm_impl::root();
+    super::wasm_impl::run_cmd(WasmArgs {
+        no_test: !a.with_node_tests,
+    })?;
+    let web = root.join("examples/web");
+    if !web.join("node_modules/playwright-core").is_dir() {
+        super::wasm_impl::run(
+            &web,
+            Command::new("npm").args(["ci", "--no-audit", "--no-fund"]),
+        )?;
+    }
+    if !std::path::Path::new("/usr/bin/chromium").exists() {
+        bail!("/usr/bin/chromium missing: install Debian's chromium (bash .ci/install-web.sh)");
+    }
+    let t = Instant::now();
+    super::wasm_impl::run(
+        &root,
+        Command::new("node").args(["--test", "examples/web/test/"]),
+    )?;
+    println!(
+        "web: browser test {:.1} s; screenshot examples/web/screenshot.png",
+        t.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
