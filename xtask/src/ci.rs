@@ -134,6 +134,11 @@ const STEPS: &[Step] = &[
         slow: true,
     },
     Step {
+        name: "benchmarks build and run once (smoke)",
+        cmd: &["cargo", "xtask", "bench", "--smoke"],
+        slow: true,
+    },
+    Step {
         name: "firmware on QEMU (libm, bit-exact)",
         cmd: &["cargo", "xtask", "firmware"],
         slow: true,

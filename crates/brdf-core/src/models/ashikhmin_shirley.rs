@@ -18,18 +18,13 @@
 //! cosine-weighted hemisphere.
 
 use super::rgb::check_rgb;
-use super::{
-    above, finish, half_vector, lobe_prob, pick, u_ok, valid_wo, Brdf, BrdfFlags, BrdfSample,
-    LobeHint, Rgb,
-};
+use super::{above, half_vector, lobe_prob, Brdf, BrdfFlags, BrdfSample, LobeHint, Rgb};
+use super::{mixture_pdf, mixture_sample};
 use crate::error::check_range;
 use crate::fresnel::f_schlick;
 use crate::geometry::Vec3;
 use crate::sampling::half_vector::as_exponent;
-use crate::sampling::{
-    ashikhmin_shirley_pdf_h, cosine_hemisphere_pdf, reflect_about, sample_ashikhmin_shirley_h,
-    sample_cosine_hemisphere, wi_pdf_from_h,
-};
+use crate::sampling::{ashikhmin_shirley_pdf_h, sample_ashikhmin_shirley_h};
 use crate::{ParamError, Real};
 
 /// Ashikhmin–Shirley model (see the module docs).
@@ -98,31 +93,14 @@ impl<T: Real> Brdf<T> for AshikhminShirley<T> {
         self.specular(wi, wo).add(self.diffuse(wi, wo))
     }
     fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
-        if !valid_wo(wo) {
-            return T::ZERO;
-        }
-        let p = self.p_lobe();
-        let lobe = match half_vector(wi, wo) {
-            Some(h) => wi_pdf_from_h(ashikhmin_shirley_pdf_h(self.nu, self.nv, h), wo.dot(h)),
-            None => T::ZERO,
-        };
-        p * lobe + (T::ONE - p) * cosine_hemisphere_pdf(wi)
+        mixture_pdf(self.p_lobe(), wo, wi, |h| {
+            ashikhmin_shirley_pdf_h(self.nu, self.nv, h)
+        })
     }
     fn sample(&self, wo: Vec3<T>, u: [T; 2]) -> Option<BrdfSample<T>> {
-        if !valid_wo(wo) || !u_ok(u) {
-            return None;
-        }
-        let (lobe, u0) = pick(u[0], self.p_lobe());
-        let wi = if lobe {
-            let h = sample_ashikhmin_shirley_h(self.nu, self.nv, [u0, u[1]]);
-            if !(wo.dot(h) > T::ZERO) {
-                return None;
-            }
-            reflect_about(wo, h)
-        } else {
-            sample_cosine_hemisphere([u0, u[1]])
-        };
-        finish(self, wo, wi)
+        mixture_sample(self, self.p_lobe(), wo, u, |v| {
+            sample_ashikhmin_shirley_h(self.nu, self.nv, v)
+        })
     }
     fn lobe_hint(&self) -> LobeHint<T> {
         LobeHint::aniso(

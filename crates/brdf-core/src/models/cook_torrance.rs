@@ -16,16 +16,13 @@
 
 use super::rgb::check_rgb;
 use super::{
-    above, finish, half_vector, lobe_prob, pick, u_ok, valid_wo, Brdf, BrdfFlags, BrdfSample,
-    GeometricTerm, LobeHint, Rgb, TorranceSparrow,
+    above, lobe_prob, Brdf, BrdfFlags, BrdfSample, GeometricTerm, LobeHint, Rgb, TorranceSparrow,
 };
+use super::{mixture_pdf, mixture_sample};
 use crate::error::check_range;
 use crate::fresnel::Fresnel;
 use crate::geometry::{Dots, Vec3};
-use crate::sampling::{
-    beckmann_normal_pdf, cosine_hemisphere_pdf, reflect_about, sample_beckmann_normal,
-    sample_cosine_hemisphere, wi_pdf_from_h,
-};
+use crate::sampling::{beckmann_normal_pdf, sample_beckmann_normal};
 use crate::{ParamError, Real};
 
 /// Cook–Torrance BRDF (see the module docs).
@@ -87,31 +84,14 @@ impl<T: Real> Brdf<T> for CookTorrance<T> {
         self.kd.scale(T::ONE / T::PI).add(self.ks.scale(rs))
     }
     fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
-        if !valid_wo(wo) {
-            return T::ZERO;
-        }
-        let p = self.p_lobe();
-        let lobe = match half_vector(wi, wo) {
-            Some(h) => wi_pdf_from_h(beckmann_normal_pdf(h, self.m, self.m), wo.dot(h)),
-            None => T::ZERO,
-        };
-        p * lobe + (T::ONE - p) * cosine_hemisphere_pdf(wi)
+        mixture_pdf(self.p_lobe(), wo, wi, |h| {
+            beckmann_normal_pdf(h, self.m, self.m)
+        })
     }
     fn sample(&self, wo: Vec3<T>, u: [T; 2]) -> Option<BrdfSample<T>> {
-        if !valid_wo(wo) || !u_ok(u) {
-            return None;
-        }
-        let (lobe, u0) = pick(u[0], self.p_lobe());
-        let wi = if lobe {
-            let h = sample_beckmann_normal(self.m, self.m, [u0, u[1]]);
-            if !(wo.dot(h) > T::ZERO) {
-                return None;
-            }
-            reflect_about(wo, h)
-        } else {
-            sample_cosine_hemisphere([u0, u[1]])
-        };
-        finish(self, wo, wi)
+        mixture_sample(self, self.p_lobe(), wo, u, |v| {
+            sample_beckmann_normal(self.m, self.m, v)
+        })
     }
     fn lobe_hint(&self) -> LobeHint<T> {
         LobeHint::iso(self.m)

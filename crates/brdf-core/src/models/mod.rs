@@ -199,6 +199,51 @@ pub(crate) fn finish<T: Real, B: Brdf<T> + ?Sized>(
     })
 }
 
+/// pdf of the two-component mixture used by the glossy models: a half-vector lobe with
+/// probability `p`, the cosine-weighted hemisphere otherwise:
+/// p · p_h(h)/(4 wo·h) + (1 − p) cos θi/π (the lobe part is FCG eq 24.12).
+pub(crate) fn mixture_pdf<T: Real>(
+    p: T,
+    wo: Vec3<T>,
+    wi: Vec3<T>,
+    pdf_h: impl Fn(Vec3<T>) -> T,
+) -> T {
+    if !valid_wo(wo) {
+        return T::ZERO;
+    }
+    let lobe = match half_vector(wi, wo) {
+        Some(h) => crate::sampling::wi_pdf_from_h(pdf_h(h), wo.dot(h)),
+        None => T::ZERO,
+    };
+    p * lobe + (T::ONE - p) * crate::sampling::cosine_hemisphere_pdf(wi)
+}
+
+/// Samples the mixture of [`mixture_pdf`]: with probability `p` a half vector from
+/// `sample_h` reflected about (FCG eq 24.11), else a cosine-weighted direction. `None` when
+/// the half vector faces away from wo.
+pub(crate) fn mixture_sample<T: Real, B: Brdf<T> + ?Sized>(
+    b: &B,
+    p: T,
+    wo: Vec3<T>,
+    u: [T; 2],
+    sample_h: impl Fn([T; 2]) -> Vec3<T>,
+) -> Option<BrdfSample<T>> {
+    if !valid_wo(wo) || !u_ok(u) {
+        return None;
+    }
+    let (lobe, u0) = pick(u[0], p);
+    let wi = if lobe {
+        let h = sample_h([u0, u[1]]);
+        if !(wo.dot(h) > T::ZERO) {
+            return None;
+        }
+        crate::sampling::reflect_about(wo, h)
+    } else {
+        crate::sampling::sample_cosine_hemisphere([u0, u[1]])
+    };
+    finish(b, wo, wi)
+}
+
 /// Splits u0 ∈ [0, 1) between two lobes chosen with probabilities p and 1 − p, returning
 /// which lobe (`true` = the first) and u0 rescaled to [0, 1).
 #[inline]

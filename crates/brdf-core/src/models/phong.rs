@@ -21,11 +21,12 @@ use super::{
     above, finish, half_vector, lobe_prob, mirror, pick, u_ok, valid_wo, Brdf, BrdfFlags,
     BrdfSample, LobeHint, Rgb,
 };
+use super::{mixture_pdf, mixture_sample};
 use crate::error::check_range;
 use crate::geometry::Vec3;
 use crate::sampling::{
-    ashikhmin_shirley_pdf_h, cosine_hemisphere_pdf, cosine_lobe_pdf, reflect_about,
-    sample_ashikhmin_shirley_h, sample_cosine_hemisphere, sample_cosine_lobe, wi_pdf_from_h,
+    ashikhmin_shirley_pdf_h, cosine_hemisphere_pdf, cosine_lobe_pdf, sample_ashikhmin_shirley_h,
+    sample_cosine_hemisphere, sample_cosine_lobe,
 };
 use crate::{ParamError, Real};
 
@@ -155,31 +156,14 @@ impl<T: Real> Brdf<T> for BlinnPhongNormalized<T> {
         self.kd.scale(T::ONE / T::PI).add(self.ks.scale(lobe))
     }
     fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
-        if !valid_wo(wo) {
-            return T::ZERO;
-        }
-        let p = self.p_lobe();
-        let lobe = match half_vector(wi, wo) {
-            Some(h) => wi_pdf_from_h(ashikhmin_shirley_pdf_h(self.n, self.n, h), wo.dot(h)),
-            None => T::ZERO,
-        };
-        p * lobe + (T::ONE - p) * cosine_hemisphere_pdf(wi)
+        mixture_pdf(self.p_lobe(), wo, wi, |h| {
+            ashikhmin_shirley_pdf_h(self.n, self.n, h)
+        })
     }
     fn sample(&self, wo: Vec3<T>, u: [T; 2]) -> Option<BrdfSample<T>> {
-        if !valid_wo(wo) || !u_ok(u) {
-            return None;
-        }
-        let (lobe, u0) = pick(u[0], self.p_lobe());
-        let wi = if lobe {
-            let h = sample_ashikhmin_shirley_h(self.n, self.n, [u0, u[1]]);
-            if !(wo.dot(h) > T::ZERO) {
-                return None;
-            }
-            reflect_about(wo, h)
-        } else {
-            sample_cosine_hemisphere([u0, u[1]])
-        };
-        finish(self, wo, wi)
+        mixture_sample(self, self.p_lobe(), wo, u, |v| {
+            sample_ashikhmin_shirley_h(self.n, self.n, v)
+        })
     }
     fn lobe_hint(&self) -> LobeHint<T> {
         LobeHint::iso((T::TWO / (self.n + T::TWO)).sqrt())

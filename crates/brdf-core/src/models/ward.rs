@@ -13,16 +13,11 @@
 //! mean ρ_s/(mean ρ_s + mean ρ_d), else the cosine-weighted hemisphere.
 
 use super::rgb::check_rgb;
-use super::{
-    above, finish, half_vector, lobe_prob, pick, u_ok, valid_wo, Brdf, BrdfFlags, BrdfSample,
-    LobeHint, Rgb,
-};
+use super::{above, half_vector, lobe_prob, Brdf, BrdfFlags, BrdfSample, LobeHint, Rgb};
+use super::{mixture_pdf, mixture_sample};
 use crate::error::check_range;
 use crate::geometry::Vec3;
-use crate::sampling::{
-    beckmann_normal_pdf, cosine_hemisphere_pdf, reflect_about, sample_beckmann_normal,
-    sample_cosine_hemisphere, wi_pdf_from_h,
-};
+use crate::sampling::{beckmann_normal_pdf, sample_beckmann_normal};
 use crate::{ParamError, Real};
 
 /// Ward's anisotropic BRDF (see the module docs).
@@ -73,31 +68,14 @@ impl<T: Real> Brdf<T> for Ward<T> {
         self.rd.scale(T::ONE / T::PI).add(self.rs.scale(spec))
     }
     fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
-        if !valid_wo(wo) {
-            return T::ZERO;
-        }
-        let p = self.p_lobe();
-        let lobe = match half_vector(wi, wo) {
-            Some(h) => wi_pdf_from_h(beckmann_normal_pdf(h, self.ax, self.ay), wo.dot(h)),
-            None => T::ZERO,
-        };
-        p * lobe + (T::ONE - p) * cosine_hemisphere_pdf(wi)
+        mixture_pdf(self.p_lobe(), wo, wi, |h| {
+            beckmann_normal_pdf(h, self.ax, self.ay)
+        })
     }
     fn sample(&self, wo: Vec3<T>, u: [T; 2]) -> Option<BrdfSample<T>> {
-        if !valid_wo(wo) || !u_ok(u) {
-            return None;
-        }
-        let (lobe, u0) = pick(u[0], self.p_lobe());
-        let wi = if lobe {
-            let h = sample_beckmann_normal(self.ax, self.ay, [u0, u[1]]);
-            if !(wo.dot(h) > T::ZERO) {
-                return None;
-            }
-            reflect_about(wo, h)
-        } else {
-            sample_cosine_hemisphere([u0, u[1]])
-        };
-        finish(self, wo, wi)
+        mixture_sample(self, self.p_lobe(), wo, u, |v| {
+            sample_beckmann_normal(self.ax, self.ay, v)
+        })
     }
     fn lobe_hint(&self) -> LobeHint<T> {
         LobeHint::aniso(self.ax, self.ay)
