@@ -33,7 +33,7 @@ pub mod lut;
 pub mod masking;
 pub mod models;
 pub mod quadrature;
-mod real;
+pub mod real;
 pub mod sampling;
 pub mod split_sum;
 

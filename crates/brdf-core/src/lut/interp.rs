@@ -45,11 +45,14 @@ impl AxisMap {
         let (base, span) = match a.warp {
             Warp::Linear | Warp::Sqrt => (lo, hi - lo),
             Warp::Log => (libm::logf(lo), libm::logf(hi) - libm::logf(lo)),
-            Warp::Cos => (libm::cosf(lo), libm::cosf(lo) - libm::cosf(hi)),
+            Warp::Cos => (
+                <f32 as crate::Real>::cos(lo),
+                <f32 as crate::Real>::cos(lo) - <f32 as crate::Real>::cos(hi),
+            ),
             Warp::SqrtCos => {
                 let (a, b) = (
-                    libm::sqrtf(libm::cosf(lo)),
-                    libm::sqrtf(libm::cosf(hi).max(0.0)),
+                    libm::sqrtf(<f32 as crate::Real>::cos(lo)),
+                    libm::sqrtf(<f32 as crate::Real>::cos(hi).max(0.0)),
                 );
                 (a, a - b)
             }
@@ -79,8 +82,10 @@ impl AxisMap {
             Warp::Linear => (x - self.base) * self.inv,
             Warp::Sqrt => libm::sqrtf(((x - self.base) * self.inv).max(0.0)),
             Warp::Log => (libm::logf(x) - self.base) * self.inv,
-            Warp::Cos => (self.base - libm::cosf(x)) * self.inv,
-            Warp::SqrtCos => (self.base - libm::sqrtf(libm::cosf(x).max(0.0))) * self.inv,
+            Warp::Cos => (self.base - <f32 as crate::Real>::cos(x)) * self.inv,
+            Warp::SqrtCos => {
+                (self.base - libm::sqrtf(<f32 as crate::Real>::cos(x).max(0.0))) * self.inv
+            }
         };
         s.clamp(0.0, 1.0)
     }
