@@ -234,9 +234,9 @@ pub fn sin_cos_f32(x: f32) -> (f32, f32) {
     const FRAC_2_PI: f32 = 0.636_619_75;
     const P1: f32 = 1.570_312_5;
     const P2: f32 = 4.838_705_e-4;
-    const P3: f32 = -4.371_138_8e-8;
+    const P3: f32 = -4.371_139e-8;
     const TWO_PI: f32 = 6.283_185_5;
-    if !(x - x == 0.0) {
+    if !x.is_finite() {
         return (f32::NAN, f32::NAN);
     }
     // Beyond the exact-reduction range, fold into one period first (approximate); where even
