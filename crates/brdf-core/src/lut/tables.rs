@@ -24,6 +24,17 @@ fn g_args(theta_i: f32, theta_r: f32) -> ([f32; 2], [f32; 2]) {
     ([tr.abs(), s], [ti, tr])
 }
 
+/// A G table is a passing-factor table of `dims` axes in the reciprocal convention.
+fn expect_g_table(view: &LutView<'_>, dims: usize) -> Result<(), LutError> {
+    expect(view, TableKind::PassingFactor, dims)?;
+    if view.header().generator.convention != Convention::Reciprocal {
+        return Err(LutError::Inconsistent(
+            "G tables must use the reciprocal convention",
+        ));
+    }
+    Ok(())
+}
+
 #[inline]
 fn unit01(x: f32) -> f32 {
     x.clamp(0.0, 1.0)
@@ -42,12 +53,7 @@ impl<'a> GTable<'a> {
     }
     /// Wraps a parsed view.
     pub fn from_view(view: LutView<'a>) -> Result<Self, LutError> {
-        expect(&view, TableKind::PassingFactor, 2)?;
-        if view.header().generator.convention != Convention::Reciprocal {
-            return Err(LutError::Inconsistent(
-                "G tables must use the reciprocal convention",
-            ));
-        }
+        expect_g_table(&view, 2)?;
         Ok(Self { view })
     }
     /// The underlying view.
@@ -92,12 +98,7 @@ impl<'a> GTable3<'a> {
     }
     /// Wraps a parsed view.
     pub fn from_view(view: LutView<'a>) -> Result<Self, LutError> {
-        expect(&view, TableKind::PassingFactor, 3)?;
-        if view.header().generator.convention != Convention::Reciprocal {
-            return Err(LutError::Inconsistent(
-                "G tables must use the reciprocal convention",
-            ));
-        }
+        expect_g_table(&view, 3)?;
         Ok(Self { view })
     }
     /// The underlying view.
