@@ -14,10 +14,10 @@
 //! energy conserving. Sampled with the cosine-weighted hemisphere.
 
 use super::rgb::check_rgb;
-use super::{above, finish, u_ok, valid_wo, Brdf, BrdfFlags, BrdfSample, Rgb};
+use super::{above, Brdf, BrdfFlags, BrdfSample, Rgb};
+use super::{cosine_only_pdf, cosine_only_sample};
 use crate::error::check_range;
 use crate::geometry::Vec3;
-use crate::sampling::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
 use crate::{ParamError, Real};
 
 /// Where the Bank tangent comes from.
@@ -97,15 +97,9 @@ impl<T: Real> Brdf<T> for Bank<T> {
         self.kd.scale(T::ONE / T::PI).add(self.ks.scale(s))
     }
     fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
-        if !valid_wo(wo) {
-            return T::ZERO;
-        }
-        cosine_hemisphere_pdf(wi)
+        cosine_only_pdf(wo, wi)
     }
     fn sample(&self, wo: Vec3<T>, u: [T; 2]) -> Option<BrdfSample<T>> {
-        if !valid_wo(wo) || !u_ok(u) {
-            return None;
-        }
-        finish(self, wo, sample_cosine_hemisphere(u))
+        cosine_only_sample(self, wo, u)
     }
 }

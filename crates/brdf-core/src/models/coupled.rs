@@ -12,9 +12,9 @@
 //! flagged as not energy conserving. Both are reciprocal.
 
 use super::rgb::check_rgb;
+use super::schlick_mirror;
 use super::{
-    above, lobe_prob, mirror, sample_delta_or_cosine, valid_wo, Brdf, BrdfFlags, BrdfSample,
-    DeltaLobe, Rgb,
+    above, lobe_prob, sample_delta_or_cosine, valid_wo, Brdf, BrdfFlags, BrdfSample, DeltaLobe, Rgb,
 };
 use crate::error::check_range;
 use crate::fresnel::f_schlick;
@@ -102,14 +102,6 @@ impl<T: Real> Brdf<T> for CoupledSmooth<T> {
     }
     /// The mirror direction with reflectance R_f(θo) = R0 + (1 − cos θo)^5 (1 − R0).
     fn delta(&self, wo: Vec3<T>) -> Option<DeltaLobe<T>> {
-        if !valid_wo(wo) {
-            return None;
-        }
-        let rf = f_schlick(self.r0, wo.z);
-        Some(DeltaLobe {
-            wi: mirror(wo),
-            reflectance: Rgb::splat(rf),
-            prob: self.prob(rf),
-        })
+        schlick_mirror(self.r0, wo, |rf| self.prob(rf))
     }
 }

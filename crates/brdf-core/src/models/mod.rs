@@ -297,6 +297,46 @@ pub(crate) fn sample_delta_or_cosine<T: Real, B: Brdf<T> + ?Sized>(
     finish(b, wo, crate::sampling::sample_cosine_hemisphere([u0, u[1]]))
 }
 
+/// pdf of models sampled by the cosine-weighted hemisphere alone: cos θi/π (0 for an
+/// invalid wo).
+pub(crate) fn cosine_only_pdf<T: Real>(wo: Vec3<T>, wi: Vec3<T>) -> T {
+    if !valid_wo(wo) {
+        return T::ZERO;
+    }
+    crate::sampling::cosine_hemisphere_pdf(wi)
+}
+
+/// Sampling of models that use the cosine-weighted hemisphere alone.
+pub(crate) fn cosine_only_sample<T: Real, B: Brdf<T> + ?Sized>(
+    b: &B,
+    wo: Vec3<T>,
+    u: [T; 2],
+) -> Option<BrdfSample<T>> {
+    if !valid_wo(wo) || !u_ok(u) {
+        return None;
+    }
+    finish(b, wo, crate::sampling::sample_cosine_hemisphere(u))
+}
+
+/// The Dirac part of the smooth-layered models (FCG §24.4): the mirror direction with
+/// Schlick reflectance R_f(θo) = R0 + (1 − cos θo)^5 (1 − R0), chosen with probability
+/// `prob(R_f)`. `None` for an invalid wo.
+pub(crate) fn schlick_mirror<T: Real>(
+    r0: T,
+    wo: Vec3<T>,
+    prob: impl Fn(T) -> T,
+) -> Option<DeltaLobe<T>> {
+    if !valid_wo(wo) {
+        return None;
+    }
+    let rf = crate::fresnel::f_schlick(r0, wo.z);
+    Some(DeltaLobe {
+        wi: mirror(wo),
+        reflectance: Rgb::splat(rf),
+        prob: prob(rf),
+    })
+}
+
 /// The mirror direction 2(n·w)n − w about the local normal.
 #[inline]
 pub(crate) fn mirror<T: Real>(w: Vec3<T>) -> Vec3<T> {

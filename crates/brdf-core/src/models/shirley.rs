@@ -10,9 +10,9 @@
 //! so the model is energy conserving.
 
 use super::rgb::check_rgb;
+use super::schlick_mirror;
 use super::{
-    above, lobe_prob, mirror, sample_delta_or_cosine, valid_wo, Brdf, BrdfFlags, BrdfSample,
-    DeltaLobe, Rgb,
+    above, lobe_prob, sample_delta_or_cosine, valid_wo, Brdf, BrdfFlags, BrdfSample, DeltaLobe, Rgb,
 };
 use crate::error::check_range;
 use crate::fresnel::f_schlick;
@@ -67,14 +67,6 @@ impl<T: Real> Brdf<T> for ShirleyDamped<T> {
     }
     /// The mirror direction with reflectance R_f(θo).
     fn delta(&self, wo: Vec3<T>) -> Option<DeltaLobe<T>> {
-        if !valid_wo(wo) {
-            return None;
-        }
-        let rf = f_schlick(self.r0, wo.z);
-        Some(DeltaLobe {
-            wi: mirror(wo),
-            reflectance: Rgb::splat(rf),
-            prob: self.prob(rf),
-        })
+        schlick_mirror(self.r0, wo, |rf| self.prob(rf))
     }
 }

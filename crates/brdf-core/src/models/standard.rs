@@ -19,10 +19,10 @@
 //! reciprocal nor energy conserving, and samples with the cosine-weighted hemisphere.
 
 use super::rgb::check_rgb;
-use super::{finish, u_ok, valid_wo, Brdf, BrdfFlags, BrdfSample, LobeHint, Rgb};
+use super::{cosine_only_pdf, cosine_only_sample};
+use super::{Brdf, BrdfFlags, BrdfSample, LobeHint, Rgb};
 use crate::error::check_range;
 use crate::geometry::Vec3;
-use crate::sampling::{cosine_hemisphere_pdf, sample_cosine_hemisphere};
 use crate::{ParamError, Real};
 
 /// Which highlight the specular term uses.
@@ -138,16 +138,10 @@ impl<T: Real> Brdf<T> for StandardLighting<T> {
         self.light_term(Vec3::new(T::ZERO, T::ZERO, T::ONE), wo, &light)
     }
     fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
-        if !valid_wo(wo) {
-            return T::ZERO;
-        }
-        cosine_hemisphere_pdf(wi)
+        cosine_only_pdf(wo, wi)
     }
     fn sample(&self, wo: Vec3<T>, u: [T; 2]) -> Option<BrdfSample<T>> {
-        if !valid_wo(wo) || !u_ok(u) {
-            return None;
-        }
-        finish(self, wo, sample_cosine_hemisphere(u))
+        cosine_only_sample(self, wo, u)
     }
     fn lobe_hint(&self) -> LobeHint<T> {
         LobeHint::iso(T::ONE / (T::TWO * self.gloss + T::TWO).sqrt())
