@@ -89,6 +89,104 @@ fn g_tables_meet_1e3_at_fresh_points() {
 }
 
 #[test]
+fn speed_tier_g_tables_meet_their_accuracy_at_fresh_points() {
+    let b3 = asset("g_modified_linear.blut");
+    assert!(b3.len() <= 256 * 1024);
+    let t3 = GTable3::parse(&b3).unwrap();
+    let mut x = Xs(4242);
+    let (mut worst, mut sum2) = (0f64, 0f64);
+    let n = 3000;
+    for _ in 0..n {
+        let (ti, tr) = (x.next() * FRAC_PI_2, x.next() * PI - FRAC_PI_2);
+        let s = 0.05 + 0.95 * x.next();
+        let direct = ModifiedG::<f64, GaussLegendre<32>>::new(s)
+            .unwrap()
+            .g(ti, tr);
+        let e = (t3.g(ti as f32, tr as f32, s as f32) as f64 - direct).abs();
+        worst = worst.max(e);
+        sum2 += e * e;
+    }
+    let rms = (sum2 / n as f64).sqrt();
+    println!("3-D trilinear G table: max |err| {worst:.3e}, RMS {rms:.3e}");
+    assert!(worst <= 1e-3 && rms <= 3e-4);
+    let b = asset("g_modified_sigma0.3_linear.blut");
+    assert!(b.len() <= 32 * 1024);
+    let t = GTable::parse(&b).unwrap();
+    let g = ModifiedG::<f64, GaussLegendre<32>>::new(0.3).unwrap();
+    let mut worst = 0f64;
+    for _ in 0..3000 {
+        let (ti, tr) = (x.next() * FRAC_PI_2, x.next() * PI - FRAC_PI_2);
+        worst = worst.max((t.g(ti as f32, tr as f32) as f64 - g.g(ti, tr)).abs());
+    }
+    println!("2-D bilinear G table (sigma 0.3): max |err| {worst:.3e}");
+    assert!(worst <= 1e-4);
+}
+
+/// GM = F(|θr|, sgn θr · θi), GS = F(θi, θr) through the general reader (conventions.md §4),
+/// written out here independently of `GTable`.
+fn g_by_general_reader(v: &LutView<'_>, ti: f32, tr: f32, sigma: f32) -> (f32, f32) {
+    let ti = ti.clamp(0.0, FRAC_PI_2 as f32);
+    let tr = tr.clamp(-FRAC_PI_2 as f32, FRAC_PI_2 as f32);
+    let s = if tr < 0.0 { -ti } else { ti };
+    let gm = v.sample(&[tr.abs(), s, sigma])[0].clamp(0.0, 1.0);
+    let gs = v.sample(&[ti, tr, sigma])[0].clamp(0.0, 1.0);
+    (gm, gs)
+}
+
+#[test]
+fn fixed_layout_lookup_equals_the_general_reader() {
+    // GTable/GTable3 read u16 passing-factor tables through their own fixed-layout path;
+    // LutView::sample is the general per-tap reader (checked against closed forms in the
+    // core's unit tests). Both must agree up to f32 rounding on every shipped G table.
+    let mut x = Xs(31337);
+    let mut pts: Vec<(f32, f32, f32)> = (0..4000)
+        .map(|_| {
+            (
+                (x.next() * 1.7 - 0.05) as f32,
+                (x.next() * 3.4 - 1.7) as f32,
+                (x.next() * 1.1) as f32,
+            )
+        })
+        .collect();
+    // Nodes, range ends and the kink lines θr = ±θi.
+    for &(a, b) in &[
+        (0.0, 0.0),
+        (1.5707964, 1.5707964),
+        (0.7, 0.7),
+        (0.7, -0.7),
+        (1.2, -1.5707964),
+    ] {
+        for s in [0.05f32, 0.3, 1.0] {
+            pts.push((a, b, s));
+        }
+    }
+    let mut checked = 0;
+    for e in std::fs::read_dir(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../assets")).unwrap()
+    {
+        let name = e.unwrap().file_name().into_string().unwrap();
+        if !name.starts_with("g_modified") {
+            continue;
+        }
+        let b = asset(&name);
+        let v = LutView::parse(&b).unwrap();
+        let mut worst = 0f32;
+        for &(ti, tr, s) in &pts {
+            let (gm, gs, _) = if v.dims() == 3 {
+                GTable3::from_view(v.clone()).unwrap().terms(ti, tr, s)
+            } else {
+                GTable::from_view(v.clone()).unwrap().terms(ti, tr)
+            };
+            let (rm, rs) = g_by_general_reader(&v, ti, tr, s);
+            worst = worst.max((gm - rm).abs()).max((gs - rs).abs());
+        }
+        println!("{name}: max |fixed − general| {worst:.2e}");
+        assert!(worst <= 3e-6, "{name}: {worst}");
+        checked += 1;
+    }
+    assert!(checked >= 6, "only {checked} G tables found");
+}
+
+#[test]
 fn dfg_table_meets_1e3_including_grazing() {
     let b = asset("dfg_ggx.blut");
     let t = DfgTable::parse(&b).unwrap();
@@ -226,6 +324,19 @@ proptest! {
         let mut v = b"BLUT\x01".to_vec();
         v.extend_from_slice(&bytes);
         let _ = LutView::parse(&v);
+    }
+    #[test]
+    fn g_table_lookups_are_nan_or_in_unit_range(ti in any::<f32>(), tr in any::<f32>(), s in any::<f32>(), which in 0usize..4) {
+        let names = ["g_modified.blut", "g_modified_linear.blut", "g_modified_sigma0.3.blut", "g_modified_sigma0.3_linear.blut"];
+        let b = asset(names[which]);
+        let g = if which < 2 {
+            GTable3::parse(&b).unwrap().g(ti, tr, s)
+        } else {
+            GTable::parse(&b).unwrap().g(ti, tr)
+        };
+        let nan_in = ti.is_nan() || tr.is_nan() || (which < 2 && s.is_nan());
+        prop_assert_eq!(g.is_nan(), nan_in, "{} {} {} -> {}", ti, tr, s, g);
+        prop_assert!(g.is_nan() || (0.0..=1.0).contains(&g));
     }
     #[test]
     fn bit_flips_of_real_assets_are_errors(idx in 0usize..1_000_000, bit in 0u8..8, which in 0usize..4) {

@@ -100,45 +100,35 @@ fn g_closed<T: Real>(c: &mut Criterion) {
     grp.finish();
 }
 
-/// LUT lookups of G: the 3-D (θ, φ, σ) table and the per-σ 2-D table (f32 by design).
+/// LUT lookups of G: the 3-D (θ, φ, σ) tables and the per-σ 2-D tables (f32 by design), each
+/// in its accuracy tier (Catmull–Rom) and its speed tier (linear).
 fn g_lut(c: &mut Criterion) {
     let (ti, tr) = angle_pairs::<f32>(BATCH);
     let mut grp = c.benchmark_group("g_lut");
     grp.throughput(Throughput::Elements(BATCH as u64));
-    if let Some(bytes) = read_asset(G3_ASSET) {
-        let t = GTable3::parse(&bytes).unwrap();
-        let s = SIGMA as f32;
-        grp.bench_function("table3d", |b| {
-            b.iter(|| {
-                for (&a, &r) in ti.iter().zip(&tr) {
-                    black_box(t.g(black_box(a), black_box(r), s));
-                }
-            })
-        });
-        if let Some(f) = fast_lut::FastPassing::new(t.view()) {
-            grp.bench_function("table3d_fixed_layout", |b| {
+    for (id, asset) in [("table3d", G3_ASSET), ("table3d_linear", G3_LINEAR_ASSET)] {
+        if let Some(bytes) = read_asset(asset) {
+            let t = GTable3::parse(&bytes).unwrap();
+            let s = SIGMA as f32;
+            grp.bench_function(id, |b| {
                 b.iter(|| {
                     for (&a, &r) in ti.iter().zip(&tr) {
-                        black_box(f.g(black_box(a), black_box(r), s));
+                        black_box(t.g(black_box(a), black_box(r), s));
                     }
                 })
             });
         }
     }
-    if let Some(bytes) = read_asset(G2_ASSET) {
-        let t = GTable::parse(&bytes).unwrap();
-        grp.bench_function("table2d_sigma0.3", |b| {
-            b.iter(|| {
-                for (&a, &r) in ti.iter().zip(&tr) {
-                    black_box(t.g(black_box(a), black_box(r)));
-                }
-            })
-        });
-        if let Some(f) = fast_lut::FastPassing::new(t.view()) {
-            grp.bench_function("table2d_sigma0.3_fixed_layout", |b| {
+    for (id, asset) in [
+        ("table2d_sigma0.3", G2_ASSET),
+        ("table2d_sigma0.3_linear", G2_LINEAR_ASSET),
+    ] {
+        if let Some(bytes) = read_asset(asset) {
+            let t = GTable::parse(&bytes).unwrap();
+            grp.bench_function(id, |b| {
                 b.iter(|| {
                     for (&a, &r) in ti.iter().zip(&tr) {
-                        black_box(f.g(black_box(a), black_box(r), 0.0));
+                        black_box(t.g(black_box(a), black_box(r)));
                     }
                 })
             });

@@ -7,8 +7,6 @@
 //! Also holds the one kernel that exists only as a point of comparison: Karis's analytic
 //! approximation of the split-sum pair ([`env_brdf_approx`]).
 
-pub mod fast_lut;
-
 use brdf_core::lut::LutView;
 use brdf_core::{Dots, Real};
 use std::path::PathBuf;
@@ -136,5 +134,9 @@ pub fn read_asset(name: &str) -> Option<Vec<u8>> {
 pub const G3_ASSET: &str = "g_modified.blut";
 /// The per-σ modified-G table for [`SIGMA`].
 pub const G2_ASSET: &str = "g_modified_sigma0.3.blut";
+/// The speed tier of [`G3_ASSET`]: trilinear on a denser grid.
+pub const G3_LINEAR_ASSET: &str = "g_modified_linear.blut";
+/// The speed tier of [`G2_ASSET`]: bilinear on a denser grid.
+pub const G2_LINEAR_ASSET: &str = "g_modified_sigma0.3_linear.blut";
 /// The GGX split-sum table.
 pub const DFG_ASSET: &str = "dfg_ggx.blut";

@@ -94,6 +94,34 @@ pub fn default_set() -> Vec<Spec> {
             samples: 50_000,
         });
     }
+    // The speed tier: the same passing factor read with (bi/tri)linear interpolation, two taps
+    // per axis instead of four (docs/benchmarks.md: ~10x and ~30x faster than direct G, at
+    // ~1e-4 rather than ~1e-5 accuracy). Grids chosen for max |G error| <= 1e-3 within the
+    // same size budgets as the cubic tables.
+    let mut ax3 = g_axes(56, 79);
+    ax3.push(axis("sigma", 28, 0.05, 1.0, Warp::Log, Placement::Endpoint));
+    v.push(Spec {
+        file: "g_modified_linear.blut".into(),
+        kind: TableKind::PassingFactor,
+        model: Model::ModifiedG,
+        sigma: None,
+        axes: ax3,
+        channels: vec!["F"],
+        encoding: Encoding::Unorm16,
+        interpolation: Interpolation::Linear,
+        samples: 100_000,
+    });
+    v.push(Spec {
+        file: "g_modified_sigma0.3_linear.blut".into(),
+        kind: TableKind::PassingFactor,
+        model: Model::ModifiedG,
+        sigma: Some(0.3),
+        axes: g_axes(96, 127),
+        channels: vec!["F"],
+        encoding: Encoding::Unorm16,
+        interpolation: Interpolation::Linear,
+        samples: 50_000,
+    });
     let dfg_axes = |n: u32| {
         vec![
             axis("mu", n, MU_MIN, 1.0, Warp::Log, Placement::Endpoint),

@@ -15,8 +15,8 @@ const KERNELS: &[&str] = &[
     "g_direct_f64",
     "g_lut3d",
     "g_lut2d",
-    "g_lut3d_fixed",
-    "g_lut2d_fixed",
+    "g_lut3d_linear",
+    "g_lut2d_linear",
     "smith_beckmann_f32",
     "blinn_f32",
     "dfg_lut",
@@ -80,15 +80,15 @@ fn main() {
             let t = GTable::parse(&b).unwrap();
             run!(|k: usize| t.g(black_box(ti32[k]), black_box(tr32[k])))
         }
-        "g_lut3d_fixed" | "g_lut2d_fixed" => {
-            let b = asset(if name == "g_lut3d_fixed" {
-                G3_ASSET
-            } else {
-                G2_ASSET
-            });
-            let v = brdf_core::lut::LutView::parse(&b).unwrap();
-            let t = brdf_bench::fast_lut::FastPassing::new(&v).unwrap();
+        "g_lut3d_linear" => {
+            let b = asset(G3_LINEAR_ASSET);
+            let t = GTable3::parse(&b).unwrap();
             run!(|k: usize| t.g(black_box(ti32[k]), black_box(tr32[k]), SIGMA as f32))
+        }
+        "g_lut2d_linear" => {
+            let b = asset(G2_LINEAR_ASSET);
+            let t = GTable::parse(&b).unwrap();
+            run!(|k: usize| t.g(black_box(ti32[k]), black_box(tr32[k])))
         }
         "smith_beckmann_f32" => {
             let m = (std::f64::consts::SQRT_2 * SIGMA) as f32;

@@ -27,6 +27,7 @@ mod error;
 mod f16;
 mod header;
 mod interp;
+mod passing;
 mod tables;
 
 pub use crc::{crc32, Crc32};

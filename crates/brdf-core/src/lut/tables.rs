@@ -1,5 +1,6 @@
 //! Typed wrappers over [`LutView`]: the query each table kind answers, in physical units.
 
+use super::passing::PassingReader;
 use super::{LutError, LutView, TableKind};
 use crate::masking::Convention;
 use core::f32::consts::FRAC_PI_2;
@@ -44,6 +45,7 @@ fn unit01(x: f32) -> f32 {
 #[derive(Clone, Debug)]
 pub struct GTable<'a> {
     view: LutView<'a>,
+    fast: Option<PassingReader>,
 }
 
 impl<'a> GTable<'a> {
@@ -54,7 +56,8 @@ impl<'a> GTable<'a> {
     /// Wraps a parsed view.
     pub fn from_view(view: LutView<'a>) -> Result<Self, LutError> {
         expect_g_table(&view, 2)?;
-        Ok(Self { view })
+        let fast = PassingReader::new(&view);
+        Ok(Self { view, fast })
     }
     /// The underlying view.
     pub fn view(&self) -> &LutView<'a> {
@@ -75,8 +78,13 @@ impl<'a> GTable<'a> {
             return (f32::NAN, f32::NAN, f32::NAN);
         }
         let (m, s) = g_args(theta_i, theta_r);
-        let gm = unit01(self.view.sample(&m)[0]);
-        let gs = unit01(self.view.sample(&s)[0]);
+        let (gm, gs) = match &self.fast {
+            Some(f) => f.pair(self.view.payload(), m, s, 0.0),
+            None => (
+                unit01(self.view.sample(&m)[0]),
+                unit01(self.view.sample(&s)[0]),
+            ),
+        };
         (gm, gs, gm.min(gs))
     }
     /// G = min(GM, GS); see [`GTable::terms`].
@@ -89,6 +97,7 @@ impl<'a> GTable<'a> {
 #[derive(Clone, Debug)]
 pub struct GTable3<'a> {
     view: LutView<'a>,
+    fast: Option<PassingReader>,
 }
 
 impl<'a> GTable3<'a> {
@@ -99,7 +108,8 @@ impl<'a> GTable3<'a> {
     /// Wraps a parsed view.
     pub fn from_view(view: LutView<'a>) -> Result<Self, LutError> {
         expect_g_table(&view, 3)?;
-        Ok(Self { view })
+        let fast = PassingReader::new(&view);
+        Ok(Self { view, fast })
     }
     /// The underlying view.
     pub fn view(&self) -> &LutView<'a> {
@@ -117,8 +127,13 @@ impl<'a> GTable3<'a> {
             return (f32::NAN, f32::NAN, f32::NAN);
         }
         let (m, s) = g_args(theta_i, theta_r);
-        let gm = unit01(self.view.sample(&[m[0], m[1], sigma])[0]);
-        let gs = unit01(self.view.sample(&[s[0], s[1], sigma])[0]);
+        let (gm, gs) = match &self.fast {
+            Some(f) => f.pair(self.view.payload(), m, s, sigma),
+            None => (
+                unit01(self.view.sample(&[m[0], m[1], sigma])[0]),
+                unit01(self.view.sample(&[s[0], s[1], sigma])[0]),
+            ),
+        };
         (gm, gs, gm.min(gs))
     }
     /// G = min(GM, GS); see [`GTable3::terms`].
