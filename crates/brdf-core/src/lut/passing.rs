@@ -8,6 +8,9 @@
 //! one bounds check per row of K values, the (θ, φ) taps shared by every σ slice and the
 //! channel's scale and offset applied once at the end (the weights sum to 1).
 //!
+//! Inlining: forced on hosted targets (speed), left to the optimiser on bare metal
+//! (`target_os = "none"`), where the firmware's flash budget matters more.
+//!
 //! The values are the general reader's up to f32 summation order (`tests/tests/lut_format.rs`
 //! checks both against each other and against the direct kernel).
 
@@ -84,7 +87,8 @@ impl Lane {
     }
 
     /// The fractional node index of x (x not NaN).
-    #[inline(always)]
+    #[cfg_attr(target_os = "none", inline)]
+    #[cfg_attr(not(target_os = "none"), inline(always))]
     fn index(&self, x: f32) -> f32 {
         let x = clamp(x, self.lo, self.hi);
         let w = match self.warp {
@@ -98,7 +102,8 @@ impl Lane {
     }
 
     /// Node i ≤ n − 2 and the fraction f ∈ [0, 1] of x.
-    #[inline(always)]
+    #[cfg_attr(target_os = "none", inline)]
+    #[cfg_attr(not(target_os = "none"), inline(always))]
     fn cell(&self, x: f32) -> (usize, f32) {
         let t = self.index(x);
         // t ∈ [0, n − 1] with n ≤ 65536: the i32 conversion is exact and in range.
@@ -144,7 +149,6 @@ fn taps<const K: usize>(t: f32, n: usize) -> (usize, [f32; K]) {
 pub(crate) struct PassingReader {
     lanes: [Lane; 3],
     n: [usize; 3],
-    dims: usize,
     cubic: bool,
     scale: f32,
     offset: f32,
@@ -190,39 +194,58 @@ impl PassingReader {
         Some(Self {
             lanes,
             n,
-            dims,
             cubic,
             scale: c.scale * (1.0 / 65535.0),
             offset: c.offset,
         })
     }
 
-    /// (GM, GS) in [0, 1] for the already clamped argument pairs `m` = (|θr|, ±θi) and
-    /// `s` = (θi, θr), and σ (ignored by a 2-D table).
+    /// (GM, GS) in [0, 1] from a 2-D table, for the already clamped argument pairs
+    /// `m` = (|θr|, ±θi) and `s` = (θi, θr).
     #[inline]
-    pub(crate) fn pair(&self, data: &[u8], m: [f32; 2], s: [f32; 2], sigma: f32) -> (f32, f32) {
+    pub(crate) fn pair2(&self, data: &[u8], m: [f32; 2], s: [f32; 2]) -> (f32, f32) {
         let (gm, gs) = if self.cubic {
-            self.pair_k::<4>(data, m, s, sigma)
+            let (am, m0, m1) = self.taps2::<4>(m);
+            let (as_, s0, s1) = self.taps2::<4>(s);
+            (
+                self.patch::<4>(data, am, &m0, &m1),
+                self.patch::<4>(data, as_, &s0, &s1),
+            )
         } else {
             let (cm, cs) = (self.cell2(m), self.cell2(s));
-            if self.dims == 2 {
-                (self.bilinear(data, 0, cm), self.bilinear(data, 0, cs))
-            } else {
-                // Linear in σ between two (θ, φ) planes.
-                let (k, f) = self.lanes[2].cell(sigma);
-                let plane = self.n[0] * self.n[1];
-                let (p0, p1) = (k * plane, (k + 1) * plane);
-                let (m0, s0) = (self.bilinear(data, p0, cm), self.bilinear(data, p0, cs));
-                let (m1, s1) = (self.bilinear(data, p1, cm), self.bilinear(data, p1, cs));
-                (m0 + f * (m1 - m0), s0 + f * (s1 - s0))
-            }
+            (self.bilinear(data, 0, cm), self.bilinear(data, 0, cs))
         };
+        self.finish(gm, gs)
+    }
+
+    /// [`PassingReader::pair2`] for a 3-D table at σ.
+    #[inline]
+    pub(crate) fn pair3(&self, data: &[u8], m: [f32; 2], s: [f32; 2], sigma: f32) -> (f32, f32) {
+        let (gm, gs) = if self.cubic {
+            self.cubic3(data, m, s, sigma)
+        } else {
+            // Linear in σ between two (θ, φ) planes; the (θ, φ) cells are shared.
+            let (cm, cs) = (self.cell2(m), self.cell2(s));
+            let (k, f) = self.lanes[2].cell(sigma);
+            let plane = self.n[0] * self.n[1];
+            let (p0, p1) = (k * plane, (k + 1) * plane);
+            let (m0, s0) = (self.bilinear(data, p0, cm), self.bilinear(data, p0, cs));
+            let (m1, s1) = (self.bilinear(data, p1, cm), self.bilinear(data, p1, cs));
+            (m0 + f * (m1 - m0), s0 + f * (s1 - s0))
+        };
+        self.finish(gm, gs)
+    }
+
+    /// Stored units → F, clamped to [0, 1].
+    #[inline(always)]
+    fn finish(&self, gm: f32, gs: f32) -> (f32, f32) {
         let f = |x: f32| clamp(self.offset + self.scale * x, 0.0, 1.0);
         (f(gm), f(gs))
     }
 
     /// The (θ, φ) cell of a lookup: flat offset of its lower corner and the two fractions.
-    #[inline(always)]
+    #[cfg_attr(target_os = "none", inline)]
+    #[cfg_attr(not(target_os = "none"), inline(always))]
     fn cell2(&self, x: [f32; 2]) -> (usize, f32, f32) {
         let (i, f0) = self.lanes[0].cell(x[0]);
         let (j, f1) = self.lanes[1].cell(x[1]);
@@ -231,7 +254,8 @@ impl PassingReader {
 
     /// Bilinear F in stored units in cell `c` of the (θ, φ) plane starting at flat index
     /// `plane`; NaN if the payload is short.
-    #[inline(always)]
+    #[cfg_attr(target_os = "none", inline)]
+    #[cfg_attr(not(target_os = "none"), inline(always))]
     fn bilinear(&self, data: &[u8], plane: usize, c: (usize, f32, f32)) -> f32 {
         let (cell, f0, f1) = c;
         let n0 = self.n[0];
@@ -246,37 +270,26 @@ impl PassingReader {
         lo + f1 * (hi - lo)
     }
 
-    #[inline(always)]
-    fn pair_k<const K: usize>(
-        &self,
-        data: &[u8],
-        m: [f32; 2],
-        s: [f32; 2],
-        sigma: f32,
-    ) -> (f32, f32) {
-        let (am, m0, m1) = self.taps2::<K>(m);
-        let (as_, s0, s1) = self.taps2::<K>(s);
-        if self.dims == 2 {
-            return (
-                self.patch::<K>(data, am, &m0, &m1),
-                self.patch::<K>(data, as_, &s0, &s1),
-            );
-        }
+    /// Tricubic (GM, GS) in stored units: 4 σ planes, the (θ, φ) taps shared.
+    #[inline]
+    fn cubic3(&self, data: &[u8], m: [f32; 2], s: [f32; 2], sigma: f32) -> (f32, f32) {
+        let (am, m0, m1) = self.taps2::<4>(m);
+        let (as_, s0, s1) = self.taps2::<4>(s);
         let plane = self.n[0] * self.n[1];
-        let (b2, w2) = taps::<K>(self.lanes[2].index(sigma), self.n[2]);
+        let (b2, w2) = taps::<4>(self.lanes[2].index(sigma), self.n[2]);
         let (mut gm, mut gs) = (0.0, 0.0);
         for (k, &wk) in w2.iter().enumerate() {
             if wk != 0.0 {
                 let p = (b2 + k) * plane;
-                gm += wk * self.patch::<K>(data, p + am, &m0, &m1);
-                gs += wk * self.patch::<K>(data, p + as_, &s0, &s1);
+                gm += wk * self.patch::<4>(data, p + am, &m0, &m1);
+                gs += wk * self.patch::<4>(data, p + as_, &s0, &s1);
             }
         }
         (gm, gs)
     }
 
     /// The flat offset of the K×K patch of (θ, φ) and its two weight vectors.
-    #[inline(always)]
+    #[inline]
     fn taps2<const K: usize>(&self, x: [f32; 2]) -> (usize, [f32; K], [f32; K]) {
         let (b0, w0) = taps::<K>(self.lanes[0].index(x[0]), self.n[0]);
         let (b1, w1) = taps::<K>(self.lanes[1].index(x[1]), self.n[1]);
@@ -284,7 +297,7 @@ impl PassingReader {
     }
 
     /// Σ_j w1[j] Σ_i w0[i] v[at + j·n0 + i] in stored units; NaN if the payload is short.
-    #[inline(always)]
+    #[inline]
     fn patch<const K: usize>(&self, data: &[u8], at: usize, w0: &[f32; K], w1: &[f32; K]) -> f32 {
         let mut acc = 0.0;
         for (j, wj) in w1.iter().enumerate() {

@@ -79,7 +79,7 @@ impl<'a> GTable<'a> {
         }
         let (m, s) = g_args(theta_i, theta_r);
         let (gm, gs) = match &self.fast {
-            Some(f) => f.pair(self.view.payload(), m, s, 0.0),
+            Some(f) => f.pair2(self.view.payload(), m, s),
             None => (
                 unit01(self.view.sample(&m)[0]),
                 unit01(self.view.sample(&s)[0]),
@@ -128,7 +128,7 @@ impl<'a> GTable3<'a> {
         }
         let (m, s) = g_args(theta_i, theta_r);
         let (gm, gs) = match &self.fast {
-            Some(f) => f.pair(self.view.payload(), m, s, sigma),
+            Some(f) => f.pair3(self.view.payload(), m, s, sigma),
             None => (
                 unit01(self.view.sample(&[m[0], m[1], sigma])[0]),
                 unit01(self.view.sample(&[s[0], s[1], sigma])[0]),
