@@ -7,7 +7,8 @@
 //! * GGX (Trowbridge–Reitz), isotropic α: h distributed as D(h) cos θh, tan²θh = α² u0/(1 − u0).
 //! * GGX visible normals: h distributed as G1(wo) max(wo·h, 0) D(h)/cos θo (the slope-space
 //!   stretch of the view direction, a uniform point on the projected hemisphere, unstretch).
-//!   Beckmann visible normals are not provided (no robust closed-form inverse).
+//!   Beckmann visible normals are in [`super::visible_beckmann`] (no closed-form inverse;
+//!   solved numerically).
 
 use super::unit;
 use crate::distribution::d_ggx;

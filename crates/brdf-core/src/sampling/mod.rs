@@ -10,6 +10,8 @@
 //!   sampling with its quadrant mapping (eqs 24.10, 24.13, 24.14).
 //! * [`microfacet`]: Beckmann (isotropic and anisotropic, also Ward's lobe) and GGX normals
 //!   distributed as D(h) cos θh, and GGX visible normals.
+//! * [`visible_beckmann`]: Beckmann visible normals (anisotropic), by a bracketed Newton
+//!   inversion of the visible-slope CDF.
 
 // `!(x > 0)` is deliberate throughout: it is true for NaN as well.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
@@ -18,6 +20,7 @@ pub mod half_vector;
 pub mod hemisphere;
 pub mod lobe;
 pub mod microfacet;
+pub mod visible_beckmann;
 
 pub use half_vector::{
     ashikhmin_shirley_pdf_h, reflect_about, sample_ashikhmin_shirley_h, wi_pdf_from_h,
@@ -31,6 +34,7 @@ pub use microfacet::{
     beckmann_aniso_d, beckmann_normal_pdf, ggx_normal_pdf, ggx_visible_normal_pdf,
     sample_beckmann_normal, sample_ggx_normal, sample_ggx_visible_normal,
 };
+pub use visible_beckmann::{beckmann_visible_normal_pdf, sample_beckmann_visible_normal};
 
 use crate::Real;
 
