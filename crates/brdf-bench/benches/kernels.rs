@@ -195,6 +195,14 @@ fn models(c: &mut Criterion) {
             "cook_torrance_smith",
             Box::new(CookTorrance::new(kd, ks, 0.3, 0.04, GeometricTerm::SmithCorrelated).unwrap()),
         ),
+        (
+            "cook_torrance_smith_visible_normals",
+            Box::new(
+                CookTorrance::new(kd, ks, 0.3, 0.04, GeometricTerm::SmithCorrelated)
+                    .unwrap()
+                    .with_sampling(MicrofacetSampling::VisibleNormals),
+            ),
+        ),
         ("ward", Box::new(Ward::new(kd, ks, 0.2, 0.3).unwrap())),
         (
             "ashikhmin_shirley",
