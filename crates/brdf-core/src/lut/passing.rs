@@ -3,10 +3,11 @@
 //! A G costs two passing-factor lookups, F(|θr|, ±θi) for GM and F(θi, θr) for GS
 //! (conventions.md §4). The general reader ([`LutView::sample`]) decides per tap which
 //! encoding and channel it reads; here that is decided once: a one-channel `Unorm16` table
-//! of [`TableKind::PassingFactor`] is read with K taps per axis (K = 2 linear, K = 4
-//! Catmull–Rom), the end extrapolation of docs/lut-format.md §7 folded into the weights,
-//! one bounds check per row of K values, the (θ, φ) taps shared by every σ slice and the
-//! channel's scale and offset applied once at the end (the weights sum to 1).
+//! of [`TableKind::PassingFactor`] is read with 2 taps per axis (linear) or 4
+//! (Catmull–Rom, the end extrapolation of docs/lut-format.md §7 folded into the weights),
+//! one bounds check per cell (linear) or per row of four (cubic), the (θ, φ) taps shared by
+//! every σ plane and the channel's scale and offset applied once at the end (the weights
+//! sum to 1).
 //!
 //! Inlining: forced on hosted targets (speed), left to the optimiser on bare metal
 //! (`target_os = "none"`), where the firmware's flash budget matters more.
@@ -112,19 +113,12 @@ impl Lane {
     }
 }
 
-/// Node `base` and the K weights of fractional index `t` on an axis of `n` nodes
-/// (`n ≥ 2` for K = 2, `n ≥ 4` for K = 4).
+/// First node and the four Catmull–Rom weights (docs/lut-format.md §7) of fractional
+/// index `t` on an axis of `n ≥ 4` nodes, the end extrapolation folded in.
 #[inline(always)]
-fn taps<const K: usize>(t: f32, n: usize) -> (usize, [f32; K]) {
+fn cubic_taps(t: f32, n: usize) -> (usize, [f32; 4]) {
     let i = (t as usize).min(n - 2);
     let f = t - i as f32;
-    let mut w = [0.0f32; K];
-    if K == 2 {
-        w[0] = 1.0 - f;
-        w[1] = f;
-        return (i, w);
-    }
-    // Catmull–Rom weights (docs/lut-format.md §7).
     let (f2, f3) = (f * f, f * f * f);
     let wm = 0.5 * (-f3 + 2.0 * f2 - f);
     let w0 = 0.5 * (3.0 * f3 - 5.0 * f2 + 2.0);
@@ -132,15 +126,12 @@ fn taps<const K: usize>(t: f32, n: usize) -> (usize, [f32; K]) {
     let w2 = 0.5 * (f3 - f2);
     if i == 0 {
         // v₋₁ = 3v₀ − 3v₁ + v₂, folded into nodes 0..2.
-        w[..4].copy_from_slice(&[w0 + 3.0 * wm, w1 - 3.0 * wm, w2 + wm, 0.0]);
-        (0, w)
+        (0, [w0 + 3.0 * wm, w1 - 3.0 * wm, w2 + wm, 0.0])
     } else if i == n - 2 {
         // v_n = 3v_{n−1} − 3v_{n−2} + v_{n−3}, folded into nodes n−3..n−1.
-        w[..4].copy_from_slice(&[0.0, wm + w2, w0 - 3.0 * w2, w1 + 3.0 * w2]);
-        (n - 4, w)
+        (n - 4, [0.0, wm + w2, w0 - 3.0 * w2, w1 + 3.0 * w2])
     } else {
-        w[..4].copy_from_slice(&[wm, w0, w1, w2]);
-        (i - 1, w)
+        (i - 1, [wm, w0, w1, w2])
     }
 }
 
@@ -205,11 +196,11 @@ impl PassingReader {
     #[inline]
     pub(crate) fn pair2(&self, data: &[u8], m: [f32; 2], s: [f32; 2]) -> (f32, f32) {
         let (gm, gs) = if self.cubic {
-            let (am, m0, m1) = self.taps2::<4>(m);
-            let (as_, s0, s1) = self.taps2::<4>(s);
+            let (am, m0, m1) = self.cubic_cell(m);
+            let (as_, s0, s1) = self.cubic_cell(s);
             (
-                self.patch::<4>(data, am, &m0, &m1),
-                self.patch::<4>(data, as_, &s0, &s1),
+                self.patch(data, am, &m0, &m1),
+                self.patch(data, as_, &s0, &s1),
             )
         } else {
             let (cm, cs) = (self.cell2(m), self.cell2(s));
@@ -273,36 +264,36 @@ impl PassingReader {
     /// Tricubic (GM, GS) in stored units: 4 σ planes, the (θ, φ) taps shared.
     #[inline]
     fn cubic3(&self, data: &[u8], m: [f32; 2], s: [f32; 2], sigma: f32) -> (f32, f32) {
-        let (am, m0, m1) = self.taps2::<4>(m);
-        let (as_, s0, s1) = self.taps2::<4>(s);
+        let (am, m0, m1) = self.cubic_cell(m);
+        let (as_, s0, s1) = self.cubic_cell(s);
         let plane = self.n[0] * self.n[1];
-        let (b2, w2) = taps::<4>(self.lanes[2].index(sigma), self.n[2]);
+        let (b2, w2) = cubic_taps(self.lanes[2].index(sigma), self.n[2]);
         let (mut gm, mut gs) = (0.0, 0.0);
         for (k, &wk) in w2.iter().enumerate() {
             if wk != 0.0 {
                 let p = (b2 + k) * plane;
-                gm += wk * self.patch::<4>(data, p + am, &m0, &m1);
-                gs += wk * self.patch::<4>(data, p + as_, &s0, &s1);
+                gm += wk * self.patch(data, p + am, &m0, &m1);
+                gs += wk * self.patch(data, p + as_, &s0, &s1);
             }
         }
         (gm, gs)
     }
 
-    /// The flat offset of the K×K patch of (θ, φ) and its two weight vectors.
+    /// The flat offset of the 4×4 patch of (θ, φ) and its two weight vectors.
     #[inline]
-    fn taps2<const K: usize>(&self, x: [f32; 2]) -> (usize, [f32; K], [f32; K]) {
-        let (b0, w0) = taps::<K>(self.lanes[0].index(x[0]), self.n[0]);
-        let (b1, w1) = taps::<K>(self.lanes[1].index(x[1]), self.n[1]);
+    fn cubic_cell(&self, x: [f32; 2]) -> (usize, [f32; 4], [f32; 4]) {
+        let (b0, w0) = cubic_taps(self.lanes[0].index(x[0]), self.n[0]);
+        let (b1, w1) = cubic_taps(self.lanes[1].index(x[1]), self.n[1]);
         (b1 * self.n[0] + b0, w0, w1)
     }
 
     /// Σ_j w1[j] Σ_i w0[i] v[at + j·n0 + i] in stored units; NaN if the payload is short.
     #[inline]
-    fn patch<const K: usize>(&self, data: &[u8], at: usize, w0: &[f32; K], w1: &[f32; K]) -> f32 {
+    fn patch(&self, data: &[u8], at: usize, w0: &[f32; 4], w1: &[f32; 4]) -> f32 {
         let mut acc = 0.0;
         for (j, wj) in w1.iter().enumerate() {
             let start = 2 * (at + j * self.n[0]);
-            let Some(b) = data.get(start..start + 2 * K) else {
+            let Some(b) = data.get(start..start + 8) else {
                 return f32::NAN;
             };
             let mut r = 0.0;
