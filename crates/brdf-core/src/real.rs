@@ -54,6 +54,11 @@ pub trait Real:
     fn ln(self) -> Self;
     fn sin(self) -> Self;
     fn cos(self) -> Self;
+    /// (sin, cos) of the same argument, sharing the argument reduction.
+    #[inline]
+    fn sin_cos(self) -> (Self, Self) {
+        (self.sin(), self.cos())
+    }
     fn tan(self) -> Self;
     fn asin(self) -> Self;
     fn acos(self) -> Self;
@@ -182,6 +187,10 @@ impl Real for f64 {
         libm::cos(self)
     }
     #[inline]
+    fn sin_cos(self) -> (Self, Self) {
+        libm::sincos(self)
+    }
+    #[inline]
     fn tan(self) -> Self {
         libm::tan(self)
     }
@@ -271,6 +280,52 @@ pub fn sin_cos_f32(x: f32) -> (f32, f32) {
     }
 }
 
+/// eˣ for an `f32`, in f32 arithmetic only, without a division.
+///
+/// x = k·ln 2 + r with k = round(x/ln 2) and |r| ≤ ln 2/2, r by a two-part Cody–Waite split
+/// (ln 2 = L1 + L2, L1 with 16 significant bits so k·L1 is exact for |k| < 2⁸); then
+/// eʳ by its Taylor polynomial to r⁷ (truncation error |r|⁸/8! < 1.4e-9 relative, below f32
+/// rounding), and 2ᵏ by building the exponent bits (in two steps for subnormal results).
+/// Accuracy: within 2 ulp of the exact value (tested against f64 libm); overflow gives +∞,
+/// x < −104 gives 0, NaN gives NaN.
+#[inline]
+pub fn exp_f32(x: f32) -> f32 {
+    const LOG2_E: f32 = core::f32::consts::LOG2_E;
+    const L1: f32 = 0.693_145_75; // 0x3f317200
+    const L2: f32 = 1.428_606_8e-6; // ln 2 − L1
+    if !(x > -104.0) {
+        return if x.is_nan() { x } else { 0.0 };
+    }
+    if x > 88.8 {
+        return f32::INFINITY;
+    }
+    let t = x * LOG2_E;
+    let k = if t >= 0.0 {
+        (t + 0.5) as i32
+    } else {
+        (t - 0.5) as i32
+    };
+    let kf = k as f32;
+    let r = (x - kf * L1) - kf * L2;
+    let p = 1.0
+        + r * (1.0
+            + r * (0.5
+                + r * (1.0 / 6.0
+                    + r * (1.0 / 24.0
+                        + r * (1.0 / 120.0 + r * (1.0 / 720.0 + r * (1.0 / 5040.0)))))));
+    if k >= -126 {
+        // k ≤ 128 here; 2¹²⁸ is not an f32, so scale by 2ᵏ⁻¹ · 2.
+        if k > 127 {
+            p * f32::from_bits(((k - 1 + 127) as u32) << 23) * 2.0
+        } else {
+            p * f32::from_bits(((k + 127) as u32) << 23)
+        }
+    } else {
+        // Subnormal result: 2ᵏ = 2ᵏ⁺⁶⁴ · 2⁻⁶⁴ (k ≥ −151).
+        p * f32::from_bits(((k + 64 + 127) as u32) << 23) * f32::from_bits((127 - 64) << 23)
+    }
+}
+
 #[cfg(not(feature = "micromath"))]
 impl Real for f32 {
     consts!(f32);
@@ -280,7 +335,7 @@ impl Real for f32 {
     }
     #[inline]
     fn exp(self) -> Self {
-        libm::expf(self)
+        exp_f32(self)
     }
     #[inline]
     fn ln(self) -> Self {
@@ -293,6 +348,10 @@ impl Real for f32 {
     #[inline]
     fn cos(self) -> Self {
         sin_cos_f32(self).1
+    }
+    #[inline]
+    fn sin_cos(self) -> (Self, Self) {
+        sin_cos_f32(self)
     }
     #[inline]
     fn tan(self) -> Self {
@@ -397,6 +456,46 @@ impl Real for f32 {
 
 #[cfg(test)]
 mod tests {
+    /// The f32 exponential against f64 libm, relative error in units of f32 ε (2⁻²³).
+    #[test]
+    fn exp_f32_within_two_ulp_of_f64() {
+        let mut worst = 0f64;
+        let n = 2_000_000;
+        for i in 0..=n {
+            let x = (-87.0 + 175.0 * i as f64 / n as f64) as f32;
+            let e = libm::exp(x as f64);
+            if e > f32::MAX as f64 {
+                continue;
+            }
+            let got = super::exp_f32(x) as f64;
+            worst = worst.max((got - e).abs() / e);
+        }
+        // The kernels' range, densely: −v² for v ∈ [0, 4.5].
+        for i in 0..=1_000_000 {
+            let x = (-20.25 * i as f64 / 1e6) as f32;
+            let e = libm::exp(x as f64);
+            worst = worst.max((super::exp_f32(x) as f64 - e).abs() / e);
+        }
+        assert!(
+            worst <= 2.0 * f32::EPSILON as f64,
+            "max rel error {worst:e}"
+        );
+        // Subnormal results: absolute error below half the smallest subnormal step times 4.
+        for x in [-88.0f32, -95.0, -100.0, -103.0] {
+            let e = libm::exp(x as f64);
+            let got = super::exp_f32(x) as f64;
+            assert!(
+                (got - e).abs() <= 4.0 * 1.4e-45 + 2.4e-7 * e,
+                "x={x}: {got:e} vs {e:e}"
+            );
+        }
+        assert_eq!(super::exp_f32(0.0), 1.0);
+        assert_eq!(super::exp_f32(-200.0), 0.0);
+        assert_eq!(super::exp_f32(100.0), f32::INFINITY);
+        assert!(super::exp_f32(f32::NAN).is_nan());
+        assert!(super::exp_f32(88.7) > 3.3e38 && super::exp_f32(88.7).is_finite());
+    }
+
     /// The f32 sine and cosine against f64 libm (an independent, more precise reference).
     #[test]
     fn sin_cos_f32_within_two_ulp_of_f64() {

@@ -29,6 +29,7 @@ use crate::distribution::{slope_weight, SlopeDistribution, V_CUT};
 use crate::error::ParamError;
 use crate::geometry::{clamp_theta_i, clamp_theta_r, Dots, Vec3};
 use crate::quadrature::{DefaultRule, Rule};
+
 use crate::Real;
 
 /// Which reading of eq 12 to use.
@@ -105,47 +106,74 @@ impl<T: Real, R: Rule> ModifiedG<T, R> {
 
     /// M(θ, a) from angles in radians: θ ∈ [0, π/2] (clamped), a ∈ [−π/2, π/2] (clamped).
     pub fn passing(&self, theta: T, a: T) -> T {
-        let t = clamp_theta_i(theta);
-        let a = clamp_theta_r(a);
-        self.passing_cs(t.cos(), t.sin(), a.cos(), a.sin())
+        let (st, ct) = clamp_theta_i(theta).sin_cos();
+        let (sa, ca) = clamp_theta_r(a).sin_cos();
+        self.passing_cs(ct, st, ca, sa)
     }
 
     /// M(θ, a) from cos θ, sin θ (sin θ ≥ 0) and cos a, sin a (cos a ≥ 0). Result in [0, 1];
-    /// 1 at θ = 0; at least ½ for every θ ≤ π/2. NaN in, NaN out.
+    /// 1 at θ = 0; at least ½ for every θ ≤ π/2 (a cos θ rounded below 0, as f32 cos(π/2)
+    /// is, counts as 0). NaN in, NaN out.
+    ///
+    /// One rule-`R` integral of √(1 + u²)e^{−v²} over [0, v_hi] plus the closed-form
+    /// correction described in the module docs.
     pub fn passing_cs(&self, cos_t: T, sin_t: T, cos_a: T, sin_a: T) -> T {
         if sin_t == T::ZERO {
             return T::ONE;
         }
+        // θ ≤ π/2: a rounded cos θ < 0 (f32 π/2 exceeds π/2) would put v_lo below 0.
+        let cos_t = if cos_t < T::ZERO { T::ZERO } else { cos_t };
         let s2 = self.dist.sqrt2_sigma();
-        let k = self.dist.inv_2z();
         let vc = T::from_f64(V_CUT);
-        // Fully passing (eqs 6–7): 1/2 + ∫₀^{v(lo)}, tan lo = cot θ.
+        // Fully passing bound (eqs 6–7): tan lo = cot θ.
         let vlo = self.dist.v_of_tan(cos_t, sin_t);
-        let full = T::HALF + R::integrate(T::ZERO, vlo, |v| slope_weight(v, s2)) * k;
-        // Semi-passing (eqs 9–10). Non-empty iff cos(θ − a) > 0.
+        let (vhi, corr) = self.semi_correction(cos_t, sin_t, cos_a, sin_a, vlo, vc, s2);
+        let q = R::integrate(T::ZERO, vhi, |v| slope_weight(v, s2));
+        (T::HALF + (q - corr) * self.dist.inv_2z()).clamp(T::ZERO, T::ONE)
+    }
+
+    /// The semi-passing range's end v_hi (v_lo when the range is empty) and the correction
+    /// K = (tan θ/ cos(θ − a))·√2σ·sin θ... in the form derived in the module docs:
+    /// K = f · I(v_lo, v_hi − v_lo) with I(a, d) = ∫₀^d t e^{−(a+t)²} dt and
+    /// f = √(1 + 2σ²v_hi²)/(v_hi − v_lo) (v_hi from the angle) or √2σ sin θ/cos(θ − a)
+    /// (v_hi at the cut).
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    fn semi_correction(
+        &self,
+        cos_t: T,
+        sin_t: T,
+        cos_a: T,
+        sin_a: T,
+        vlo: T,
+        vc: T,
+        s2: T,
+    ) -> (T, T) {
+        // Semi-passing (eqs 9–10): non-empty iff cos(θ − a) > 0 and lo is inside the cut.
         let cb = cos_t * cos_a + sin_t * sin_a;
         if !(cb > T::ZERO) || !(vlo < vc) {
-            return full.clamp(T::ZERO, T::ONE);
+            return (vlo, T::ZERO);
         }
         // hi = π − φ with φ = 2θ − a ∈ (−π/2, π); hi ≥ π/2 when cos φ ≥ 0.
         let c2t = cos_t * cos_t - sin_t * sin_t;
         let s2t = T::TWO * sin_t * cos_t;
         let cphi = c2t * cos_a + s2t * sin_a;
         let sphi = s2t * cos_a - c2t * sin_a;
-        let vhi = if cphi >= T::ZERO {
-            vc
-        } else {
-            self.dist.v_of_tan(sphi, -cphi)
-        };
+        // tan hi = sin φ/(−cos φ), in v: sin φ/(−cos φ · √2σ) when below the cut.
+        let inside = cphi < T::ZERO && sphi < vc * (-cphi) * s2;
+        let vhi = if inside { sphi / (-cphi * s2) } else { vc };
         if !(vhi > vlo) {
-            return full.clamp(T::ZERO, T::ONE);
+            return (vlo, T::ZERO);
         }
-        let inv_cb = T::ONE / cb;
-        let semi = R::integrate(vlo, vhi, |v| {
-            let u = s2 * v;
-            (-(v * v)).exp() * ((T::ONE + u * u).sqrt() + (cos_t - u * sin_t) * inv_cb)
-        }) * k;
-        (full + semi).clamp(T::ZERO, T::ONE)
+        let d = vhi - vlo;
+        let i = gauss_tail_moment(vlo, d);
+        let corr = if inside {
+            let u = s2 * vhi;
+            (T::ONE + u * u).sqrt() * (i / d)
+        } else {
+            s2 * sin_t * i / cb
+        };
+        (vhi, corr)
     }
 
     /// GM, GS and G from the paper's in-plane angles in radians (θi ∈ [0, π/2],
@@ -157,9 +185,9 @@ impl<T: Real, R: Rule> ModifiedG<T, R> {
         let ti = clamp_theta_i(theta_i);
         let tr = clamp_theta_r(theta_r);
         let alpha = (tr - ti) * T::HALF;
-        let (ca, sa) = (alpha.cos(), alpha.sin());
-        let (ci, si) = (ti.cos(), ti.sin());
-        let (co, so) = (tr.cos(), tr.abs().sin());
+        let (sa, ca) = alpha.sin_cos();
+        let (si, ci) = ti.sin_cos();
+        let (so, co) = tr.abs().sin_cos();
         match self.convention {
             Convention::Reciprocal => {
                 let sign = if tr < T::ZERO { -T::ONE } else { T::ONE };
@@ -234,5 +262,32 @@ impl<T: Real, R: Rule> ModifiedG<T, R> {
     pub fn g_vectors(&self, wi: Vec3<T>, wo: Vec3<T>, n: Vec3<T>) -> Option<T> {
         let (wi, wo, n) = (wi.normalize()?, wo.normalize()?, n.normalize()?);
         Some(self.g_dots(Dots::from_vectors(wi, wo, n)))
+    }
+}
+
+/// Number of nodes of the short rule [`gauss_tail_moment`] uses below [`TAIL_SHORT`].
+type TailRule = crate::quadrature::GaussLegendre<6>;
+/// Interval length below which the tail moment is integrated rather than taken in closed
+/// form (the closed form's two terms cancel as d → 0).
+const TAIL_SHORT: f64 = 1.0;
+/// √π/2.
+const SQRT_PI_2: f64 = 0.886_226_925_452_758;
+
+/// I(a, d) = ∫₀^d t e^{−(a+t)²} dt for a ≥ 0, d > 0:
+/// I = (e^{−a²} − e^{−b²})/2 − a (√π/2)(erfc a − erfc b), b = a + d,
+/// from ∫ v e^{−v²} dv = −e^{−v²}/2 and ∫ e^{−v²} dv = −(√π/2) erfc v. For d < 1 the two
+/// terms cancel (I ≈ e^{−a²}d²/2 while each is of order e^{−a²}d), so there a 6-node
+/// Gauss–Legendre rule on [0, d] is used instead (the integrand is a Gaussian times t).
+#[inline]
+fn gauss_tail_moment<T: Real>(a: T, d: T) -> T {
+    if d < T::from_f64(TAIL_SHORT) {
+        TailRule::integrate(T::ZERO, d, |t| {
+            let v = a + t;
+            t * (-(v * v)).exp()
+        })
+    } else {
+        let b = a + d;
+        ((-(a * a)).exp() - (-(b * b)).exp()) * T::HALF
+            - a * T::from_f64(SQRT_PI_2) * (a.erfc() - b.erfc())
     }
 }
