@@ -285,3 +285,88 @@ fn no_masking_for_small_angles_on_smooth_surfaces() {
     // tan(90° − 10°)/(√2·0.05) = 80: far beyond the cut.
     assert_eq!(k.passing(10.0 * DEG, 0.0), 1.0);
 }
+
+/// f32 π/2 exceeds π/2, so f32 cos(π/2) is −4.4e-8: M(π/2, a) must still be at least ½
+/// (before the fix: 0.49999964 at σ = 0.05, 0.4826 at 1e-6, 0 at 1e-10), and agree with the
+/// f64 reference at θ = π/2 (the f32 rounding of θ only moves the exact M by |∂M/∂θ|·4.4e-8,
+/// below the f32 tolerance for σ ≥ 0.05).
+#[test]
+fn f32_passing_at_grazing_is_at_least_half() {
+    for s in [1.0f32, 0.3, 0.05, 1e-3, 1e-6, 1e-10] {
+        let k = ModifiedG::<f32>::new(s).unwrap();
+        for j in -20..=20 {
+            let a = j as f32 * 4.4 * DEG as f32;
+            let m = k.passing(std::f32::consts::FRAC_PI_2, a);
+            assert!(m >= 0.5, "σ={s} a={a}: M = {m}");
+        }
+        assert!(k.g(0.5, std::f32::consts::FRAC_PI_2) >= 0.5);
+        if s >= 0.05 {
+            let r = RefDensity::new(s as f64);
+            for j in 0..=20 {
+                let a = j as f64 * 4.4 * DEG;
+                let m = k.passing(std::f32::consts::FRAC_PI_2, a as f32) as f64;
+                let e = r.passing(std::f64::consts::FRAC_PI_2, (a as f32) as f64);
+                assert!((m - e).abs() <= F32_TOL, "σ={s} a={a}: {m} vs {e}");
+            }
+        }
+    }
+}
+
+/// The semi-passing range closes as cos(θ − a) → 0; the closed-form correction must not
+/// lose f32 accuracy there (its two terms cancel; the kernel integrates short ranges).
+/// Against the reference at the f32-rounded inputs, 2e-6 as for the whole domain.
+#[test]
+fn f32_accuracy_as_semi_passing_range_closes() {
+    let mut worst = (0f64, 0f64);
+    for s in [0.05f64, 0.1, 0.3, 0.6, 1.0] {
+        let k32 = ModifiedG::<f32>::new(s as f32).unwrap();
+        let k64 = ModifiedG::<f64>::new(s).unwrap();
+        let r = RefDensity::new(s);
+        for theta_deg in [20.0, 45.0, 70.0, 80.0, 85.0, 88.0, 89.5] {
+            let theta = theta_deg * DEG;
+            for gap in [0.3, 0.1, 3e-2, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6] {
+                // θ − a = π/2 − gap.
+                let a = theta - std::f64::consts::FRAC_PI_2 + gap;
+                let (t32, a32) = (theta as f32, a as f32);
+                let e = r.passing(t32 as f64, a32 as f64);
+                let m32 = k32.passing(t32, a32) as f64;
+                let m64 = k64.passing(t32 as f64, a32 as f64);
+                worst.0 = worst.0.max((m64 - e).abs());
+                worst.1 = worst.1.max((m32 - e).abs());
+                assert!((m64 - e).abs() <= 1e-6, "f64 σ={s} θ={theta_deg} gap={gap}");
+                assert!(
+                    (m32 - e).abs() <= F32_TOL,
+                    "f32 σ={s} θ={theta_deg} gap={gap}: {m32} vs {e}"
+                );
+            }
+        }
+    }
+    println!(
+        "closing semi-passing range: max |M − ref| f64 {:.2e}, f32 {:.2e}",
+        worst.0, worst.1
+    );
+}
+
+/// σ beyond `SIGMA_MAX` is rejected (it used to give NaN from 1.4e154 in f64 and 3e18 in
+/// f32); σ at the limit gives finite G in [0, 1] on a grid, in both precisions.
+#[test]
+fn huge_sigma_is_rejected_and_the_limit_is_finite() {
+    let max = ModifiedG::<f64>::SIGMA_MAX;
+    for s in [1.5e154, 1e300, max * 1.01] {
+        assert!(ModifiedG::<f64>::new(s).is_err(), "σ={s}");
+    }
+    for s in [3e18f32, 1e30, f32::MAX, (max * 1.01) as f32] {
+        assert!(ModifiedG::<f32>::new(s).is_err(), "σ={s}");
+    }
+    let g64 = ModifiedG::<f64>::new(max).unwrap();
+    let g32 = ModifiedG::<f32>::new(max as f32).unwrap();
+    for i in 0..=18 {
+        for j in -18..=18 {
+            let (ti, tr) = (i as f64 * 5.0 * DEG, j as f64 * 5.0 * DEG);
+            let a = g64.g(ti, tr);
+            let b = g32.g(ti as f32, tr as f32);
+            assert!((0.0..=1.0).contains(&a), "f64 θi={ti} θr={tr}: {a}");
+            assert!((0.0..=1.0).contains(&b), "f32 θi={ti} θr={tr}: {b}");
+        }
+    }
+}

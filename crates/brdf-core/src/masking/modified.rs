@@ -82,9 +82,22 @@ pub struct ModifiedG<T, R = DefaultRule> {
 }
 
 impl<T: Real, R: Rule> ModifiedG<T, R> {
-    /// Checked constructor: σ (RMS slope) finite and > 0; reciprocal convention.
-    /// The accuracy bound (1e-6 in f64) is specified for σ ∈ [0.05, 1].
+    /// The largest RMS slope σ [`ModifiedG::new`] accepts.
+    pub const SIGMA_MAX: f64 = 1e6;
+
+    /// Checked constructor: σ (RMS slope) in (0, [`Self::SIGMA_MAX`]]; reciprocal convention.
+    /// The accuracy bound (1e-6 in f64, 2e-6 in f32) is specified for σ ∈ [0.05, 1]; every
+    /// accepted σ gives finite results in [0, 1]. Larger σ is rejected with
+    /// [`ParamError::OutOfRange`]: the normaliser's integrand √(1 + 2σ²v²) overflows f32 from
+    /// σ ≈ 3e18 (f64: 1.4e154), and long before that the surface is a forest of vertical
+    /// facets the model was not written for.
     pub fn new(sigma: T) -> Result<Self, ParamError> {
+        if sigma > T::from_f64(Self::SIGMA_MAX) && sigma.is_finite() {
+            return Err(ParamError::OutOfRange {
+                name: "sigma",
+                range: "(0, 1e6]",
+            });
+        }
         Ok(Self {
             dist: SlopeDistribution::new(sigma)?,
             convention: Convention::Reciprocal,
