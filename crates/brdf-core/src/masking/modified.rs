@@ -1,5 +1,5 @@
 //! The paper's modified geometric attenuation factor (Acta Phys. Sin. 64 184213, eqs 6–13),
-//! read as fixed in conventions.md §§3–4.
+//! read as fixed in docs/conventions.md (the passing factor and the two conventions).
 //!
 //! One-sided passing factor, for a ray leaving at polar angle θ ≥ 0 from a facet tilted by a
 //! signed angle a toward the ray's side, with the neighbour's tilt γ drawn from p(γ; σ):
@@ -14,10 +14,28 @@
 //! GM = M(|θr|, sign(θr)·α), GS = M(θi, −α), G = min(GM, GS) (eq 13), α = (θr − θi)/2.
 //! The printed eq 12 ([`Convention::Printed`]) uses GS = M(θi, α), and GM = 1 for θr ≤ 0.
 //!
-//! Both integrals are evaluated in the working variable v = tan γ/(√2σ) (see
-//! [`crate::distribution`]) with a fixed `R`-point Gauss–Legendre rule each, so one M costs
-//! 2 × N exponentials and square roots. In that variable,
-//! p·r ∝ e^{−v²}(√(1 + u²) + (cos θ − u sin θ)/cos(θ − a)), u = √2σ v.
+//! One integral per passing factor. In the working variable v = tan γ/(√2σ) (see
+//! [`crate::distribution`]), u = √2σ v = tan γ, the density of eqs 2 and 5 becomes
+//! p dγ = w(v) dv/(2Z) with w = √(1 + u²) e^{−v²} (dγ = √2σ dv/(1 + u²), 1/cos³γ =
+//! (1 + u²)^{3/2}) and 2Z its mass, both halves cut at v = V_CUT. Then
+//!
+//! ```text
+//! fully passing (eqs 6–7):  ∫_{−π/2}^{lo} p dγ = ½ + (1/2Z) ∫₀^{v_lo} w dv,  u_lo = cot θ
+//! semi-passing (eqs 8–11):  r = 1 + cos(γ + θ)/cos(θ − a),
+//!                           cos(γ + θ) = cos γ (cos θ − u sin θ) = −cos γ · √2σ sin θ (v − v_lo)
+//!   so  w r = w − e^{−v²} √2σ sin θ (v − v_lo)/cos(θ − a)      (√(1 + u²) cos γ = 1)
+//! M(θ, a) = ½ + (1/2Z) [ ∫₀^{v_hi} w dv − K ],   K = √2σ sin θ/cos(θ − a) · I(v_lo, v_hi − v_lo)
+//! I(a, d) = ∫₀^d t e^{−(a+t)²} dt = (e^{−a²} − e^{−b²})/2 − a (√π/2)(erfc a − erfc b),  b = a + d
+//! ```
+//!
+//! (v_hi = v_lo when the semi-passing range is empty.) The first term is the one `R`-point
+//! Gauss–Legendre integral per M; the second is elementary (a Gaussian and a Gaussian times
+//! v). When hi = π − 2θ + a < π/2 lies inside the cut, hi − lo = π/2 − (θ − a), so
+//! cos(θ − a) = sin(hi − lo) = (tan hi − tan lo) cos hi cos lo with cos lo = sin θ, and
+//! √2σ sin θ/cos(θ − a) = √(1 + u_hi²)/(v_hi − v_lo): K = √(1 + u_hi²) · I/d no longer divides
+//! by the cos(θ − a) that cancels as the range closes, and tends to 0 like d. There the
+//! closed form for I loses accuracy to cancellation (I ≈ e^{−a²}d²/2 while its terms are of
+//! order e^{−a²}d), so for d below ½ (f32) or 1e-3 (f64) I is integrated by a 4-node rule.
 //!
 //! 3-D extension ([`ModifiedG::terms_dots`]): each ray sees the surface profile in its own
 //! azimuthal plane, and the facet's tilt toward that ray is the slope of the half vector
@@ -37,7 +55,7 @@ use crate::Real;
     Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize,
 )]
 pub enum Convention {
-    /// GS = M(θi, −α): the tilt toward the light (conventions.md §4). Reciprocal.
+    /// GS = M(θi, −α): the tilt toward the light (docs/conventions.md). Reciprocal.
     #[default]
     Reciprocal,
     /// Eq 12 as printed: GS = M(θi, α), GM = 1 for θr ≤ 0. Not reciprocal (kept for
@@ -148,11 +166,11 @@ impl<T: Real, R: Rule> ModifiedG<T, R> {
         (T::HALF + (q - corr) * self.dist.inv_2z()).clamp(T::ZERO, T::ONE)
     }
 
-    /// The semi-passing range's end v_hi (v_lo when the range is empty) and the correction
-    /// K = (tan θ/ cos(θ − a))·√2σ·sin θ... in the form derived in the module docs:
-    /// K = f · I(v_lo, v_hi − v_lo) with I(a, d) = ∫₀^d t e^{−(a+t)²} dt and
-    /// f = √(1 + 2σ²v_hi²)/(v_hi − v_lo) (v_hi from the angle) or √2σ sin θ/cos(θ − a)
-    /// (v_hi at the cut).
+    /// The semi-passing range's end v_hi (v_lo when the range is empty) and the correction K
+    /// of the module docs (eqs 8–11): K = f · I(v_lo, v_hi − v_lo) with
+    /// f = √(1 + u_hi²)/(v_hi − v_lo) when hi lies inside the cut, else √2σ sin θ/cos(θ − a)
+    /// (then cos(θ − a) ≥ sin θ when hi ≥ π/2, or v_lo lies so close to the cut that
+    /// e^{−v_lo²} < 2e-9 bounds K).
     #[allow(clippy::too_many_arguments)]
     #[inline]
     fn semi_correction(
