@@ -5,6 +5,26 @@
 //! `cargo xtask firmware` attribute flash to "kernels" (symbols of `brdf_core`, `libm`,
 //! `micromath` and this module) separately from the formatting code (`core::fmt`,
 //! semihosting) by symbol name. Invalid parameters give NaN, never a panic.
+//!
+//! With the `micromath` feature the kernels compute in [`brdf_core::real::Micro`] (micromath
+//! where it keeps a kernel within 2e-2 of libm, libm elsewhere); otherwise in `f32` with libm.
+//! The functions' signatures are plain `f32` either way.
+
+// `cargo xtask firmware` includes this file to compute the host's values, in a crate without
+// this feature: there the libm `f32` branch is the one wanted.
+/// The scalar the kernels compute in.
+#[allow(unexpected_cfgs)]
+#[cfg(feature = "micromath")]
+type F = brdf_core::real::Micro;
+/// The scalar the kernels compute in.
+#[allow(unexpected_cfgs)]
+#[cfg(not(feature = "micromath"))]
+type F = f32;
+
+#[inline(always)]
+fn f(x: f32) -> F {
+    F::from(x)
+}
 
 use brdf_core::fresnel::Fresnel;
 use brdf_core::lut::GTable;
@@ -16,8 +36,8 @@ use brdf_core::{Dots, Vec3};
 /// for RMS slope `sigma` and in-plane angles θi ∈ [0, π/2], θr ∈ [−π/2, π/2] (radians).
 #[inline(never)]
 pub fn g_direct(sigma: f32, theta_i: f32, theta_r: f32) -> f32 {
-    match ModifiedG::<f32>::new(sigma) {
-        Ok(g) => g.g(theta_i, theta_r),
+    match ModifiedG::<F>::new(f(sigma)) {
+        Ok(g) => g.g(f(theta_i), f(theta_r)).into(),
         Err(_) => f32::NAN,
     }
 }
@@ -39,8 +59,14 @@ pub fn g_lut(table: &GTable<'_>, theta_i: f32, theta_r: f32) -> f32 {
 /// The modified G from the dot products n·wi, n·wo, wi·wo (shader form, 3-D extension).
 #[inline(never)]
 pub fn g_dots(sigma: f32, n_i: f32, n_o: f32, i_o: f32) -> f32 {
-    match ModifiedG::<f32>::new(sigma) {
-        Ok(g) => g.g_dots(Dots { n_i, n_o, i_o }),
+    match ModifiedG::<F>::new(f(sigma)) {
+        Ok(g) => g
+            .g_dots(Dots {
+                n_i: f(n_i),
+                n_o: f(n_o),
+                i_o: f(i_o),
+            })
+            .into(),
         Err(_) => f32::NAN,
     }
 }
@@ -50,11 +76,23 @@ pub fn g_dots(sigma: f32, n_i: f32, n_o: f32, i_o: f32) -> f32 {
 /// Lambertian term of albedo `albedo`, from the dot products.
 #[inline(never)]
 pub fn torrance_sparrow(sigma: f32, r0: f32, albedo: f32, n_i: f32, n_o: f32, i_o: f32) -> f32 {
-    let Ok(fresnel) = Fresnel::schlick(r0) else {
+    let Ok(fresnel) = Fresnel::schlick(f(r0)) else {
         return f32::NAN;
     };
-    match TorranceSparrow::<f32>::new(sigma, GeometricTerm::Modified, fresnel, 1.0, albedo) {
-        Ok(ts) => ts.eval_dots(Dots { n_i, n_o, i_o }),
+    match TorranceSparrow::<F>::new(
+        f(sigma),
+        GeometricTerm::Modified,
+        fresnel,
+        f(1.0),
+        f(albedo),
+    ) {
+        Ok(ts) => ts
+            .eval_dots(Dots {
+                n_i: f(n_i),
+                n_o: f(n_o),
+                i_o: f(i_o),
+            })
+            .into(),
         Err(_) => f32::NAN,
     }
 }
@@ -64,14 +102,14 @@ pub fn torrance_sparrow(sigma: f32, r0: f32, albedo: f32, n_i: f32, n_o: f32, i_
 /// and `nv` along y, for local-frame unit directions wi = `wi`, wo = `wo` (z = normal).
 #[inline(never)]
 pub fn ashikhmin_shirley(rs: f32, rd: f32, nu: f32, nv: f32, wi: [f32; 3], wo: [f32; 3]) -> f32 {
-    match AshikhminShirley::<f32>::new(Rgb::splat(rs), Rgb::splat(rd), nu, nv) {
-        Ok(m) => {
-            m.eval(
-                Vec3::new(wi[0], wi[1], wi[2]),
-                Vec3::new(wo[0], wo[1], wo[2]),
+    match AshikhminShirley::<F>::new(Rgb::splat(f(rs)), Rgb::splat(f(rd)), f(nu), f(nv)) {
+        Ok(m) => m
+            .eval(
+                Vec3::new(f(wi[0]), f(wi[1]), f(wi[2])),
+                Vec3::new(f(wo[0]), f(wo[1]), f(wo[2])),
             )
             .r
-        }
+            .into(),
         Err(_) => f32::NAN,
     }
 }
