@@ -11,13 +11,13 @@
 //! The functions' signatures are plain `f32` either way.
 
 // `cargo xtask firmware` includes this file to compute the host's values, in a crate without
-// this feature: there the libm `f32` branch is the one wanted.
+// the `micromath` feature: there the libm `f32` branch is the one wanted.
+#![allow(unexpected_cfgs)]
+
 /// The scalar the kernels compute in.
-#[allow(unexpected_cfgs)]
 #[cfg(feature = "micromath")]
 type F = brdf_core::real::Micro;
 /// The scalar the kernels compute in.
-#[allow(unexpected_cfgs)]
 #[cfg(not(feature = "micromath"))]
 type F = f32;
 
