@@ -12,7 +12,8 @@
 
 // `cargo xtask firmware` includes this file to compute the host's values, in a crate without
 // the `micromath` feature: there the libm `f32` branch is the one wanted.
-#![allow(unexpected_cfgs)]
+// In the libm build `F` is `f32` and the conversions are the identity.
+#![allow(unexpected_cfgs, clippy::useless_conversion)]
 
 /// The scalar the kernels compute in.
 #[cfg(feature = "micromath")]
