@@ -137,8 +137,7 @@ fn run_lut(path: &std::path::Path, conv: Convention) -> Result<()> {
     if conv != Convention::Reciprocal {
         bail!("--lut tables hold the reciprocal convention only");
     }
-    let lut =
-        brdf_lut::Lut::from_path(path).with_context(|| format!("loading {}", path.display()))?;
+    let lut = crate::fsio::load_lut(path)?;
     let stdin = std::io::stdin();
     let mut out = std::io::BufWriter::new(std::io::stdout().lock());
     writeln!(out, "{HEADER}")?;

@@ -85,37 +85,49 @@ pub fn generate(g: GenArgs) -> Result<()> {
         }
     }
     apply_overrides(&mut specs, &g)?;
-    let out = if g.check {
-        let d = std::env::temp_dir().join(format!("brdf-lut-check-{}", std::process::id()));
-        std::fs::create_dir_all(&d)?;
-        d
+    let check_dir = if g.check {
+        Some(tempfile::tempdir().context("creating a temporary folder")?)
     } else {
-        g.out.clone().unwrap_or_else(super::assets_dir)
+        None
     };
-    std::fs::create_dir_all(&out)?;
+    let (out, policy) = write_target(&g, check_dir.as_ref().map(|d| d.path()))?;
+    let paths: Vec<std::path::PathBuf> = specs.iter().map(|s| out.join(&s.file)).collect();
+    crate::fsio::check(
+        &paths.iter().map(|p| p.as_path()).collect::<Vec<_>>(),
+        &policy,
+    )?;
+    let mut files = Vec::new();
     let t0 = Instant::now();
     let mut rows = Vec::new();
     for s in &specs {
         let t = Instant::now();
         let bytes = build(s)?;
-        let view = LutView::parse(&bytes).context("generated file does not parse")?;
+        let stats = LutView::parse(&bytes)
+            .context("generated file does not parse")?
+            .header()
+            .error;
         rows.push(Row {
             file: s.file.clone(),
             bytes: bytes.len(),
-            stats: view.header().error,
+            stats,
             secs: Some(t.elapsed().as_secs_f64()),
         });
-        std::fs::write(out.join(&s.file), &bytes)?;
+        files.push((out.join(&s.file), bytes));
     }
+    crate::fsio::write_together(&files, &policy)?;
     print_table(&rows);
     println!("total generation time {:.1} s", t0.elapsed().as_secs_f64());
     if g.check {
         let committed = g.out.clone().unwrap_or_else(super::assets_dir);
         let mut bad = Vec::new();
         for s in &specs {
-            let a = std::fs::read(out.join(&s.file))?;
+            let a = &files
+                .iter()
+                .find(|f| f.0 == out.join(&s.file))
+                .expect("written")
+                .1;
             match std::fs::read(committed.join(&s.file)) {
-                Ok(b) if a == b => {}
+                Ok(b) if *a == b => {}
                 Ok(_) => bad.push(format!("{} differs", s.file)),
                 Err(_) => bad.push(format!(
                     "{} is missing from {}",
@@ -124,7 +136,6 @@ pub fn generate(g: GenArgs) -> Result<()> {
                 )),
             }
         }
-        let _ = std::fs::remove_dir_all(&out);
         if !bad.is_empty() {
             bail!(
                 "committed assets do not match a fresh generation:\n  {}",
@@ -140,6 +151,45 @@ pub fn generate(g: GenArgs) -> Result<()> {
         println!("wrote {} files to {}", specs.len(), out.display());
     }
     Ok(())
+}
+
+/// Where the tables go and what may be replaced there: the unmodified default set replaces
+/// the files in assets/ (its home, under version control); anything else (`--res`,
+/// `--encoding`) needs `--out` outside assets/, and replaces existing files only with
+/// `--force`.
+fn write_target(
+    g: &GenArgs,
+    check_dir: Option<&std::path::Path>,
+) -> Result<(std::path::PathBuf, crate::fsio::Policy)> {
+    use crate::fsio::Policy;
+    if let Some(d) = check_dir {
+        return Ok((d.to_path_buf(), Policy::default()));
+    }
+    let modified = g.res.is_some() || g.encoding.is_some();
+    let assets = super::assets_dir();
+    let out = match (&g.out, modified) {
+        (Some(o), _) => o.clone(),
+        (None, false) => assets.clone(),
+        (None, true) => bail!(
+            "--res and --encoding change the tables, and assets/ holds the committed default \
+             set: give --out DIR for the modified tables"
+        ),
+    };
+    let in_assets = match (out.canonicalize(), assets.canonicalize()) {
+        (Ok(o), Ok(a)) => o == a,
+        _ => false,
+    };
+    if in_assets && !modified {
+        // Regenerating the default set in its own folder: replace it.
+        return Ok((
+            out,
+            Policy {
+                force: true,
+                ..Policy::default()
+            },
+        ));
+    }
+    Ok((out, Policy::new(g.force, &[])))
 }
 
 fn header_for<'a>(s: &'a Spec, channels: &[Channel<'a>], error: ErrorStats) -> Result<Header<'a>> {

@@ -36,6 +36,9 @@ pub struct GenArgs {
     /// Override the encoding: `u16`, `f16` or `f32`.
     #[arg(long)]
     encoding: Option<String>,
+    /// Replace existing files in `--out` (assets/ itself only takes the unmodified default set).
+    #[arg(long)]
+    force: bool,
 }
 
 #[derive(Subcommand)]
@@ -87,9 +90,7 @@ pub fn run(a: Args) -> Result<()> {
             };
             let mut rows = Vec::new();
             for f in &files {
-                let bytes = std::fs::read(f).with_context(|| format!("reading {}", f.display()))?;
-                let lut = brdf_lut::Lut::from_bytes(bytes)
-                    .with_context(|| format!("loading {}", f.display()))?;
+                let lut = crate::fsio::load_lut(f)?;
                 let n = samples.unwrap_or(lut.header().error.samples).max(1);
                 let st = gen::measure(&lut.view(), n, seed, false);
                 rows.push(gen::Row {
@@ -103,8 +104,7 @@ pub fn run(a: Args) -> Result<()> {
             Ok(())
         }
         Some(Cmd::Inspect { file }) => {
-            let lut = brdf_lut::Lut::from_path(&file)
-                .with_context(|| format!("loading {}", file.display()))?;
+            let lut = crate::fsio::load_lut(&file)?;
             print!("{}", lut.summary());
             Ok(())
         }
