@@ -11,6 +11,8 @@
 //! # let _ = (a, b);
 //! ```
 
+pub mod generate;
+
 pub use brdf_core::lut::{self as format, Header};
 use brdf_core::lut::{
     AlbedoTable, AverageAlbedoTable, DfgTable, GTable, GTable3, LutError, LutView, TableKind,

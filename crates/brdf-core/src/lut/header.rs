@@ -128,6 +128,15 @@ pub enum Model {
     TorranceSparrowModifiedG,
     /// Torrance–Sparrow, Gaussian slopes (Beckmann m = √2σ), height-correlated Smith G.
     TorranceSparrowSmith,
+    /// GGX with separable Smith G = G1(i) G1(o), Schlick F (F90 = 1).
+    GgxSmithSeparable,
+    /// Beckmann with separable Smith G, Schlick F (F90 = 1).
+    BeckmannSmithSeparable,
+    /// Torrance–Sparrow, Gaussian slopes (Beckmann m = √2σ), separable Smith G.
+    TorranceSparrowSmithSeparable,
+    /// Torrance–Sparrow, Gaussian slopes (Beckmann m = √2σ), the V-cavity G of Torrance and
+    /// Sparrow as used by Blinn.
+    TorranceSparrowVCavity,
 }
 
 /// How the table was generated.
