@@ -4,6 +4,7 @@
 mod assets;
 mod export;
 mod gen;
+mod generate;
 
 use anyhow::{bail, Context, Result};
 use clap::Subcommand;
@@ -24,13 +25,15 @@ pub struct GenArgs {
     /// assets (exit status 1 on any difference).
     #[arg(long)]
     check: bool,
-    /// Output directory (default: `assets/` of the workspace).
+    /// Output directory of the default set (default: `assets/` of the workspace); with
+    /// `--kind`/`--config`, the output file.
     #[arg(long)]
     out: Option<PathBuf>,
     /// Only the assets whose file name contains this text (e.g. `g_modified`, `dfg`, `kc_`).
     #[arg(long)]
     only: Option<String>,
-    /// Override the grid, e.g. `128x64` or `64x64x31` (applies to every selected asset).
+    /// Override the grid, e.g. `128x64` or `64x64x31` (applies to every selected asset, or
+    /// the nodes per axis of a table built to order).
     #[arg(long)]
     res: Option<String>,
     /// Override the encoding: `u16`, `f16` or `f32`.
@@ -43,8 +46,9 @@ pub struct GenArgs {
 
 #[derive(Subcommand)]
 enum Cmd {
-    /// Generate the default asset set (the default when no subcommand is given).
-    Generate(GenArgs),
+    /// Generate the default asset set (the default when no subcommand is given), or with
+    /// `--kind`/`--config FILE.toml` one table built to order.
+    Generate(generate::Args),
     /// Recompute each table's error against the direct kernel at random points.
     Verify {
         /// Files (default: every `*.blut` in assets/).
@@ -77,7 +81,7 @@ pub fn assets_dir() -> PathBuf {
 pub fn run(a: Args) -> Result<()> {
     match a.cmd {
         None => gen::generate(a.gen),
-        Some(Cmd::Generate(g)) => gen::generate(g),
+        Some(Cmd::Generate(g)) => generate::run(g),
         Some(Cmd::Verify {
             files,
             samples,
