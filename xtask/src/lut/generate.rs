@@ -181,7 +181,7 @@ pub fn run(a: Args) -> Result<()> {
         t0.elapsed().as_secs_f64()
     );
     if let Some(lim) = max_error {
-        if !(e.max_abs as f64 <= lim) {
+        if e.max_abs.is_nan() || e.max_abs as f64 > lim {
             bail!(
                 "measured max |error| {:.3e} exceeds --max-error {lim:.3e}; nothing written \
                  (more nodes per axis, another warp or cubic interpolation lower it)",

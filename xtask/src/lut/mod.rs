@@ -48,7 +48,7 @@ pub struct GenArgs {
 enum Cmd {
     /// Generate the default asset set (the default when no subcommand is given), or with
     /// `--kind`/`--config FILE.toml` one table built to order.
-    Generate(generate::Args),
+    Generate(Box<generate::Args>),
     /// Recompute each table's error against the direct kernel at random points.
     Verify {
         /// Files (default: every `*.blut` in assets/).
@@ -81,7 +81,7 @@ pub fn assets_dir() -> PathBuf {
 pub fn run(a: Args) -> Result<()> {
     match a.cmd {
         None => gen::generate(a.gen),
-        Some(Cmd::Generate(g)) => generate::run(g),
+        Some(Cmd::Generate(g)) => generate::run(*g),
         Some(Cmd::Verify {
             files,
             samples,
