@@ -488,6 +488,69 @@ impl Spec {
     }
 }
 
+impl Spec {
+    /// The spec a table's header describes (its kind, model, roughness axis, grid, encoding
+    /// and error-measurement settings), so a file can be re-measured or rebuilt; `None` for a
+    /// header this generator cannot describe.
+    pub fn from_header(h: &Header<'_>) -> Option<Spec> {
+        use Distribution as D;
+        use Masking as M;
+        let kind = match (h.kind, h.axes.len()) {
+            (TableKind::PassingFactor, 2) => Kind::GPerSigma {
+                sigma: h.generator.sigma?,
+            },
+            (TableKind::PassingFactor, 3) => Kind::GOverSigma,
+            (TableKind::SplitSum, 2) => Kind::SplitSum,
+            (TableKind::DirectionalAlbedo, 2) => Kind::Albedo,
+            (TableKind::AverageAlbedo, 1) => Kind::AverageAlbedo,
+            _ => return None,
+        };
+        let (distribution, masking) = match h.generator.model {
+            Model::ModifiedG | Model::TorranceSparrowModifiedG => (D::TorranceSparrow, M::Modified),
+            Model::GgxSmithCorrelated => (D::Ggx, M::SmithCorrelated),
+            Model::GgxSmithSeparable => (D::Ggx, M::SmithSeparable),
+            Model::BeckmannSmithCorrelated => (D::Beckmann, M::SmithCorrelated),
+            Model::BeckmannSmithSeparable => (D::Beckmann, M::SmithSeparable),
+            Model::TorranceSparrowSmith => (D::TorranceSparrow, M::SmithCorrelated),
+            Model::TorranceSparrowSmithSeparable => (D::TorranceSparrow, M::SmithSeparable),
+            Model::TorranceSparrowVCavity => (D::TorranceSparrow, M::VCavity),
+        };
+        let roughness = match h.axes.last().map(|a| a.name) {
+            _ if matches!(kind, Kind::GPerSigma { .. } | Kind::GOverSigma) => Roughness::Sigma,
+            Some("roughness") => Roughness::Perceptual,
+            Some("alpha") | Some("m") => Roughness::Alpha,
+            Some("sigma") => Roughness::Sigma,
+            _ => return None,
+        };
+        let spec = Spec {
+            kind,
+            distribution,
+            masking,
+            roughness,
+            axes: h
+                .axes
+                .iter()
+                .map(|a| AxisSpec {
+                    count: a.count,
+                    lo: a.lo,
+                    hi: a.hi,
+                    warp: a.warp,
+                    placement: a.placement,
+                })
+                .collect(),
+            encoding: h.encoding,
+            interpolation: h.interpolation,
+            samples: h.error.samples.max(1),
+            seed: h.error.seed,
+        };
+        let names = spec.axis_names();
+        if h.axes.iter().zip(&names).any(|(a, n)| a.name != *n) {
+            return None;
+        }
+        Some(spec)
+    }
+}
+
 /// The modified G's one-sided passing factor F(θ, φ) = M(θ, (θ − φ)/2) for RMS slope σ
 /// (the 2015 Acta Physica Sinica paper, eqs 6–13).
 fn passing(sigma: f64, theta: f64, phi: f64) -> f64 {
