@@ -182,9 +182,13 @@ pub fn run(a: Args) -> Result<()> {
     );
     if let Some(lim) = max_error {
         if e.max_abs.is_nan() || e.max_abs as f64 > lim {
+            let hint = match spec.interpolation {
+                Interpolation::Linear => "more nodes per axis, another warp or catmull-rom",
+                Interpolation::CatmullRom => "more nodes per axis or another warp",
+            };
             bail!(
                 "measured max |error| {:.3e} exceeds --max-error {lim:.3e}; nothing written \
-                 (more nodes per axis, another warp or cubic interpolation lower it)",
+                 ({hint} lower it)",
                 e.max_abs
             );
         }
