@@ -1,14 +1,14 @@
 //! The LUT readers: both give the same values, the assets meet their accuracy targets
 //! against the direct kernels at fresh random points, and bad input gives typed errors.
 
-use brdf_core::lut::{AlbedoTable, AverageAlbedoTable};
-use brdf_core::lut::{DfgTable, GTable, GTable3, LutError, LutView};
 use brdf_core::masking::ModifiedG;
 use brdf_core::quadrature::GaussLegendre;
 use brdf_core::split_sum::{
     dfg_ggx, dfg_ts_modified, dfg_ts_smith, e_avg_beckmann, e_avg_ggx, e_beckmann, e_ggx,
 };
 use brdf_lut::Lut;
+use brdf_lut::{AlbedoTable, AverageAlbedoTable};
+use brdf_lut::{DfgTable, GTable, GTable3, LutError, LutView};
 use proptest::prelude::*;
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::path::PathBuf;
