@@ -276,6 +276,88 @@ impl Reader {
         out
     }
 
+    /// Two one-channel 3-D lookups that share the last coordinate (the two one-sided factors
+    /// of G over σ): the σ taps are computed once. Equal to two [`Reader::sample`] calls.
+    #[cfg_attr(target_os = "none", inline)]
+    #[cfg_attr(not(target_os = "none"), inline(always))]
+    pub(crate) fn pair3(
+        &self,
+        grid: &Grid,
+        data: &[u8],
+        a: [f32; 2],
+        b: [f32; 2],
+        z: f32,
+    ) -> (f32, f32) {
+        let (va, vb) = match (self.mode, self.encoding) {
+            (Mode::Linear, Encoding::Unorm16) => self.pair3_linear::<U16>(data, a, b, z),
+            (Mode::Linear, Encoding::F16) => self.pair3_linear::<F16>(data, a, b, z),
+            (Mode::Linear, Encoding::F32) => self.pair3_linear::<F32>(data, a, b, z),
+            (Mode::Cubic, Encoding::Unorm16) => self.pair3_cubic::<U16>(data, a, b, z),
+            (Mode::Cubic, Encoding::F16) => self.pair3_cubic::<F16>(data, a, b, z),
+            (Mode::Cubic, Encoding::F32) => self.pair3_cubic::<F32>(data, a, b, z),
+            (Mode::General, _) => {
+                return (
+                    self.sample::<3, 1>(grid, data, [a[0], a[1], z])[0],
+                    self.sample::<3, 1>(grid, data, [b[0], b[1], z])[0],
+                )
+            }
+        };
+        (
+            self.offset[0] + self.scale[0] * va,
+            self.offset[0] + self.scale[0] * vb,
+        )
+    }
+
+    #[inline(always)]
+    fn pair3_linear<S: Store>(&self, data: &[u8], a: [f32; 2], b: [f32; 2], z: f32) -> (f32, f32) {
+        let l = &self.lanes;
+        let (k, f2) = l[2].cell(z);
+        let one = |x: [f32; 2]| {
+            let (i0, f0) = l[0].cell(x[0]);
+            let (i1, f1) = l[1].cell(x[1]);
+            let at = i0 + i1 * l[1].stride + k * l[2].stride;
+            let plane = |at: usize| {
+                let lo = Self::row::<S, 1>(data, at, f0);
+                let hi = Self::row::<S, 1>(data, at + l[1].stride, f0);
+                Self::lerp(lo, hi, f1)[0]
+            };
+            let (p0, p1) = (plane(at), plane(at + l[2].stride));
+            p0 + f2 * (p1 - p0)
+        };
+        (one(a), one(b))
+    }
+
+    #[inline(always)]
+    fn pair3_cubic<S: Store>(&self, data: &[u8], a: [f32; 2], b: [f32; 2], z: f32) -> (f32, f32) {
+        let l = &self.lanes;
+        let (b2, w2) = l[2].cubic(z);
+        let one = |x: [f32; 2]| {
+            let (b0, w0) = l[0].cubic(x[0]);
+            let (b1, w1) = l[1].cubic(x[1]);
+            let at = b0 + b1 * l[1].stride;
+            let mut acc = 0.0;
+            for (k, &wk) in w2.iter().enumerate() {
+                if wk != 0.0 {
+                    let mut p = 0.0;
+                    for (j, wj) in w1.iter().enumerate() {
+                        let start = at + j * l[1].stride + (b2 + k) * l[2].stride;
+                        let Some(q) = data.get(start * S::BYTES..(start + 4) * S::BYTES) else {
+                            return f32::NAN;
+                        };
+                        let mut r = 0.0;
+                        for (i, wi) in w0.iter().enumerate() {
+                            r += wi * S::at(q, i);
+                        }
+                        p += wj * r;
+                    }
+                    acc += wk * p;
+                }
+            }
+            acc
+        };
+        (one(a), one(b))
+    }
+
     /// Two neighbouring nodes (all channels) starting at value index `at`.
     #[inline(always)]
     fn pair<S: Store, const C: usize>(data: &[u8], at: usize) -> Option<([f32; C], [f32; C])> {

@@ -93,10 +93,44 @@ impl Prepared {
             return (f32::NAN, f32::NAN, f32::NAN);
         }
         let (m, s) = g_args(theta_i, theta_r);
-        let r = &self.reader;
-        let gm = unit01(r.sample::<3, 1>(&self.grid, payload, [m[0], m[1], sigma])[0]);
-        let gs = unit01(r.sample::<3, 1>(&self.grid, payload, [s[0], s[1], sigma])[0]);
+        let (gm, gs) = self.reader.pair3(&self.grid, payload, m, s, sigma);
+        let (gm, gs) = (unit01(gm), unit01(gs));
         (gm, gs, gm.min(gs))
+    }
+
+    /// (GM, GS, G) of a 2-D or 3-D passing-factor table from the table arguments of the two
+    /// sides.
+    #[inline]
+    pub(crate) fn g_from_args(
+        &self,
+        payload: &[u8],
+        m: [f32; 2],
+        s: [f32; 2],
+        sigma: f32,
+    ) -> (f32, f32, f32) {
+        let r = &self.reader;
+        let (gm, gs) = if self.grid.dims == 3 {
+            r.pair3(&self.grid, payload, m, s, sigma)
+        } else {
+            (
+                r.sample::<2, 1>(&self.grid, payload, m)[0],
+                r.sample::<2, 1>(&self.grid, payload, s)[0],
+            )
+        };
+        let (gm, gs) = (unit01(gm), unit01(gs));
+        (gm, gs, gm.min(gs))
+    }
+
+    /// G from dot products (see [`dots_args`]).
+    #[inline]
+    pub(crate) fn g_dots(&self, payload: &[u8], n_l: f32, n_v: f32, l_v: f32, sigma: f32) -> f32 {
+        if n_l.is_nan() || n_v.is_nan() || l_v.is_nan() || sigma.is_nan() {
+            return f32::NAN;
+        }
+        match dots_args(n_l, n_v, l_v) {
+            Some((m, s)) => self.g_from_args(payload, m, s, sigma).2,
+            None => 0.0,
+        }
     }
 
     /// Channels 0 and 1 of a 2-D table.
@@ -127,6 +161,38 @@ fn g_args(theta_i: f32, theta_r: f32) -> ([f32; 2], [f32; 2]) {
     let tr = crate::axis::clamp(theta_r, -FRAC_PI_2, FRAC_PI_2);
     let s = if tr < 0.0 { -ti } else { ti };
     ([tr.abs(), s], [ti, tr])
+}
+
+/// The table arguments (θ, φ) of both sides of G from the dot products of unit vectors
+/// n·l, n·v, l·v, through the reciprocal 3-D extension of the modified G (the kernel's
+/// `ModifiedG::terms_dots`): each side w ∈ {v (GM), l (GS)} is M(θ_w, a_w) with
+/// tan a_w = (t + sin²θ_w) / (sin θ_w (cos θ_l + cos θ_v)), t = l·v − cos θ_l cos θ_v the
+/// tangential dot product; the table stores F(θ, φ) = M(θ, (θ − φ)/2), so φ_w = θ_w − 2 a_w.
+/// `None` when a direction is at or below the horizon (G = 0 there); NaN is handled by the
+/// caller. In the plane of incidence this gives the in-plane arguments.
+#[inline]
+fn dots_args(n_l: f32, n_v: f32, l_v: f32) -> Option<([f32; 2], [f32; 2])> {
+    if !(n_l > 0.0 && n_v > 0.0) {
+        return None;
+    }
+    let (ci, co) = (n_l.min(1.0), n_v.min(1.0));
+    let (si, so) = (
+        libm::sqrtf((1.0 - ci * ci).max(0.0)),
+        libm::sqrtf((1.0 - co * co).max(0.0)),
+    );
+    let tt = crate::axis::clamp(l_v, -1.0, 1.0) - ci * co;
+    let hz = ci + co;
+    let side = |c: f32, s: f32| -> [f32; 2] {
+        let theta = libm::atan2f(s, c);
+        // With s = 0 the tilt does not matter (M(0, a) = 1): take a = 0.
+        let a = if s > 0.0 {
+            libm::atan2f(tt + s * s, s * hz)
+        } else {
+            0.0
+        };
+        [theta, theta - 2.0 * a]
+    };
+    Some((side(co, so), side(ci, si)))
 }
 
 #[inline]
@@ -230,6 +296,25 @@ impl<B: AsRef<[u8]>> GTable<B> {
     pub fn g(&self, theta_i: f32, theta_r: f32) -> f32 {
         self.terms(theta_i, theta_r).2
     }
+    /// G from the dot products a shader has: n·l, n·v, l·v of unit vectors (l toward the
+    /// light, v toward the viewer), through the reciprocal 3-D extension of the modified G
+    /// (the kernel's `ModifiedG::g_dots`). A direction at or below the horizon gives 0; NaN
+    /// gives NaN. In the plane of incidence equal to [`GTable::g`] at the same angles up to
+    /// f32 rounding of the angles.
+    #[inline]
+    pub fn g_dots(&self, n_l: f32, n_v: f32, l_v: f32) -> f32 {
+        self.p.g_dots(self.payload(), n_l, n_v, l_v, 0.0)
+    }
+    /// [`GTable::g`] over slices: `out[k] = g(theta_i[k], theta_r[k])` for k below the
+    /// shortest length, which is returned. Bit-identical to the scalar lookup.
+    pub fn g_batch(&self, theta_i: &[f32], theta_r: &[f32], out: &mut [f32]) -> usize {
+        let p = self.payload();
+        let n = theta_i.len().min(theta_r.len()).min(out.len());
+        for ((o, &a), &b) in out[..n].iter_mut().zip(theta_i).zip(theta_r) {
+            *o = self.p.g2(p, a, b).2;
+        }
+        n
+    }
 }
 
 impl<B: AsRef<[u8]>> GTable3<B> {
@@ -248,6 +333,21 @@ impl<B: AsRef<[u8]>> GTable3<B> {
     pub fn g(&self, theta_i: f32, theta_r: f32, sigma: f32) -> f32 {
         self.terms(theta_i, theta_r, sigma).2
     }
+    /// G from the dot products n·l, n·v, l·v at RMS slope σ; see [`GTable::g_dots`].
+    #[inline]
+    pub fn g_dots(&self, n_l: f32, n_v: f32, l_v: f32, sigma: f32) -> f32 {
+        self.p.g_dots(self.payload(), n_l, n_v, l_v, sigma)
+    }
+    /// [`GTable3::g`] over slices at one σ; returns the number written (the shortest
+    /// length). Bit-identical to the scalar lookup.
+    pub fn g_batch(&self, theta_i: &[f32], theta_r: &[f32], sigma: f32, out: &mut [f32]) -> usize {
+        let p = self.payload();
+        let n = theta_i.len().min(theta_r.len()).min(out.len());
+        for ((o, &a), &b) in out[..n].iter_mut().zip(theta_i).zip(theta_r) {
+            *o = self.p.g3(p, a, b, sigma).2;
+        }
+        n
+    }
 }
 
 impl<B: AsRef<[u8]>> DfgTable<B> {
@@ -257,6 +357,16 @@ impl<B: AsRef<[u8]>> DfgTable<B> {
     pub fn ab(&self, mu: f32, roughness: f32) -> (f32, f32) {
         self.p.two(self.payload(), mu, roughness)
     }
+    /// [`DfgTable::ab`] over slices: `a[k], b[k] = ab(mu[k], roughness[k])` for k below the
+    /// shortest length, which is returned. Bit-identical to the scalar lookup.
+    pub fn ab_batch(&self, mu: &[f32], roughness: &[f32], a: &mut [f32], b: &mut [f32]) -> usize {
+        let p = self.payload();
+        let n = mu.len().min(roughness.len()).min(a.len()).min(b.len());
+        for k in 0..n {
+            (a[k], b[k]) = self.p.two(p, mu[k], roughness[k]);
+        }
+        n
+    }
 }
 
 impl<B: AsRef<[u8]>> AlbedoTable<B> {
@@ -265,6 +375,16 @@ impl<B: AsRef<[u8]>> AlbedoTable<B> {
     pub fn e(&self, mu: f32, roughness: f32) -> f32 {
         self.p.two1(self.payload(), mu, roughness)
     }
+    /// [`AlbedoTable::e`] over slices; returns the number written (the shortest length).
+    /// Bit-identical to the scalar lookup.
+    pub fn e_batch(&self, mu: &[f32], roughness: &[f32], out: &mut [f32]) -> usize {
+        let p = self.payload();
+        let n = mu.len().min(roughness.len()).min(out.len());
+        for ((o, &m), &r) in out[..n].iter_mut().zip(mu).zip(roughness) {
+            *o = self.p.two1(p, m, r);
+        }
+        n
+    }
 }
 
 impl<B: AsRef<[u8]>> AverageAlbedoTable<B> {
@@ -272,5 +392,15 @@ impl<B: AsRef<[u8]>> AverageAlbedoTable<B> {
     #[inline]
     pub fn e_avg(&self, roughness: f32) -> f32 {
         self.p.one(self.payload(), roughness)
+    }
+    /// [`AverageAlbedoTable::e_avg`] over a slice; returns the number written (the shorter
+    /// length). Bit-identical to the scalar lookup.
+    pub fn e_avg_batch(&self, roughness: &[f32], out: &mut [f32]) -> usize {
+        let p = self.payload();
+        let n = roughness.len().min(out.len());
+        for (o, &r) in out[..n].iter_mut().zip(roughness) {
+            *o = self.p.one(p, r);
+        }
+        n
     }
 }
