@@ -1,7 +1,7 @@
 //! `cargo xtask lut generate` with table options: option errors, `--max-error`, the TOML
 //! file, and the written table read back (values against closed forms).
 
-use brdf_lut::format::{Encoding, Model, Placement, Warp};
+use brdf_lut::{Encoding, Model, Placement, Warp};
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
 
@@ -169,7 +169,7 @@ fn texel_centre_split_sum_matches_the_direct_integral_at_its_nodes() {
     );
     assert!(o.status.success(), "{}", err(&o));
     let lut = brdf_lut::Lut::from_path(d.path().join("tc.blut")).unwrap();
-    let v = lut.view();
+    let v = lut.view().unwrap();
     let h = v.header();
     for i in 0..8u32 {
         // Texel centres: s = (i + ½)/8 on a linear axis.

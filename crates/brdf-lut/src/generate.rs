@@ -25,20 +25,25 @@
 //! m = √2 σ; undefined for GGX, whose slope variance is infinite). The axis is named
 //! `roughness`, `alpha`/`m` or `sigma` in the file accordingly.
 
-use brdf_core::geometry::Dots;
-use brdf_core::lut::{
-    encode_into, f32_to_f16, Axis, Channel, Encoding, ErrorStats, Generator, Header, Interpolation,
-    LutView, Model, Placement, TableKind, Warp, FORMAT_VERSION, MAGIC, MAX_AXIS_COUNT,
+use crate::write::{self, ErrorAccumulator};
+use crate::{
+    Axis, Convention, Encoding, ErrorStats, Generator, Header, Interpolation, List, LutView, Model,
+    Placement, TableKind, Warp, MAX_AXIS_COUNT,
 };
+use brdf_core::geometry::Dots;
 use brdf_core::masking::{
     g_blinn_dots, g_smith_beckmann_correlated, g_smith_beckmann_separable, g_smith_ggx_correlated,
-    g_smith_ggx_separable, Convention, ModifiedG,
+    g_smith_ggx_separable, ModifiedG,
 };
 use brdf_core::quadrature::{GaussLegendre, DEFAULT_NODES};
 use brdf_core::split_sum::{e_avg, split_sum, InnerRule, Ndf, OuterRule};
 use core::f64::consts::{FRAC_PI_2, SQRT_2};
 use rand::{Rng, SeedableRng};
 use std::fmt;
+use std::format;
+use std::string::{String, ToString};
+use std::vec;
+use std::vec::Vec;
 
 /// cos 89°: the default smallest μ of split-sum and albedo tables.
 pub const MU_MIN: f64 = 0.017_452_406_437_283_5;
@@ -590,100 +595,51 @@ pub fn generate(spec: &Spec, progress: &(dyn Fn(u64) + Sync)) -> Result<Generate
             });
         }
     });
+    let mut flat = Vec::with_capacity(total * spec.channels().len());
+    for (k, v) in values.iter().enumerate() {
+        if v.iter().any(|x| !x.is_finite()) {
+            return Err(GenError::NonFinite { at: coords(k) });
+        }
+        flat.extend_from_slice(v);
+    }
+    let mut nodes = List::new();
+    let counts: &[u16] = match spec.kind {
+        Kind::GPerSigma { .. } | Kind::GOverSigma => &[DEFAULT_NODES as u16],
+        Kind::AverageAlbedo => &[24, 32, 16],
+        _ => &[32, 16],
+    };
+    for &c in counts {
+        let _ = nodes.push(c);
+    }
     let channels = spec.channels();
-    let mut chans = Vec::new();
-    for (c, &name) in channels.iter().enumerate() {
-        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-        for (k, v) in values.iter().enumerate() {
-            if !v[c].is_finite() {
-                return Err(GenError::NonFinite { at: coords(k) });
-            }
-            lo = lo.min(v[c]);
-            hi = hi.max(v[c]);
-        }
-        let (scale, offset) = match spec.encoding {
-            Encoding::Unorm16 => {
-                let span = (hi - lo) as f32;
-                (if span > 0.0 { span } else { 1.0 }, lo as f32)
-            }
-            _ => (1.0f32, 0.0f32),
-        };
-        chans.push(Channel {
-            name,
-            scale,
-            offset,
-        });
-    }
-    let mut payload = Vec::with_capacity(total * channels.len() * spec.encoding.bytes());
-    for v in &values {
-        for (c, ch) in chans.iter().enumerate() {
-            match spec.encoding {
-                Encoding::Unorm16 => {
-                    let q = ((v[c] - ch.offset as f64) / ch.scale as f64 * 65535.0)
-                        .round()
-                        .clamp(0.0, 65535.0) as u16;
-                    payload.extend_from_slice(&q.to_le_bytes());
-                }
-                Encoding::F16 => payload.extend_from_slice(&f32_to_f16(v[c] as f32).to_le_bytes()),
-                Encoding::F32 => payload.extend_from_slice(&(v[c] as f32).to_le_bytes()),
-            }
-        }
-    }
-    let model = spec.model()?;
-    let sigma = match spec.kind {
-        Kind::GPerSigma { sigma } => Some(sigma),
-        _ => None,
-    };
-    let header = |error: ErrorStats| {
-        let counts: &[u16] = match spec.kind {
-            Kind::GPerSigma { .. } | Kind::GOverSigma => &[DEFAULT_NODES as u16],
-            Kind::AverageAlbedo => &[24, 32, 16],
-            _ => &[32, 16],
-        };
-        let mut generator = Generator {
-            model,
+    let ws = write::Spec {
+        kind: match spec.kind {
+            Kind::GPerSigma { .. } | Kind::GOverSigma => TableKind::PassingFactor,
+            Kind::SplitSum => TableKind::SplitSum,
+            Kind::Albedo => TableKind::DirectionalAlbedo,
+            Kind::AverageAlbedo => TableKind::AverageAlbedo,
+        },
+        axes: &axes,
+        channels: &channels,
+        encoding: spec.encoding,
+        interpolation: spec.interpolation,
+        generator: Generator {
+            model: spec.model()?,
             convention: Convention::Reciprocal,
-            sigma,
-            nodes: Default::default(),
-            tool: TOOL,
-        };
-        for &c in counts {
-            let _ = generator.nodes.push(c);
-        }
-        Header {
-            magic: MAGIC,
-            version: FORMAT_VERSION,
-            kind: match spec.kind {
-                Kind::GPerSigma { .. } | Kind::GOverSigma => TableKind::PassingFactor,
-                Kind::SplitSum => TableKind::SplitSum,
-                Kind::Albedo => TableKind::DirectionalAlbedo,
-                Kind::AverageAlbedo => TableKind::AverageAlbedo,
+            sigma: match spec.kind {
+                Kind::GPerSigma { sigma } => Some(sigma),
+                _ => None,
             },
-            axes: axes.iter().copied().collect(),
-            channels: chans.iter().copied().collect(),
-            encoding: spec.encoding,
-            interpolation: spec.interpolation,
-            generator,
-            error,
-            checksum: [0; 4],
-        }
+            nodes,
+            tool: TOOL,
+        },
     };
-    let encode = |h: &Header<'_>| -> Result<Vec<u8>, GenError> {
-        let mut buf = vec![0u8; payload.len() + 4096];
-        let n = encode_into(h, &payload, &mut buf).map_err(|e| GenError::Encode(e.to_string()))?;
-        buf.truncate(n);
-        Ok(buf)
-    };
-    let zero = ErrorStats {
-        max_abs: 0.0,
-        rms: 0.0,
-        samples: 0,
-        seed: 0,
-    };
-    let first = encode(&header(zero))?;
-    let view = LutView::parse(&first).map_err(|e| GenError::Encode(e.to_string()))?;
-    let error = measure(spec, &view, &axes);
-    let bytes = encode(&header(error))?;
+    let mut error = ErrorStats::default();
+    let bytes = write::build(&ws, &flat, |view| {
+        error = measure(spec, view, &axes);
+        error
+    })
+    .map_err(|e| GenError::Encode(e.to_string()))?;
     Ok(Generated { bytes, error })
 }
 
@@ -726,17 +682,9 @@ pub fn measure(spec: &Spec, view: &LutView<'_>, axes: &[Axis<'_>]) -> ErrorStats
             });
         }
     });
-    let (mut max, mut sum, mut cnt) = (0f64, 0f64, 0u64);
+    let mut acc = ErrorAccumulator::default();
     for &x in errs.iter().flatten() {
-        let x = if x.is_nan() { f64::INFINITY } else { x };
-        max = max.max(x);
-        sum += x * x;
-        cnt += 1;
+        acc.add(x);
     }
-    ErrorStats {
-        max_abs: max as f32,
-        rms: (sum / cnt.max(1) as f64).sqrt() as f32,
-        samples: spec.samples,
-        seed: spec.seed,
-    }
+    acc.finish(spec.samples, spec.seed)
 }

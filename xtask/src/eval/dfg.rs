@@ -56,15 +56,19 @@ pub fn run(a: Args) -> Result<()> {
             .unwrap_or_else(|| crate::lut::assets_dir().join("dfg_ggx.blut"));
         bytes = crate::fsio::read_limited(&p, brdf_lut::MAX_FILE_BYTES)?;
         Some(
-            brdf_core::lut::DfgTable::parse(&bytes)
+            brdf_lut::DfgTable::parse(&bytes)
                 .map_err(|e| anyhow::anyhow!("{}: {e}", p.display()))?,
         )
     };
     // The table's axis ranges (μ, roughness): rows outside are clamped by the lookup.
-    let ranges = table.as_ref().map(|t| {
-        let ax = &t.view().header().axes;
-        [(ax[0].lo, ax[0].hi), (ax[1].lo, ax[1].hi)]
-    });
+    let ranges = match &table {
+        Some(t) => {
+            let v = t.view().map_err(|e| anyhow::anyhow!("{e}"))?;
+            let ax = &v.header().axes;
+            Some([(ax[0].lo, ax[0].hi), (ax[1].lo, ax[1].hi)])
+        }
+        None => None,
+    };
     let (mut clamped, mut first) = (0usize, 0usize);
     let mut out = std::io::BufWriter::new(std::io::stdout().lock());
     writeln!(out, "{HEADER}")?;

@@ -1,11 +1,11 @@
 //! The default asset set: what each table holds, its grid and its direct kernel.
 
-use brdf_core::lut::{Axis, Encoding, Interpolation, Model, Placement, TableKind, Warp};
 use brdf_core::masking::ModifiedG;
 use brdf_core::split_sum::{
     dfg_ggx, dfg_ts_modified, dfg_ts_smith, e_avg_beckmann, e_avg_ggx, e_beckmann, e_ggx,
     InnerRule, OuterRule,
 };
+use brdf_lut::{Axis, Encoding, Interpolation, Model, Placement, TableKind, Warp};
 use std::f64::consts::FRAC_PI_2;
 
 /// cos 89°: the smallest μ the split-sum accuracy target covers.

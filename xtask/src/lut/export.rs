@@ -2,7 +2,7 @@
 //! a JSON sidecar that states axes, orientation, texel placement and that values are linear.
 
 use anyhow::{bail, Result};
-use brdf_core::lut::{f32_to_f16, LutView, Placement, Warp};
+use brdf_lut::{f32_to_f16, LutView, Placement, Warp};
 use std::path::{Path, PathBuf};
 
 #[derive(clap::Args)]
@@ -56,7 +56,7 @@ fn warp_formula(w: Warp) -> &'static str {
 
 pub fn run(a: ExportArgs) -> Result<()> {
     let lut = crate::fsio::load_lut(&a.file)?;
-    let v: LutView<'_> = lut.view();
+    let v: LutView<'_> = lut.view()?;
     let h = v.header();
     let nodes: usize = h.axes.iter().map(|x| x.count as usize).product();
     let nc = v.channels();

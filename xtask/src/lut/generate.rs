@@ -27,8 +27,8 @@
 
 use super::GenArgs;
 use anyhow::{anyhow, bail, Context, Result};
-use brdf_core::lut::{Encoding, Interpolation, Placement, Warp};
 use brdf_lut::generate::{Distribution, Kind, Masking, Roughness, Spec};
+use brdf_lut::{Encoding, Interpolation, Placement, Warp};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde::Deserialize;
 use std::collections::BTreeMap;

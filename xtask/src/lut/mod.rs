@@ -1,5 +1,5 @@
 //! `cargo xtask lut`: LUT generation (default), verification, inspection and export.
-//! Format: `docs/lut-format.md`; readers: `brdf_core::lut` (no_std) and `brdf-lut` (std).
+//! Format, readers and writer: the `brdf-lut` crate (`docs/lut-format.md`).
 
 mod assets;
 mod export;
@@ -96,7 +96,7 @@ pub fn run(a: Args) -> Result<()> {
             for f in &files {
                 let lut = crate::fsio::load_lut(f)?;
                 let n = samples.unwrap_or(lut.header().error.samples).max(1);
-                let st = gen::measure(&lut.view(), n, seed, false);
+                let st = gen::measure(&lut.view()?, n, seed, false);
                 rows.push(gen::Row {
                     file: f.file_name().unwrap().to_string_lossy().into_owned(),
                     bytes: lut.bytes().len(),

@@ -5,9 +5,9 @@
 //! `harness list` prints the kernel names.
 
 use brdf_bench::*;
-use brdf_core::lut::{DfgTable, GTable, GTable3};
 use brdf_core::masking::{self, ModifiedG};
 use brdf_core::split_sum::{dfg_ggx, InnerRule, OuterRule};
+use brdf_lut::{DfgTable, GTable, GTable3};
 use std::hint::black_box;
 
 const KERNELS: &[&str] = &[
@@ -22,6 +22,9 @@ const KERNELS: &[&str] = &[
     "dfg_lut",
     "dfg_karis",
     "dfg_direct_f64",
+    "floor_bilinear2",
+    "dfg_lut_std",
+    "g_lut2d_linear_std",
 ];
 
 fn main() {
@@ -116,6 +119,28 @@ fn main() {
                 dfg_ggx::<f64, OuterRule, InnerRule>(black_box(mr[k].0), black_box(mr[k].1));
             a + b
         }),
+        "floor_bilinear2" => {
+            let t = FloorBilinear2::new();
+            run!(|k: usize| {
+                let (a, b) = t.fetch(black_box(mr[k].0 as f32), black_box(mr[k].1 as f32));
+                a + b
+            })
+        }
+        "dfg_lut_std" => {
+            let t = brdf_lut::Lut::from_path(assets_dir().join(DFG_ASSET)).unwrap();
+            run!(|k: usize| {
+                let (a, b) = t
+                    .dfg(black_box(mr[k].0 as f32), black_box(mr[k].1 as f32))
+                    .unwrap();
+                a + b
+            })
+        }
+        "g_lut2d_linear_std" => {
+            let t = brdf_lut::Lut::from_path(assets_dir().join(G2_LINEAR_ASSET)).unwrap();
+            run!(|k: usize| t
+                .g(black_box(ti32[k]), black_box(tr32[k]), SIGMA as f32)
+                .unwrap())
+        }
         _ => {
             eprintln!("unknown kernel {name}; `harness list` prints the names");
             std::process::exit(2);
