@@ -96,7 +96,17 @@ pub fn run(a: Args) -> Result<()> {
             for f in &files {
                 let lut = crate::fsio::load_lut(f)?;
                 let n = samples.unwrap_or(lut.header().error.samples).max(1);
-                let st = gen::measure(&lut.view()?, n, seed, false);
+                let view = lut.view()?;
+                let h = view.header();
+                // Tables built to order are measured with the kernels that built them (their
+                // roughness axis may be α, m or σ, their G separable or V-cavity).
+                let st = match brdf_lut::generate::Spec::from_header(h) {
+                    Some(mut spec) if h.generator.tool == brdf_lut::generate::TOOL => {
+                        (spec.samples, spec.seed) = (n, seed);
+                        brdf_lut::generate::measure(&spec, &view, &h.axes)
+                    }
+                    _ => gen::measure(&view, n, seed, false),
+                };
                 rows.push(gen::Row {
                     file: f.file_name().unwrap().to_string_lossy().into_owned(),
                     bytes: lut.bytes().len(),
