@@ -60,12 +60,11 @@ impl fmt::Display for Error {
 }
 
 impl std::error::Error for Error {
+    // The message of the wrapped error is already part of this one's `Display`; returning
+    // it as the source too would print it twice in a chain ("…: No such file or directory
+    // (os error 2): No such file or directory (os error 2)").
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
-        match self {
-            Error::Io(e) => Some(e),
-            Error::Format(e) => Some(e),
-            _ => None,
-        }
+        None
     }
 }
 

@@ -269,3 +269,21 @@ fn committed_assets_are_reproduced_from_their_headers() {
     }
     assert!(seen >= 10, "only {seen} assets");
 }
+
+/// A loader error prints its cause once, also through an error chain (`{:#}` in anyhow walks
+/// `source()`).
+#[test]
+fn loader_error_states_its_cause_once() {
+    let e = Lut::from_path("/nonexistent/dir/x.blut").unwrap_err();
+    let mut text = e.to_string();
+    let mut src = std::error::Error::source(&e);
+    while let Some(s) = src {
+        text += &format!(": {s}");
+        src = s.source();
+    }
+    assert_eq!(
+        text.matches("No such file or directory").count(),
+        1,
+        "{text}"
+    );
+}
