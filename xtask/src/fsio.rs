@@ -82,11 +82,25 @@ fn folder(p: &Path) -> PathBuf {
     }
 }
 
-/// Absolute form of `p` with its folder's symbolic links resolved (the file itself need not
-/// exist).
+/// Absolute form of `p` with its folder's symbolic links resolved: the nearest existing
+/// ancestor folder is canonicalised and the rest appended (neither the file nor its folder
+/// need exist yet).
 fn resolve(p: &Path) -> Option<PathBuf> {
-    let dir = folder(p).canonicalize().ok()?;
-    Some(dir.join(p.file_name()?))
+    let name = p.file_name()?;
+    let mut dir = folder(p);
+    let mut rest = Vec::new();
+    loop {
+        if let Ok(c) = dir.canonicalize() {
+            let mut out = c;
+            for part in rest.iter().rev() {
+                out.push(part);
+            }
+            out.push(name);
+            return Some(out);
+        }
+        rest.push(dir.file_name()?.to_os_string());
+        dir = folder(&dir);
+    }
 }
 
 /// Reads an input file whole, refusing files over `limit` bytes before reading them.
@@ -387,6 +401,10 @@ mod tests {
             protected: Some(d.path().to_path_buf()),
         };
         let e = write_together(&[(d.path().join("t.blut"), vec![1])], &p).unwrap_err();
+        assert!(e.to_string().contains("committed default tables"), "{e}");
+        // Also in a subfolder that does not exist yet (it must not be created).
+        let deep = d.path().join("new/sub/t.blut");
+        let e = write_together(&[(deep, vec![1])], &p).unwrap_err();
         assert!(e.to_string().contains("committed default tables"), "{e}");
         assert!(strays(d.path(), &[]).is_empty());
     }
