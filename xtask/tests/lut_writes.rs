@@ -235,3 +235,31 @@ fn export_onto_full_disk_leaves_nothing() {
     assert!(e.contains("t.bin") && e.contains("No space left"), "{e}");
     assert!(left.is_empty(), "{left:?}");
 }
+
+/// `--max-error` on the default set: a 2 x 2 split-sum table (max error ~0.3) fails with a
+/// non-zero exit and writes nothing; the same table without the limit is written.
+#[test]
+fn max_error_fails_an_overridden_default_table() {
+    let d = tempfile::tempdir().unwrap();
+    let out = d.path().join("out");
+    let args = [
+        "lut",
+        "--only",
+        "dfg_ggx",
+        "--res",
+        "2x2",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let mut strict = args.to_vec();
+    strict.extend_from_slice(&["--max-error", "0.01"]);
+    let o = xtask(&strict, d.path());
+    assert!(!o.status.success());
+    assert!(err(&o).contains("dfg_ggx.blut"), "{}", err(&o));
+    assert!(err(&o).contains("exceeds --max-error"), "{}", err(&o));
+    assert!(!out.exists() || listing(&out).is_empty());
+    let o = xtask(&args, d.path());
+    assert!(o.status.success(), "{}", err(&o));
+    let lut = brdf_lut::Lut::from_path(out.join("dfg_ggx.blut")).unwrap();
+    assert!(lut.header().error.max_abs > 0.01);
+}

@@ -85,6 +85,11 @@ pub fn generate(g: GenArgs) -> Result<()> {
         }
     }
     apply_overrides(&mut specs, &g)?;
+    if let Some(e) = g.max_error {
+        if !(e.is_finite() && e > 0.0) {
+            bail!("--max-error must be a positive number (got {e})");
+        }
+    }
     let check_dir = if g.check {
         Some(tempfile::tempdir().context("creating a temporary folder")?)
     } else {
@@ -113,6 +118,20 @@ pub fn generate(g: GenArgs) -> Result<()> {
             secs: Some(t.elapsed().as_secs_f64()),
         });
         files.push((out.join(&s.file), bytes));
+    }
+    if let Some(lim) = g.max_error {
+        let over: Vec<String> = rows
+            .iter()
+            .filter(|r| r.stats.max_abs.is_nan() || r.stats.max_abs as f64 > lim)
+            .map(|r| format!("{} ({:.3e})", r.file, r.stats.max_abs))
+            .collect();
+        if !over.is_empty() {
+            print_table(&rows);
+            bail!(
+                "measured max |error| exceeds --max-error {lim:.3e}: {}; nothing written",
+                over.join(", ")
+            );
+        }
     }
     crate::fsio::write_together(&files, &policy)?;
     print_table(&rows);

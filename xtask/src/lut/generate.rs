@@ -79,9 +79,6 @@ pub struct Args {
     /// Seed of the error measurement.
     #[arg(long)]
     seed: Option<u64>,
-    /// Fail (non-zero exit, nothing written) when the measured max |error| exceeds this.
-    #[arg(long, value_name = "E")]
-    max_error: Option<f64>,
 }
 
 #[derive(Deserialize, Default)]
@@ -126,8 +123,7 @@ pub fn run(a: Args) -> Result<()> {
             || !a.warps.is_empty()
             || !a.placements.is_empty()
             || a.interpolation.is_some()
-            || a.samples.is_some()
-            || a.max_error.is_some();
+            || a.samples.is_some();
         if extra {
             bail!("table options need --kind (or --config FILE) to say which table to build");
         }
@@ -154,7 +150,7 @@ pub fn run(a: Args) -> Result<()> {
         (None, Some(o)) => cfg_dir.join(o),
         (None, None) => bail!("give the output file with --out FILE (or `out` in the TOML file)"),
     };
-    let max_error = a.max_error.or(cfg.max_error);
+    let max_error = a.set.max_error.or(cfg.max_error);
     if let Some(e) = max_error {
         if !(e.is_finite() && e > 0.0) {
             bail!("--max-error must be a positive number (got {e})");

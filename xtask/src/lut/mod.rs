@@ -42,6 +42,9 @@ pub struct GenArgs {
     /// Replace existing files in `--out` (assets/ itself only takes the unmodified default set).
     #[arg(long)]
     force: bool,
+    /// Fail (non-zero exit, nothing written) when a table's measured max |error| exceeds E.
+    #[arg(long, value_name = "E")]
+    max_error: Option<f64>,
 }
 
 #[derive(Subcommand)]
