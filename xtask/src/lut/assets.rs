@@ -99,7 +99,7 @@ pub fn default_set() -> Vec<Spec> {
     // ~1e-4 rather than ~1e-5 accuracy), within the same size budgets as the cubic tables.
     // The 3-D table's max |G error| is set by the bilinear error across the kinks
     // θr = ±θi, which falls only linearly with the spacing: about 1.3e-3 at this size (no
-    // grid within 256 KiB reaches 1e-3), so its error is measured at 400,000 points to make
+    // grid within 256 KiB reaches 1e-3), so its error is measured at 2,000,000 points to make
     // the recorded maximum one that fresh points do not exceed (`lut verify`).
     let mut ax3 = g_axes(56, 79);
     ax3.push(axis("sigma", 28, 0.05, 1.0, Warp::Log, Placement::Endpoint));
@@ -112,7 +112,7 @@ pub fn default_set() -> Vec<Spec> {
         channels: vec!["F"],
         encoding: Encoding::Unorm16,
         interpolation: Interpolation::Linear,
-        samples: 400_000,
+        samples: 2_000_000,
     });
     v.push(Spec {
         file: "g_modified_sigma0.3_linear.blut".into(),
