@@ -513,6 +513,55 @@ fn lut_targets(c: &mut Criterion) {
             })
         });
     }
+    // Batch entries: one call over all BATCH inputs per iteration (same element count).
+    let mu: Vec<f32> = pts.iter().map(|p| p.0).collect();
+    let rr: Vec<f32> = pts.iter().map(|p| p.1).collect();
+    let (mut o1, mut o2) = (vec![0f32; BATCH], vec![0f32; BATCH]);
+    if let Some(bytes) = read_asset(G2_LINEAR_ASSET) {
+        let t = GTable::parse(&bytes[..]).unwrap();
+        grp.bench_function("g_lut2d_linear_batch", |b| {
+            b.iter(|| black_box(t.g_batch(black_box(&ti), black_box(&tr), &mut o1)))
+        });
+    }
+    if let Some(bytes) = read_asset(G3_LINEAR_ASSET) {
+        let t = GTable3::parse(&bytes[..]).unwrap();
+        let s = SIGMA as f32;
+        grp.bench_function("g_lut3d_linear_batch", |b| {
+            b.iter(|| black_box(t.g_batch(black_box(&ti), black_box(&tr), s, &mut o1)))
+        });
+    }
+    if let Some(bytes) = read_asset(DFG_ASSET) {
+        let t = DfgTable::parse(&bytes[..]).unwrap();
+        grp.bench_function("dfg_lut_batch", |b| {
+            b.iter(|| black_box(t.ab_batch(black_box(&mu), black_box(&rr), &mut o1, &mut o2)))
+        });
+    }
+    if let Some(bytes) = read_asset(E_ASSET) {
+        let t = brdf_lut::AlbedoTable::parse(&bytes[..]).unwrap();
+        grp.bench_function("e_lut", |b| {
+            b.iter(|| {
+                for &(m, r) in &pts {
+                    black_box(t.e(black_box(m), black_box(r)));
+                }
+            })
+        });
+        grp.bench_function("e_lut_batch", |b| {
+            b.iter(|| black_box(t.e_batch(black_box(&mu), black_box(&rr), &mut o1)))
+        });
+    }
+    if let Some(bytes) = read_asset(EAVG_ASSET) {
+        let t = brdf_lut::AverageAlbedoTable::parse(&bytes[..]).unwrap();
+        grp.bench_function("eavg_lut", |b| {
+            b.iter(|| {
+                for &(_, r) in &pts {
+                    black_box(t.e_avg(black_box(r)));
+                }
+            })
+        });
+        grp.bench_function("eavg_lut_batch", |b| {
+            b.iter(|| black_box(t.e_avg_batch(black_box(&rr), &mut o1)))
+        });
+    }
     let g = ModifiedG::<f32>::new(SIGMA as f32).unwrap();
     grp.bench_function("g_direct_f32", |b| {
         b.iter(|| {

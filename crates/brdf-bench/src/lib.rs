@@ -140,6 +140,10 @@ pub const G3_LINEAR_ASSET: &str = "g_modified_linear.blut";
 pub const G2_LINEAR_ASSET: &str = "g_modified_sigma0.3_linear.blut";
 /// The GGX split-sum table.
 pub const DFG_ASSET: &str = "dfg_ggx.blut";
+/// The GGX directional-albedo table E(μ, r).
+pub const E_ASSET: &str = "kc_e_ggx.blut";
+/// The GGX average-albedo table E_avg(r).
+pub const EAVG_ASSET: &str = "kc_eavg_ggx.blut";
 
 /// The floor every table lookup is held against: a plain bilinear fetch from a 64×64
 /// two-channel u16 array on linear, endpoint axes over [0, 1]², written as simply as

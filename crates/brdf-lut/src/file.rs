@@ -80,6 +80,28 @@ impl From<std::io::Error> for Error {
     }
 }
 
+/// Reads a file of at most [`MAX_FILE_BYTES`]: the size is checked before reading when the
+/// file system knows it, and the read itself stops after the cap, so an endless file
+/// (`/dev/zero`, a pipe) gives [`Error::TooLarge`] instead of exhausting memory. The buffer
+/// grows with the bytes actually read, never from a size the file declares. Use it to feed
+/// the typed tables: `DfgTable::parse(read_capped(path)?)`.
+pub fn read_capped(path: impl AsRef<Path>) -> Result<Vec<u8>, Error> {
+    let f = std::fs::File::open(path)?;
+    let size = f.metadata()?.len();
+    if size > MAX_FILE_BYTES {
+        return Err(Error::TooLarge { size });
+    }
+    let mut bytes = Vec::with_capacity(size as usize);
+    f.take(MAX_FILE_BYTES + 1).read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > MAX_FILE_BYTES {
+        return Err(Error::TooLarge {
+            size: bytes.len() as u64,
+        });
+    }
+    bytes.shrink_to_fit();
+    Ok(bytes)
+}
+
 /// A loaded, validated LUT of any kind, owning its bytes, its lookup constants prepared at
 /// load. Its queries run the same code as the typed tables (`DfgTable`, `GTable`, …) and
 /// give the same values; each checks the kind first (one compare) and returns
@@ -103,23 +125,9 @@ impl Lut {
         Ok(Self { bytes, p })
     }
 
-    /// Reads and validates a file. The size is checked before reading, and the buffer is
-    /// allocated once with the file's size (nothing the file declares is trusted for sizes).
+    /// Reads ([`read_capped`]) and validates a file.
     pub fn from_path(path: impl AsRef<Path>) -> Result<Self, Error> {
-        let f = std::fs::File::open(path)?;
-        let size = f.metadata()?.len();
-        if size > MAX_FILE_BYTES {
-            return Err(Error::TooLarge { size });
-        }
-        let mut bytes = Vec::with_capacity(size as usize);
-        f.take(MAX_FILE_BYTES + 1).read_to_end(&mut bytes)?;
-        if bytes.len() as u64 > MAX_FILE_BYTES {
-            return Err(Error::TooLarge {
-                size: bytes.len() as u64,
-            });
-        }
-        bytes.shrink_to_fit();
-        Self::from_bytes(bytes)
+        Self::from_bytes(read_capped(path)?)
     }
 
     /// Reads at most [`MAX_FILE_BYTES`] + 1 bytes from `r` and validates them. The buffer

@@ -38,4 +38,4 @@ pub use tables::{AlbedoTable, AverageAlbedoTable, DfgTable, GTable, GTable3};
 pub use view::{encode_into, header_len, LutView, Values};
 
 #[cfg(feature = "std")]
-pub use file::{summary, Error, Escaped, Lut, MAX_FILE_BYTES};
+pub use file::{read_capped, summary, Error, Escaped, Lut, MAX_FILE_BYTES};

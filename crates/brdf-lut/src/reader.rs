@@ -11,10 +11,13 @@
 //! slice, and the channels' scale and offset are applied once at the end (the weights sum
 //! to 1).
 //!
+//! Inlining: forced on hosted targets (speed); left to the optimiser on bare metal and
+//! WebAssembly, where code size has a budget.
+//!
 //! Arithmetic (the same for every kind, so batch and scalar lookups agree bit for bit):
 //! linear interpolation nests v = v₀ + f (v₁ − v₀) from axis 0 outward; Catmull–Rom sums
 //! Σ_j w1_j Σ_i w0_i v_ij per plane and Σ_k w2_k · plane_k over σ. A Catmull–Rom axis with
-//! exactly 3 nodes has no contiguous 4-tap window; such (unusual) tables are read by the
+//! 2 or 3 nodes has no contiguous 4-tap window; such (unusual) tables are read by the
 //! per-tap general path of [`Grid`](crate::view::Grid), which gives the same values up to
 //! f32 summation order.
 
@@ -26,7 +29,8 @@ use crate::view::Grid;
 /// cos x for x ∈ [0, π/2] as sin(π/2 − x) by its Taylor series to r¹¹ (truncation < 1e-9,
 /// relative accuracy kept near π/2 where √cos x is steep). Only for the table warp, where an
 /// error of a few 1e-8 moves the interpolation point by < 1e-4 of a cell.
-#[inline(always)]
+#[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+#[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
 fn cos_quadrant(x: f32) -> f32 {
     let r = core::f32::consts::FRAC_PI_2 - x;
     let r2 = r * r;
@@ -37,7 +41,8 @@ fn cos_quadrant(x: f32) -> f32 {
 }
 
 /// The warp's monotone part w(x) (x already clamped to the axis range).
-#[inline(always)]
+#[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+#[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
 fn warp_w(warp: Warp, lo: f32, x: f32) -> f32 {
     match warp {
         Warp::Linear => x,
@@ -116,8 +121,8 @@ impl Lane {
     };
 
     /// The fractional node index of x (x not NaN).
-    #[cfg_attr(target_os = "none", inline)]
-    #[cfg_attr(not(target_os = "none"), inline(always))]
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     pub(crate) fn index(&self, x: f32) -> f32 {
         let x = clamp(x, self.lo, self.hi);
         clamp(
@@ -128,8 +133,8 @@ impl Lane {
     }
 
     /// Node i ≤ n − 2 and the fraction f ∈ [0, 1] of x.
-    #[cfg_attr(target_os = "none", inline)]
-    #[cfg_attr(not(target_os = "none"), inline(always))]
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     fn cell(&self, x: f32) -> (usize, f32) {
         let t = self.index(x);
         // t ∈ [0, n − 1] with n ≤ 65536: the i32 conversion is exact and in range.
@@ -139,7 +144,8 @@ impl Lane {
 
     /// First node and the four Catmull–Rom weights (docs/lut-format.md §7) of x on an axis
     /// of n ≥ 4 nodes, the end extrapolation folded in.
-    #[inline(always)]
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     fn cubic(&self, x: f32) -> (usize, [f32; 4]) {
         let n = self.n;
         let (i, f) = self.cell(x);
@@ -170,21 +176,24 @@ struct F16;
 struct F32;
 impl Store for U16 {
     const BYTES: usize = 2;
-    #[inline(always)]
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     fn at(b: &[u8], k: usize) -> f32 {
         u16::from_le_bytes([b[2 * k], b[2 * k + 1]]) as f32
     }
 }
 impl Store for F16 {
     const BYTES: usize = 2;
-    #[inline(always)]
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     fn at(b: &[u8], k: usize) -> f32 {
         f16_to_f32(u16::from_le_bytes([b[2 * k], b[2 * k + 1]]))
     }
 }
 impl Store for F32 {
     const BYTES: usize = 4;
-    #[inline(always)]
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     fn at(b: &[u8], k: usize) -> f32 {
         f32::from_le_bytes([b[4 * k], b[4 * k + 1], b[4 * k + 2], b[4 * k + 3]])
     }
@@ -194,7 +203,7 @@ impl Store for F32 {
 enum Mode {
     Linear,
     Cubic,
-    /// A Catmull–Rom axis of 3 nodes: the per-tap general path.
+    /// A Catmull–Rom axis of 2 or 3 nodes: the per-tap general path.
     General,
 }
 
@@ -222,7 +231,7 @@ impl Reader {
         for (k, a) in h.axes.iter().enumerate().take(3) {
             lanes[k] = Lane::new(a, stride)?;
             stride = stride.checked_mul(a.count as usize)?;
-            if mode == Mode::Cubic && a.count == 3 {
+            if mode == Mode::Cubic && a.count < 4 {
                 mode = Mode::General;
             }
         }
@@ -247,8 +256,8 @@ impl Reader {
 
     /// Interpolated channels at x (D = the table's axes, C = its channels; x not NaN).
     /// Out-of-range payload reads (impossible for a validated table) give NaN.
-    #[cfg_attr(target_os = "none", inline)]
-    #[cfg_attr(not(target_os = "none"), inline(always))]
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     pub(crate) fn sample<const D: usize, const C: usize>(
         &self,
         grid: &Grid,
@@ -278,8 +287,8 @@ impl Reader {
 
     /// Two one-channel 3-D lookups that share the last coordinate (the two one-sided factors
     /// of G over σ): the σ taps are computed once. Equal to two [`Reader::sample`] calls.
-    #[cfg_attr(target_os = "none", inline)]
-    #[cfg_attr(not(target_os = "none"), inline(always))]
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     pub(crate) fn pair3(
         &self,
         grid: &Grid,
@@ -308,7 +317,8 @@ impl Reader {
         )
     }
 
-    #[inline(always)]
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     fn pair3_linear<S: Store>(&self, data: &[u8], a: [f32; 2], b: [f32; 2], z: f32) -> (f32, f32) {
         let l = &self.lanes;
         let (k, f2) = l[2].cell(z);
@@ -327,7 +337,8 @@ impl Reader {
         (one(a), one(b))
     }
 
-    #[inline(always)]
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     fn pair3_cubic<S: Store>(&self, data: &[u8], a: [f32; 2], b: [f32; 2], z: f32) -> (f32, f32) {
         let l = &self.lanes;
         let (b2, w2) = l[2].cubic(z);
@@ -359,7 +370,8 @@ impl Reader {
     }
 
     /// Two neighbouring nodes (all channels) starting at value index `at`.
-    #[inline(always)]
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     fn pair<S: Store, const C: usize>(data: &[u8], at: usize) -> Option<([f32; C], [f32; C])> {
         let p = data.get(at * S::BYTES..(at + 2 * C) * S::BYTES)?;
         let (mut a, mut b) = ([0.0; C], [0.0; C]);
@@ -371,7 +383,8 @@ impl Reader {
     }
 
     /// Linear along axis 0 in the row starting at value index `at`.
-    #[inline(always)]
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     fn row<S: Store, const C: usize>(data: &[u8], at: usize, f: f32) -> [f32; C] {
         match Self::pair::<S, C>(data, at) {
             Some((a, b)) => {
@@ -385,7 +398,8 @@ impl Reader {
         }
     }
 
-    #[inline(always)]
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     fn lerp<const C: usize>(a: [f32; C], b: [f32; C], f: f32) -> [f32; C] {
         let mut v = [0.0; C];
         for c in 0..C {
@@ -395,7 +409,8 @@ impl Reader {
     }
 
     /// (Bi/tri)linear in stored units.
-    #[inline(always)]
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     fn linear<S: Store, const D: usize, const C: usize>(
         &self,
         data: &[u8],
@@ -422,7 +437,8 @@ impl Reader {
     }
 
     /// Catmull–Rom in stored units.
-    #[inline(always)]
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     fn cubic<S: Store, const D: usize, const C: usize>(
         &self,
         data: &[u8],

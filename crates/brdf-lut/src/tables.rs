@@ -230,7 +230,8 @@ macro_rules! typed_table {
             pub fn view(&self) -> Result<LutView<'_>, LutError> {
                 LutView::parse_skip_checksum(self.bytes.as_ref())
             }
-            #[inline(always)]
+            #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+            #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
             fn payload(&self) -> &[u8] {
                 self.bytes.as_ref().get(self.p.header_len..).unwrap_or(&[])
             }

@@ -532,6 +532,25 @@ mod tests {
     }
 
     #[test]
+    fn catmull_rom_tables_with_short_axes_interpolate_linearly_there() {
+        // Axis 0 has 2 nodes (linear by the format's rule), axis 1 has 3 (Catmull–Rom with
+        // both ends extrapolated quadratically): f = 1 + 2x + y² is reproduced exactly.
+        let mut buf = [0u8; 1024];
+        let axes = [
+            ax(2, 0.0, 1.0, Warp::Linear, Placement::Endpoint),
+            ax(3, 0.0, 2.0, Warp::Linear, Placement::Endpoint),
+        ];
+        let f = |x: f64, y: f64| 1.0 + 2.0 * x + y * y / 4.0;
+        let n = table(&mut buf, axes, Interpolation::CatmullRom, f);
+        let v = LutView::parse(&buf[..n]).unwrap();
+        for &(x, y) in &[(0.0f32, 0.0f32), (0.3, 0.7), (1.0, 2.0), (0.5, 1.9)] {
+            let got = v.sample2(x, y)[0] as f64;
+            let want = f(x as f64, y as f64);
+            assert!((got - want).abs() < 1e-5, "({x}, {y}): {got} vs {want}");
+        }
+    }
+
+    #[test]
     fn warps_invert() {
         for a in [
             ax(9, 0.05, 1.0, Warp::Log, Placement::Endpoint),

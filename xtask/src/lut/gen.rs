@@ -260,15 +260,29 @@ pub fn measure(view: &LutView<'_>, n: u32, seed: u64, bar: bool) -> ErrorStats {
     let mut rng = rand_pcg::Pcg64::seed_from_u64(seed);
     let kind = h.kind;
     let dims = h.axes.len();
+    // Uniform in [lo, hi]; a range rand cannot sample (empty, or a span that overflows) gives
+    // its lower end instead of a panic. A parsed header's ranges are finite, increasing and
+    // finite in f32, so this only guards the tool.
+    let uniform = |rng: &mut rand_pcg::Pcg64, lo: f64, hi: f64| -> f64 {
+        if lo < hi && (hi - lo).is_finite() {
+            rng.random_range(lo..=hi)
+        } else {
+            lo
+        }
+    };
     let pts: Vec<Vec<f64>> = (0..n)
         .map(|_| {
             if kind == TableKind::PassingFactor {
                 let mut p = vec![
-                    rng.random_range(0.0..=std::f64::consts::FRAC_PI_2),
-                    rng.random_range(-std::f64::consts::FRAC_PI_2..=std::f64::consts::FRAC_PI_2),
+                    uniform(&mut rng, 0.0, std::f64::consts::FRAC_PI_2),
+                    uniform(
+                        &mut rng,
+                        -std::f64::consts::FRAC_PI_2,
+                        std::f64::consts::FRAC_PI_2,
+                    ),
                 ];
                 if dims == 3 {
-                    p.push(rng.random_range(h.axes[2].lo..=h.axes[2].hi));
+                    p.push(uniform(&mut rng, h.axes[2].lo, h.axes[2].hi));
                 }
                 p
             } else {
@@ -276,7 +290,7 @@ pub fn measure(view: &LutView<'_>, n: u32, seed: u64, bar: bool) -> ErrorStats {
                     .iter()
                     .map(|a| {
                         let (lo, hi) = assets::verify_range(kind, a);
-                        rng.random_range(lo..=hi)
+                        uniform(&mut rng, lo, hi)
                     })
                     .collect()
             }
