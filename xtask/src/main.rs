@@ -6,6 +6,7 @@ use clap::{Parser, Subcommand};
 mod bench;
 mod ci;
 mod eval;
+mod fsio;
 mod lut;
 mod platforms;
 mod plot;

@@ -112,7 +112,7 @@ pub fn build(root: &Path) -> Result<(u64, u64)> {
         if after <= BUDGET { "within" } else { "OVER" }
     );
     print!("{report}");
-    std::fs::write(pkg.join("size.txt"), &report)?;
+    crate::fsio::replace(&pkg.join("size.txt"), report.as_bytes())?;
     if after > BUDGET {
         bail!("the optimised module ({after} bytes) exceeds the 64 KiB budget");
     }

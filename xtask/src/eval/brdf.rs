@@ -9,7 +9,7 @@ use anyhow::{anyhow, bail, Context, Result};
 use brdf_core::models::*;
 use brdf_core::Vec3;
 use std::collections::BTreeMap;
-use std::io::{BufRead, Write};
+use std::io::Write;
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -378,19 +378,11 @@ fn print_list(out: &mut impl Write) -> Result<()> {
 /// One parsed row: the six fields as typed, and the normalised wi and wo.
 type Row<'a> = ([&'a str; 6], Vec3<f64>, Vec3<f64>);
 
-/// Parses one row; `Ok(None)` for a header or blank line.
-fn parse_row(line: &str, lineno: usize) -> Result<Option<Row<'_>>> {
-    let t = line.trim();
-    if t.is_empty() || (lineno == 1 && t.starts_with("wi_x")) {
-        return Ok(None);
-    }
-    let f: Vec<&str> = t.split(',').map(str::trim).collect();
-    if f.len() != 6 {
-        bail!(
-            "line {lineno}: expected 6 fields wi_x,wi_y,wi_z,wo_x,wo_y,wo_z, found {}",
-            f.len()
-        );
-    }
+/// The input columns.
+const COLUMNS: [&str; 6] = ["wi_x", "wi_y", "wi_z", "wo_x", "wo_y", "wo_z"];
+
+/// Parses one row's six fields (read by `super::for_each_row`).
+fn parse_row<'a>(f: &[&'a str], lineno: usize) -> Result<Option<Row<'a>>> {
     let mut v = [0.0; 6];
     for (i, s) in f.iter().enumerate() {
         let x: f64 = s
@@ -421,12 +413,10 @@ pub fn run(a: Args) -> Result<()> {
         .model
         .ok_or_else(|| anyhow!("--model NAME is required (see --list)"))?;
     let model = build(&name, &a.params)?;
-    let stdin = std::io::stdin();
     writeln!(out, "{HEADER}")?;
-    for (i, line) in stdin.lock().lines().enumerate() {
-        let line = line.with_context(|| format!("line {}: unreadable input", i + 1))?;
-        let Some((fields, wi, wo)) = parse_row(&line, i + 1)? else {
-            continue;
+    super::for_each_row(std::io::stdin().lock(), &COLUMNS, |lineno, f| {
+        let Some((fields, wi, wo)) = parse_row(f, lineno)? else {
+            return Ok(());
         };
         let c = model.eval(wi, wo);
         writeln!(
@@ -437,7 +427,8 @@ pub fn run(a: Args) -> Result<()> {
             c.g,
             c.b
         )?;
-    }
+        Ok(())
+    })?;
     out.flush()?;
     Ok(())
 }

@@ -1,14 +1,23 @@
 //! `cargo xtask eval dfg`: rows `mu,roughness` in, `mu,roughness,A,B` out: the split sum for
-//! GGX with height-correlated Smith (conventions.md §8), looked up in the default table
+//! GGX with height-correlated Smith (docs/conventions.md), looked up in the default table
 //! `assets/dfg_ggx.blut` (f32, as a shader would) or, with `--direct`, integrated by the
 //! f64 kernel `brdf_core::split_sum::dfg_ggx` (17 significant digits).
+//!
+//! The table covers μ ≥ cos 89° ≈ 0.01745 only (the accuracy target's domain): below that it
+//! answers with its value at its smallest μ, while `--direct` integrates at the given μ, so
+//! the two differ there. The command warns on stderr when any row was clamped.
 
-use anyhow::{bail, Context, Result};
+use anyhow::{bail, Result};
 use brdf_core::split_sum::{dfg_ggx, InnerRule, OuterRule};
-use std::io::{BufRead, Write};
+use std::io::Write;
 use std::path::PathBuf;
 
 #[derive(clap::Args)]
+#[command(
+    after_help = "Grazing angles: the default table covers mu >= cos 89 deg = 0.0174524. \
+Rows below (or outside any table's axis ranges) are answered at the table's edge (clamped) and \
+a warning says how many; --direct integrates at the given mu instead."
+)]
 pub struct Args {
     /// Integrate with the direct kernel instead of reading the table.
     #[arg(long)]
@@ -21,29 +30,19 @@ pub struct Args {
 /// The output header.
 pub const HEADER: &str = "mu,roughness,A,B";
 
-/// Parses `mu,roughness`; `Ok(None)` for a header or blank line. μ ∈ [0, 1], r ∈ [0, 1].
-pub fn parse_row(line: &str, lineno: usize) -> Result<Option<([&str; 2], f64, f64)>> {
-    let t = line.trim();
-    if t.is_empty() || (lineno == 1 && t.starts_with("mu")) {
-        return Ok(None);
-    }
-    let f: Vec<&str> = t.split(',').map(str::trim).collect();
-    if f.len() != 2 {
-        bail!(
-            "line {lineno}: expected 2 fields mu,roughness, found {}",
-            f.len()
-        );
-    }
-    let num = |i: usize, name: &str| -> Result<f64> {
-        let v: f64 = f[i]
-            .parse()
-            .with_context(|| format!("line {lineno}: {name} `{}` is not a number", f[i]))?;
+/// The input columns.
+const COLUMNS: [&str; 2] = ["mu", "roughness"];
+
+/// Checks a row's `mu,roughness` values: μ ∈ [0, 1], r ∈ [0, 1].
+fn values(f: &[&str], lineno: usize) -> Result<(f64, f64)> {
+    let num = |i: usize| -> Result<f64> {
+        let v = super::number(f, i, COLUMNS[i], lineno)?;
         if !(0.0..=1.0).contains(&v) {
-            bail!("line {lineno}: {name} {v} outside [0, 1]");
+            bail!("line {lineno}: {} {v} outside [0, 1]", COLUMNS[i]);
         }
         Ok(v)
     };
-    Ok(Some(([f[0], f[1]], num(0, "mu")?, num(1, "roughness")?)))
+    Ok((num(0)?, num(1)?))
 }
 
 pub fn run(a: Args) -> Result<()> {
@@ -55,20 +54,36 @@ pub fn run(a: Args) -> Result<()> {
             .lut
             .clone()
             .unwrap_or_else(|| crate::lut::assets_dir().join("dfg_ggx.blut"));
-        bytes = std::fs::read(&p).with_context(|| format!("reading {}", p.display()))?;
+        bytes = crate::fsio::read_limited(&p, brdf_lut::MAX_FILE_BYTES)?;
         Some(
-            brdf_core::lut::DfgTable::parse(&bytes)
+            brdf_lut::DfgTable::parse(&bytes)
                 .map_err(|e| anyhow::anyhow!("{}: {e}", p.display()))?,
         )
     };
-    let stdin = std::io::stdin();
+    // The table's axis ranges (μ, roughness): rows outside are clamped by the lookup.
+    let ranges = match &table {
+        Some(t) => {
+            let v = t.view().map_err(|e| anyhow::anyhow!("{e}"))?;
+            let ax = &v.header().axes;
+            Some([(ax[0].lo, ax[0].hi), (ax[1].lo, ax[1].hi)])
+        }
+        None => None,
+    };
+    let (mut clamped, mut first) = (0usize, 0usize);
     let mut out = std::io::BufWriter::new(std::io::stdout().lock());
     writeln!(out, "{HEADER}")?;
-    for (i, line) in stdin.lock().lines().enumerate() {
-        let line = line.with_context(|| format!("line {}: unreadable input", i + 1))?;
-        let Some((fields, mu, r)) = parse_row(&line, i + 1)? else {
-            continue;
-        };
+    super::for_each_row(std::io::stdin().lock(), &COLUMNS, |lineno, f| {
+        let (mu, r) = values(f, lineno)?;
+        if let Some([m, g]) = ranges {
+            let outside =
+                |x: f64, (lo, hi): (f64, f64)| (x as f32) < lo as f32 || (x as f32) > hi as f32;
+            if outside(mu, m) || outside(r, g) {
+                clamped += 1;
+                if first == 0 {
+                    first = lineno;
+                }
+            }
+        }
         let (av, bv) = match &table {
             Some(t) => {
                 let (x, y) = t.ab(mu as f32, r as f32);
@@ -76,8 +91,17 @@ pub fn run(a: Args) -> Result<()> {
             }
             None => dfg_ggx::<f64, OuterRule, InnerRule>(mu, r),
         };
-        writeln!(out, "{},{},{:.16e},{:.16e}", fields[0], fields[1], av, bv)?;
-    }
+        writeln!(out, "{},{},{:.16e},{:.16e}", f[0], f[1], av, bv)?;
+        Ok(())
+    })?;
     out.flush()?;
+    if let (Some([m, g]), true) = (ranges, clamped > 0) {
+        eprintln!(
+            "warning: {clamped} row(s) (the first on line {first}) lie outside the table \
+             (mu in [{}, {}], roughness in [{}, {}]); the table answered them at its edge \
+             (clamped), --direct integrates there instead",
+            m.0, m.1, g.0, g.1
+        );
+    }
     Ok(())
 }

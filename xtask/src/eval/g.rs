@@ -6,7 +6,7 @@ use brdf_core::masking::{
     g_blinn, g_smith_beckmann_correlated, g_smith_beckmann_separable, Convention, ModifiedG,
 };
 use brdf_core::quadrature::{GaussLegendre, Rule, DEFAULT_NODES, NODE_COUNTS};
-use std::io::{BufRead, Write};
+use std::io::Write;
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -17,7 +17,8 @@ pub struct Args {
     #[arg(long, default_value_t = DEFAULT_NODES)]
     nodes: usize,
     /// Answer GM, GS and G from a G table instead of the kernel (f32 lookups; the Blinn and
-    /// Smith columns stay direct). Default table: assets/g_modified.blut (σ ∈ [0.05, 1]).
+    /// Smith columns stay direct). Default table: assets/g_modified.blut (σ ∈ [0.05, 1]); a
+    /// row with σ outside the table's range is an error (the table would clamp σ).
     #[arg(long)]
     lut: bool,
     /// The G table for `--lut` (a 3-D table, or a per-σ table whose σ every row must match).
@@ -42,33 +43,13 @@ pub struct Row<'a> {
     pub sigma: f64,
 }
 
-/// Parses `theta_i_deg,theta_r_deg,sigma`. `Ok(None)` for a header or blank line.
-pub fn parse_row(line: &str, lineno: usize) -> Result<Option<Row<'_>>> {
-    let t = line.trim();
-    if t.is_empty() || (lineno == 1 && t.starts_with("theta_i")) {
-        return Ok(None);
-    }
-    let f: Vec<&str> = t.split(',').map(str::trim).collect();
-    if f.len() != 3 {
-        bail!(
-            "line {lineno}: expected 3 fields theta_i_deg,theta_r_deg,sigma, found {}",
-            f.len()
-        );
-    }
-    let num = |i: usize, name: &str| -> Result<f64> {
-        let v: f64 = f[i]
-            .parse()
-            .with_context(|| format!("line {lineno}: {name} `{}` is not a number", f[i]))?;
-        if !v.is_finite() {
-            bail!("line {lineno}: {name} is not finite");
-        }
-        Ok(v)
-    };
-    let (ti, tr, s) = (
-        num(0, "theta_i_deg")?,
-        num(1, "theta_r_deg")?,
-        num(2, "sigma")?,
-    );
+/// The input columns.
+pub const COLUMNS: [&str; 3] = ["theta_i_deg", "theta_r_deg", "sigma"];
+
+/// Checks a row's fields: θi ∈ [0, 90]°, θr ∈ [−90, 90]°, σ > 0.
+pub fn parse_row<'a>(f: &[&'a str], lineno: usize) -> Result<Row<'a>> {
+    let num = |i: usize| super::number(f, i, COLUMNS[i], lineno);
+    let (ti, tr, s) = (num(0)?, num(1)?, num(2)?);
     if !(0.0..=90.0).contains(&ti) {
         bail!("line {lineno}: theta_i_deg {ti} outside [0, 90]");
     }
@@ -78,12 +59,12 @@ pub fn parse_row(line: &str, lineno: usize) -> Result<Option<Row<'_>>> {
     if s <= 0.0 {
         bail!("line {lineno}: sigma {s} must be > 0");
     }
-    Ok(Some(Row {
+    Ok(Row {
         fields: [f[0], f[1], f[2]],
         ti_deg: ti,
         tr_deg: tr,
         sigma: s,
-    }))
+    })
 }
 
 /// The direct-kernel columns GM, GS, G, G_blinn, G_smith_separable, G_smith_correlated.
@@ -115,53 +96,60 @@ pub fn parse_convention(s: &str) -> Result<Convention> {
 }
 
 fn run_with<R: Rule>(conv: Convention) -> Result<()> {
-    let stdin = std::io::stdin();
     let mut out = std::io::BufWriter::new(std::io::stdout().lock());
     writeln!(out, "{HEADER}")?;
-    for (i, line) in stdin.lock().lines().enumerate() {
-        let line = line.with_context(|| format!("line {}: unreadable input", i + 1))?;
-        let Some(row) = parse_row(&line, i + 1)? else {
-            continue;
-        };
-        let cols = direct_columns::<R>(&row, conv).with_context(|| format!("line {}", i + 1))?;
+    super::for_each_row(std::io::stdin().lock(), &COLUMNS, |lineno, f| {
+        let row = parse_row(f, lineno)?;
+        let cols = direct_columns::<R>(&row, conv).with_context(|| format!("line {lineno}"))?;
         let cols: Vec<String> = cols.iter().map(|&x| fmt17(x)).collect();
         writeln!(out, "{},{}", row.fields.join(","), cols.join(","))?;
-    }
+        Ok(())
+    })?;
     out.flush()?;
     Ok(())
 }
 
-/// `--lut`: the direct columns with GM, GS, G replaced by the table's (3-D table: any σ in
-/// its range, clamped; per-σ table: σ must match).
+/// `--lut`: the direct columns with GM, GS, G replaced by the table's. A 3-D table answers
+/// σ inside its σ axis only: a row outside is an error naming the line and the range (the
+/// lookup would clamp σ and answer for another surface); a per-σ table needs its own σ.
 fn run_lut(path: &std::path::Path, conv: Convention) -> Result<()> {
     if conv != Convention::Reciprocal {
         bail!("--lut tables hold the reciprocal convention only");
     }
-    let lut =
-        brdf_lut::Lut::from_path(path).with_context(|| format!("loading {}", path.display()))?;
-    let stdin = std::io::stdin();
+    let lut = crate::fsio::load_lut(path)?;
+    let h = lut.header();
+    let sigma_axis = h.axes.get(2).map(|a| (a.lo, a.hi));
     let mut out = std::io::BufWriter::new(std::io::stdout().lock());
     writeln!(out, "{HEADER}")?;
-    for (i, line) in stdin.lock().lines().enumerate() {
-        let line = line.with_context(|| format!("line {}: unreadable input", i + 1))?;
-        let Some(row) = parse_row(&line, i + 1)? else {
-            continue;
-        };
+    super::for_each_row(std::io::stdin().lock(), &COLUMNS, |lineno, f| {
+        let row = parse_row(f, lineno)?;
+        if let Some((lo, hi)) = sigma_axis {
+            let s = row.sigma as f32;
+            if s < lo as f32 || s > hi as f32 {
+                bail!(
+                    "line {lineno}: sigma {} is outside the table's range [{lo}, {hi}] \
+                     ({}); leave out --lut for the direct kernel",
+                    row.sigma,
+                    path.display()
+                );
+            }
+        }
         let mut cols = direct_columns::<GaussLegendre<4>>(&row, conv)
-            .with_context(|| format!("line {}", i + 1))?;
+            .with_context(|| format!("line {lineno}"))?;
         let (gm, gs, g) = lut
             .g_terms(
                 row.ti_deg.to_radians() as f32,
                 row.tr_deg.to_radians() as f32,
                 row.sigma as f32,
             )
-            .with_context(|| format!("line {}", i + 1))?;
+            .map_err(|e| anyhow::anyhow!("line {lineno}: {e}"))?;
         cols[0] = gm as f64;
         cols[1] = gs as f64;
         cols[2] = g as f64;
         let cols: Vec<String> = cols.iter().map(|&x| fmt17(x)).collect();
         writeln!(out, "{},{}", row.fields.join(","), cols.join(","))?;
-    }
+        Ok(())
+    })?;
     out.flush()?;
     Ok(())
 }

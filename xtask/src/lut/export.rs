@@ -1,9 +1,9 @@
 //! `cargo xtask lut export`: node values as a 16-bit PNG or raw little-endian f16/f32, with
 //! a JSON sidecar that states axes, orientation, texel placement and that values are linear.
 
-use anyhow::{bail, Context, Result};
-use brdf_core::lut::{f32_to_f16, LutView, Placement, Warp};
-use std::path::PathBuf;
+use anyhow::{bail, Result};
+use brdf_lut::{f32_to_f16, LutView, Placement, Warp};
+use std::path::{Path, PathBuf};
 
 #[derive(clap::Args)]
 pub struct ExportArgs {
@@ -18,10 +18,23 @@ pub struct ExportArgs {
     /// Raw little-endian IEEE binary32, channels interleaved, axis 0 fastest.
     #[arg(long, group = "fmt")]
     raw_f32: bool,
-    /// Output path (default: the input with the format's extension); the sidecar is
-    /// `<output>.json`.
+    /// Output path (default: the input's file name with the format's extension, in the
+    /// current folder, never in assets/); the sidecar is `<output>.json`. The input is never
+    /// overwritten.
     #[arg(long, short)]
     out: Option<PathBuf>,
+    /// Replace an existing output and sidecar.
+    #[arg(long)]
+    force: bool,
+}
+
+/// The default output: the input's file name with `ext`, in the current folder.
+fn default_out(input: &Path, ext: &str) -> PathBuf {
+    let name = input
+        .file_name()
+        .map(Path::new)
+        .unwrap_or(Path::new("table"));
+    PathBuf::from(name.with_extension(ext).file_name().unwrap_or_default())
 }
 
 fn placement_formula(p: Placement) -> &'static str {
@@ -42,9 +55,8 @@ fn warp_formula(w: Warp) -> &'static str {
 }
 
 pub fn run(a: ExportArgs) -> Result<()> {
-    let lut = brdf_lut::Lut::from_path(&a.file)
-        .with_context(|| format!("loading {}", a.file.display()))?;
-    let v: LutView<'_> = lut.view();
+    let lut = crate::fsio::load_lut(&a.file)?;
+    let v: LutView<'_> = lut.view()?;
     let h = v.header();
     let nodes: usize = h.axes.iter().map(|x| x.count as usize).product();
     let nc = v.channels();
@@ -61,7 +73,11 @@ pub fn run(a: ExportArgs) -> Result<()> {
     } else {
         bail!("choose one of --png16, --raw-f16, --raw-f32");
     };
-    let out = a.out.clone().unwrap_or_else(|| a.file.with_extension(ext));
+    let out = a.out.clone().unwrap_or_else(|| default_out(&a.file, ext));
+    let side_path = PathBuf::from(format!("{}.json", out.display()));
+    let policy = crate::fsio::Policy::new(a.force, &[&a.file]);
+    crate::fsio::check(&[&out, &side_path], &policy)?;
+    let payload: Vec<u8>;
     let mut png_map = serde_json::Value::Null;
     if a.png16 {
         if h.axes.len() > 2 || nc > 2 {
@@ -106,8 +122,8 @@ pub fn run(a: ExportArgs) -> Result<()> {
                 data.extend_from_slice(&q.to_be_bytes());
             }
         }
-        let f = std::fs::File::create(&out)?;
-        let mut enc = png::Encoder::new(std::io::BufWriter::new(f), w, ht);
+        let mut encoded = Vec::new();
+        let mut enc = png::Encoder::new(&mut encoded, w, ht);
         enc.set_color(if nc == 1 {
             png::ColorType::Grayscale
         } else {
@@ -116,6 +132,8 @@ pub fn run(a: ExportArgs) -> Result<()> {
         enc.set_depth(png::BitDepth::Sixteen);
         let mut wr = enc.write_header()?;
         wr.write_image_data(&data)?;
+        wr.finish()?;
+        payload = encoded;
         png_map = serde_json::json!(ranges
             .iter()
             .zip(h.channels.iter())
@@ -130,7 +148,7 @@ pub fn run(a: ExportArgs) -> Result<()> {
                 data.extend_from_slice(&x.to_le_bytes());
             }
         }
-        std::fs::write(&out, data)?;
+        payload = data;
     }
     let axes: Vec<_> = h
         .axes
@@ -169,8 +187,11 @@ pub fn run(a: ExportArgs) -> Result<()> {
         "byte_order": if a.png16 { "PNG (big-endian samples)" } else { "little-endian" },
         "error_vs_direct_kernel": {"max_abs": h.error.max_abs, "rms": h.error.rms},
     });
-    let side_path = PathBuf::from(format!("{}.json", out.display()));
-    std::fs::write(&side_path, serde_json::to_string_pretty(&side)? + "\n")?;
+    let side_bytes = (serde_json::to_string_pretty(&side)? + "\n").into_bytes();
+    crate::fsio::write_together(
+        &[(out.clone(), payload), (side_path.clone(), side_bytes)],
+        &policy,
+    )?;
     println!("wrote {} and {}", out.display(), side_path.display());
     Ok(())
 }

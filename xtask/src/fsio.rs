@@ -1,0 +1,533 @@
+//! Writes that never lose a file.
+//!
+//! Every file xtask writes goes through [`write_together`]:
+//!
+//! - each output is first written to a temporary file in its own folder, flushed and synced,
+//!   and only then renamed over the target, so a crash or a full disk leaves the previous file
+//!   intact and no partial file behind;
+//! - an output that is one of the command's inputs (same path, another spelling of it, a hard
+//!   or symbolic link to it) is refused, `--force` or not;
+//! - an existing output is replaced only with `--force` ([`Policy::force`]);
+//! - a protected folder (the committed `assets/`) is written only when the policy says so;
+//! - outputs written together (a data file and its JSON sidecar) succeed or fail together:
+//!   all temporaries are written before the first rename, and a failed rename puts every
+//!   file already renamed back as it was;
+//! - every error names its path once.
+
+use anyhow::{anyhow, bail, Result};
+use std::io::{self, Write};
+use std::path::{Path, PathBuf};
+use tempfile::{NamedTempFile, TempPath};
+
+/// What a command may do to existing files and folders.
+#[derive(Clone, Debug, Default)]
+pub struct Policy {
+    /// Replace existing outputs (`--force`).
+    pub force: bool,
+    /// The command's inputs: never written, whatever `force` says.
+    pub inputs: Vec<PathBuf>,
+    /// A folder that must not be written (the committed assets), if any.
+    pub protected: Option<PathBuf>,
+}
+
+impl Policy {
+    /// Inputs never overwritten; existing outputs replaced with `force`; `assets/` protected.
+    pub fn new(force: bool, inputs: &[&Path]) -> Self {
+        Self {
+            force,
+            inputs: inputs.iter().map(|p| p.to_path_buf()).collect(),
+            protected: Some(crate::lut::assets_dir()),
+        }
+    }
+}
+
+/// Fault injection for the tests: the temporary file's writer fails with "no space left on
+/// device" after `fail_after_bytes` bytes, or the `fail_rename`-th rename into place (0-based)
+/// fails.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Faults {
+    pub fail_after_bytes: Option<u64>,
+    pub fail_rename: Option<usize>,
+}
+
+/// A writer that accepts `left` bytes, then fails as a full disk does.
+struct FailAfter<W> {
+    inner: W,
+    left: Option<u64>,
+}
+
+impl<W: Write> Write for FailAfter<W> {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        match self.left {
+            None => self.inner.write(buf),
+            Some(0) => Err(io::Error::from_raw_os_error(28)), // ENOSPC
+            Some(n) => {
+                let k = buf.len().min(n as usize);
+                let w = self.inner.write(&buf[..k])?;
+                self.left = Some(n - w as u64);
+                Ok(w)
+            }
+        }
+    }
+    fn flush(&mut self) -> io::Result<()> {
+        self.inner.flush()
+    }
+}
+
+/// The folder a path lives in (`.` for a bare file name).
+fn folder(p: &Path) -> PathBuf {
+    match p.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    }
+}
+
+/// Absolute form of `p` with its folder's symbolic links resolved: the nearest existing
+/// ancestor folder is canonicalised and the rest appended (neither the file nor its folder
+/// need exist yet).
+fn resolve(p: &Path) -> Option<PathBuf> {
+    let name = p.file_name()?;
+    let mut dir = folder(p);
+    let mut rest = Vec::new();
+    loop {
+        if let Ok(c) = dir.canonicalize() {
+            let mut out = c;
+            for part in rest.iter().rev() {
+                out.push(part);
+            }
+            out.push(name);
+            return Some(out);
+        }
+        rest.push(dir.file_name()?.to_os_string());
+        dir = folder(&dir);
+    }
+}
+
+/// Reads an input file whole, refusing files over `limit` bytes before reading them.
+/// The error names the path once.
+pub fn read_limited(path: &Path, limit: u64) -> Result<Vec<u8>> {
+    use std::io::Read;
+    let f = std::fs::File::open(path).map_err(|e| anyhow!("reading {}: {e}", path.display()))?;
+    let mut v = Vec::new();
+    f.take(limit + 1)
+        .read_to_end(&mut v)
+        .map_err(|e| anyhow!("reading {}: {e}", path.display()))?;
+    if v.len() as u64 > limit {
+        bail!("{} is larger than {limit} bytes", path.display());
+    }
+    Ok(v)
+}
+
+/// Loads a LUT; the error names the path once and the cause once.
+pub fn load_lut(path: &Path) -> Result<brdf_lut::Lut> {
+    let bytes = read_limited(path, brdf_lut::MAX_FILE_BYTES)?;
+    brdf_lut::Lut::from_bytes(bytes).map_err(|e| anyhow!("{}: {e}", path.display()))
+}
+
+/// Checks every output against the policy without writing anything (commands call it before
+/// long computations, and [`write_together`] calls it again just before writing).
+pub fn check(outputs: &[&Path], policy: &Policy) -> Result<()> {
+    for (k, out) in outputs.iter().enumerate() {
+        if out.file_name().is_none() {
+            bail!("{}: not a file name", out.display());
+        }
+        if outputs[..k]
+            .iter()
+            .any(|o| o == out || resolve(o) == resolve(out))
+        {
+            bail!("{} is named twice among the outputs", out.display());
+        }
+        let abs = resolve(out);
+        for inp in &policy.inputs {
+            let same = same_file::is_same_file(out, inp).unwrap_or(false)
+                || (abs.is_some() && abs == resolve(inp));
+            if same {
+                bail!(
+                    "refusing to write {}: it is the input {} (choose another output path)",
+                    out.display(),
+                    inp.display()
+                );
+            }
+        }
+        if let (Some(prot), Some(abs)) = (&policy.protected, &abs) {
+            if let Ok(prot) = prot.canonicalize() {
+                if abs.starts_with(&prot) {
+                    bail!(
+                        "refusing to write {}: {} holds the committed default tables, which only \
+                         `cargo xtask lut` (the default set, unmodified) regenerates; choose \
+                         another output folder",
+                        out.display(),
+                        prot.display()
+                    );
+                }
+            }
+        }
+        match std::fs::symlink_metadata(out) {
+            Ok(m) if m.is_dir() => bail!("{} is a folder", out.display()),
+            Ok(_) if !policy.force => bail!("{} exists; pass --force to replace it", out.display()),
+            Ok(_) => {}
+            Err(e) if e.kind() == io::ErrorKind::NotFound => {}
+            Err(e) => bail!("{}: {e}", out.display()),
+        }
+    }
+    Ok(())
+}
+
+/// Writes `files` (path, bytes) so that all of them are replaced or none is (module docs).
+pub fn write_together(files: &[(PathBuf, Vec<u8>)], policy: &Policy) -> Result<()> {
+    write_with_faults(files, policy, Faults::default())
+}
+
+/// Replaces a generated file (a report, a build product) atomically: temp file, sync, rename.
+pub fn replace(path: &Path, bytes: &[u8]) -> Result<()> {
+    let policy = Policy {
+        force: true,
+        ..Policy::default()
+    };
+    write_together(&[(path.to_path_buf(), bytes.to_vec())], &policy)
+}
+
+/// [`write_together`] with injected faults (tests).
+pub fn write_with_faults(
+    files: &[(PathBuf, Vec<u8>)],
+    policy: &Policy,
+    faults: Faults,
+) -> Result<()> {
+    let paths: Vec<&Path> = files.iter().map(|(p, _)| p.as_path()).collect();
+    check(&paths, policy)?;
+    // 1. Every temporary written and synced before anything is renamed.
+    let mut temps: Vec<NamedTempFile> = Vec::with_capacity(files.len());
+    for (path, bytes) in files {
+        let dir = folder(path);
+        std::fs::create_dir_all(&dir).map_err(|e| anyhow!("creating {}: {e}", dir.display()))?;
+        let name = path.file_name().unwrap_or_default().to_string_lossy();
+        let tmp = tempfile::Builder::new()
+            .prefix(&format!(".{name}."))
+            .suffix(".tmp")
+            .tempfile_in(&dir)
+            .map_err(|e| anyhow!("writing {}: {e}", path.display()))?;
+        let mut w = FailAfter {
+            inner: io::BufWriter::new(tmp.as_file()),
+            left: faults.fail_after_bytes,
+        };
+        w.write_all(bytes)
+            .and_then(|_| w.flush())
+            .and_then(|_| tmp.as_file().sync_all())
+            .map_err(|e| anyhow!("writing {}: {e}", path.display()))?;
+        drop(w);
+        temps.push(tmp);
+    }
+    // 2. Renames, each target's previous file kept aside until all have succeeded.
+    let mut done: Vec<(PathBuf, Option<TempPath>)> = Vec::new();
+    let mut failure = None;
+    for (k, ((path, _), tmp)) in files.iter().zip(temps).enumerate() {
+        match commit_one(path, tmp, policy.force, faults.fail_rename == Some(k)) {
+            Ok(backup) => done.push((path.clone(), backup)),
+            Err(e) => {
+                failure = Some(e);
+                break;
+            }
+        }
+    }
+    if let Some(e) = failure {
+        for (path, backup) in done.into_iter().rev() {
+            match backup {
+                Some(b) => {
+                    let _ = std::fs::rename(&b, &path);
+                    let _ = b.keep();
+                }
+                None => {
+                    let _ = std::fs::remove_file(&path);
+                }
+            }
+        }
+        return Err(e);
+    }
+    for d in files.iter().map(|(p, _)| folder(p)) {
+        sync_dir(&d);
+    }
+    // The backups are deleted when `done` drops.
+    Ok(())
+}
+
+/// Renames `tmp` onto `path`; returns the previous file's new (temporary) name, if any.
+fn commit_one(
+    path: &Path,
+    tmp: NamedTempFile,
+    force: bool,
+    inject: bool,
+) -> Result<Option<TempPath>> {
+    let err = |e: &dyn std::fmt::Display| anyhow!("writing {}: {e}", path.display());
+    let backup = if force && path.exists() {
+        let name = path.file_name().unwrap_or_default().to_string_lossy();
+        let b = tempfile::Builder::new()
+            .prefix(&format!(".{name}."))
+            .suffix(".old")
+            .tempfile_in(folder(path))
+            .map_err(|e| err(&e))?
+            .into_temp_path();
+        std::fs::rename(path, &b).map_err(|e| err(&e))?;
+        Some(b)
+    } else {
+        None
+    };
+    let restore = |b: Option<TempPath>| {
+        if let Some(b) = b {
+            let _ = std::fs::rename(&b, path);
+            let _ = b.keep();
+        }
+    };
+    if inject {
+        restore(backup);
+        return Err(err(&"injected rename failure"));
+    }
+    let res = if force {
+        tmp.persist(path).map(|_| ())
+    } else {
+        // Fails if the target appeared since the check: never replaced without --force.
+        tmp.persist_noclobber(path).map(|_| ())
+    };
+    match res {
+        Ok(()) => Ok(backup),
+        Err(e) => {
+            restore(backup);
+            Err(err(&e.error))
+        }
+    }
+}
+
+/// Makes the renames durable (best effort: not every platform can sync a folder).
+fn sync_dir(dir: &Path) {
+    #[cfg(unix)]
+    if let Ok(f) = std::fs::File::open(dir) {
+        let _ = f.sync_all();
+    }
+    #[cfg(not(unix))]
+    let _ = dir;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn pol(force: bool) -> Policy {
+        Policy {
+            force,
+            inputs: vec![],
+            protected: None,
+        }
+    }
+
+    /// Files in `dir` other than the named ones (temporaries or backups left behind).
+    fn strays(dir: &Path, keep: &[&str]) -> Vec<String> {
+        std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| !keep.contains(&n.as_str()))
+            .collect()
+    }
+
+    #[test]
+    fn new_file_is_written_and_nothing_else_is_left() {
+        let d = tempfile::tempdir().unwrap();
+        let p = d.path().join("a.bin");
+        write_together(&[(p.clone(), vec![1, 2, 3])], &pol(false)).unwrap();
+        assert_eq!(std::fs::read(&p).unwrap(), [1, 2, 3]);
+        assert!(strays(d.path(), &["a.bin"]).is_empty());
+    }
+
+    #[test]
+    fn missing_folder_is_created() {
+        let d = tempfile::tempdir().unwrap();
+        let p = d.path().join("x/y/a.bin");
+        write_together(&[(p.clone(), vec![7])], &pol(false)).unwrap();
+        assert_eq!(std::fs::read(&p).unwrap(), [7]);
+    }
+
+    #[test]
+    fn existing_file_needs_force() {
+        let d = tempfile::tempdir().unwrap();
+        let p = d.path().join("a.bin");
+        std::fs::write(&p, b"old").unwrap();
+        let e = write_together(&[(p.clone(), b"new".to_vec())], &pol(false)).unwrap_err();
+        assert!(e.to_string().contains("--force"), "{e}");
+        assert_eq!(std::fs::read(&p).unwrap(), b"old");
+        write_together(&[(p.clone(), b"new".to_vec())], &pol(true)).unwrap();
+        assert_eq!(std::fs::read(&p).unwrap(), b"new");
+        assert!(strays(d.path(), &["a.bin"]).is_empty());
+    }
+
+    #[test]
+    fn input_is_never_written_under_any_spelling() {
+        let d = tempfile::tempdir().unwrap();
+        let inp = d.path().join("in.blut");
+        std::fs::write(&inp, b"input").unwrap();
+        let link = d.path().join("hard.blut");
+        std::fs::hard_link(&inp, &link).unwrap();
+        let other = d.path().join("sub");
+        std::fs::create_dir(&other).unwrap();
+        let spellings = [
+            inp.clone(),
+            d.path().join(".").join("in.blut"),
+            other.join("..").join("in.blut"),
+            link,
+        ];
+        #[cfg(unix)]
+        let spellings = {
+            let mut s = spellings.to_vec();
+            let sym = d.path().join("sym.blut");
+            std::os::unix::fs::symlink(&inp, &sym).unwrap();
+            s.push(sym);
+            s
+        };
+        for out in spellings.iter() {
+            let p = Policy {
+                force: true,
+                inputs: vec![inp.clone()],
+                protected: None,
+            };
+            let e = write_together(&[(out.clone(), b"x".to_vec())], &p).unwrap_err();
+            assert!(e.to_string().contains("it is the input"), "{out:?}: {e}");
+            assert_eq!(std::fs::read(&inp).unwrap(), b"input");
+        }
+    }
+
+    #[test]
+    fn protected_folder_is_refused() {
+        let d = tempfile::tempdir().unwrap();
+        let p = Policy {
+            force: true,
+            inputs: vec![],
+            protected: Some(d.path().to_path_buf()),
+        };
+        let e = write_together(&[(d.path().join("t.blut"), vec![1])], &p).unwrap_err();
+        assert!(e.to_string().contains("committed default tables"), "{e}");
+        // Also in a subfolder that does not exist yet (it must not be created).
+        let deep = d.path().join("new/sub/t.blut");
+        let e = write_together(&[(deep, vec![1])], &p).unwrap_err();
+        assert!(e.to_string().contains("committed default tables"), "{e}");
+        assert!(strays(d.path(), &[]).is_empty());
+    }
+
+    #[test]
+    fn full_disk_leaves_previous_file_and_no_partial() {
+        let d = tempfile::tempdir().unwrap();
+        let p = d.path().join("a.bin");
+        std::fs::write(&p, b"previous").unwrap();
+        let big = vec![0xAB; 507_904];
+        let f = Faults {
+            fail_after_bytes: Some(65_536),
+            fail_rename: None,
+        };
+        let e = write_with_faults(&[(p.clone(), big)], &pol(true), f).unwrap_err();
+        let msg = format!("{e:#}");
+        assert_eq!(msg.matches("a.bin").count(), 1, "{msg}");
+        assert_eq!(msg.matches("No space left").count(), 1, "{msg}");
+        assert_eq!(std::fs::read(&p).unwrap(), b"previous");
+        assert!(strays(d.path(), &["a.bin"]).is_empty());
+        // A new file on a full disk: nothing at all is left.
+        let q = d.path().join("new.bin");
+        write_with_faults(&[(q.clone(), vec![1; 100])], &pol(false), f).unwrap();
+        let f0 = Faults {
+            fail_after_bytes: Some(0),
+            fail_rename: None,
+        };
+        let r = d.path().join("never.bin");
+        assert!(write_with_faults(&[(r.clone(), vec![1; 100])], &pol(false), f0).is_err());
+        assert!(!r.exists());
+        assert!(strays(d.path(), &["a.bin", "new.bin"]).is_empty());
+    }
+
+    #[test]
+    fn pair_fails_together_on_second_write() {
+        let d = tempfile::tempdir().unwrap();
+        let (a, b) = (d.path().join("t.png"), d.path().join("t.png.json"));
+        // The first file fits, the sidecar does not: the limit applies per file, so give the
+        // data file fewer bytes than the limit and the sidecar more.
+        let f = Faults {
+            fail_after_bytes: Some(10),
+            fail_rename: None,
+        };
+        let files = [(a.clone(), vec![1; 5]), (b.clone(), vec![2; 50])];
+        assert!(write_with_faults(&files, &pol(false), f).is_err());
+        assert!(!a.exists() && !b.exists());
+        assert!(strays(d.path(), &[]).is_empty());
+    }
+
+    #[test]
+    fn pair_rolls_back_when_second_rename_fails() {
+        let d = tempfile::tempdir().unwrap();
+        let (a, b) = (d.path().join("t.bin"), d.path().join("t.bin.json"));
+        std::fs::write(&a, b"old data").unwrap();
+        std::fs::write(&b, b"old side").unwrap();
+        let f = Faults {
+            fail_after_bytes: None,
+            fail_rename: Some(1),
+        };
+        let files = [
+            (a.clone(), b"new data".to_vec()),
+            (b.clone(), b"new side".to_vec()),
+        ];
+        let e = write_with_faults(&files, &pol(true), f).unwrap_err();
+        assert!(e.to_string().contains("t.bin.json"), "{e}");
+        assert_eq!(std::fs::read(&a).unwrap(), b"old data");
+        assert_eq!(std::fs::read(&b).unwrap(), b"old side");
+        assert!(strays(d.path(), &["t.bin", "t.bin.json"]).is_empty());
+        // New pair, second rename fails: neither file exists afterwards.
+        let (c, s) = (d.path().join("n.bin"), d.path().join("n.bin.json"));
+        let files = [(c.clone(), vec![1]), (s.clone(), vec![2])];
+        assert!(write_with_faults(&files, &pol(false), f).is_err());
+        assert!(!c.exists() && !s.exists());
+        assert!(strays(d.path(), &["t.bin", "t.bin.json"]).is_empty());
+    }
+
+    #[test]
+    fn missing_input_error_names_path_and_cause_once() {
+        let d = tempfile::tempdir().unwrap();
+        let p = d.path().join("nope.blut");
+        let msg = format!("{:#}", load_lut(&p).unwrap_err());
+        assert_eq!(msg.matches("nope.blut").count(), 1, "{msg}");
+        assert_eq!(msg.matches("No such file or directory").count(), 1, "{msg}");
+        let bad = d.path().join("bad.blut");
+        std::fs::write(&bad, b"not a table").unwrap();
+        let msg = format!("{:#}", load_lut(&bad).unwrap_err());
+        assert_eq!(msg.matches("bad.blut").count(), 1, "{msg}");
+    }
+
+    /// A real full disk: a 64 KiB tmpfs. Needs the right to mount (root on Linux); skipped
+    /// with a message otherwise, the injected-writer tests above cover the logic.
+    #[test]
+    #[cfg(target_os = "linux")]
+    fn real_full_tmpfs_keeps_previous_file() {
+        let d = tempfile::tempdir().unwrap();
+        let mnt = d.path().join("small");
+        std::fs::create_dir(&mnt).unwrap();
+        let ok = std::process::Command::new("mount")
+            .args(["-t", "tmpfs", "-o", "size=64k", "tmpfs"])
+            .arg(&mnt)
+            .stderr(std::process::Stdio::null())
+            .status()
+            .is_ok_and(|s| s.success());
+        if !ok {
+            eprintln!("skipped: cannot mount a tmpfs here (needs root)");
+            return;
+        }
+        let p = mnt.join("dfg.f32.bin");
+        let r = (|| {
+            write_together(&[(p.clone(), vec![5; 20_000])], &pol(false))?;
+            let e = write_together(&[(p.clone(), vec![6; 507_904])], &pol(true)).unwrap_err();
+            let msg = format!("{e:#}");
+            let prev = std::fs::read(&p)?;
+            let left = strays(&mnt, &["dfg.f32.bin"]);
+            anyhow::Ok((msg, prev, left))
+        })();
+        let _ = std::process::Command::new("umount").arg(&mnt).status();
+        let (msg, prev, left) = r.unwrap();
+        assert!(
+            msg.contains("dfg.f32.bin") && msg.contains("No space left"),
+            "{msg}"
+        );
+        assert_eq!(prev, vec![5; 20_000]);
+        assert!(left.is_empty(), "{left:?}");
+    }
+}

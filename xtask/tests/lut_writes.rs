@@ -1,0 +1,265 @@
+//! `cargo xtask lut …` never loses a file: the write cases of the command line, end to end.
+//! (The temp-file/rename/rollback logic itself is unit-tested with injected faults in
+//! `xtask/src/fsio.rs`.)
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+
+fn xtask(args: &[&str], cwd: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_xtask"))
+        .args(args)
+        .current_dir(cwd)
+        .stdin(Stdio::null())
+        .output()
+        .expect("xtask runs")
+}
+
+fn err(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn assets() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets")
+}
+
+/// A small committed table copied into `dir` under `name`.
+fn input(dir: &Path, name: &str) -> PathBuf {
+    let p = dir.join(name);
+    std::fs::copy(assets().join("kc_eavg_ggx.blut"), &p).unwrap();
+    p
+}
+
+fn listing(dir: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn export_never_overwrites_its_input() {
+    let d = tempfile::tempdir().unwrap();
+    let inp = input(d.path(), "mine.blut");
+    let before = std::fs::read(&inp).unwrap();
+    for force in [false, true] {
+        let mut args = vec!["lut", "export", "mine.blut", "--raw-f16", "-o", "mine.blut"];
+        if force {
+            args.push("--force");
+        }
+        let o = xtask(&args, d.path());
+        assert!(!o.status.success());
+        assert!(err(&o).contains("it is the input"), "{}", err(&o));
+        assert_eq!(std::fs::read(&inp).unwrap(), before);
+    }
+    // A table named table.png exported with --png16: the default output is the input.
+    let png = input(d.path(), "table.png");
+    let o = xtask(&["lut", "export", "table.png", "--png16"], d.path());
+    assert!(!o.status.success());
+    assert!(err(&o).contains("it is the input"), "{}", err(&o));
+    assert_eq!(std::fs::read(&png).unwrap(), before);
+    assert_eq!(listing(d.path()), ["mine.blut", "table.png"]);
+}
+
+#[test]
+fn export_defaults_to_the_current_folder_and_needs_force_to_replace() {
+    let d = tempfile::tempdir().unwrap();
+    let src = assets().join("kc_eavg_ggx.blut");
+    let assets_before = listing(&assets());
+    let o = xtask(
+        &["lut", "export", src.to_str().unwrap(), "--png16"],
+        d.path(),
+    );
+    assert!(o.status.success(), "{}", err(&o));
+    assert_eq!(
+        listing(&assets()),
+        assets_before,
+        "export wrote into assets/"
+    );
+    assert_eq!(
+        listing(d.path()),
+        ["kc_eavg_ggx.png", "kc_eavg_ggx.png.json"]
+    );
+    // The PNG is complete: an independent decoder reads every row (IEND present).
+    let dec = png::Decoder::new(std::io::BufReader::new(
+        std::fs::File::open(d.path().join("kc_eavg_ggx.png")).unwrap(),
+    ));
+    let mut r = dec.read_info().unwrap();
+    let mut buf = vec![0; r.output_buffer_size()];
+    r.next_frame(&mut buf).unwrap();
+    r.finish().unwrap();
+    // Existing output: refused without --force, nothing touched.
+    std::fs::write(d.path().join("kc_eavg_ggx.png.json"), b"mine").unwrap();
+    let o = xtask(
+        &["lut", "export", src.to_str().unwrap(), "--png16"],
+        d.path(),
+    );
+    assert!(!o.status.success());
+    assert!(err(&o).contains("--force"), "{}", err(&o));
+    assert_eq!(
+        std::fs::read(d.path().join("kc_eavg_ggx.png.json")).unwrap(),
+        b"mine"
+    );
+    let o = xtask(
+        &["lut", "export", src.to_str().unwrap(), "--png16", "--force"],
+        d.path(),
+    );
+    assert!(o.status.success(), "{}", err(&o));
+    let side = std::fs::read_to_string(d.path().join("kc_eavg_ggx.png.json")).unwrap();
+    assert!(side.contains("\"format\": \"png16\""), "{side}");
+    assert_eq!(
+        listing(d.path()),
+        ["kc_eavg_ggx.png", "kc_eavg_ggx.png.json"]
+    );
+}
+
+#[test]
+fn export_refuses_assets_folder() {
+    let d = tempfile::tempdir().unwrap();
+    let inp = input(d.path(), "t.blut");
+    let target = assets().join("t.f32.bin");
+    let o = xtask(
+        &[
+            "lut",
+            "export",
+            inp.to_str().unwrap(),
+            "--raw-f32",
+            "-o",
+            target.to_str().unwrap(),
+            "--force",
+        ],
+        d.path(),
+    );
+    assert!(!o.status.success());
+    assert!(err(&o).contains("committed default tables"), "{}", err(&o));
+    assert!(!target.exists());
+}
+
+#[test]
+fn missing_input_named_once() {
+    let d = tempfile::tempdir().unwrap();
+    let o = xtask(&["lut", "export", "gone.blut", "--raw-f32"], d.path());
+    assert!(!o.status.success());
+    let e = err(&o);
+    assert_eq!(e.matches("gone.blut").count(), 1, "{e}");
+    assert_eq!(e.matches("os error 2").count(), 1, "{e}");
+}
+
+#[test]
+fn modified_default_table_never_replaces_the_committed_asset() {
+    let d = tempfile::tempdir().unwrap();
+    let committed = std::fs::read(assets().join("dfg_ggx.blut")).unwrap();
+    let o = xtask(&["lut", "--only", "dfg_ggx", "--res", "32x32"], d.path());
+    assert!(!o.status.success());
+    assert!(err(&o).contains("--out"), "{}", err(&o));
+    // Naming assets/ explicitly is refused too, --force or not.
+    let a = assets();
+    let o = xtask(
+        &[
+            "lut",
+            "--only",
+            "kc_eavg_ggx",
+            "--res",
+            "4",
+            "--out",
+            a.to_str().unwrap(),
+            "--force",
+        ],
+        d.path(),
+    );
+    assert!(!o.status.success());
+    assert!(err(&o).contains("committed default tables"), "{}", err(&o));
+    assert_eq!(
+        std::fs::read(assets().join("dfg_ggx.blut")).unwrap(),
+        committed
+    );
+    // Elsewhere: written, then refused without --force, replaced with it.
+    let out = d.path().join("out");
+    let args = [
+        "lut",
+        "--only",
+        "kc_eavg_ggx",
+        "--res",
+        "4",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let o = xtask(&args, d.path());
+    assert!(o.status.success(), "{}", err(&o));
+    assert_eq!(listing(&out), ["kc_eavg_ggx.blut"]);
+    let o = xtask(&args, d.path());
+    assert!(!o.status.success());
+    assert!(err(&o).contains("--force"), "{}", err(&o));
+    let mut forced = args.to_vec();
+    forced.push("--force");
+    let o = xtask(&forced, d.path());
+    assert!(o.status.success(), "{}", err(&o));
+    assert_eq!(listing(&out), ["kc_eavg_ggx.blut"]);
+}
+
+/// A real full disk (16 KiB tmpfs; needs root, skipped otherwise): the 32 KiB export fails
+/// naming its path, and neither a partial data file nor a sidecar is left.
+#[test]
+#[cfg(target_os = "linux")]
+fn export_onto_full_disk_leaves_nothing() {
+    let d = tempfile::tempdir().unwrap();
+    let mnt = d.path().join("small");
+    std::fs::create_dir(&mnt).unwrap();
+    let ok = Command::new("mount")
+        .args(["-t", "tmpfs", "-o", "size=16k", "tmpfs"])
+        .arg(&mnt)
+        .stderr(Stdio::null())
+        .status()
+        .is_ok_and(|s| s.success());
+    if !ok {
+        eprintln!("skipped: cannot mount a tmpfs here (needs root)");
+        return;
+    }
+    let src = assets().join("dfg_ggx.blut");
+    let o = xtask(
+        &[
+            "lut",
+            "export",
+            src.to_str().unwrap(),
+            "--raw-f32",
+            "-o",
+            "t.bin",
+        ],
+        &mnt,
+    );
+    let left = listing(&mnt);
+    let _ = Command::new("umount").arg(&mnt).status();
+    assert!(!o.status.success());
+    let e = err(&o);
+    assert!(e.contains("t.bin") && e.contains("No space left"), "{e}");
+    assert!(left.is_empty(), "{left:?}");
+}
+
+/// `--max-error` on the default set: a 2 x 2 split-sum table (max error ~0.3) fails with a
+/// non-zero exit and writes nothing; the same table without the limit is written.
+#[test]
+fn max_error_fails_an_overridden_default_table() {
+    let d = tempfile::tempdir().unwrap();
+    let out = d.path().join("out");
+    let args = [
+        "lut",
+        "--only",
+        "dfg_ggx",
+        "--res",
+        "2x2",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let mut strict = args.to_vec();
+    strict.extend_from_slice(&["--max-error", "0.01"]);
+    let o = xtask(&strict, d.path());
+    assert!(!o.status.success());
+    assert!(err(&o).contains("dfg_ggx.blut"), "{}", err(&o));
+    assert!(err(&o).contains("exceeds --max-error"), "{}", err(&o));
+    assert!(!out.exists() || listing(&out).is_empty());
+    let o = xtask(&args, d.path());
+    assert!(o.status.success(), "{}", err(&o));
+    let lut = brdf_lut::Lut::from_path(out.join("dfg_ggx.blut")).unwrap();
+    assert!(lut.header().error.max_abs > 0.01);
+}
