@@ -26,6 +26,8 @@ use std::process::Command;
 use std::sync::{Arc, Mutex, OnceLock};
 
 type O = GaussLegendre<32>;
+/// Per-size caches shared by the tests of this binary (computed once, in parallel).
+type Cache<T> = OnceLock<Mutex<HashMap<usize, Arc<OnceLock<Arc<T>>>>>>;
 type I = GaussLegendre<16>;
 
 fn integral(mu: f64, r: f64) -> (f64, f64) {
@@ -34,8 +36,7 @@ fn integral(mu: f64, r: f64) -> (f64, f64) {
 
 /// Exact values at texel centres, `[row_r * n + col_mu]`, shared between tests.
 fn exact(n: usize) -> Arc<(Vec<f64>, Vec<f64>)> {
-    static CACHE: OnceLock<Mutex<HashMap<usize, Arc<OnceLock<Arc<(Vec<f64>, Vec<f64>)>>>>>> =
-        OnceLock::new();
+    static CACHE: Cache<(Vec<f64>, Vec<f64>)> = OnceLock::new();
     let cell = CACHE
         .get_or_init(Default::default)
         .lock()
@@ -63,8 +64,7 @@ fn exact(n: usize) -> Arc<(Vec<f64>, Vec<f64>)> {
 
 /// 2,000 random points in the texel-centre range of an n-edge table with their integrals.
 fn points(n: usize) -> Arc<Vec<(f64, f64, f64, f64)>> {
-    static CACHE: OnceLock<Mutex<HashMap<usize, Arc<OnceLock<Arc<Vec<(f64, f64, f64, f64)>>>>>>> =
-        OnceLock::new();
+    static CACHE: Cache<Vec<(f64, f64, f64, f64)>> = OnceLock::new();
     let cell = CACHE
         .get_or_init(Default::default)
         .lock()
@@ -591,4 +591,139 @@ fn texel_integral_is_converged() {
         }
     }
     println!("quadrature 32x16 vs 32x32: max {worst:.2e}");
+}
+
+/// The engines' shipped tables, read with the same layouts as our files above (μ along x or
+/// memory rows as each engine samples; Filament's last stored row at t = 0), agree with the
+/// integral within the accuracy published for each (the anchors' provenance notes) where
+/// their sampling is good (μ ≥ 0.25): evidence that the layouts we write are the ones the
+/// engines read. Filament's rows match r = (j + 1.5)/64, one texel above the texel centre.
+/// Skipped, naming the file, when ../shared/anchors is not beside the workspace.
+#[test]
+fn shipped_tables_share_our_layouts() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/anchors");
+    let present = |rel: &str| {
+        let p = dir.join(rel);
+        if !p.exists() {
+            println!("skipped: {} absent", p.display());
+            return None;
+        }
+        Some(std::fs::read(p).unwrap())
+    };
+    // Max |ΔA|, |ΔB| for μ ≥ 0.25 over texels (mu, r, A, B).
+    let worst = |t: &[(f64, f64, f64, f64)]| {
+        let v: Vec<(f64, f64)> = t
+            .par_iter()
+            .filter(|p| p.0 >= 0.25)
+            .map(|&(mu, r, a, b)| {
+                let (x, y) = integral(mu, r);
+                ((a - x).abs(), (b - y).abs())
+            })
+            .collect();
+        v.iter()
+            .fold((0.0f64, 0.0f64), |m, e| (m.0.max(e.0), m.1.max(e.1)))
+    };
+    if let Some(bytes) = present("khronos/lut_ggx.png") {
+        let p = Path::new(env!("CARGO_TARGET_TMPDIR")).join("anchor_lut_ggx.png");
+        std::fs::write(&p, bytes).unwrap();
+        let (w, h, k, px) = zune_png(&p);
+        assert_eq!((w, h, k), (1024, 1024, 308));
+        // Every 16th texel: column x → μ = (x + ½)/1024, PNG row y → r = (y + ½)/1024.
+        let mut t = Vec::new();
+        for y in (8..1024).step_by(16) {
+            for x in (8..1024).step_by(16) {
+                let i = y * 1024 + x;
+                t.push((
+                    (x as f64 + 0.5) / 1024.0,
+                    (y as f64 + 0.5) / 1024.0,
+                    px[3 * i] as f64 / 255.0,
+                    px[3 * i + 1] as f64 / 255.0,
+                ));
+            }
+        }
+        let (ea, eb) = worst(&t);
+        println!("khronos shipped, mu >= 0.25: |dA| {ea:.2e} |dB| {eb:.2e}");
+        // Published: |dA| ≤ 0.95/255 for μ ≥ 0.25, |dB| ≤ 0.65/255, stated to two digits
+        // (so up to 0.955/255, 0.655/255), plus our 2.5e-7 quadrature error.
+        assert!(
+            ea <= 0.955 / 255.0 + 1e-6 && eb <= 0.655 / 255.0 + 1e-6,
+            "{ea} {eb}"
+        );
+    }
+    if let Some(bytes) = present("bevy/dfg.ktx2") {
+        let rd = ktx2::Reader::new(&bytes[..]).unwrap();
+        let mut raw = Vec::new();
+        let level = rd.levels().next().unwrap();
+        std::io::Read::read_to_end(
+            &mut ruzstd::decoding::StreamingDecoder::new(level.data).unwrap(),
+            &mut raw,
+        )
+        .unwrap();
+        let f = |o: usize| f16::from_bits(u16::from_le_bytes([raw[o], raw[o + 1]])).to_f64();
+        let t: Vec<_> = (0..64 * 64)
+            .map(|i| {
+                (
+                    (i % 64) as f64 / 64.0 + 0.5 / 64.0,
+                    (i / 64) as f64 / 64.0 + 0.5 / 64.0,
+                    f(4 * i),
+                    f(4 * i + 2),
+                )
+            })
+            .collect();
+        let (ea, eb) = worst(&t);
+        println!("bevy shipped, mu >= 0.25: |dA| {ea:.2e} |dB| {eb:.2e}");
+        // Published: |dA| ≤ 5e-4 for μ ≥ 0.25, |dB| ≤ 4.8e-4.
+        assert!(ea <= 5e-4 && eb <= 4.8e-4, "{ea} {eb}");
+    }
+    if let Some(bytes) = present("filament/filament_dfg_multiscatter_64_rgba16f.dds") {
+        assert_eq!(&bytes[84..88], b"DX10");
+        let data = &bytes[148..];
+        let f = |o: usize| f16::from_bits(u16::from_le_bytes([data[o], data[o + 1]])).to_f64();
+        let mut t = Vec::new();
+        for j in 0..64 {
+            for x in 0..64 {
+                let o = ((63 - j) * 64 + x) * 8;
+                let (r, g) = (f(o), f(o + 2));
+                let rough = ((j as f64 + 1.5) / 64.0).min(1.0);
+                t.push(((x as f64 + 0.5) / 64.0, rough, g - r, r));
+            }
+        }
+        let (ea, eb) = worst(&t);
+        println!("filament shipped at r = (j + 1.5)/64, mu >= 0.25: |dA| {ea:.2e} |dB| {eb:.2e}");
+        // Published: reproduced to ≤ 2.4e-4 by Filament's own 1024-sample Hammersley
+        // estimator, which itself errs against the integral by up to ~6e-3 at mid roughness
+        // (measured here); allow 1e-2. The discriminating check is the next one: read at the
+        // texel centres the same file errs at least twice as much (up to ~2e-2).
+        assert!(ea <= 1e-2 && eb <= 1e-2, "{ea} {eb}");
+        let t0: Vec<_> = t
+            .iter()
+            .map(|&(mu, r, a, b)| (mu, (r - 1.0 / 64.0).max(0.5 / 64.0), a, b))
+            .collect();
+        let (sa, _) = worst(&t0);
+        println!("filament shipped read at the texel centre r = (j + 0.5)/64: |dA| {sa:.2e}");
+        assert!(
+            sa > 2.0 * ea,
+            "the one-texel shift is visible: {sa} vs {ea}"
+        );
+    }
+    if let Some(bytes) = present("threejs/three_dfg_lut_16x16_rg16f.bin") {
+        assert_eq!(bytes.len(), 16 * 16 * 4);
+        let f = |o: usize| f16::from_bits(u16::from_le_bytes([bytes[o], bytes[o + 1]])).to_f64();
+        let mut t = Vec::new();
+        for m in 0..16 {
+            for c in 0..16 {
+                let o = (m * 16 + c) * 4;
+                t.push((
+                    (m as f64 + 0.5) / 16.0,
+                    (c as f64 + 0.5) / 16.0,
+                    f(o),
+                    f(o + 2),
+                ));
+            }
+        }
+        let (ea, eb) = worst(&t);
+        println!("three.js shipped, mu >= 0.25: |dA| {ea:.2e} |dB| {eb:.2e}");
+        // Published: |dA| ≤ 0.0027 for μ ≥ 0.1, |dB| ≤ 6.7e-4.
+        assert!(ea <= 2.7e-3 && eb <= 6.7e-4, "{ea} {eb}");
+    }
 }

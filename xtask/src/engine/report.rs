@@ -44,7 +44,7 @@ impl Table {
 }
 
 fn check_edge(w: usize, h: usize, what: &str) -> Result<usize> {
-    if w != h || w < 2 || w > MAX_EDGE {
+    if w != h || !(2..=MAX_EDGE).contains(&w) {
         bail!("{what}: {w}×{h} is not a square table of edge 2..={MAX_EDGE}");
     }
     Ok(w)
