@@ -5,6 +5,7 @@ use clap::{Parser, Subcommand};
 
 mod bench;
 mod ci;
+mod engine;
 mod eval;
 mod fsio;
 mod lut;

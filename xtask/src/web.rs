@@ -2,7 +2,9 @@
 //! unless asked), installs the page's npm packages when missing (`npm ci` in examples/web:
 //! playwright-core only; the browser is Debian's /usr/bin/chromium) and runs the
 //! headless-browser test `node --test examples/web/test/`, which writes
-//! `examples/web/screenshot.png`.
+//! `examples/web/screenshot.png`. Before it, the khronos engine LUT (64²), its GLSL function
+//! and the test points are written to target/lut-engine-web/ for
+//! `examples/web/test/lut_engine.test.mjs` (a WebGL2 fragment shader samples the table).
 
 use crate::platforms::WasmArgs;
 use anyhow::{bail, Result};
@@ -31,6 +33,7 @@ pub fn run_cmd(a: WebArgs) -> Result<()> {
     if !std::path::Path::new("/usr/bin/chromium").exists() {
         bail!("/usr/bin/chromium missing: install Debian's chromium (bash .ci/install-web.sh)");
     }
+    crate::engine::web::prepare(&root.join("target/lut-engine-web"))?;
     let t = Instant::now();
     super::wasm_impl::run(
         &root,

@@ -74,6 +74,8 @@ enum Cmd {
     Inspect { file: PathBuf },
     /// Export the node values for GPU engines, with a JSON sidecar.
     Export(export::ExportArgs),
+    /// Write the split-sum table in one engine's own container and layout (docs/engines.md).
+    Engine(crate::engine::Args),
 }
 
 /// The workspace root (xtask's parent).
@@ -104,6 +106,7 @@ pub fn run(a: Args) -> Result<()> {
             Ok(())
         }
         Some(Cmd::Export(e)) => export::run(e),
+        Some(Cmd::Engine(e)) => crate::engine::run(e),
     }
 }
 

@@ -1,0 +1,729 @@
+//! `cargo xtask lut engine <target>` end to end: each written file is decoded with a reader
+//! independent of the writer (zune-png for PNG, the `ktx2` crate + ruzstd for KTX2 written by
+//! our own KTX2 code and the C zstd library, a DDS header parse by the DDS layout here plus
+//! `ddsfile`, the `exr` crate's reader for OpenEXR, `half` for raw f16), sampled exactly as the
+//! engine's shader samples it (uv mapping and flips, bilinear between texel centres, clamp to
+//! edge) at 2,000 random (μ, r) in the texel-centre range, and compared with the f64 integral.
+//!
+//! Bound per point: |sample(file) − I| ≤ |sample(exact texels) − I| + max over the four
+//! texels of their rounding tolerance. The first term is the bilinear interpolation error of
+//! exact texel values, computed here from integrals at the texel centres; the second is half a
+//! unit of the encoding (bilinear weights sum to 1, so per-texel rounding errors of at most
+//! u/2 move the sample by at most max u/2). Every texel is also checked on its own against the
+//! integral at its centre (round to nearest ⇒ within half a unit).
+//!
+//! Sizes are CI-sized (64², 16²): the CLI writes the 1024² khronos file; the layout code is
+//! the same for every N.
+
+use brdf_core::quadrature::GaussLegendre;
+use brdf_core::split_sum::dfg_ggx;
+use half::f16;
+use rand::{Rng, SeedableRng};
+use rayon::prelude::*;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::{Arc, Mutex, OnceLock};
+
+type O = GaussLegendre<32>;
+/// Per-size caches shared by the tests of this binary (computed once, in parallel).
+type Cache<T> = OnceLock<Mutex<HashMap<usize, Arc<OnceLock<Arc<T>>>>>>;
+type I = GaussLegendre<16>;
+
+fn integral(mu: f64, r: f64) -> (f64, f64) {
+    dfg_ggx::<f64, O, I>(mu, r)
+}
+
+/// Exact values at texel centres, `[row_r * n + col_mu]`, shared between tests.
+fn exact(n: usize) -> Arc<(Vec<f64>, Vec<f64>)> {
+    static CACHE: Cache<(Vec<f64>, Vec<f64>)> = OnceLock::new();
+    let cell = CACHE
+        .get_or_init(Default::default)
+        .lock()
+        .unwrap()
+        .entry(n)
+        .or_default()
+        .clone();
+    cell.get_or_init(|| {
+        let v: Vec<(f64, f64)> = (0..n * n)
+            .into_par_iter()
+            .map(|i| {
+                integral(
+                    (i % n) as f64 / n as f64 + 0.5 / n as f64,
+                    (i / n) as f64 / n as f64 + 0.5 / n as f64,
+                )
+            })
+            .collect();
+        Arc::new((
+            v.iter().map(|x| x.0).collect(),
+            v.iter().map(|x| x.1).collect(),
+        ))
+    })
+    .clone()
+}
+
+/// 2,000 random points in the texel-centre range of an n-edge table with their integrals.
+fn points(n: usize) -> Arc<Vec<(f64, f64, f64, f64)>> {
+    static CACHE: Cache<Vec<(f64, f64, f64, f64)>> = OnceLock::new();
+    let cell = CACHE
+        .get_or_init(Default::default)
+        .lock()
+        .unwrap()
+        .entry(n)
+        .or_default()
+        .clone();
+    cell.get_or_init(|| {
+        let lo = 0.5 / n as f64;
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(0xD0E5_0011 + n as u64);
+        let p: Vec<(f64, f64)> = (0..2000)
+            .map(|_| {
+                (
+                    rng.random_range(lo..1.0 - lo),
+                    rng.random_range(lo..1.0 - lo),
+                )
+            })
+            .collect();
+        Arc::new(
+            p.par_iter()
+                .map(|&(mu, r)| {
+                    let (a, b) = integral(mu, r);
+                    (mu, r, a, b)
+                })
+                .collect(),
+        )
+    })
+    .clone()
+}
+
+fn out_dir(name: &str) -> PathBuf {
+    let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("lut_engine")
+        .join(name);
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+fn xtask(args: &[&str]) -> (bool, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_xtask"))
+        .args(["lut", "engine"])
+        .args(args)
+        .output()
+        .unwrap();
+    let text =
+        String::from_utf8_lossy(&out.stdout).into_owned() + &String::from_utf8_lossy(&out.stderr);
+    (out.status.success(), text)
+}
+
+fn generate(target: &str, n: usize) -> PathBuf {
+    let d = out_dir(&format!("{target}{n}"));
+    let (ok, text) = xtask(&[
+        target,
+        "--size",
+        &n.to_string(),
+        "--out",
+        d.to_str().unwrap(),
+    ]);
+    assert!(ok, "{text}");
+    d
+}
+
+/// A texture as the sampler sees it: texel (s, t) with s along u, t along v, row t at
+/// v = (t + ½)/h; each texel decodes to (A, B) and has a tolerance (ΔA, ΔB).
+struct Tex {
+    w: usize,
+    h: usize,
+    ab: Vec<(f64, f64)>,
+    tol: Vec<(f64, f64)>,
+}
+
+impl Tex {
+    /// GL bilinear between texel centres with clamp to edge.
+    fn sample(&self, u: f64, v: f64) -> ((f64, f64), (f64, f64)) {
+        let ax = |x: f64, n: usize| {
+            let p = (x * n as f64 - 0.5).clamp(0.0, (n - 1) as f64);
+            let i0 = p.floor() as usize;
+            (i0, (i0 + 1).min(n - 1), p - i0 as f64)
+        };
+        let (s0, s1, fs) = ax(u, self.w);
+        let (t0, t1, ft) = ax(v, self.h);
+        let mut acc = (0.0, 0.0);
+        let mut tol: (f64, f64) = (0.0, 0.0);
+        for (s, t, wgt) in [
+            (s0, t0, (1.0 - fs) * (1.0 - ft)),
+            (s1, t0, fs * (1.0 - ft)),
+            (s0, t1, (1.0 - fs) * ft),
+            (s1, t1, fs * ft),
+        ] {
+            let i = t * self.w + s;
+            acc.0 += wgt * self.ab[i].0;
+            acc.1 += wgt * self.ab[i].1;
+            tol.0 = tol.0.max(self.tol[i].0);
+            tol.1 = tol.1.max(self.tol[i].1);
+        }
+        (acc, tol)
+    }
+}
+
+/// Half a unit in the last place of binary16 at |v| (normal or subnormal).
+fn half_ulp_f16(v: f64) -> f64 {
+    let v = v.abs();
+    if v < 2f64.powi(-14) {
+        return 2f64.powi(-25);
+    }
+    2f64.powi(v.log2().floor() as i32 - 10) / 2.0
+}
+fn half_ulp_f32(v: f64) -> f64 {
+    let v = v.abs();
+    if v < 2f64.powi(-126) {
+        return 2f64.powi(-150);
+    }
+    2f64.powi(v.log2().floor() as i32 - 23) / 2.0
+}
+
+/// The engine's uv for a physical (μ, r).
+type Uv = fn(f64, f64) -> (f64, f64);
+
+/// Every texel within its tolerance of the integral at its centre, and the sampled values at
+/// the random points within the bound of the module docs. `exact_tex` is `tex` with the
+/// exact values placed the same way (built by the caller from the layout the engine reads).
+fn check(name: &str, tex: &Tex, exact_tex: &Tex, n: usize, uv: Uv) {
+    for i in 0..tex.ab.len() {
+        let (d, e, t) = (tex.ab[i], exact_tex.ab[i], tex.tol[i]);
+        assert!(
+            (d.0 - e.0).abs() <= t.0 * (1.0 + 1e-9) && (d.1 - e.1).abs() <= t.1 * (1.0 + 1e-9),
+            "{name}: texel {i} ({}, {}) holds {d:?}, exact {e:?}, tolerance {t:?}",
+            i % tex.w,
+            i / tex.w
+        );
+    }
+    let mut worst: f64 = 0.0;
+    for &(mu, r, a, b) in points(n).iter() {
+        let (u, v) = uv(mu, r);
+        let ((fa, fb), tol) = tex.sample(u, v);
+        let ((xa, xb), _) = exact_tex.sample(u, v);
+        // Tolerance: interpolation error of exact texels + half a unit of the encoding; the
+        // 1e-12 covers the f64 rounding of the two bilinear sums.
+        let (ba, bb) = (
+            (xa - a).abs() + tol.0 + 1e-12,
+            (xb - b).abs() + tol.1 + 1e-12,
+        );
+        assert!(
+            (fa - a).abs() <= ba && (fb - b).abs() <= bb,
+            "{name}: at mu {mu} r {r}: file ({fa}, {fb}), integral ({a}, {b}), bounds ({ba}, {bb})"
+        );
+        worst = worst.max((fa - a).abs()).max((fb - b).abs());
+    }
+    println!("{name}: max |Δ| at 2000 random points {worst:.3e}");
+}
+
+/// The exact table in the canonical orientation: u = μ, v = r, row k at r = (k + ½)/n.
+fn exact_canonical(n: usize, tol: (f64, f64)) -> Tex {
+    let e = exact(n);
+    Tex {
+        w: n,
+        h: n,
+        ab: (0..n * n).map(|i| (e.0[i], e.1[i])).collect(),
+        tol: vec![tol; n * n],
+    }
+}
+
+fn sidecar(dir: &Path, stem: &str) -> serde_json::Value {
+    let v: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join(format!("{stem}.json"))).unwrap()).unwrap();
+    for key in [
+        "inverse_mapping",
+        "roughness",
+        "exact_range",
+        "values",
+        "placement",
+        "shaders",
+    ] {
+        assert!(v.get(key).is_some(), "{stem}.json lacks {key}");
+    }
+    assert!(v["roughness"].as_str().unwrap().contains("alpha = r^2"));
+    assert!(v["values"].as_str().unwrap().starts_with("linear"));
+    v
+}
+
+fn zune_png(path: &Path) -> (usize, usize, usize, Vec<u16>) {
+    use zune_png::zune_core::bit_depth::BitDepth;
+    use zune_png::zune_core::result::DecodingResult;
+    let bytes = std::fs::read(path).unwrap();
+    let mut dec = zune_png::PngDecoder::new(zune_png::zune_core::bytestream::ZCursor::new(&bytes));
+    dec.decode_headers().unwrap();
+    let (w, h) = dec.dimensions().unwrap();
+    let ch = dec.colorspace().unwrap().num_components();
+    let depth = dec.depth().unwrap();
+    let px: Vec<u16> = match dec.decode().unwrap() {
+        DecodingResult::U8(v) => v.into_iter().map(u16::from).collect(),
+        DecodingResult::U16(v) => v,
+        _ => panic!("unexpected PNG sample type"),
+    };
+    let bits = if depth == BitDepth::Sixteen { 16 } else { 8 };
+    (w, h, ch * 100 + bits, px)
+}
+
+#[test]
+fn khronos_png_8_and_16_bit() {
+    let n = 64;
+    let d = generate("khronos", n);
+    let side = sidecar(&d, "lut_ggx");
+    assert!(side["loaders"].as_str().unwrap().contains("Pillow"));
+    // glTF Sample Viewer: texture(u_GGXLUT, vec2(NdotV, roughness)); PNG row 0 at t = 0.
+    let uv: Uv = |mu, r| (mu, r);
+    for (file, kind, unit) in [
+        ("lut_ggx.png", 308, 255.0),
+        ("lut_ggx_16bit.png", 316, 65535.0),
+    ] {
+        let (w, h, k, px) = zune_png(&d.join(file));
+        assert_eq!((w, h, k), (n, n, kind), "{file}");
+        let ab = (0..n * n)
+            .map(|i| (px[3 * i] as f64 / unit, px[3 * i + 1] as f64 / unit))
+            .collect();
+        assert!(
+            (0..n * n).all(|i| px[3 * i + 2] == 0),
+            "{file}: B channel not 0"
+        );
+        let tol = (0.5 / unit, 0.5 / unit);
+        let tex = Tex {
+            w: n,
+            h: n,
+            ab,
+            tol: vec![tol; n * n],
+        };
+        check(file, &tex, &exact_canonical(n, tol), n, uv);
+    }
+    // The single-channel 16-bit files hold the same codes as the RGB 16-bit file.
+    let (_, _, _, rgb) = zune_png(&d.join("lut_ggx_16bit.png"));
+    for (file, c) in [("lut_ggx_A_16bit.png", 0), ("lut_ggx_B_16bit.png", 1)] {
+        let (w, h, k, px) = zune_png(&d.join(file));
+        assert_eq!((w, h, k), (n, n, 116), "{file}");
+        assert!((0..n * n).all(|i| px[i] == rgb[3 * i + c]), "{file}");
+    }
+}
+
+#[test]
+fn bevy_ktx2_rg16f_zstd() {
+    let n = 64;
+    let d = generate("bevy", n);
+    sidecar(&d, "dfg");
+    let bytes = std::fs::read(d.join("dfg.ktx2")).unwrap();
+    let rd = ktx2::Reader::new(&bytes[..]).unwrap();
+    let h = rd.header();
+    assert_eq!(h.format, Some(ktx2::Format::R16G16_SFLOAT));
+    assert_eq!(
+        (h.pixel_width, h.pixel_height, h.level_count),
+        (n as u32, n as u32, 1)
+    );
+    assert_eq!(
+        h.supercompression_scheme,
+        Some(ktx2::SupercompressionScheme::Zstandard)
+    );
+    let dfd = rd.basic_dfd().expect("basic DFD");
+    assert_eq!(dfd.transfer_function, Some(ktx2::TransferFunction::Linear));
+    let level = rd.levels().next().unwrap();
+    let mut raw = Vec::new();
+    std::io::Read::read_to_end(
+        &mut ruzstd::decoding::StreamingDecoder::new(level.data).unwrap(),
+        &mut raw,
+    )
+    .unwrap();
+    assert_eq!(raw.len(), n * n * 4);
+    // Bevy: textureSampleLevel(dfg_lut, s, vec2(NdotV, perceptual_roughness), 0.0); row 0 at v = 0.
+    let f = |o: usize| f16::from_bits(u16::from_le_bytes([raw[o], raw[o + 1]])).to_f64();
+    let ab: Vec<(f64, f64)> = (0..n * n).map(|i| (f(4 * i), f(4 * i + 2))).collect();
+    let e = exact(n);
+    let tol = (0..n * n)
+        .map(|i| (half_ulp_f16(e.0[i]), half_ulp_f16(e.1[i])))
+        .collect::<Vec<_>>();
+    let mut ex = exact_canonical(n, (0.0, 0.0));
+    ex.tol = tol.clone();
+    check(
+        "dfg.ktx2",
+        &Tex {
+            w: n,
+            h: n,
+            ab,
+            tol,
+        },
+        &ex,
+        n,
+        |mu, r| (mu, r),
+    );
+}
+
+#[test]
+fn filament_dds_rgba16f() {
+    let n = 64;
+    let d = generate("filament", n);
+    sidecar(&d, "dfg_multiscatter");
+    let bytes = std::fs::read(d.join("dfg_multiscatter.dds")).unwrap();
+    // DDS layout: "DDS " magic, 124-byte header (height at 12, width at 16, pixel-format
+    // fourCC at 84), DX10 extension (DXGI format at 128), data at 148.
+    let u32at = |o: usize| u32::from_le_bytes(bytes[o..o + 4].try_into().unwrap());
+    assert_eq!(&bytes[0..4], b"DDS ");
+    assert_eq!(u32at(4), 124);
+    assert_eq!((u32at(12), u32at(16)), (n as u32, n as u32));
+    assert_eq!(&bytes[84..88], b"DX10");
+    assert_eq!(u32at(128), 10, "DXGI_FORMAT_R16G16B16A16_FLOAT");
+    assert_eq!(bytes.len(), 148 + n * n * 8);
+    let data = &bytes[148..];
+    let via_crate = ddsfile::Dds::read(&bytes[..]).unwrap();
+    assert_eq!(via_crate.get_data(0).unwrap(), data);
+    let f = |o: usize| f16::from_bits(u16::from_le_bytes([data[o], data[o + 1]])).to_f64();
+    let e = exact(n);
+    // Filament: textureLod(light_iblDFG, vec2(NoV, perceptualRoughness), 0.0) with the last
+    // stored row at t = 0: texel (s, t) = stored (x = s, y = n − 1 − t); A = G − R, B = R.
+    let (mut ab, mut tol) = (Vec::new(), Vec::new());
+    for t in 0..n {
+        for s in 0..n {
+            let o = ((n - 1 - t) * n + s) * 8;
+            let (r, g, b, a) = (f(o), f(o + 2), f(o + 4), f(o + 6));
+            assert_eq!((b, a), (0.0, 1.0));
+            ab.push((g - r, r));
+            let i = t * n + s;
+            let (hs, hb) = (half_ulp_f16(e.0[i] + e.1[i]), half_ulp_f16(e.1[i]));
+            tol.push((hs + hb, hb));
+        }
+    }
+    let mut ex = exact_canonical(n, (0.0, 0.0));
+    ex.tol = tol.clone();
+    check(
+        "dfg_multiscatter.dds",
+        &Tex {
+            w: n,
+            h: n,
+            ab,
+            tol,
+        },
+        &ex,
+        n,
+        |mu, r| (mu, r),
+    );
+}
+
+#[test]
+fn threejs_bin_rg16f() {
+    for n in [16, 32] {
+        let d = generate("threejs", n);
+        sidecar(&d, "dfg_lut");
+        let bytes = std::fs::read(d.join("dfg_lut.bin")).unwrap();
+        assert_eq!(bytes.len(), n * n * 4);
+        let f = |o: usize| f16::from_bits(u16::from_le_bytes([bytes[o], bytes[o + 1]])).to_f64();
+        // three.js: texture(DFG, vec2(roughness, dotNV)); memory row m at t = (m + ½)/n.
+        // Texel (s, t): s = r index, t = μ index.
+        let e = exact(n);
+        let (mut ab, mut tol, mut ex) = (Vec::new(), Vec::new(), Vec::new());
+        for t in 0..n {
+            for s in 0..n {
+                let o = (t * n + s) * 4;
+                ab.push((f(o), f(o + 2)));
+                let i = s * n + t; // exact is [row r][col μ]
+                ex.push((e.0[i], e.1[i]));
+                tol.push((half_ulp_f16(e.0[i]), half_ulp_f16(e.1[i])));
+            }
+        }
+        let exact_tex = Tex {
+            w: n,
+            h: n,
+            ab: ex,
+            tol: tol.clone(),
+        };
+        check(
+            "dfg_lut.bin",
+            &Tex {
+                w: n,
+                h: n,
+                ab,
+                tol,
+            },
+            &exact_tex,
+            n,
+            |mu, r| (r, mu),
+        );
+        let js = std::fs::read_to_string(d.join("dfg_lut.js")).unwrap();
+        assert!(js.contains(&format!("DFG_LUT_SIZE = {n};")));
+        let first = u16::from_le_bytes([bytes[0], bytes[1]]);
+        assert!(js.contains(&format!("0x{first:04x}")));
+    }
+}
+
+#[test]
+fn exr_rg32f() {
+    let n = 64;
+    let d = generate("exr", n);
+    sidecar(&d, "dfg_ggx");
+    use exr::prelude::*;
+    let img = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .specific_channels()
+        .required("R")
+        .required("G")
+        .collect_pixels(
+            |res, _| vec![(0f32, 0f32); res.width() * res.height()],
+            move |v, p, (r, g): (f32, f32)| v[p.y() * n + p.x()] = (r, g),
+        )
+        .first_valid_layer()
+        .all_attributes()
+        .from_file(d.join("dfg_ggx.exr"))
+        .unwrap();
+    assert_eq!(img.layer_data.size, Vec2(n, n));
+    let px = &img.layer_data.channel_data.pixels;
+    let e = exact(n);
+    let ab: Vec<(f64, f64)> = px.iter().map(|&(r, g)| (r as f64, g as f64)).collect();
+    let tol: Vec<(f64, f64)> = (0..n * n)
+        .map(|i| (half_ulp_f32(e.0[i]), half_ulp_f32(e.1[i])))
+        .collect();
+    let mut ex = exact_canonical(n, (0.0, 0.0));
+    ex.tol = tol.clone();
+    check(
+        "dfg_ggx.exr",
+        &Tex {
+            w: n,
+            h: n,
+            ab,
+            tol,
+        },
+        &ex,
+        n,
+        |mu, r| (mu, r),
+    );
+}
+
+/// Every emitted WGSL function parses and validates with naga, and the GLSL names the same
+/// function.
+#[test]
+fn wgsl_validates_with_naga() {
+    for (target, stem, n) in [
+        ("khronos", "lut_ggx", 8),
+        ("bevy", "dfg", 8),
+        ("filament", "dfg_multiscatter", 8),
+        ("threejs", "dfg_lut", 8),
+        ("exr", "dfg_ggx", 8),
+    ] {
+        let d = generate(target, n);
+        let side = sidecar(&d, stem);
+        let name = side["shaders"]["function"].as_str().unwrap().to_string();
+        let wgsl = std::fs::read_to_string(d.join(format!("{stem}.wgsl"))).unwrap();
+        let module = naga::front::wgsl::parse_str(&wgsl)
+            .unwrap_or_else(|e| panic!("{target}: {}", e.emit_to_string(&wgsl)));
+        naga::valid::Validator::new(
+            naga::valid::ValidationFlags::all(),
+            naga::valid::Capabilities::all(),
+        )
+        .validate(&module)
+        .unwrap_or_else(|e| panic!("{target}: {e:?}"));
+        assert!(
+            module
+                .functions
+                .iter()
+                .any(|(_, f)| f.name.as_deref() == Some(name.as_str())),
+            "{target}"
+        );
+        let glsl = std::fs::read_to_string(d.join(format!("{stem}.glsl"))).unwrap();
+        assert!(
+            glsl.contains(&format!("vec2 {name}(sampler2D lut")),
+            "{target}"
+        );
+    }
+}
+
+#[test]
+fn refuses_to_overwrite_and_rejects_bad_sizes() {
+    let d = generate("threejs", 4);
+    let bin = d.join("dfg_lut.bin");
+    std::fs::write(&bin, b"keep").unwrap();
+    let (ok, text) = xtask(&["threejs", "--size", "4", "--out", d.to_str().unwrap()]);
+    assert!(
+        !ok && text.contains("exists") && text.contains("--force"),
+        "{text}"
+    );
+    assert_eq!(std::fs::read(&bin).unwrap(), b"keep");
+    let (ok, text) = xtask(&[
+        "threejs",
+        "--size",
+        "4",
+        "--out",
+        d.to_str().unwrap(),
+        "--force",
+    ]);
+    assert!(ok, "{text}");
+    assert_eq!(std::fs::read(&bin).unwrap().len(), 4 * 4 * 4);
+    // No temporary file left behind.
+    assert!(std::fs::read_dir(&d).unwrap().all(|e| !e
+        .unwrap()
+        .file_name()
+        .to_string_lossy()
+        .contains(".tmp")));
+    for bad in ["1", "0", "100000"] {
+        let (ok, text) = xtask(&["bevy", "--size", bad, "--out", d.to_str().unwrap()]);
+        assert!(
+            !ok && text.contains("table edge must be between 2 and"),
+            "{bad}: {text}"
+        );
+    }
+}
+
+/// The quadrature behind every texel is converged far below half a unit of the finest
+/// encodings we write (f16: 2.4e-4 relative; 16-bit UNORM: 7.6e-6): the 32 × 16 rule against
+/// a 32 × 32 rule at grazing μ and small r, where the integrand is sharpest.
+#[test]
+fn texel_integral_is_converged() {
+    let mut worst: f64 = 0.0;
+    for &mu in &[
+        0.5 / 1024.0,
+        1.5 / 1024.0,
+        0.5 / 64.0,
+        0.03,
+        0.1,
+        0.5,
+        1.0 - 0.5 / 1024.0,
+    ] {
+        for &r in &[0.5 / 1024.0, 0.01, 0.03, 0.1, 0.3, 0.7, 1.0 - 0.5 / 1024.0] {
+            let (a, b) = integral(mu, r);
+            let (a2, b2) = dfg_ggx::<f64, O, GaussLegendre<32>>(mu, r);
+            let e = (a - a2).abs().max((b - b2).abs());
+            // Relative to the f16 half-ulp of the smaller value, and absolute vs 16-bit UNORM.
+            let rel = e / half_ulp_f16(a2.min(b2).max(2f64.powi(-14)));
+            assert!(rel < 0.25 && e < 7.6e-7, "mu {mu} r {r}: {e:e}");
+            worst = worst.max(e);
+        }
+    }
+    println!("quadrature 32x16 vs 32x32: max {worst:.2e}");
+}
+
+/// The engines' shipped tables, read with the same layouts as our files above (μ along x or
+/// memory rows as each engine samples; Filament's last stored row at t = 0), agree with the
+/// integral within the accuracy published for each (the anchors' provenance notes) where
+/// their sampling is good (μ ≥ 0.25): evidence that the layouts we write are the ones the
+/// engines read. Filament's rows match r = (j + 1.5)/64, one texel above the texel centre.
+/// Skipped, naming the file, when ../shared/anchors is not beside the workspace.
+#[test]
+fn shipped_tables_share_our_layouts() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/anchors");
+    let present = |rel: &str| {
+        let p = dir.join(rel);
+        if !p.exists() {
+            println!("skipped: {} absent", p.display());
+            return None;
+        }
+        Some(std::fs::read(p).unwrap())
+    };
+    // Max |ΔA|, |ΔB| for μ ≥ 0.25 over texels (mu, r, A, B).
+    let worst = |t: &[(f64, f64, f64, f64)]| {
+        let v: Vec<(f64, f64)> = t
+            .par_iter()
+            .filter(|p| p.0 >= 0.25)
+            .map(|&(mu, r, a, b)| {
+                let (x, y) = integral(mu, r);
+                ((a - x).abs(), (b - y).abs())
+            })
+            .collect();
+        v.iter()
+            .fold((0.0f64, 0.0f64), |m, e| (m.0.max(e.0), m.1.max(e.1)))
+    };
+    if let Some(bytes) = present("khronos/lut_ggx.png") {
+        let p = Path::new(env!("CARGO_TARGET_TMPDIR")).join("anchor_lut_ggx.png");
+        std::fs::write(&p, bytes).unwrap();
+        let (w, h, k, px) = zune_png(&p);
+        assert_eq!((w, h, k), (1024, 1024, 308));
+        // Every 16th texel: column x → μ = (x + ½)/1024, PNG row y → r = (y + ½)/1024.
+        let mut t = Vec::new();
+        for y in (8..1024).step_by(16) {
+            for x in (8..1024).step_by(16) {
+                let i = y * 1024 + x;
+                t.push((
+                    (x as f64 + 0.5) / 1024.0,
+                    (y as f64 + 0.5) / 1024.0,
+                    px[3 * i] as f64 / 255.0,
+                    px[3 * i + 1] as f64 / 255.0,
+                ));
+            }
+        }
+        let (ea, eb) = worst(&t);
+        println!("khronos shipped, mu >= 0.25: |dA| {ea:.2e} |dB| {eb:.2e}");
+        // Published: |dA| ≤ 0.95/255 for μ ≥ 0.25, |dB| ≤ 0.65/255, stated to two digits
+        // (so up to 0.955/255, 0.655/255), plus our 2.5e-7 quadrature error.
+        assert!(
+            ea <= 0.955 / 255.0 + 1e-6 && eb <= 0.655 / 255.0 + 1e-6,
+            "{ea} {eb}"
+        );
+    }
+    if let Some(bytes) = present("bevy/dfg.ktx2") {
+        let rd = ktx2::Reader::new(&bytes[..]).unwrap();
+        let mut raw = Vec::new();
+        let level = rd.levels().next().unwrap();
+        std::io::Read::read_to_end(
+            &mut ruzstd::decoding::StreamingDecoder::new(level.data).unwrap(),
+            &mut raw,
+        )
+        .unwrap();
+        let f = |o: usize| f16::from_bits(u16::from_le_bytes([raw[o], raw[o + 1]])).to_f64();
+        let t: Vec<_> = (0..64 * 64)
+            .map(|i| {
+                (
+                    (i % 64) as f64 / 64.0 + 0.5 / 64.0,
+                    (i / 64) as f64 / 64.0 + 0.5 / 64.0,
+                    f(4 * i),
+                    f(4 * i + 2),
+                )
+            })
+            .collect();
+        let (ea, eb) = worst(&t);
+        println!("bevy shipped, mu >= 0.25: |dA| {ea:.2e} |dB| {eb:.2e}");
+        // Published: |dA| ≤ 5e-4 for μ ≥ 0.25, |dB| ≤ 4.8e-4.
+        assert!(ea <= 5e-4 && eb <= 4.8e-4, "{ea} {eb}");
+    }
+    if let Some(bytes) = present("filament/filament_dfg_multiscatter_64_rgba16f.dds") {
+        assert_eq!(&bytes[84..88], b"DX10");
+        let data = &bytes[148..];
+        let f = |o: usize| f16::from_bits(u16::from_le_bytes([data[o], data[o + 1]])).to_f64();
+        let mut t = Vec::new();
+        for j in 0..64 {
+            for x in 0..64 {
+                let o = ((63 - j) * 64 + x) * 8;
+                let (r, g) = (f(o), f(o + 2));
+                let rough = ((j as f64 + 1.5) / 64.0).min(1.0);
+                t.push(((x as f64 + 0.5) / 64.0, rough, g - r, r));
+            }
+        }
+        let (ea, eb) = worst(&t);
+        println!("filament shipped at r = (j + 1.5)/64, mu >= 0.25: |dA| {ea:.2e} |dB| {eb:.2e}");
+        // Published: reproduced to ≤ 2.4e-4 by Filament's own 1024-sample Hammersley
+        // estimator, which itself errs against the integral by up to ~6e-3 at mid roughness
+        // (measured here); allow 1e-2. The discriminating check is the next one: read at the
+        // texel centres the same file errs at least twice as much (up to ~2e-2).
+        assert!(ea <= 1e-2 && eb <= 1e-2, "{ea} {eb}");
+        let t0: Vec<_> = t
+            .iter()
+            .map(|&(mu, r, a, b)| (mu, (r - 1.0 / 64.0).max(0.5 / 64.0), a, b))
+            .collect();
+        let (sa, _) = worst(&t0);
+        println!("filament shipped read at the texel centre r = (j + 0.5)/64: |dA| {sa:.2e}");
+        assert!(
+            sa > 2.0 * ea,
+            "the one-texel shift is visible: {sa} vs {ea}"
+        );
+    }
+    if let Some(bytes) = present("threejs/three_dfg_lut_16x16_rg16f.bin") {
+        assert_eq!(bytes.len(), 16 * 16 * 4);
+        let f = |o: usize| f16::from_bits(u16::from_le_bytes([bytes[o], bytes[o + 1]])).to_f64();
+        let mut t = Vec::new();
+        for m in 0..16 {
+            for c in 0..16 {
+                let o = (m * 16 + c) * 4;
+                t.push((
+                    (m as f64 + 0.5) / 16.0,
+                    (c as f64 + 0.5) / 16.0,
+                    f(o),
+                    f(o + 2),
+                ));
+            }
+        }
+        let (ea, eb) = worst(&t);
+        println!("three.js shipped, mu >= 0.25: |dA| {ea:.2e} |dB| {eb:.2e}");
+        // Published: |dA| ≤ 0.0027 for μ ≥ 0.1, |dB| ≤ 6.7e-4.
+        assert!(ea <= 2.7e-3 && eb <= 6.7e-4, "{ea} {eb}");
+    }
+}
