@@ -4,7 +4,7 @@
 //! headless-browser test `node --test examples/web/test/`, which writes
 //! `examples/web/screenshot.png`.
 
-use crate::platforms::WasmArgs;
+use crate::wasm::WasmArgs;
 use anyhow::{bail, Result};
 use std::process::Command;
 use std::time::Instant;
@@ -17,13 +17,13 @@ pub struct WebArgs {
 }
 
 pub fn run_cmd(a: WebArgs) -> Result<()> {
-    let root = super::wasm_impl::root();
-    super::wasm_impl::run_cmd(WasmArgs {
+    let root = crate::wasm::root();
+    crate::wasm::run_cmd(WasmArgs {
         no_test: !a.with_node_tests,
     })?;
     let web = root.join("examples/web");
     if !web.join("node_modules/playwright-core").is_dir() {
-        super::wasm_impl::run(
+        crate::wasm::run(
             &web,
             Command::new("npm").args(["ci", "--no-audit", "--no-fund"]),
         )?;
@@ -32,7 +32,7 @@ pub fn run_cmd(a: WebArgs) -> Result<()> {
         bail!("/usr/bin/chromium missing: install Debian's chromium (bash .ci/install-web.sh)");
     }
     let t = Instant::now();
-    super::wasm_impl::run(
+    crate::wasm::run(
         &root,
         Command::new("node").args(["--test", "examples/web/test/"]),
     )?;
