@@ -5,4 +5,5 @@
 //! rule; the references integrate the paper's formulas as printed (in γ, eqs 5–11 with the
 //! readings of conventions.md) with adaptive Gauss–Kronrod to 1e-13.
 
+pub mod anchors;
 pub mod reference;

@@ -3,6 +3,7 @@
 
 use clap::{Parser, Subcommand};
 
+mod anchors;
 mod bench;
 mod ci;
 mod eval;
@@ -35,6 +36,8 @@ enum Cmd {
     Web(web::WebArgs),
     /// Run the validation simulations and write the figures and docs/validation.md.
     Plot(plot::Args),
+    /// Fetch the engines' published LUTs into .cache/anchors (pinned SHA-256).
+    Anchors(anchors::Args),
     /// Everything CI runs: format, clippy, tests, no_std builds (the README's test command).
     Ci(ci::Args),
 }
@@ -43,6 +46,7 @@ fn main() {
     let cli = Cli::parse();
     let res = match cli.cmd {
         Cmd::Eval(a) => eval::run(a),
+        Cmd::Anchors(a) => anchors::run(a),
         Cmd::Ci(a) => ci::run(a),
         Cmd::Lut(a) => lut::run(a),
         Cmd::Bench(a) => bench::run(a),
