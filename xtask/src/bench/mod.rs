@@ -4,6 +4,8 @@
 //!
 //! `cargo xtask bench --smoke` only checks that everything builds and runs once (CI).
 
+mod report;
+
 use anyhow::{bail, Context, Result};
 use brdf_bench::{angle_pairs, env_brdf_approx, mu_roughness, read_asset, SIGMA};
 use brdf_core::lut::{DfgTable, GTable, GTable3};
@@ -11,6 +13,7 @@ use brdf_core::masking::ModifiedG;
 use brdf_core::quadrature::{GaussLegendre, DEFAULT_NODES, NODE_COUNTS};
 use brdf_core::split_sum::{dfg_ggx, InnerRule, OuterRule};
 use std::collections::BTreeMap;
+#[cfg(test)]
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -127,7 +130,7 @@ pub fn run(a: Args) -> Result<()> {
         Some(time_generation()?)
     };
     let machine = machine();
-    let md = report(&Report {
+    let md = report::render(&Report {
         est: &est,
         peer: &peer,
         acc: &acc,
@@ -137,7 +140,7 @@ pub fn run(a: Args) -> Result<()> {
         args: &a,
         secs: t_start.elapsed().as_secs_f64(),
         t_crit,
-    });
+    })?;
     let out = a
         .out
         .clone()
@@ -581,7 +584,8 @@ fn fmt_ns(x: f64) -> String {
     }
 }
 
-fn report(r: &Report<'_>) -> String {
+#[cfg(test)]
+fn report_old(r: &Report<'_>) -> String {
     let e = r.est;
     let per = |id: &str| e.get(id).map(|x| x.per_call());
     let mut s = String::new();
@@ -1040,4 +1044,137 @@ fn report(r: &Report<'_>) -> String {
         );
     }
     s
+}
+
+#[cfg(test)]
+mod template_equivalence {
+    use super::*;
+
+    fn est(mean: f64, elements: Option<f64>, bytes: Option<f64>) -> Est {
+        Est {
+            mean,
+            lo: mean * 0.9,
+            hi: mean * 1.2,
+            elements,
+            bytes,
+        }
+    }
+
+    /// The template renders exactly what the `writeln!` chain wrote, on data that takes every
+    /// branch (peer ran/skipped, callgrind ok/skipped, generation timed or not).
+    #[test]
+    fn template_output_equals_the_writeln_chain() {
+        let mut e = BTreeMap::new();
+        let mut t = 3.0;
+        let mut put = |id: String, el: Option<f64>, by: Option<f64>| {
+            t *= 1.7;
+            e.insert(id, est(t, el, by));
+        };
+        for n in [4, 6, 8, 10, 12, 16, 32] {
+            put(format!("g_direct_f64/n{n:02}"), Some(64.0), None);
+            put(format!("g_direct_f32_libm/n{n:02}"), Some(64.0), None);
+            put(format!("g_direct_f32_micromath/n{n:02}"), Some(64.0), None);
+        }
+        for id in [
+            "g_lut/table3d",
+            "g_lut/table2d_sigma0.3",
+            "g_lut/table3d_linear",
+            "dfg/lut_f32",
+            "dfg/karis_approx_f32",
+            "dfg_direct/split_sum_f64",
+            "dfg_direct/split_sum_f32",
+            "dfg_direct/directional_albedo_f64",
+            "g_closed_f32_libm/blinn_dots",
+            "g_closed_f64/smith_beckmann_correlated",
+            "model_eval_f32_libm/ggx",
+            "model_sample_f32_libm/ggx",
+            "model_eval_f32_libm/lambert",
+            "batch_f64/g_modified",
+            "batch_f32_libm/g_modified",
+        ] {
+            put(id.into(), Some(1.0), None);
+        }
+        put("lut_parse/view/dfg_ggx.blut".into(), None, Some(16515.0));
+        put(
+            "lut_parse/std_loader/dfg_ggx.blut".into(),
+            None,
+            Some(16515.0),
+        );
+        put(
+            "lut_parse/view/g_modified.blut".into(),
+            None,
+            Some(254093.0),
+        );
+        let acc = Accuracy {
+            g_direct: vec![(4, 2e-2, 2.1e-2), (10, 2e-7, 3.2e-7), (32, 0.0, 2.9e-7)],
+            g_lut3: Some(7.6e-5),
+            g_lut2: None,
+            g_lut3_linear: Some(9.8e-4),
+            g_lut2_linear: Some(5.5e-5),
+            dfg_lut: Some((1.9e-4, 8e-5)),
+            dfg_karis: (2e-2, 1e-2),
+            g_points: 4096,
+            dfg_points: 2048,
+        };
+        let machine = Machine {
+            cpu: "Test CPU (1.0 MHz)".into(),
+            cores: 2,
+            rustc: "rustc 1.0".into(),
+            os: "Linux".into(),
+        };
+        let args = Args {
+            smoke: false,
+            warm_up: 0.2,
+            measurement: 0.6,
+            sample_size: 15,
+            skip_generation: false,
+            out: None,
+        };
+        let cg_ok: Counts = Ok(CALLGRIND
+            .iter()
+            .enumerate()
+            .map(|(i, (k, _, w))| (k.to_string(), w.to_string(), 100.0 + 37.3 * i as f64))
+            .collect());
+        let cg_err: Counts = Err("valgrind not found".into());
+        let peers = [
+            Peer::Ran {
+                ns_per_g: 215_000.0,
+                evaluations: 448,
+                max_diff: 3.1e-9,
+                versions: "Python 3.11, SciPy 1.16".into(),
+            },
+            Peer::Skipped("No module named 'scipy'".into()),
+        ];
+        for peer in &peers {
+            for cg in [&cg_ok, &cg_err] {
+                for gen in [Some((12.34, 600_000u64, 11usize)), None] {
+                    let r = Report {
+                        est: &e,
+                        peer,
+                        acc: &acc,
+                        cg,
+                        gen,
+                        machine: &machine,
+                        args: &args,
+                        secs: 147.2,
+                        t_crit: 116.4,
+                    };
+                    let old = report_old(&r);
+                    let new = report::render(&r).unwrap();
+                    if old != new {
+                        let line = old
+                            .lines()
+                            .zip(new.lines())
+                            .position(|(a, b)| a != b)
+                            .unwrap_or(old.lines().count().min(new.lines().count()));
+                        panic!(
+                            "differ at line {line}:\nold: {:?}\nnew: {:?}",
+                            old.lines().nth(line),
+                            new.lines().nth(line)
+                        );
+                    }
+                }
+            }
+        }
+    }
 }
