@@ -294,13 +294,106 @@ pub(super) fn render(r: &Report<'_>) -> Result<String> {
         v_dfg_albedo => verdict(ratio(dfg_alb, dfg_lut), 50.0),
         direct32 => ns(direct32),
         direct64 => ns(direct64),
-        kernel_targets => "",
+        kernel_target_rows => kernel_target_rows(r, dfg_lut, per("dfg/karis_approx_f32"), peer_ns, direct64),
         g_points => a.g_points,
         dfg_points => a.dfg_points,
         node_rows, table_rows, limits => Value::from_serialize(&limits), closed_rows, peer, dfg,
         model_rows, batch_rows, parse_rows, gen, cg, raw_rows,
     };
     fill(TEMPLATE, ctx)
+}
+
+/// One row per kernel target: instruction ratios against the floor or a twin, the DFG
+/// lookup's time against Karis's fit, the direct G's instruction budget, the SciPy peer.
+fn kernel_target_rows(
+    r: &Report<'_>,
+    dfg_lut_ns: Option<f64>,
+    karis_ns: Option<f64>,
+    peer_ns: Option<f64>,
+    direct64_ns: Option<f64>,
+) -> String {
+    let ir = |k: &str| r.cg.as_ref().ok()?.iter().find(|x| x.0 == k).map(|x| x.2);
+    let judge = |measured: Option<f64>, limit: f64, at_most: bool| match measured {
+        None => "not measured",
+        Some(x) if (at_most && x <= limit) || (!at_most && x >= limit) => "**met**",
+        Some(_) => "**missed**",
+    };
+    let mut rows = String::new();
+    // Instruction ratio of `k` over `base`, at most `limit`.
+    let mut ratio_row = |what: String, k: &str, base: &str, limit: f64| {
+        let x = ratio(ir(k), ir(base));
+        let measured = match (ir(k), ir(base)) {
+            (Some(a), Some(b)) => format!("{a:.0} / {b:.0} = {:.2}×", a / b),
+            _ => "–".into(),
+        };
+        rows.push_str(&row(&[
+            what,
+            measured,
+            format!("≤ {limit}×"),
+            judge(x, limit, true).into(),
+        ]));
+    };
+    ratio_row(
+        "`dfg_lut` instructions vs the floor `floor_bilinear2`".into(),
+        "dfg_lut",
+        "floor_bilinear2",
+        1.5,
+    );
+    ratio_row(
+        "`g_lut2d_linear` instructions vs the floor".into(),
+        "g_lut2d_linear",
+        "floor_bilinear2",
+        2.0,
+    );
+    ratio_row(
+        "`g_lut3d_linear` instructions vs the floor".into(),
+        "g_lut3d_linear",
+        "floor_bilinear2",
+        3.0,
+    );
+    // Every `_std` entry against its no_std twin: the named ones always, others when present.
+    let mut std_names: Vec<String> = vec!["dfg_lut_std".into(), "g_lut2d_linear_std".into()];
+    if let Ok(cg) = r.cg {
+        for (k, _, _) in cg {
+            if k.ends_with("_std") && !std_names.contains(k) {
+                std_names.push(k.clone());
+            }
+        }
+    }
+    for k in &std_names {
+        let twin = k.trim_end_matches("_std");
+        ratio_row(
+            format!("`{k}` instructions vs its no_std twin `{twin}`"),
+            k,
+            twin,
+            1.2,
+        );
+    }
+    let t = ratio(dfg_lut_ns, karis_ns);
+    rows.push_str(&row(&[
+        "`dfg_lut` time vs Karis's analytic fit `dfg_karis` (criterion)".to_string(),
+        match (dfg_lut_ns, karis_ns) {
+            (Some(a), Some(b)) => format!("{} / {} = {:.2}×", fmt_ns(a), fmt_ns(b), a / b),
+            _ => "–".into(),
+        },
+        "≤ 1×".into(),
+        judge(t, 1.0, true).into(),
+    ]));
+    let d = ir("g_direct_f32");
+    rows.push_str(&row(&[
+        "`g_direct_f32` instructions per G (10 nodes)".to_string(),
+        d.map_or("–".into(), |x| format!("{x:.0}")),
+        "≤ 1,500".into(),
+        judge(d, 1500.0, true).into(),
+    ]));
+    let p = ratio(peer_ns, direct64_ns);
+    rows.push_str(&row(&[
+        "SciPy peer time vs direct G (f64)".to_string(),
+        p.map_or("–".into(), |x| format!("{x:.0}×")),
+        "≥ 1000×".into(),
+        judge(p, 1000.0, false).into(),
+    ]));
+    rows
 }
 
 /// Renders a Markdown template: no escaping, undefined names are errors, a block tag's own
