@@ -9,6 +9,7 @@ mod ci;
 mod eval;
 mod firmware;
 mod lut;
+mod msrv;
 mod plot;
 mod wasm;
 mod web;
@@ -38,6 +39,8 @@ enum Cmd {
     Plot(plot::Args),
     /// Fetch the engines' published LUTs into .cache/anchors (pinned SHA-256).
     Anchors(anchors::Args),
+    /// Build and test the publishable crates with the toolchain their rust-version declares.
+    Msrv(msrv::Args),
     /// Everything CI runs: format, clippy, tests, no_std builds (the README's test command).
     Ci(ci::Args),
 }
@@ -47,6 +50,7 @@ fn main() {
     let res = match cli.cmd {
         Cmd::Eval(a) => eval::run(a),
         Cmd::Anchors(a) => anchors::run(a),
+        Cmd::Msrv(a) => msrv::run(a),
         Cmd::Ci(a) => ci::run(a),
         Cmd::Lut(a) => lut::run(a),
         Cmd::Bench(a) => bench::run(a),

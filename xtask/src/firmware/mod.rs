@@ -34,6 +34,10 @@ pub struct FirmwareArgs {
     /// Fail when the kernels exceed the 16 KiB flash budget (libm build only).
     #[arg(long)]
     pub enforce_budget: bool,
+    /// Rewrite the README's kernel-flash and static-RAM figures with the measured ones
+    /// (libm build). Without it, a README that disagrees with the measurement is an error.
+    #[arg(long)]
+    pub update_readme: bool,
 }
 
 fn repo_root() -> PathBuf {
@@ -132,6 +136,30 @@ pub fn run(a: FirmwareArgs) -> Result<()> {
             sizes.kernels_flash(),
             KERNEL_FLASH_BUDGET
         ));
+    }
+    if !a.micromath {
+        let path = root.join("README.md");
+        let readme = std::fs::read_to_string(&path)?;
+        let measured = (sizes.kernels_flash(), sizes.static_ram());
+        match size::readme_sizes(&readme) {
+            None => errors.push("README.md has no \"B of flash with libm\" / \"B of static RAM\" figures".into()),
+            Some(claimed) if claimed == measured => {}
+            Some(claimed) if a.update_readme => {
+                let text = size::readme_with_sizes(&readme, measured.0, measured.1)
+                    .expect("the figures were just found");
+                let tmp = path.with_extension("md.tmp");
+                std::fs::write(&tmp, text)?;
+                std::fs::rename(&tmp, &path)?;
+                println!(
+                    "README.md: kernel flash {} → {} B, static RAM {} → {} B",
+                    claimed.0, measured.0, claimed.1, measured.1
+                );
+            }
+            Some(claimed) => errors.push(format!(
+                "README.md says the kernels take {} B of flash and {} B of static RAM; measured {} B and {} B (run `cargo xtask firmware --update-readme`)",
+                claimed.0, claimed.1, measured.0, measured.1
+            )),
+        }
     }
     if sizes.has_allocator {
         errors.push("an allocator symbol is linked in (the firmware must not use a heap)".into());

@@ -389,3 +389,71 @@ mod tests {
         );
     }
 }
+
+/// The README's size sentence: "… take 15,254 B of flash with libm … 8 B of static RAM".
+const README_FLASH: &str = " B of flash with libm";
+const README_RAM: &str = " B of static RAM";
+
+/// The number written just before `marker` in `text` (digits and thousands commas), with
+/// its byte range.
+fn number_before(text: &str, marker: &str) -> Option<(u64, std::ops::Range<usize>)> {
+    let end = text.find(marker)?;
+    let start = text[..end]
+        .rfind(|c: char| !(c.is_ascii_digit() || c == ','))
+        .map_or(0, |i| i + 1);
+    let v = text[start..end].replace(',', "").parse().ok()?;
+    Some((v, start..end))
+}
+
+/// `1234567` → `1,234,567` (the README's style).
+fn with_commas(v: u64) -> String {
+    let d = v.to_string();
+    let mut out = String::new();
+    for (i, c) in d.chars().enumerate() {
+        if i > 0 && (d.len() - i).is_multiple_of(3) {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
+}
+
+/// The README's (kernel flash, static RAM) figures, if the sentence is there.
+pub(crate) fn readme_sizes(readme: &str) -> Option<(u64, u64)> {
+    Some((
+        number_before(readme, README_FLASH)?.0,
+        number_before(readme, README_RAM)?.0,
+    ))
+}
+
+/// The README with its figures replaced by `flash` and `ram`.
+pub(crate) fn readme_with_sizes(readme: &str, flash: u64, ram: u64) -> Option<String> {
+    let mut s = readme.to_string();
+    // Replace the later figure first so the earlier range stays valid.
+    let mut edits = [
+        (number_before(&s, README_FLASH)?.1, with_commas(flash)),
+        (number_before(&s, README_RAM)?.1, with_commas(ram)),
+    ];
+    edits.sort_by_key(|e| std::cmp::Reverse(e.0.start));
+    for (r, v) in edits {
+        s.replace_range(r, &v);
+    }
+    Some(s)
+}
+
+#[cfg(test)]
+mod readme_tests {
+    use super::*;
+
+    #[test]
+    fn readme_figures_are_read_and_rewritten() {
+        let t = "kernels take 15,254 B of flash with libm (budget\n  16 KiB), no heap, 8 B of static RAM.";
+        assert_eq!(readme_sizes(t), Some((15254, 8)));
+        let u = readme_with_sizes(t, 1_015_300, 16).unwrap();
+        assert_eq!(
+            u,
+            "kernels take 1,015,300 B of flash with libm (budget\n  16 KiB), no heap, 16 B of static RAM."
+        );
+        assert_eq!(readme_sizes("no figures"), None);
+    }
+}
