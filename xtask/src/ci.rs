@@ -1,8 +1,11 @@
 //! `cargo xtask ci`: the README's test command. Runs every check CI runs, in order, and
 //! stops at the first failure.
 //!
-//! Each step is one command line. Steps that need tools a fresh machine may lack (QEMU,
-//! Chromium, Node packages) install them through `.ci/install` first.
+//! Each step is one command line. Steps that need tools a fresh machine may lack install them
+//! themselves: the published LUTs (`cargo xtask anchors`, from npm and crates.io), the web
+//! tools (`.ci/install-web.sh`), QEMU (`cargo xtask firmware` runs `.ci/install-qemu.sh`), the
+//! MSRV toolchain (`rustup toolchain install`), SciPy for the benchmark's peer (a venv under
+//! `.cache/`, made by `cargo xtask bench`).
 
 use anyhow::{bail, Result};
 use std::process::Command;
@@ -38,6 +41,11 @@ const STEPS: &[Step] = &[
             "-D",
             "warnings",
         ],
+        slow: false,
+    },
+    Step {
+        name: "published LUTs for the comparison tests (npm, crates.io; pinned SHA-256)",
+        cmd: &["cargo", "xtask", "anchors"],
         slow: false,
     },
     Step {
@@ -96,6 +104,11 @@ const STEPS: &[Step] = &[
             "micromath",
         ],
         slow: false,
+    },
+    Step {
+        name: "publishable crates on their declared rust-version (installs that toolchain)",
+        cmd: &["cargo", "xtask", "msrv"],
+        slow: true,
     },
     Step {
         name: "core tests with micromath",

@@ -3,14 +3,18 @@
 
 use clap::{Parser, Subcommand};
 
+mod anchors;
 mod bench;
 mod ci;
 mod engine;
 mod eval;
+mod firmware;
 mod fsio;
 mod lut;
-mod platforms;
+mod msrv;
 mod plot;
+mod wasm;
+mod web;
 
 #[derive(Parser)]
 #[command(name = "cargo xtask", about = "brdf-kernels tasks", version)]
@@ -28,13 +32,17 @@ enum Cmd {
     /// Run the benchmark suite with short settings and write docs/benchmarks.md.
     Bench(bench::Args),
     /// Build the Cortex-M firmware, run it under QEMU and compare with the host.
-    Firmware(platforms::FirmwareArgs),
+    Firmware(firmware::FirmwareArgs),
     /// Build the WebAssembly module, optimise it and run the Node tests.
-    Wasm(platforms::WasmArgs),
+    Wasm(wasm::WasmArgs),
     /// Build the web example and run the headless-browser test.
-    Web(platforms::WebArgs),
+    Web(web::WebArgs),
     /// Run the validation simulations and write the figures and docs/validation.md.
     Plot(plot::Args),
+    /// Fetch the engines' published LUTs into .cache/anchors (pinned SHA-256).
+    Anchors(anchors::Args),
+    /// Build and test the publishable crates with the toolchain their rust-version declares.
+    Msrv(msrv::Args),
     /// Everything CI runs: format, clippy, tests, no_std builds (the README's test command).
     Ci(ci::Args),
 }
@@ -43,12 +51,14 @@ fn main() {
     let cli = Cli::parse();
     let res = match cli.cmd {
         Cmd::Eval(a) => eval::run(a),
+        Cmd::Anchors(a) => anchors::run(a),
+        Cmd::Msrv(a) => msrv::run(a),
         Cmd::Ci(a) => ci::run(a),
         Cmd::Lut(a) => lut::run(a),
         Cmd::Bench(a) => bench::run(a),
-        Cmd::Firmware(a) => platforms::firmware(a),
-        Cmd::Wasm(a) => platforms::wasm(a),
-        Cmd::Web(a) => platforms::web(a),
+        Cmd::Firmware(a) => firmware::run(a),
+        Cmd::Wasm(a) => wasm::run_cmd(a),
+        Cmd::Web(a) => web::run_cmd(a),
         Cmd::Plot(a) => plot::run(a),
     };
     if let Err(e) = res {

@@ -6,7 +6,7 @@
 //! and the test points are written to target/lut-engine-web/ for
 //! `examples/web/test/lut_engine.test.mjs` (a WebGL2 fragment shader samples the table).
 
-use crate::platforms::WasmArgs;
+use crate::wasm::WasmArgs;
 use anyhow::{bail, Result};
 use std::process::Command;
 use std::time::Instant;
@@ -19,13 +19,13 @@ pub struct WebArgs {
 }
 
 pub fn run_cmd(a: WebArgs) -> Result<()> {
-    let root = super::wasm_impl::root();
-    super::wasm_impl::run_cmd(WasmArgs {
+    let root = crate::wasm::root();
+    crate::wasm::run_cmd(WasmArgs {
         no_test: !a.with_node_tests,
     })?;
     let web = root.join("examples/web");
     if !web.join("node_modules/playwright-core").is_dir() {
-        super::wasm_impl::run(
+        crate::wasm::run(
             &web,
             Command::new("npm").args(["ci", "--no-audit", "--no-fund"]),
         )?;
@@ -35,7 +35,7 @@ pub fn run_cmd(a: WebArgs) -> Result<()> {
     }
     crate::engine::web::prepare(&root.join("target/lut-engine-web"))?;
     let t = Instant::now();
-    super::wasm_impl::run(
+    crate::wasm::run(
         &root,
         Command::new("node").args(["--test", "examples/web/test/"]),
     )?;

@@ -4,14 +4,15 @@
 //!
 //! `cargo xtask bench --smoke` only checks that everything builds and runs once (CI).
 
+mod report;
+
 use anyhow::{bail, Context, Result};
 use brdf_bench::{angle_pairs, env_brdf_approx, mu_roughness, read_asset, SIGMA};
 use brdf_core::masking::ModifiedG;
-use brdf_core::quadrature::{GaussLegendre, DEFAULT_NODES, NODE_COUNTS};
+use brdf_core::quadrature::{GaussLegendre, NODE_COUNTS};
 use brdf_core::split_sum::{dfg_ggx, InnerRule, OuterRule};
 use brdf_lut::{DfgTable, GTable, GTable3};
 use std::collections::BTreeMap;
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
@@ -68,6 +69,58 @@ const CALLGRIND: &[(&str, usize, &str)] = &[
     ("dfg_karis", 5000, "DFG, Karis's analytic fit"),
     ("dfg_direct_f64", 8, "DFG, split-sum integral, f64"),
 ];
+
+/// Harness kernels measured when this build's harness has them (`harness list`): the floor
+/// and the `_std` twins of the kernel targets. Any other listed kernel is measured too, with
+/// [`EXTRA_CALLS`] calls.
+const OPTIONAL_CALLGRIND: &[(&str, usize, &str)] = &[
+    (
+        "floor_bilinear2",
+        2000,
+        "floor: one bilinear fetch of a two-channel u16 table",
+    ),
+    (
+        "dfg_lut_std",
+        2000,
+        "DFG (A, B) lookup through the std loader",
+    ),
+    (
+        "g_lut2d_linear_std",
+        2000,
+        "modified G, per-σ 2-D table, speed tier, through the std loader",
+    ),
+];
+const EXTRA_CALLS: usize = 200;
+
+/// The kernels to measure: [`CALLGRIND`], then those of `harness list` not in it (described
+/// by [`OPTIONAL_CALLGRIND`] when named there).
+fn harness_kernels(harness: &Path) -> Result<Vec<(String, usize, String)>> {
+    let out = Command::new(harness)
+        .arg("list")
+        .output()
+        .context("running `harness list`")?;
+    if !out.status.success() {
+        bail!("`harness list` failed ({})", out.status);
+    }
+    let listed = String::from_utf8_lossy(&out.stdout).into_owned();
+    let mut ks: Vec<(String, usize, String)> = CALLGRIND
+        .iter()
+        .map(|(k, n, w)| (k.to_string(), *n, w.to_string()))
+        .collect();
+    for name in listed.lines().map(str::trim).filter(|l| !l.is_empty()) {
+        if ks.iter().any(|k| k.0 == name) {
+            continue;
+        }
+        let (n, what) = OPTIONAL_CALLGRIND
+            .iter()
+            .find(|o| o.0 == name)
+            .map_or((EXTRA_CALLS, "harness entry".to_string()), |o| {
+                (o.1, o.2.to_string())
+            });
+        ks.push((name.to_string(), n, what));
+    }
+    Ok(ks)
+}
 
 pub fn run(a: Args) -> Result<()> {
     let root = super::lut::workspace_root();
@@ -127,7 +180,7 @@ pub fn run(a: Args) -> Result<()> {
         Some(time_generation()?)
     };
     let machine = machine();
-    let md = report(&Report {
+    let md = report::render(&Report {
         est: &est,
         peer: &peer,
         acc: &acc,
@@ -137,7 +190,7 @@ pub fn run(a: Args) -> Result<()> {
         args: &a,
         secs: t_start.elapsed().as_secs_f64(),
         t_crit,
-    });
+    })?;
     let out = a
         .out
         .clone()
@@ -165,15 +218,15 @@ fn smoke(root: &Path, cargo: &str, target: &Path) -> Result<()> {
         Some(MICROMATH_FILTER),
     )?;
     let h = build_harness(root, cargo, target)?;
-    for (k, _, _) in CALLGRIND {
-        let st = Command::new(&h).args([k, "3"]).status()?;
+    for (k, _, _) in harness_kernels(&h)? {
+        let st = Command::new(&h).args([k.as_str(), "3"]).status()?;
         if !st.success() {
             bail!("harness {k} failed");
         }
     }
     match run_peer(root, 2, 1) {
         Peer::Ran { ns_per_g, .. } => eprintln!("SciPy peer ran ({ns_per_g:.0} ns per G)"),
-        Peer::Skipped(why) => eprintln!("SciPy peer skipped: {why}"),
+        Peer::Skipped(why) => bail!("SciPy peer did not run: {why}"),
     }
     eprintln!(
         "bench smoke test passed in {:.0} s",
@@ -279,7 +332,67 @@ enum Peer {
     Skipped(String),
 }
 
+/// SciPy for the peer, installed from PyPI into `.cache/scipy-venv` (pinned: the peer's
+/// time depends on its version).
+const SCIPY: &str = "scipy==1.16.3";
+
+/// The virtual environment's Python with SciPy importable, creating it when needed
+/// (`python3 -m venv`, then `pip install`). Idempotent: an existing environment whose SciPy
+/// imports is reused.
+fn scipy_python(root: &Path) -> std::result::Result<PathBuf, String> {
+    let venv = root.join(".cache/scipy-venv");
+    let py = venv.join("bin/python3");
+    let imports = |py: &Path| {
+        Command::new(py)
+            .args(["-c", "import scipy.integrate"])
+            .output()
+            .is_ok_and(|o| o.status.success())
+    };
+    if imports(&py) {
+        return Ok(py);
+    }
+    let run = |cmd: &mut Command, what: &str| -> std::result::Result<(), String> {
+        let o = cmd.output().map_err(|e| format!("{what}: {e}"))?;
+        if o.status.success() {
+            Ok(())
+        } else {
+            Err(format!(
+                "{what} failed: {}",
+                String::from_utf8_lossy(&o.stderr).trim()
+            ))
+        }
+    };
+    eprintln!("installing {SCIPY} into {}", venv.display());
+    run(
+        Command::new("python3").args(["-m", "venv"]).arg(&venv),
+        "python3 -m venv",
+    )?;
+    run(
+        Command::new(&py).args([
+            "-m",
+            "pip",
+            "install",
+            "--quiet",
+            "--disable-pip-version-check",
+            SCIPY,
+        ]),
+        "pip install scipy",
+    )?;
+    if imports(&py) {
+        Ok(py)
+    } else {
+        Err(format!("{SCIPY} installed but does not import"))
+    }
+}
+
 fn run_peer(root: &Path, n: usize, repeat: usize) -> Peer {
+    let python = match scipy_python(root) {
+        Ok(p) => p,
+        Err(why) => {
+            eprintln!("SciPy peer skipped: {why}");
+            return Peer::Skipped(why);
+        }
+    };
     let script = root.join("crates/brdf-bench/peer/g_peer.py");
     let (ti, tr) = angle_pairs::<f64>(n);
     let pairs: Vec<String> = ti
@@ -287,7 +400,7 @@ fn run_peer(root: &Path, n: usize, repeat: usize) -> Peer {
         .zip(&tr)
         .map(|(a, b)| format!("{a:.17},{b:.17}"))
         .collect();
-    let out = Command::new("python3")
+    let out = Command::new(&python)
         .arg(&script)
         .args([
             "--sigma",
@@ -481,9 +594,9 @@ fn callgrind(root: &Path, cargo: &str, target: &Path) -> Counts {
             .ok_or_else(|| "no totals in the callgrind output".to_string())
     };
     let mut rows = Vec::new();
-    for &(k, n, what) in CALLGRIND {
-        let per = (ir(k, n)? - ir(k, 0)?) / n as f64;
-        rows.push((k.to_string(), what.to_string(), per));
+    for (k, n, what) in harness_kernels(&h).map_err(|e| e.to_string())? {
+        let per = (ir(&k, n)? - ir(&k, 0)?) / n as f64;
+        rows.push((k, what, per));
     }
     let _ = std::fs::remove_dir_all(&tmp);
     Ok(rows)
@@ -579,465 +692,4 @@ fn fmt_ns(x: f64) -> String {
     } else {
         format!("{x:.1} ns")
     }
-}
-
-fn report(r: &Report<'_>) -> String {
-    let e = r.est;
-    let per = |id: &str| e.get(id).map(|x| x.per_call());
-    let mut s = String::new();
-    let w = &mut s;
-    let m = r.machine;
-    let dn = DEFAULT_NODES;
-    let _ = writeln!(w, "# Benchmarks\n");
-    let _ = writeln!(
-        w,
-        "Generated by `cargo xtask bench` (do not edit by hand). Every number below comes from \
-         one run: criterion for times, valgrind's callgrind for instruction counts, the SciPy \
-         script `crates/brdf-bench/peer/g_peer.py` for the peer. Times are wall-clock medians \
-         on one core; the machine is shared, so read them with their 95 % intervals, and prefer \
-         the instruction counts for comparisons across runs.\n"
-    );
-    let _ = writeln!(w, "## Machine\n");
-    let _ = writeln!(w, "| | |\n|---|---|");
-    let _ = writeln!(w, "| CPU | {} |", m.cpu);
-    let _ = writeln!(w, "| logical cores | {} (benchmarks run on one) |", m.cores);
-    let _ = writeln!(w, "| OS | {} |", m.os);
-    let _ = writeln!(
-        w,
-        "| compiler | {} (release profile, `opt-level = 3`) |",
-        m.rustc
-    );
-    let _ = writeln!(
-        w,
-        "| criterion settings | warm-up {} s, measurement {} s, {} samples per benchmark |",
-        r.args.warm_up, r.args.measurement, r.args.sample_size
-    );
-    let _ = writeln!(
-        w,
-        "| run time | {:.0} s in all, of which {:.0} s criterion (both builds included) |\n",
-        r.secs, r.t_crit
-    );
-
-    // ---- Targets
-    let direct32 = per(&format!("g_direct_f32_libm/n{dn:02}"));
-    let direct64 = per(&format!("g_direct_f64/n{dn:02}"));
-    let lut3 = per("g_lut/table3d");
-    let lut2 = per("g_lut/table2d_sigma0.3");
-    let lut3f = per("g_lut/table3d_linear");
-    let lut2f = per("g_lut/table2d_sigma0.3_linear");
-    let dfg_lut = per("dfg/lut_f32");
-    let dfg_direct = per("dfg_direct/split_sum_f64");
-    let dfg_alb = per("dfg_direct/directional_albedo_f64");
-    let ratio = |a: Option<f64>, b: Option<f64>| match (a, b) {
-        (Some(a), Some(b)) if b > 0.0 => Some(a / b),
-        _ => None,
-    };
-    let verdict = |x: Option<f64>, t: f64| match x {
-        Some(x) if x >= t => format!("{x:.1}× — **met**"),
-        Some(x) => format!("{x:.2}× — **missed**"),
-        None => "not measured".into(),
-    };
-    let peer_ns = match r.peer {
-        Peer::Ran { ns_per_g, .. } => Some(*ns_per_g),
-        Peer::Skipped(_) => None,
-    };
-    let _ = writeln!(w, "## Targets (ratios from this run)\n");
-    let _ = writeln!(w, "| target | measured | needed |\n|---|---|---|");
-    let _ = writeln!(
-        w,
-        "| 3-D G table lookup vs direct G (f32, {dn} nodes), speed tier `{}` (trilinear) | {} | ≥ 10× |",
-        brdf_bench::G3_LINEAR_ASSET,
-        verdict(ratio(direct32, lut3f), 10.0)
-    );
-    let _ = writeln!(
-        w,
-        "| per-σ 2-D G table lookup vs direct G (f32, {dn} nodes), speed tier `{}` (bilinear) | {} | ≥ 30× |",
-        brdf_bench::G2_LINEAR_ASSET,
-        verdict(ratio(direct32, lut2f), 30.0)
-    );
-    let _ = writeln!(
-        w,
-        "| *same, accuracy tier `{}` (tricubic)* | {} | ≥ 10× |",
-        brdf_bench::G3_ASSET,
-        verdict(ratio(direct32, lut3), 10.0)
-    );
-    let _ = writeln!(
-        w,
-        "| *same, accuracy tier `{}` (bicubic)* | {} | ≥ 30× |",
-        brdf_bench::G2_ASSET,
-        verdict(ratio(direct32, lut2), 30.0)
-    );
-    let _ = writeln!(
-        w,
-        "| direct G (f64, {dn} nodes) vs the SciPy peer | {} | ≥ 1000× |",
-        match peer_ns {
-            Some(_) => verdict(ratio(peer_ns, direct64), 1000.0),
-            None => "peer skipped (SciPy not importable)".into(),
-        }
-    );
-    let _ = writeln!(
-        w,
-        "| DFG table lookup vs the direct split-sum integral (f64, as generated) | {} | ≥ 50× |",
-        verdict(ratio(dfg_direct, dfg_lut), 50.0)
-    );
-    let _ = writeln!(
-        w,
-        "| DFG table lookup vs the directional-albedo integral of the GGX model (f64) | {} | ≥ 50× |\n",
-        verdict(ratio(dfg_alb, dfg_lut), 50.0)
-    );
-    let _ = writeln!(
-        w,
-        "First measured time per G evaluation, direct, {dn} nodes, σ = {SIGMA}: \
-         **f32 {}**, **f64 {}** (median time per iteration over {} in-plane pairs spread over θi ∈ [0, 89°], \
-         θr ∈ [−89°, 89°]).\n",
-        direct32.map_or("–".into(), fmt_ns),
-        direct64.map_or("–".into(), fmt_ns),
-        brdf_bench::BATCH
-    );
-
-    // ---- Matched accuracy
-    let a = r.acc;
-    let _ = writeln!(
-        w,
-        "## G: direct quadrature against the tables at matched accuracy\n"
-    );
-    let _ = writeln!(
-        w,
-        "Error = max |G − G₃₂| over {} pairs (σ = {SIGMA}), G₃₂ the 32-node f64 quadrature \
-         (it agrees with the SciPy peer to the peer's tolerance, see below). ns per call from \
-         criterion; the f32 rows use libm, the micromath column the same f32 code with \
-         micromath.\n",
-        a.g_points
-    );
-    let _ = writeln!(
-        w,
-        "| nodes | error f64 | error f32 (libm) | ns/call f64 | ns/call f32 libm | ns/call f32 micromath |\n|---|---|---|---|---|---|"
-    );
-    for &(n, e64, e32) in &a.g_direct {
-        let c = |id: String| per(&id).map_or("–".into(), fmt_ns);
-        let _ = writeln!(
-            w,
-            "| {n}{} | {e64:.1e} | {e32:.1e} | {} | {} | {} |",
-            if n == dn { " (default)" } else { "" },
-            c(format!("g_direct_f64/n{n:02}")),
-            c(format!("g_direct_f32_libm/n{n:02}")),
-            c(format!("g_direct_f32_micromath/n{n:02}")),
-        );
-    }
-    let _ = writeln!(w);
-    let matched = |err: Option<f64>| -> Option<usize> {
-        let err = err?;
-        a.g_direct.iter().find(|x| x.2 <= err).map(|x| x.0)
-    };
-    let _ = writeln!(w, "| table | error (f32 lookup) | ns/call | direct G of no larger error (f32) | its ns/call | speed-up at matched accuracy | speed-up vs {dn} nodes |\n|---|---|---|---|---|---|---|");
-    for (name, err, t) in [
-        ("3-D (θ, φ, σ) tricubic, `g_modified.blut`", a.g_lut3, lut3),
-        (
-            "per-σ 2-D bicubic, `g_modified_sigma0.3.blut`",
-            a.g_lut2,
-            lut2,
-        ),
-        (
-            "3-D trilinear, `g_modified_linear.blut`",
-            a.g_lut3_linear,
-            lut3f,
-        ),
-        (
-            "per-σ 2-D bilinear, `g_modified_sigma0.3_linear.blut`",
-            a.g_lut2_linear,
-            lut2f,
-        ),
-    ] {
-        let mn = matched(err);
-        let tm = mn.and_then(|n| per(&format!("g_direct_f32_libm/n{n:02}")));
-        let _ = writeln!(
-            w,
-            "| {name} | {} | {} | {} | {} | {} | {} |",
-            err.map_or("–".into(), |x| format!("{x:.1e}")),
-            t.map_or("–".into(), fmt_ns),
-            mn.map_or("–".into(), |n| format!("{n} nodes")),
-            tm.map_or("–".into(), fmt_ns),
-            ratio(tm, t).map_or("–".into(), |x| format!("{x:.2}×")),
-            ratio(direct32, t).map_or("–".into(), |x| format!("{x:.2}×")),
-        );
-    }
-    let _ = writeln!(w);
-
-    // ---- Limits
-    if let Ok(rows) = r.cg {
-        let ir = |k: &str| rows.iter().find(|x| x.0 == k).map(|x| x.2);
-        if let (Some(d), Some(l3), Some(l2), Some(f3), Some(f2)) = (
-            ir("g_direct_f32"),
-            ir("g_lut3d"),
-            ir("g_lut2d"),
-            ir("g_lut3d_linear"),
-            ir("g_lut2d_linear"),
-        ) {
-            let _ = writeln!(
-                w,
-                "### What limits the G-table ratios (callgrind, instructions per G)\n"
-            );
-            let _ = writeln!(
-                w,
-                "* Direct G, f32, {dn} nodes: **{d:.0}** (two passing factors, each two {dn}-node \
-                 integrals: 40 `exp` and 40 `sqrt` per G).\n\
-                 * A table G is two passing-factor lookups, F(|θr|, ±θi) for GM and F(θi, θr) for \
-                 GS, each with the √cos θ axis warp (a short polynomial cosine and a `sqrtf`). \
-                 `GTable`/`GTable3` read one-channel u16 tables with the layout fixed when they \
-                 are parsed (`crates/brdf-core/src/lut/passing.rs`: taps per axis known, end \
-                 extrapolation folded into the weights, one bounds check per row, the (θ, φ) \
-                 cell shared by every σ plane).\n\
-                 * Accuracy tier (Catmull–Rom, 4 taps per axis): **{l3:.0}** (3-D, 2 × 64 taps) \
-                 and **{l2:.0}** (2-D, 2 × 16 taps).\n\
-                 * Speed tier (linear, 2 taps per axis, on denser grids of the same size budget): \
-                 **{f3:.0}** (3-D, 2 × 8 taps plus `logf` for the σ axis) and **{f2:.0}** (2-D, \
-                 2 × 4 taps), i.e. {:.1}× and {:.1}× fewer instructions than direct G.\n\
-                 * What is left in the 2-D speed tier is fixed cost, not taps: per G two warped \
-                 and two linear axis maps (clamp, scale, float→int, fraction: ~35 instructions \
-                 each with the cosine), four bounds-checked u16 pairs, the argument folding of \
-                 conventions.md §4 and the final clamps. Reaching 30× would need under \
-                 {:.0} instructions per G, i.e. a G that skips the angle warp (inputs already \
-                 as table coordinates) and reads one fetch for GM and GS; the ratios above are \
-                 what this layout reaches, measured, not a bound.\n",
-                d / f3,
-                d / f2,
-                d / 30.0
-            );
-        }
-    }
-
-    // ---- Closed forms
-    let _ = writeln!(w, "## G: closed forms (shader inputs: dot products)\n");
-    let _ = writeln!(
-        w,
-        "| kernel | f32 libm | f32 micromath | f64 |\n|---|---|---|---|"
-    );
-    for k in [
-        "smith_beckmann_correlated",
-        "smith_beckmann_separable",
-        "blinn_dots",
-        &format!("modified_dots_n{dn}"),
-    ] {
-        let c = |g: &str| per(&format!("{g}/{k}")).map_or("–".into(), fmt_ns);
-        let _ = writeln!(
-            w,
-            "| {k} | {} | {} | {} |",
-            c("g_closed_f32_libm"),
-            c("g_closed_f32_micromath"),
-            c("g_closed_f64")
-        );
-    }
-    let _ = writeln!(w);
-
-    // ---- Peer
-    let _ = writeln!(w, "## The SciPy peer\n");
-    match r.peer {
-        Peer::Ran {
-            ns_per_g,
-            evaluations,
-            max_diff,
-            versions,
-        } => {
-            let _ = writeln!(
-                w,
-                "`peer/g_peer.py` evaluates the same G (conventions.md §§2–4) with \
-                 `scipy.integrate.quad` at default tolerances ({versions}): **{}** per G (median over \
-                 7 sweeps of the direct benchmark's {} pairs, {evaluations} evaluations); max |G_peer − G_direct(f64, {dn} nodes)| = {max_diff:.1e}. \
-                 Direct f64 is {} faster.\n",
-                fmt_ns(*ns_per_g),
-                brdf_bench::BATCH,
-                ratio(peer_ns, direct64).map_or("–".into(), |x| format!("{x:.0}×"))
-            );
-        }
-        Peer::Skipped(why) => {
-            let _ = writeln!(
-                w,
-                "Skipped in this run: {why}. Install with `pip install scipy`.\n"
-            );
-        }
-    }
-
-    // ---- DFG
-    let _ = writeln!(w, "## DFG (split-sum A, B for GGX)\n");
-    let _ = writeln!(
-        w,
-        "Errors: max |ΔA|, |ΔB| against the f64 split-sum integral over {} (μ, r) points, \
-         μ ∈ [cos 89°, 1], r ∈ [0, 1].\n",
-        a.dfg_points
-    );
-    let _ = writeln!(
-        w,
-        "| method | ns/call | max |ΔA| | max |ΔB| |\n|---|---|---|---|"
-    );
-    let fe = |x: Option<(f64, f64)>| {
-        x.map_or(("–".into(), "–".into()), |(p, q)| {
-            (format!("{p:.1e}"), format!("{q:.1e}"))
-        })
-    };
-    let (la, lb) = fe(a.dfg_lut);
-    let (ka, kb) = fe(Some(a.dfg_karis));
-    let _ = writeln!(
-        w,
-        "| table lookup (`dfg_ggx.blut`, f32) | {} | {la} | {lb} |",
-        dfg_lut.map_or("–".into(), fmt_ns)
-    );
-    let _ = writeln!(
-        w,
-        "| Karis's analytic fit (f32) | {} | {ka} | {kb} |",
-        per("dfg/karis_approx_f32").map_or("–".into(), fmt_ns)
-    );
-    let _ = writeln!(
-        w,
-        "| split-sum integral, f64 (the generator's) | {} | 0 (reference) | 0 (reference) |",
-        dfg_direct.map_or("–".into(), fmt_ns)
-    );
-    let _ = writeln!(
-        w,
-        "| split-sum integral, f32 | {} | | |",
-        per("dfg_direct/split_sum_f32").map_or("–".into(), fmt_ns)
-    );
-    let _ = writeln!(
-        w,
-        "| directional albedo of the GGX model (F = 1, A + B), f64 | {} | | |\n",
-        dfg_alb.map_or("–".into(), fmt_ns)
-    );
-
-    // ---- Models
-    let _ = writeln!(w, "## BRDF models (f32 libm, ns per call)\n");
-    let _ = writeln!(w, "| model | eval | sample |\n|---|---|---|");
-    let mut names: Vec<&str> = e
-        .keys()
-        .filter_map(|k| k.strip_prefix("model_eval_f32_libm/"))
-        .collect();
-    names.sort();
-    for n in names {
-        let _ = writeln!(
-            w,
-            "| {n} | {} | {} |",
-            per(&format!("model_eval_f32_libm/{n}")).map_or("–".into(), fmt_ns),
-            per(&format!("model_sample_f32_libm/{n}")).map_or("–".into(), fmt_ns)
-        );
-    }
-    let _ = writeln!(w);
-
-    // ---- Batch
-    let _ = writeln!(
-        w,
-        "## Batch entry points (`brdf_core::batch`, {} elements per call, one core)\n",
-        brdf_bench::BATCH_LEN
-    );
-    let _ = writeln!(
-        w,
-        "Each entry point equals its scalar kernel bit for bit (`tests/tests/batch.rs`). The \
-         Smith–GGX G and V entry points are written in chunks (radicands, packed square root, \
-         branch-free selects) and compile to packed SSE instructions; the others call scalar \
-         `exp`/`erf` or the quadrature and run at the scalar rate. Throughput is per core \
-         (one thread).\n"
-    );
-    let _ = writeln!(w, "| entry point | f32 libm: ns/element, M elements/s | f32 micromath | f64 |\n|---|---|---|---|");
-    let mut bnames: Vec<&str> = e
-        .keys()
-        .filter_map(|k| k.strip_prefix("batch_f64/"))
-        .collect();
-    bnames.sort();
-    for n in bnames {
-        let c = |g: &str| {
-            per(&format!("{g}/{n}"))
-                .map_or("–".into(), |x| format!("{} — {:.1}", fmt_ns(x), 1e3 / x))
-        };
-        let _ = writeln!(
-            w,
-            "| {n} | {} | {} | {} |",
-            c("batch_f32_libm"),
-            c("batch_f32_micromath"),
-            c("batch_f64")
-        );
-    }
-    let _ = writeln!(w);
-
-    // ---- Parse
-    let _ = writeln!(w, "## LUT parse and validate (header, limits, CRC-32)\n");
-    let _ = writeln!(w, "| file | size | no_std view | per MiB | std loader (copy + view) | per MiB |\n|---|---|---|---|---|---|");
-    let mut files: Vec<&str> = e
-        .keys()
-        .filter_map(|k| k.strip_prefix("lut_parse/view/"))
-        .collect();
-    files.sort();
-    for f in files {
-        let v = &e[&format!("lut_parse/view/{f}")];
-        let sl = e.get(&format!("lut_parse/std_loader/{f}"));
-        let bytes = v.bytes.unwrap_or(f64::NAN);
-        let mib = |x: &Est| fmt_ns(x.mean / bytes * 1_048_576.0);
-        let _ = writeln!(
-            w,
-            "| `{f}` | {:.1} KiB | {} | {} | {} | {} |",
-            bytes / 1024.0,
-            fmt_ns(v.mean),
-            mib(v),
-            sl.map_or("–".into(), |x| fmt_ns(x.mean)),
-            sl.map_or("–".into(), mib)
-        );
-    }
-    let _ = writeln!(w);
-    match r.gen {
-        Some((secs, bytes, files)) => {
-            let _ = writeln!(
-                w,
-                "Generation of the default asset set (`cargo xtask lut`, {files} files, \
-                 {:.0} KiB, on all {} cores, with its built-in verification): **{secs:.1} s** wall time.\n",
-                bytes as f64 / 1024.0,
-                m.cores
-            );
-        }
-        None => {
-            let _ = writeln!(
-                w,
-                "Generation of the default asset set: not timed in this run.\n"
-            );
-        }
-    }
-
-    // ---- Callgrind
-    let _ = writeln!(w, "## Instructions per call (callgrind)\n");
-    match r.cg {
-        Ok(rows) => {
-            let _ = writeln!(
-                w,
-                "`crates/brdf-bench/src/bin/harness.rs` calls one kernel N times; \
-                 instructions per call = (Ir(N) − Ir(0))/N, so start-up, input set-up and \
-                 table parsing cancel.\n"
-            );
-            let _ = writeln!(w, "| kernel | what | instructions/call |\n|---|---|---|");
-            for (k, what, per) in rows {
-                let _ = writeln!(w, "| `{k}` | {what} | {per:.0} |");
-            }
-        }
-        Err(why) => {
-            let _ = writeln!(w, "Skipped in this run: {why}.");
-        }
-    }
-    let _ = writeln!(w);
-
-    // ---- All raw
-    let _ = writeln!(w, "## All criterion results\n");
-    let _ = writeln!(
-        w,
-        "| benchmark | per call (median) | 95 % interval |\n|---|---|---|"
-    );
-    for (id, x) in e {
-        let (lo, hi) = x.per_call_ci();
-        let (mean, lo, hi) = if x.bytes.is_some() {
-            (x.mean, x.lo, x.hi)
-        } else {
-            (x.per_call(), lo, hi)
-        };
-        let _ = writeln!(
-            w,
-            "| `{id}` | {} | {} – {} |",
-            fmt_ns(mean),
-            fmt_ns(lo),
-            fmt_ns(hi)
-        );
-    }
-    s
 }
