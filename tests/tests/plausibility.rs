@@ -148,6 +148,43 @@ fn all_models() -> Vec<Named> {
             .unwrap(),
         ),
         named(
+            "ggx anisotropic 0.05/0.5 correlated, visible normals",
+            Ggx::anisotropic(
+                c,
+                0.05,
+                0.5,
+                SmithForm::Correlated,
+                MicrofacetSampling::VisibleNormals,
+            )
+            .unwrap(),
+        ),
+        named(
+            "ggx anisotropic 0.6/0.15 separable, normals",
+            Ggx::anisotropic(
+                w(1.0),
+                0.6,
+                0.15,
+                SmithForm::Separable,
+                MicrofacetSampling::Normals,
+            )
+            .unwrap(),
+        ),
+        named(
+            "torrance-sparrow sigma=0.2 smith G, kd 0.3",
+            TorranceSparrow::<f64>::new(
+                0.2,
+                GeometricTerm::SmithCorrelated,
+                brdf_core::fresnel::Fresnel::schlick(0.04).unwrap(),
+                0.7,
+                0.3,
+            )
+            .unwrap(),
+        ),
+        named(
+            "torrance-sparrow sigma=0.3 modified G",
+            TorranceSparrow::<f64>::specular(0.3, GeometricTerm::Modified).unwrap(),
+        ),
+        named(
             "ggx a=1 correlated",
             Ggx::new(
                 w(1.0),

@@ -7,7 +7,9 @@
 //!   quadrature ([`quadrature`]), with the readings of `conventions.md`;
 //! * Blinn's V-groove G (eq 4) and Smith's G ([`masking`]);
 //! * the Torrance–Sparrow BRDF (eq 3) with any of those G ([`models`]);
-//! * Fresnel terms ([`fresnel`]) and normal distributions ([`distribution`]).
+//! * the microfacet distributions, Beckmann and GGX, anisotropic, each with its D, Smith
+//!   masking and sampling ([`microfacet`]);
+//! * Fresnel terms ([`fresnel`]) and the paper's slope distribution ([`distribution`]).
 //!
 //! Local shading frame: z is the normal; directions point away from the surface.
 //!
@@ -25,12 +27,14 @@
 
 pub mod albedo;
 pub mod batch;
+pub mod catalogue;
 pub mod distribution;
 pub mod error;
 pub mod fresnel;
 pub mod geometry;
 pub mod lut;
 pub mod masking;
+pub mod microfacet;
 pub mod models;
 pub mod quadrature;
 pub mod real;
