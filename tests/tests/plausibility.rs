@@ -42,8 +42,29 @@ fn named(name: impl Into<String>, model: impl Brdf<f64> + 'static) -> Named {
     }
 }
 
-/// Every model, in typical and extreme-but-valid configurations.
+/// Every model of the catalogue at its default parameters (the configurations the command
+/// line, the WASM module and the benches start from).
+fn catalogue_models() -> Vec<Named> {
+    brdf_core::catalogue::MODELS
+        .iter()
+        .map(|spec| {
+            let m = spec
+                .build::<f64>(&spec.defaults::<f64>())
+                .unwrap_or_else(|e| panic!("catalogue default of {}: {e}", spec.name));
+            named(format!("catalogue {} (defaults)", spec.name), m)
+        })
+        .collect()
+}
+
+/// Every model, in typical and extreme-but-valid configurations, then the catalogue's
+/// defaults.
 fn all_models() -> Vec<Named> {
+    let mut v = hand_models();
+    v.extend(catalogue_models());
+    v
+}
+
+fn hand_models() -> Vec<Named> {
     let c = Rgb::new(0.6, 0.4, 0.2);
     vec![
         named("lambert", Lambert::new(c).unwrap()),

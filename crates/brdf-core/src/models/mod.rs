@@ -14,7 +14,11 @@
 //! | [`LambertSpecularMix`], [`ShirleyDamped`], [`CoupledSmooth`] | FCG §24.4, eq 24.3 |
 //! | [`AshikhminShirley`] | FCG eqs 24.5–24.9 |
 //! | [`Bank`], [`Ward`] | seed 002 §10.3–10.4 |
-//! | [`Ggx`] | Trowbridge–Reitz with Smith masking (conventions.md §8) |
+//! | [`Ggx`] | Trowbridge–Reitz, isotropic or anisotropic, with Smith masking (conventions.md §8) |
+//! | [`TorranceSparrow`] | paper eq 3: Beckmann D, any [`GeometricTerm`], a [`crate::fresnel::Fresnel`] |
+//!
+//! The microfacet models compose a distribution of [`crate::microfacet`] with a G and a
+//! Fresnel term; every model is listed, with its parameters, in [`crate::catalogue`].
 
 // `!(x > 0)` is deliberate throughout: it is true for NaN as well.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
