@@ -39,9 +39,11 @@ pub struct ParamSpec {
     /// Layout and meaning of its slots.
     pub kind: ParamKind,
     /// Unit ("1" for unitless, "rad", "-" for a choice).
-    pub unit: &'static str,
+    #[cfg(feature = "catalogue-text")]
+    unit: &'static str,
     /// The range the model's checked constructor accepts (per channel), in words.
-    pub range: &'static str,
+    #[cfg(feature = "catalogue-text")]
+    range: &'static str,
     /// Slider range for a user interface (inside the accepted range).
     pub ui: (f64, f64),
     /// Slider step (1 for a choice).
@@ -49,10 +51,39 @@ pub struct ParamSpec {
     /// Default, per channel (a scalar or a choice uses the first).
     pub default: [f64; 3],
     /// What it is.
-    pub help: &'static str,
+    #[cfg(feature = "catalogue-text")]
+    help: &'static str,
+}
+
+/// The texts of the catalogue are kept only with the `catalogue-text` feature (so that the
+/// WASM module and the firmware do not carry them); without it these return "".
+macro_rules! text {
+    ($self:ident . $f:ident) => {{
+        #[cfg(feature = "catalogue-text")]
+        {
+            $self.$f
+        }
+        #[cfg(not(feature = "catalogue-text"))]
+        {
+            let _ = $self;
+            ""
+        }
+    }};
 }
 
 impl ParamSpec {
+    /// Unit ("1" for unitless, "rad", "-" for a choice); "" without `catalogue-text`.
+    pub fn unit(&self) -> &'static str {
+        text!(self.unit)
+    }
+    /// The range the constructor accepts, in words; "" without `catalogue-text`.
+    pub fn range(&self) -> &'static str {
+        text!(self.range)
+    }
+    /// What it is; "" without `catalogue-text`.
+    pub fn help(&self) -> &'static str {
+        text!(self.help)
+    }
     /// Slots taken in the flat array.
     pub const fn width(&self) -> usize {
         match self.kind {
@@ -99,8 +130,9 @@ pub struct ModelSpec {
     pub name: &'static str,
     /// Older spellings still accepted by [`find`].
     pub aliases: &'static [&'static str],
-    /// One-line description with its source.
-    pub about: &'static str,
+    /// One-line description with its source ([`ModelSpec::about`]).
+    #[cfg(feature = "catalogue-text")]
+    about: &'static str,
     /// Parameters, in flat-array order.
     pub params: &'static [ParamSpec],
     /// Static flags.
@@ -121,6 +153,10 @@ pub struct Slot {
 }
 
 impl ModelSpec {
+    /// One-line description with its source; "" without `catalogue-text`.
+    pub fn about(&self) -> &'static str {
+        text!(self.about)
+    }
     /// Number of slots of the flat array.
     pub fn slots(&self) -> usize {
         self.params.iter().map(|p| p.width()).sum()
@@ -252,6 +288,7 @@ struct Reader<'a, T> {
 }
 
 impl<'a, T: Real> Reader<'a, T> {
+    #[inline(never)]
     fn next(&mut self) -> Result<(T, &'a ParamSpec), ParamError> {
         let p = self.spec.params.get(self.k).unwrap_or(&NO_PARAM);
         let x = *self.v.get(self.at).ok_or(ParamError::OutOfRange {
@@ -261,11 +298,13 @@ impl<'a, T: Real> Reader<'a, T> {
         self.at += 1;
         Ok((x, p))
     }
+    #[inline(never)]
     fn num(&mut self) -> Result<T, ParamError> {
         let (x, _) = self.next()?;
         self.k += 1;
         Ok(x)
     }
+    #[inline(never)]
     fn rgb(&mut self) -> Result<Rgb<T>, ParamError> {
         let (r, _) = self.next()?;
         let (g, _) = self.next()?;
@@ -273,6 +312,7 @@ impl<'a, T: Real> Reader<'a, T> {
         self.k += 1;
         Ok(Rgb::new(r, g, b))
     }
+    #[inline(never)]
     fn choice(&mut self) -> Result<usize, ParamError> {
         let (x, p) = self.next()?;
         self.k += 1;
@@ -288,23 +328,14 @@ impl<'a, T: Real> Reader<'a, T> {
         } else {
             Err(ParamError::OutOfRange {
                 name: p.name,
-                range: p.range,
+                range: "an option index",
             })
         }
     }
 }
 
 /// Stands in for a parameter past the end of a spec (never reached for a consistent table).
-static NO_PARAM: ParamSpec = ParamSpec {
-    name: "?",
-    kind: ParamKind::Scalar,
-    unit: "",
-    range: "",
-    ui: (0.0, 0.0),
-    step: 1.0,
-    default: [0.0; 3],
-    help: "",
-};
+static NO_PARAM: ParamSpec = num("?", "", "", (0.0, 0.0), 1.0, 0.0, "");
 
 /// Finds a model by name or old spelling.
 pub fn find(name: &str) -> Option<&'static ModelSpec> {
@@ -421,14 +452,18 @@ const fn num(
     default: f64,
     help: &'static str,
 ) -> ParamSpec {
+    let _ = (unit, range, help);
     ParamSpec {
         name,
         kind: ParamKind::Scalar,
+        #[cfg(feature = "catalogue-text")]
         unit,
+        #[cfg(feature = "catalogue-text")]
         range,
         ui,
         step,
         default: [default; 3],
+        #[cfg(feature = "catalogue-text")]
         help,
     }
 }
@@ -441,14 +476,18 @@ const fn rgb(
     default: [f64; 3],
     help: &'static str,
 ) -> ParamSpec {
+    let _ = (range, help);
     ParamSpec {
         name,
         kind: ParamKind::Rgb(channels),
+        #[cfg(feature = "catalogue-text")]
         unit: "1",
+        #[cfg(feature = "catalogue-text")]
         range,
         ui,
         step: 0.01,
         default,
+        #[cfg(feature = "catalogue-text")]
         help,
     }
 }
@@ -460,14 +499,18 @@ const fn choice(
     default: usize,
     help: &'static str,
 ) -> ParamSpec {
+    let _ = (range, help);
     ParamSpec {
         name,
         kind: ParamKind::Choice(options),
+        #[cfg(feature = "catalogue-text")]
         unit: "-",
+        #[cfg(feature = "catalogue-text")]
         range,
         ui: (0.0, options.len() as f64 - 1.0),
         step: 1.0,
         default: [default as f64; 3],
+        #[cfg(feature = "catalogue-text")]
         help,
     }
 }
@@ -502,6 +545,7 @@ pub const MODELS: &[ModelSpec] = &[
     ModelSpec {
         name: "torrance-sparrow",
         aliases: &[],
+        #[cfg(feature = "catalogue-text")]
         about: "Torrance-Sparrow (paper eq 3): ks D F G/(4 cos_i cos_o) + albedo/pi, Beckmann D \
                 with alpha = sqrt2 sigma, Schlick F(r0), G selectable",
         params: &[
@@ -547,6 +591,7 @@ pub const MODELS: &[ModelSpec] = &[
     ModelSpec {
         name: "lambert",
         aliases: &[],
+        #[cfg(feature = "catalogue-text")]
         about: "Lambertian f = albedo/pi (standard lighting model diffuse, FCG 24.2)",
         params: &[rgb(
             "albedo",
@@ -562,6 +607,7 @@ pub const MODELS: &[ModelSpec] = &[
     ModelSpec {
         name: "phong",
         aliases: &["phong-normalized"],
+        #[cfg(feature = "catalogue-text")]
         about: "energy-normalised Phong kd/pi + ks (n+2)/(2pi) max(wo.r_i,0)^n",
         params: &[
             rgb(
@@ -588,6 +634,7 @@ pub const MODELS: &[ModelSpec] = &[
     ModelSpec {
         name: "blinn-phong",
         aliases: &["blinn-phong-normalized"],
+        #[cfg(feature = "catalogue-text")]
         about: "energy-normalised Blinn-Phong kd/pi + ks (n+2)(n+4)/(8pi(n+2^(-n/2))) (n.h)^n",
         params: &[
             rgb(
@@ -622,6 +669,7 @@ pub const MODELS: &[ModelSpec] = &[
     ModelSpec {
         name: "cook-torrance",
         aliases: &[],
+        #[cfg(feature = "catalogue-text")]
         about: "Cook-Torrance kd/pi + ks D F G/(4 cos_i cos_o), Beckmann D of width m = alpha, \
                 Schlick F",
         params: &[
@@ -680,6 +728,7 @@ pub const MODELS: &[ModelSpec] = &[
     ModelSpec {
         name: "lambert-mirror",
         aliases: &[],
+        #[cfg(feature = "catalogue-text")]
         about: "Lambert plus mirror (FCG 24.4): rd/pi (+ rs times a Dirac mirror)",
         params: &[
             rgb(
@@ -706,6 +755,7 @@ pub const MODELS: &[ModelSpec] = &[
     ModelSpec {
         name: "shirley-damped",
         aliases: &["shirley"],
+        #[cfg(feature = "catalogue-text")]
         about: "Shirley's damped model (FCG 24.4): rd (1 - R_f(theta_o))/pi (+ Dirac); NOT \
                 reciprocal",
         params: &[
@@ -733,6 +783,7 @@ pub const MODELS: &[ModelSpec] = &[
     ModelSpec {
         name: "coupled-smooth",
         aliases: &["coupled"],
+        #[cfg(feature = "catalogue-text")]
         about: "coupled smooth-layered model (FCG eq 24.3): k rm f(theta_i) f(theta_o) (+ Dirac)",
         params: &[
             rgb(
@@ -766,6 +817,7 @@ pub const MODELS: &[ModelSpec] = &[
     ModelSpec {
         name: "ashikhmin-shirley",
         aliases: &[],
+        #[cfg(feature = "catalogue-text")]
         about: "Ashikhmin-Shirley anisotropic Phong (FCG 24.5-24.9) + coupled diffuse (24.7); \
                 u = x, v = y",
         params: &[
@@ -802,6 +854,7 @@ pub const MODELS: &[ModelSpec] = &[
     ModelSpec {
         name: "bank",
         aliases: &[],
+        #[cfg(feature = "catalogue-text")]
         about: "Bank anisotropic BRDF: kd/pi + ks (sqrt(1-(L.T)^2) sqrt(1-(V.T)^2) - \
                 (L.T)(V.T))^ns",
         params: &[
@@ -845,6 +898,7 @@ pub const MODELS: &[ModelSpec] = &[
     ModelSpec {
         name: "ward",
         aliases: &[],
+        #[cfg(feature = "catalogue-text")]
         about: "Ward anisotropic: rd/pi + rs exp(-tan^2 h (cos^2/ax^2 + sin^2/ay^2))/(4pi ax ay \
                 sqrt(cos_i cos_o))",
         params: &[
@@ -889,6 +943,7 @@ pub const MODELS: &[ModelSpec] = &[
     ModelSpec {
         name: "ggx",
         aliases: &[],
+        #[cfg(feature = "catalogue-text")]
         about: "Trowbridge-Reitz (GGX) D F G/(4 cos_i cos_o), Schlick F (F90 = 1), Smith G",
         params: &[
             rgb(
@@ -929,6 +984,7 @@ pub const MODELS: &[ModelSpec] = &[
     ModelSpec {
         name: "ggx-anisotropic",
         aliases: &[],
+        #[cfg(feature = "catalogue-text")]
         about: "anisotropic GGX: D = 1/(pi ax ay ((h_x/ax)^2 + (h_y/ay)^2 + h_z^2)^2), Smith G \
                 of the projected width, Schlick F",
         params: &[
@@ -979,6 +1035,7 @@ pub const MODELS: &[ModelSpec] = &[
     ModelSpec {
         name: "standard",
         aliases: &[],
+        #[cfg(feature = "catalogue-text")]
         about: "standard lighting model: lit colour for one white unit light at wi, viewer wo: \
                 m_emis + g_amb*m_amb + m_diff max(n.l,0) + m_spec max(cos,0)^gloss (not a BRDF)",
         params: &[

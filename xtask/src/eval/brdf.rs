@@ -117,23 +117,23 @@ fn default_text(p: &ParamSpec) -> String {
 
 fn print_list(out: &mut impl Write) -> Result<()> {
     for m in MODELS {
-        writeln!(out, "{}\n    {}", m.name, m.about)?;
+        writeln!(out, "{}\n    {}", m.name, m.about())?;
         if !m.aliases.is_empty() {
             writeln!(out, "    also accepted as: {}", m.aliases.join(", "))?;
         }
         for p in m.params {
             let range = match p.kind {
-                ParamKind::Rgb(_) => format!("{} per channel (v or r,g,b)", p.range),
-                _ => p.range.to_string(),
+                ParamKind::Rgb(_) => format!("{} per channel (v or r,g,b)", p.range()),
+                _ => p.range().to_string(),
             };
             writeln!(
                 out,
                 "    --param {}=…  unit {}; range {}; default {}; {}",
                 p.name,
-                p.unit,
+                p.unit(),
                 range,
                 default_text(p),
-                p.help
+                p.help()
             )?;
         }
     }

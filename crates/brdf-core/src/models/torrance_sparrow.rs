@@ -185,7 +185,10 @@ impl<T: Real, R: Rule> TorranceSparrow<T, R> {
             GeometricTerm::Modified | GeometricTerm::ModifiedPrinted => self.modified.g_dots(d),
         }
     }
-    /// D F G/(4 cos θi cos θo) from the pair's dots, its unit half vector h and wi·h.
+    /// D F G/(4 cos θi cos θo) from the pair's dots, its unit half vector h and wi·h. Kept
+    /// out of line: both entry points share it (the modified G inside is large), which keeps
+    /// the WASM module and the firmware within their size budgets.
+    #[inline(never)]
     fn specular_parts(&self, d: Dots<T>, h: Vec3<T>, i_h: T, wi: Vec3<T>, wo: Vec3<T>) -> T {
         let dval = self.dist.d(h);
         if dval == T::ZERO {
