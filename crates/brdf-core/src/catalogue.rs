@@ -189,85 +189,74 @@ impl ModelSpec {
     /// Builds the model from a flat array of at least [`ModelSpec::slots`] numbers. Every
     /// range is the model's checked constructor's; a choice must be an integer index.
     pub fn build<T: Real>(&self, v: &[T]) -> Result<AnyBrdf<T>, ParamError> {
-        let mut r = Reader {
-            spec: self,
-            v,
-            at: 0,
-            k: 0,
+        let n = self.slots();
+        let Some(v) = v.get(..n) else {
+            return Err(ParamError::OutOfRange {
+                name: self.name,
+                range: "too few parameters",
+            });
         };
+        // Choices first, in one place: an integer index into the options.
+        let mut at = 0;
+        for p in self.params {
+            if let ParamKind::Choice(o) = p.kind {
+                check_choice(p.name, v[at], o.len())?;
+            }
+            at += p.width();
+        }
+        // The slots by position (the layout of the table above; the catalogue tests check
+        // each entry against its constructor).
+        let x = |k: usize| v[k];
+        let c = |k: usize| Rgb::new(v[k], v[k + 1], v[k + 2]);
+        let i = |k: usize| Real::to_f64(v[k]) as usize;
         Ok(match self.id {
             ModelId::TorranceSparrow => {
-                let sigma = r.num()?;
-                let g = GeometricTerm::ALL[r.choice()?];
-                let f = Fresnel::schlick(r.num()?)?;
-                AnyBrdf::TorranceSparrow(TorranceSparrow::new(sigma, g, f, r.num()?, r.num()?)?)
+                let f = Fresnel::schlick(x(2))?;
+                let g = GeometricTerm::ALL[i(1)];
+                AnyBrdf::TorranceSparrow(TorranceSparrow::new(x(0), g, f, x(3), x(4))?)
             }
-            ModelId::Lambert => AnyBrdf::Lambert(Lambert::new(r.rgb()?)?),
-            ModelId::Phong => AnyBrdf::Phong(PhongNormalized::new(r.rgb()?, r.rgb()?, r.num()?)?),
+            ModelId::Lambert => AnyBrdf::Lambert(Lambert::new(c(0))?),
+            ModelId::Phong => AnyBrdf::Phong(PhongNormalized::new(c(0), c(3), x(6))?),
             ModelId::BlinnPhong => {
-                AnyBrdf::BlinnPhong(BlinnPhongNormalized::new(r.rgb()?, r.rgb()?, r.num()?)?)
+                AnyBrdf::BlinnPhong(BlinnPhongNormalized::new(c(0), c(3), x(6))?)
             }
             ModelId::CookTorrance => {
-                let (kd, ks, m, r0) = (r.rgb()?, r.rgb()?, r.num()?, r.num()?);
-                let g = GeometricTerm::ALL[r.choice()?];
-                let s = SAMPLINGS[r.choice()?];
-                AnyBrdf::CookTorrance(CookTorrance::new(kd, ks, m, r0, g)?.with_sampling(s))
+                let g = GeometricTerm::ALL[i(8)];
+                let m = CookTorrance::new(c(0), c(3), x(6), x(7), g)?;
+                AnyBrdf::CookTorrance(m.with_sampling(SAMPLINGS[i(9)]))
             }
-            ModelId::LambertMirror => {
-                AnyBrdf::LambertMirror(LambertSpecularMix::new(r.rgb()?, r.num()?)?)
-            }
-            ModelId::ShirleyDamped => {
-                AnyBrdf::ShirleyDamped(ShirleyDamped::new(r.rgb()?, r.num()?)?)
-            }
+            ModelId::LambertMirror => AnyBrdf::LambertMirror(LambertSpecularMix::new(c(0), x(3))?),
+            ModelId::ShirleyDamped => AnyBrdf::ShirleyDamped(ShirleyDamped::new(c(0), x(3))?),
             ModelId::CoupledSmooth => {
-                let (rm, r0) = (r.rgb()?, r.num()?);
-                let k = [CoupledK::Conserving, CoupledK::Printed][r.choice()?];
-                AnyBrdf::CoupledSmooth(CoupledSmooth::new(rm, r0, k)?)
+                let k = [CoupledK::Conserving, CoupledK::Printed][i(4)];
+                AnyBrdf::CoupledSmooth(CoupledSmooth::new(c(0), x(3), k)?)
             }
-            ModelId::AshikhminShirley => AnyBrdf::AshikhminShirley(AshikhminShirley::new(
-                r.rgb()?,
-                r.rgb()?,
-                r.num()?,
-                r.num()?,
-            )?),
+            ModelId::AshikhminShirley => {
+                AnyBrdf::AshikhminShirley(AshikhminShirley::new(c(0), c(3), x(6), x(7))?)
+            }
             ModelId::Bank => {
-                let (kd, ks, ns) = (r.rgb()?, r.rgb()?, r.num()?);
-                let fixed = r.choice()? == 0;
-                let az = r.num()?;
-                let t = if fixed {
-                    BankTangent::Azimuth(az)
+                let t = if i(7) == 0 {
+                    BankTangent::Azimuth(x(8))
                 } else {
                     BankTangent::NormalCrossView
                 };
-                AnyBrdf::Bank(Bank::new(kd, ks, ns, t)?)
+                AnyBrdf::Bank(Bank::new(c(0), c(3), x(6), t)?)
             }
-            ModelId::Ward => AnyBrdf::Ward(Ward::new(r.rgb()?, r.rgb()?, r.num()?, r.num()?)?),
+            ModelId::Ward => AnyBrdf::Ward(Ward::new(c(0), c(3), x(6), x(7))?),
             ModelId::Ggx => {
-                let (f0, a) = (r.rgb()?, r.num()?);
-                let smith = SMITH[r.choice()?];
-                let s = SAMPLINGS[r.choice()?];
-                AnyBrdf::Ggx(Ggx::new(f0, a, smith, s)?)
+                let (smith, s) = (SMITH[i(4)], SAMPLINGS[i(5)]);
+                AnyBrdf::Ggx(Ggx::new(c(0), x(3), smith, s)?)
             }
             ModelId::GgxAnisotropic => {
-                let (f0, ax, ay) = (r.rgb()?, r.num()?, r.num()?);
-                let smith = SMITH[r.choice()?];
-                let s = SAMPLINGS[r.choice()?];
-                AnyBrdf::Ggx(Ggx::anisotropic(f0, ax, ay, smith, s)?)
+                let (smith, s) = (SMITH[i(5)], SAMPLINGS[i(6)]);
+                AnyBrdf::Ggx(Ggx::anisotropic(c(0), x(3), x(4), smith, s)?)
             }
             ModelId::Standard => {
-                let (e, a, g_amb, d, s) = (r.rgb()?, r.rgb()?, r.rgb()?, r.rgb()?, r.rgb()?);
-                let gloss = r.num()?;
-                let h = [Highlight::Phong, Highlight::BlinnPhong][r.choice()?];
-                AnyBrdf::Standard(StandardLit {
-                    m: StandardLighting::new(e, a, d, s, gloss, h)?,
-                    g_amb: crate::models::rgb::check_rgb(
-                        "g_amb",
-                        g_amb,
-                        T::ZERO,
-                        T::INFINITY,
-                        "[0, ∞)",
-                    )?,
-                })
+                let h = [Highlight::Phong, Highlight::BlinnPhong][i(16)];
+                let m = StandardLighting::new(c(0), c(3), c(9), c(12), x(15), h)?;
+                let g_amb =
+                    crate::models::rgb::check_rgb("g_amb", c(6), T::ZERO, T::INFINITY, "[0, ∞)")?;
+                AnyBrdf::Standard(StandardLit { m, g_amb })
             }
         })
     }
@@ -279,63 +268,20 @@ const SAMPLINGS: [MicrofacetSampling; 2] = [
     MicrofacetSampling::Normals,
 ];
 
-/// Reads the flat array in parameter order.
-struct Reader<'a, T> {
-    spec: &'a ModelSpec,
-    v: &'a [T],
-    at: usize,
-    k: usize,
-}
-
-impl<'a, T: Real> Reader<'a, T> {
-    #[inline(never)]
-    fn next(&mut self) -> Result<(T, &'a ParamSpec), ParamError> {
-        let p = self.spec.params.get(self.k).unwrap_or(&NO_PARAM);
-        let x = *self.v.get(self.at).ok_or(ParamError::OutOfRange {
-            name: p.name,
-            range: "missing (too few parameters)",
-        })?;
-        self.at += 1;
-        Ok((x, p))
-    }
-    #[inline(never)]
-    fn num(&mut self) -> Result<T, ParamError> {
-        let (x, _) = self.next()?;
-        self.k += 1;
-        Ok(x)
-    }
-    #[inline(never)]
-    fn rgb(&mut self) -> Result<Rgb<T>, ParamError> {
-        let (r, _) = self.next()?;
-        let (g, _) = self.next()?;
-        let (b, _) = self.next()?;
-        self.k += 1;
-        Ok(Rgb::new(r, g, b))
-    }
-    #[inline(never)]
-    fn choice(&mut self) -> Result<usize, ParamError> {
-        let (x, p) = self.next()?;
-        self.k += 1;
-        let n = match p.kind {
-            ParamKind::Choice(o) => o.len(),
-            _ => 0,
-        };
-        let xf: f64 = Real::to_f64(x);
-        if xf >= 0.0 && xf < n as f64 && xf == (xf as usize) as f64 {
-            Ok(xf as usize)
-        } else if !x.is_finite() {
-            Err(ParamError::NotFinite { name: p.name })
-        } else {
-            Err(ParamError::OutOfRange {
-                name: p.name,
-                range: "an option index",
-            })
-        }
+/// A choice slot must hold an integer index below `n`.
+fn check_choice<T: Real>(name: &'static str, x: T, n: usize) -> Result<(), ParamError> {
+    let xf: f64 = Real::to_f64(x);
+    if xf >= 0.0 && xf < n as f64 && xf == (xf as usize) as f64 {
+        Ok(())
+    } else if !x.is_finite() {
+        Err(ParamError::NotFinite { name })
+    } else {
+        Err(ParamError::OutOfRange {
+            name,
+            range: "an option index",
+        })
     }
 }
-
-/// Stands in for a parameter past the end of a spec (never reached for a consistent table).
-static NO_PARAM: ParamSpec = num("?", "", "", (0.0, 0.0), 1.0, 0.0, "");
 
 /// Finds a model by name or old spelling.
 pub fn find(name: &str) -> Option<&'static ModelSpec> {
