@@ -12,13 +12,15 @@
 //! Roughness follows the crate's convention ([`crate::microfacet`]): Beckmann and GGX widths
 //! α; the Torrance–Sparrow model takes the paper's RMS slope σ = α/√2.
 
+use crate::error::check_range;
 use crate::fresnel::Fresnel;
 use crate::geometry::Vec3;
 use crate::models::*;
 use crate::{ParamError, Real};
 
-/// The largest [`ModelSpec::slots`] of any model.
-pub const MAX_SLOTS: usize = 17;
+/// The most slots a model may have ([`ModelSpec::slots`]): 16, what the WASM module's
+/// JavaScript side reserves for a parameter array (64 bytes of f32).
+pub const MAX_SLOTS: usize = 16;
 
 /// How a parameter occupies the flat array.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -252,11 +254,13 @@ impl ModelSpec {
                 AnyBrdf::Ggx(Ggx::anisotropic(c(0), x(3), x(4), smith, s)?)
             }
             ModelId::Standard => {
-                let h = [Highlight::Phong, Highlight::BlinnPhong][i(16)];
-                let m = StandardLighting::new(c(0), c(3), c(9), c(12), x(15), h)?;
-                let g_amb =
-                    crate::models::rgb::check_rgb("g_amb", c(6), T::ZERO, T::INFINITY, "[0, ∞)")?;
-                AnyBrdf::Standard(StandardLit { m, g_amb })
+                let h = [Highlight::Phong, Highlight::BlinnPhong][i(14)];
+                let m = StandardLighting::new(c(0), c(3), c(7), c(10), x(13), h)?;
+                let g_amb = check_range("g_amb", x(6), T::ZERO, false, T::INFINITY, "[0, ∞)")?;
+                AnyBrdf::Standard(StandardLit {
+                    m,
+                    g_amb: Rgb::splat(g_amb),
+                })
             }
         })
     }

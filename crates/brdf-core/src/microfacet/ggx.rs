@@ -63,7 +63,7 @@ impl<T: Real> TrowbridgeReitz<T> {
 /// a² = α²(1 − c)(1 + c) of an isotropic width α at polar cosine c (clamped to ≤ 1).
 #[inline]
 pub(crate) fn iso_a2<T: Real>(c: T, alpha: T) -> T {
-    let c = c.min(T::ONE);
+    let c = if c > T::ONE { T::ONE } else { c };
     let a = clamp_alpha(alpha);
     a * a * ((T::ONE - c) * (T::ONE + c)).max(T::ZERO)
 }

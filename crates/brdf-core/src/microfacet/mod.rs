@@ -136,7 +136,8 @@ pub(crate) fn stretched<T: Real>(ax: T, ay: T, h: Vec3<T>) -> T {
 /// near c = 1, unlike 1 − c²).
 #[inline]
 pub(crate) fn from_cos<T: Real>(c: T) -> Vec3<T> {
-    let c = c.min(T::ONE);
+    // Not `min`, which would turn NaN into 1: NaN in, NaN out.
+    let c = if c > T::ONE { T::ONE } else { c };
     Vec3::new(
         ((T::ONE - c) * (T::ONE + c)).max(T::ZERO).sqrt(),
         T::ZERO,
