@@ -1005,13 +1005,14 @@ pub const MODELS: &[ModelSpec] = &[
                 [0.0; 3],
                 "m_amb",
             ),
-            rgb(
+            num(
                 "g_amb",
-                ["g_amb_r", "g_amb_g", "g_amb_b"],
+                "1",
                 U0INF,
                 (0.0, 1.0),
-                [0.0; 3],
-                "global ambient g_amb",
+                0.01,
+                0.0,
+                "global ambient g_amb (grey)",
             ),
             rgb(
                 "diffuse",
