@@ -75,6 +75,9 @@ fn every_entry_builds_at_defaults_and_at_its_slider_ends() {
     }
 }
 
+/// A catalogue name, a flat parameter array and the model built directly.
+type Case = (&'static str, Vec<f64>, Box<dyn Brdf<f64>>);
+
 /// The flat layout reaches the constructors' arguments in the right order: each entry at
 /// non-default settings against the model built directly.
 #[test]
@@ -88,7 +91,7 @@ fn the_layout_maps_to_the_constructors() {
         (Vec3::new(0.8, 0.0, 0.6), Vec3::new(-0.8, 0.0, 0.6)),
     ];
     let c = |r, g, b| Rgb::new(r, g, b);
-    let cases: Vec<(&str, Vec<f64>, Box<dyn Brdf<f64>>)> = vec![
+    let cases: Vec<Case> = vec![
         (
             "torrance-sparrow",
             vec![0.2, 3.0, 0.1, 0.7, 0.25],

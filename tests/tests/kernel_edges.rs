@@ -814,7 +814,7 @@ fn anisotropic_ggx_is_normalised_and_reduces_to_isotropic() {
     }
     let iso = TrowbridgeReitz::<f64>::new(0.3, 0.3).unwrap();
     for c in [1.0, 0.9, 0.5, 0.1] {
-        let h = Vec3::new((1.0 - c * c as f64).sqrt(), 0.0, c);
+        let h = Vec3::new((1.0f64 - c * c).sqrt(), 0.0, c);
         let a2: f64 = 0.09;
         let closed = a2 / (PI * (c * c * (a2 - 1.0) + 1.0).powi(2));
         assert!(((iso.d(h) - closed) / closed).abs() < 1e-13);
