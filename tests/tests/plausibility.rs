@@ -42,8 +42,29 @@ fn named(name: impl Into<String>, model: impl Brdf<f64> + 'static) -> Named {
     }
 }
 
-/// Every model, in typical and extreme-but-valid configurations.
+/// Every model of the catalogue at its default parameters (the configurations the command
+/// line, the WASM module and the benches start from).
+fn catalogue_models() -> Vec<Named> {
+    brdf_core::catalogue::MODELS
+        .iter()
+        .map(|spec| {
+            let m = spec
+                .build::<f64>(&spec.defaults::<f64>())
+                .unwrap_or_else(|e| panic!("catalogue default of {}: {e}", spec.name));
+            named(format!("catalogue {} (defaults)", spec.name), m)
+        })
+        .collect()
+}
+
+/// Every model, in typical and extreme-but-valid configurations, then the catalogue's
+/// defaults.
 fn all_models() -> Vec<Named> {
+    let mut v = hand_models();
+    v.extend(catalogue_models());
+    v
+}
+
+fn hand_models() -> Vec<Named> {
     let c = Rgb::new(0.6, 0.4, 0.2);
     vec![
         named("lambert", Lambert::new(c).unwrap()),
@@ -146,6 +167,43 @@ fn all_models() -> Vec<Named> {
                 MicrofacetSampling::VisibleNormals,
             )
             .unwrap(),
+        ),
+        named(
+            "ggx anisotropic 0.05/0.5 correlated, visible normals",
+            Ggx::anisotropic(
+                c,
+                0.05,
+                0.5,
+                SmithForm::Correlated,
+                MicrofacetSampling::VisibleNormals,
+            )
+            .unwrap(),
+        ),
+        named(
+            "ggx anisotropic 0.6/0.15 separable, normals",
+            Ggx::anisotropic(
+                w(1.0),
+                0.6,
+                0.15,
+                SmithForm::Separable,
+                MicrofacetSampling::Normals,
+            )
+            .unwrap(),
+        ),
+        named(
+            "torrance-sparrow sigma=0.2 smith G, kd 0.3",
+            TorranceSparrow::<f64>::new(
+                0.2,
+                GeometricTerm::SmithCorrelated,
+                brdf_core::fresnel::Fresnel::schlick(0.04).unwrap(),
+                0.7,
+                0.3,
+            )
+            .unwrap(),
+        ),
+        named(
+            "torrance-sparrow sigma=0.3 modified G",
+            TorranceSparrow::<f64>::specular(0.3, GeometricTerm::Modified).unwrap(),
         ),
         named(
             "ggx a=1 correlated",

@@ -151,80 +151,33 @@ fn models(c: &mut Criterion) {
         .collect();
     let rgb = |r: f64, g: f64, b: f64| Rgb::new(r as T, g as T, b as T);
     let (kd, ks) = (rgb(0.5, 0.4, 0.3), rgb(0.04, 0.04, 0.04));
-    let list: Vec<(&str, Box<dyn Brdf<T>>)> = vec![
-        ("lambert", Box::new(Lambert::new(kd).unwrap())),
+    // Every model of the catalogue at its defaults, then the G variants of Cook–Torrance.
+    let mut list: Vec<(&str, Box<dyn Brdf<T>>)> = brdf_core::catalogue::MODELS
+        .iter()
+        .map(|m| {
+            let b: Box<dyn Brdf<T>> = Box::new(m.build::<T>(&m.defaults::<T>()).unwrap());
+            (m.name, b)
+        })
+        .collect();
+    list.extend([
         (
-            "phong_normalized",
-            Box::new(PhongNormalized::new(kd, ks, 50.0).unwrap()),
+            "cook-torrance/modified-g",
+            Box::new(CookTorrance::new(kd, ks, 0.3, 0.04, GeometricTerm::Modified).unwrap())
+                as Box<dyn Brdf<T>>,
         ),
         (
-            "blinn_phong_normalized",
-            Box::new(BlinnPhongNormalized::new(kd, ks, 50.0).unwrap()),
-        ),
-        (
-            "standard_lighting",
-            Box::new(
-                StandardLighting::new(
-                    rgb(0., 0., 0.),
-                    rgb(0.1, 0.1, 0.1),
-                    kd,
-                    ks,
-                    32.0,
-                    Highlight::Phong,
-                )
-                .unwrap(),
-            ),
-        ),
-        (
-            "ggx",
-            Box::new(
-                Ggx::new(
-                    ks,
-                    0.3,
-                    SmithForm::Correlated,
-                    MicrofacetSampling::VisibleNormals,
-                )
-                .unwrap(),
-            ),
-        ),
-        (
-            "cook_torrance_modified_g",
-            Box::new(CookTorrance::new(kd, ks, 0.3, 0.04, GeometricTerm::Modified).unwrap()),
-        ),
-        (
-            "cook_torrance_smith",
+            "cook-torrance/smith",
             Box::new(CookTorrance::new(kd, ks, 0.3, 0.04, GeometricTerm::SmithCorrelated).unwrap()),
         ),
         (
-            "cook_torrance_smith_visible_normals",
+            "cook-torrance/smith-visible-normals",
             Box::new(
                 CookTorrance::new(kd, ks, 0.3, 0.04, GeometricTerm::SmithCorrelated)
                     .unwrap()
                     .with_sampling(MicrofacetSampling::VisibleNormals),
             ),
         ),
-        ("ward", Box::new(Ward::new(kd, ks, 0.2, 0.3).unwrap())),
-        (
-            "ashikhmin_shirley",
-            Box::new(AshikhminShirley::new(ks, kd, 100.0, 20.0).unwrap()),
-        ),
-        (
-            "bank",
-            Box::new(Bank::new(kd, ks, 20.0, BankTangent::Azimuth(0.0)).unwrap()),
-        ),
-        (
-            "coupled_smooth",
-            Box::new(CoupledSmooth::new(kd, 0.04, CoupledK::Conserving).unwrap()),
-        ),
-        (
-            "shirley_damped",
-            Box::new(ShirleyDamped::new(kd, 0.04).unwrap()),
-        ),
-        (
-            "lambert_specular_mix",
-            Box::new(LambertSpecularMix::new(kd, 0.04).unwrap()),
-        ),
-    ];
+    ]);
     let mut ev = c.benchmark_group(format!("model_eval_{}", type_tag::<T>()));
     ev.throughput(Throughput::Elements(BATCH as u64));
     for (name, m) in &list {

@@ -24,6 +24,7 @@
 
 use crate::geometry::{Dots, Vec3};
 use crate::masking::{self, ModifiedG};
+use crate::microfacet::ggx::{lambda_finish, lambda_radicand, v_finish};
 use crate::models::{Brdf, TorranceSparrow};
 use crate::quadrature::Rule;
 use crate::Real;
@@ -266,7 +267,9 @@ pub fn g_smith_beckmann_correlated<T: Real>(
 }
 
 /// Height-correlated Smith–GGX G = 1/(1 + Λ(θi) + Λ(θo)), Λ = (√(1 + α² tan²θ) − 1)/2,
-/// from the cosines n·wi and n·wo.
+/// from the cosines n·wi and n·wo: the scalar kernel's own pieces
+/// ([`crate::microfacet::TrowbridgeReitz`]'s Λ split around its square root), so every value
+/// equals [`masking::g_smith_ggx_correlated`] bit for bit.
 pub fn g_smith_ggx_correlated<T: BatchReal>(
     cos_i: &[T],
     cos_o: &[T],
@@ -274,34 +277,30 @@ pub fn g_smith_ggx_correlated<T: BatchReal>(
     out: &mut [T],
 ) -> Result<(), BatchError> {
     same_len(&[cos_i.len(), cos_o.len(), out.len()])?;
-    // The operations of `masking::lambda_ggx`, split around the square root.
-    let rad = |c: T| {
-        let c2 = (c * c).min(T::ONE);
-        let tan2 = (T::ONE - c2) / c2;
-        T::ONE + alpha * alpha * tan2
-    };
-    let lambda = |c: T, root: T| {
-        let l = (root - T::ONE) * T::HALF;
-        let l = if c > T::ZERO { l } else { T::INFINITY };
-        if c.is_nan() | alpha.is_nan() {
-            T::NAN
-        } else {
-            l
-        }
-    };
+    let a2 = |c: T| masking::smith::v_a2(c, c, alpha).0;
     map2_sqrt(
         cos_i,
         cos_o,
         out,
-        |ci, co| (rad(ci), rad(co)),
-        |ci, co, si, so| T::ONE / (T::ONE + lambda(ci, si) + lambda(co, so)),
+        |ci, co| (lambda_radicand(ci, a2(ci)), lambda_radicand(co, a2(co))),
+        |ci, co, si, so| {
+            let li = lambda_finish(ci, a2(ci), si);
+            let lo = lambda_finish(co, a2(co), so);
+            let g = T::ONE / (T::ONE + li + lo);
+            if alpha.is_nan() {
+                T::NAN
+            } else {
+                g
+            }
+        },
         |ci, co| masking::g_smith_ggx_correlated(ci, co, alpha),
     );
     Ok(())
 }
 
 /// Height-correlated Smith–GGX visibility V = G/(4 cos θi cos θo) in its grazing-safe
-/// closed form ([`masking::v_smith_ggx_correlated`], conventions.md §8), in 1 (unitless).
+/// closed form ([`masking::v_smith_ggx_correlated`], conventions.md §8), in 1 (unitless),
+/// from the scalar kernel's own pieces.
 pub fn v_smith_ggx_correlated<T: BatchReal>(
     cos_i: &[T],
     cos_o: &[T],
@@ -309,26 +308,15 @@ pub fn v_smith_ggx_correlated<T: BatchReal>(
     out: &mut [T],
 ) -> Result<(), BatchError> {
     same_len(&[cos_i.len(), cos_o.len(), out.len()])?;
-    // The operations of `masking::v_smith_ggx_correlated`, split around the square roots.
-    let a2 = alpha * alpha;
     map2_sqrt(
         cos_i,
         cos_o,
         out,
-        |ci, co| (co * co * (T::ONE - a2) + a2, ci * ci * (T::ONE - a2) + a2),
-        |ci, co, r_o, r_i| {
-            // Every value computed, then selected: the same result as the scalar kernel's
-            // early returns, without branches (so the loop vectorises).
-            let den = ci * r_o + co * r_i;
-            let q = T::HALF / den;
-            let ok = (den > T::ZERO) & (ci > T::ZERO) & (co > T::ZERO);
-            let v = if ok { q } else { T::ZERO };
-            if ci.is_nan() | co.is_nan() | alpha.is_nan() {
-                T::NAN
-            } else {
-                v
-            }
+        |ci, co| {
+            let (ai, ao) = masking::smith::v_a2(ci, co, alpha);
+            (lambda_radicand(ci, ai), lambda_radicand(co, ao))
         },
+        |ci, co, r_i, r_o| v_finish(ci, co, r_i, r_o, alpha),
         |ci, co| masking::v_smith_ggx_correlated(ci, co, alpha),
     );
     Ok(())

@@ -12,15 +12,13 @@
 //! total; the same cut is used for the normaliser, so "everything passes" gives exactly 1.
 
 use crate::error::{check_range, ParamError};
+use crate::microfacet::{from_cos, Beckmann, Distribution, TrowbridgeReitz};
 use crate::quadrature::{DefaultRule, GaussLegendre, Rule};
 use crate::Real;
 use core::marker::PhantomData;
 
 /// Upper limit of the working variable v = tan γ/(√2 σ): ∫_{V_CUT}^∞ e^{−v²} dv < 2e-10.
 pub const V_CUT: f64 = 4.5;
-
-/// 1/√π, used by Smith's Λ.
-pub(crate) const FRAC_1_SQRT_PI: f64 = 0.564_189_583_547_756_3;
 
 /// Integrand of the slope density in the working variable: √(1 + u²) e^{−v²}, u = √2σ v.
 #[inline]
@@ -107,8 +105,11 @@ impl<T: Real, R: Rule> SlopeDistribution<T, R> {
         }
         let g = gamma.clamp(-T::FRAC_PI_2, T::FRAC_PI_2);
         let v = self.v_of_tan(g.sin(), g.cos());
-        let half =
-            R::integrate(T::ZERO, v.abs(), |v| slope_weight(v, self.sqrt2_sigma)) * self.inv_2z;
+        // The rule's half-line integral can exceed ½ by its rounding (1.4e-7 in f32): the
+        // probability is clamped into [0, 1].
+        let half = (R::integrate(T::ZERO, v.abs(), |v| slope_weight(v, self.sqrt2_sigma))
+            * self.inv_2z)
+            .min(T::HALF);
         if v >= T::ZERO {
             T::HALF + half
         } else {
@@ -132,38 +133,32 @@ impl<T: Real, R: Rule> SlopeDistribution<T, R> {
     }
 }
 
-/// Beckmann normal distribution, conventions.md §5 / eq 3:
-/// D(h) = exp(−tan²θh/m²) / (π m² cos⁴θh), with `cos_h` = n·h and m = √2σ. In 1/sr.
-/// Returns 0 for n·h ≤ 0; m must be > 0 (m ≤ 0 gives 0).
+/// Beckmann normal distribution (paper eq 3): D(h) = exp(−tan²θh/m²) / (π m² cos⁴θh), with
+/// `cos_h` = n·h and m = α = √2σ, in 1/sr; the isotropic case of
+/// [`crate::microfacet::Beckmann`] (m clamped into its [ε², 1/ε²]). Returns 0 for n·h ≤ 0
+/// and for m ≤ 0; NaN for NaN.
 #[inline]
 pub fn d_beckmann<T: Real>(cos_h: T, m: T) -> T {
-    if !(cos_h > T::ZERO) || !(m > T::ZERO) {
-        return if cos_h.is_nan() || m.is_nan() {
-            T::NAN
-        } else {
-            T::ZERO
-        };
+    if cos_h.is_nan() || m.is_nan() {
+        return T::NAN;
     }
-    let c2 = (cos_h * cos_h).min(T::ONE);
-    let m2 = m * m;
-    let tan2 = (T::ONE - c2) / c2;
-    (-tan2 / m2).exp() / (T::PI * m2 * c2 * c2)
+    if !(cos_h > T::ZERO) || !(m > T::ZERO) {
+        return T::ZERO;
+    }
+    Beckmann::clamped(m, m).d(from_cos(cos_h))
 }
 
 /// Trowbridge–Reitz (GGX) normal distribution D(h) = α² / (π ((n·h)²(α² − 1) + 1)²), in
-/// 1/sr, for roughness α > 0. Returns 0 for n·h ≤ 0.
+/// 1/sr; the isotropic case of [`crate::microfacet::TrowbridgeReitz`] (α clamped into its
+/// [ε², 1/ε²], so the result is finite for every α > 0). Returns 0 for n·h ≤ 0 and α ≤ 0;
+/// NaN for NaN.
 #[inline]
 pub fn d_ggx<T: Real>(cos_h: T, alpha: T) -> T {
-    if !(cos_h > T::ZERO) || !(alpha > T::ZERO) {
-        return if cos_h.is_nan() || alpha.is_nan() {
-            T::NAN
-        } else {
-            T::ZERO
-        };
+    if cos_h.is_nan() || alpha.is_nan() {
+        return T::NAN;
     }
-    let a2 = alpha * alpha;
-    let c2 = (cos_h * cos_h).min(T::ONE);
-    // c²(α² − 1) + 1 written as (1 − c²) + c²α²: no cancellation for tiny α (f32).
-    let d = (T::ONE - c2) + c2 * a2;
-    a2 / (T::PI * d * d)
+    if !(cos_h > T::ZERO) || !(alpha > T::ZERO) {
+        return T::ZERO;
+    }
+    TrowbridgeReitz::clamped(alpha, alpha).d(from_cos(cos_h))
 }

@@ -89,24 +89,39 @@ pub struct Frame<T> {
 
 impl<T: Real> Frame<T> {
     /// A frame around `n` (normalised here), with the tangent taken from `tangent_hint`
-    /// projected off `n`; when the hint is parallel to `n` (or degenerate), any perpendicular
-    /// tangent is used. `None` when `n` is zero or not finite.
+    /// projected off `n` (Gram–Schmidt, applied twice so that the tangent is orthogonal to
+    /// `n` to rounding even when the hint is nearly parallel to it); when the hint is within
+    /// √ε (relative) of parallel to `n`, or degenerate, the tangent of [`Frame::from_normal`]
+    /// is used. `None` when `n` is zero or not finite.
     pub fn new(n: Vec3<T>, tangent_hint: Vec3<T>) -> Option<Self> {
         let n = n.normalize()?;
-        let s = tangent_hint
-            .sub(n.scale(tangent_hint.dot(n)))
-            .normalize()
-            .or_else(|| {
-                // Duff et al.-style branchless basis would do too; this is the plain choice.
-                let a = if n.x.abs() > T::from_f64(0.9) {
-                    Vec3::new(T::ZERO, T::ONE, T::ZERO)
-                } else {
-                    Vec3::new(T::ONE, T::ZERO, T::ZERO)
-                };
-                a.sub(n.scale(a.dot(n))).normalize()
-            })?;
+        let off = |v: Vec3<T>| v.sub(n.scale(v.dot(n)));
+        let h2 = tangent_hint.length_sq();
+        let s1 = off(tangent_hint);
+        let s = if h2.is_finite() && s1.length_sq() > T::EPSILON * h2 {
+            off(s1.normalize()?).normalize()?
+        } else {
+            return Some(Self::from_normal(n));
+        };
         let t = n.cross(s);
         Some(Self { s, t, n })
+    }
+    /// A branchless-style orthonormal frame around unit `n` (Duff et al. 2017, "Building an
+    /// orthonormal basis, revisited"), derived as the columns of the rotation that takes z to
+    /// n: R = I + K + K²/(1 + n_z) with K the cross-product matrix of z × n, so that with
+    /// a = −1/(1 + n_z), b = a n_x n_y:
+    /// s = R x = (1 + a n_x², b, −n_x), t = R y = (b, 1 + a n_y², −n_y).
+    /// For n_z < 0 the rotation is built about −z instead (σ = sign n_z = −1):
+    /// a = −1/(σ + n_z), b = a n_x n_y, s = (1 + σ a n_x², σ b, −σ n_x),
+    /// t = (b, σ + a n_y², −n_y). Since |σ + n_z| ≥ 1 there is no cancellation: s and t are
+    /// unit and orthogonal to n within a few ε for every unit n.
+    pub fn from_normal(n: Vec3<T>) -> Self {
+        let sign = if n.z >= T::ZERO { T::ONE } else { -T::ONE };
+        let a = -T::ONE / (sign + n.z);
+        let b = n.x * n.y * a;
+        let s = Vec3::new(T::ONE + sign * n.x * n.x * a, sign * b, -sign * n.x);
+        let t = Vec3::new(b, sign + n.y * n.y * a, -n.y);
+        Self { s, t, n }
     }
     /// World → local (z = normal).
     #[inline]
@@ -187,13 +202,19 @@ impl<T: Real> Dots<T> {
             i_o: (theta_i + theta_r).cos(),
         }
     }
-    /// n·h for the unnormalised half vector wi + wo, divided by |wi + wo|: (n·wi + n·wo)/|wi+wo|.
-    /// Returns 0 when wi = −wo.
+    /// n·h = (n·wi + n·wo)/|wi + wo| with |wi + wo| = √(2 + 2 wi·wo); 0 when wi = −wo.
+    ///
+    /// Precision: wi·wo carries an absolute rounding error of about ε, so near a mirror pair
+    /// at the horizon (wi ≈ −wo, 1 + wi·wo → 0) n·h computed from these three numbers has a
+    /// relative error of about ε/(1 + wi·wo), whatever the formula. The models' vector entry
+    /// points (`eval(wi, wo)`) therefore take the half vector from the vectors
+    /// ([`half_vector`]) and are exact to rounding there; this dot-product form is for
+    /// shaders that only have the three dots.
     #[inline]
     pub fn n_h(&self) -> T {
         let l = (T::TWO + T::TWO * self.i_o).max(T::ZERO).sqrt();
         if l > T::ZERO {
-            (self.n_i + self.n_o) / l
+            ((self.n_i + self.n_o) / l).min(T::ONE)
         } else {
             T::ZERO
         }
@@ -202,5 +223,44 @@ impl<T: Real> Dots<T> {
     #[inline]
     pub fn i_h(&self) -> T {
         ((T::ONE + self.i_o) * T::HALF).max(T::ZERO).sqrt()
+    }
+    /// An isotropic stand-in for the half vector, (sin θh, 0, cos θh) with cos θh =
+    /// [`Dots::n_h`], for kernels that take h (isotropic distributions only depend on θh).
+    #[inline]
+    pub fn half_vector_iso(&self) -> Vec3<T> {
+        let c = self.n_h().clamp(T::ZERO, T::ONE);
+        Vec3::new(((T::ONE - c) * (T::ONE + c)).sqrt(), T::ZERO, c)
+    }
+}
+
+/// The unit half vector (wi + wo)/|wi + wo| from the vectors themselves; `None` when
+/// wi = −wo (or nearly: |wi + wo|² ≤ ε²). Each component of wi + wo is one correctly rounded
+/// sum of the inputs, so h is exact to a few ε even for mirror pairs at the horizon, where
+/// [`Dots::n_h`] is not.
+#[inline]
+pub fn half_vector<T: Real>(wi: Vec3<T>, wo: Vec3<T>) -> Option<Vec3<T>> {
+    wi.add(wo).normalize()
+}
+
+/// The unit half vector and wi·h = wo·h = |wi + wo|/2 (symmetric in wi and wo, so a model
+/// built on it is reciprocal to the last bit, and without the cancellation of the dot
+/// product wi·h for nearly opposite directions); `None` as [`half_vector`].
+#[inline]
+pub fn half_vector_and_cos<T: Real>(wi: Vec3<T>, wo: Vec3<T>) -> Option<(Vec3<T>, T)> {
+    let s = wi.add(wo);
+    let h = s.normalize()?;
+    Some((h, s.length_sq().sqrt() * T::HALF))
+}
+
+/// The smallest cosine the kernels treat as above the horizon: √(smallest normal number),
+/// 1.08e-19 for `f32` and 1.49e-154 for `f64`. Products of two such cosines are still
+/// normal numbers, so 1/(4 cos θi cos θo) never divides by zero or a subnormal. A direction
+/// with a smaller (or subnormal) cosine counts as at the horizon: the models return 0 for it.
+#[inline]
+pub fn min_cos<T: Real>() -> T {
+    if T::EPSILON.to_f64() > 1e-10 {
+        T::from_f64(1.0842021724855044e-19) // 2^-63 = √(2^-126)
+    } else {
+        T::from_f64(1.4916681462400413e-154) // 2^-511 = √(2^-1022)
     }
 }

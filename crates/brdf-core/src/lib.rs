@@ -7,11 +7,13 @@
 
 pub mod albedo;
 pub mod batch;
+pub mod catalogue;
 pub mod distribution;
 pub mod error;
 pub mod fresnel;
 pub mod geometry;
 pub mod masking;
+pub mod microfacet;
 pub mod models;
 pub mod quadrature;
 pub mod real;

@@ -175,7 +175,8 @@ fn kernel<T: Real>(mu: T, sv: T, (ch, sh): (T, T), phi: T, g: &impl Fn(Dots<T>) 
 
 /// The split-sum pair (A, B) = (∫ W(1 − F_c) D cos θh dωh, ∫ W F_c D cos θh dωh) for the
 /// distribution `ndf` and any masking function `g(Dots) → G` (module docs). μ ∈ (0, 1]
-/// (clamped above; μ ≤ 0 or NaN gives (0, 0) / NaN).
+/// (clamped above; μ below [`crate::geometry::min_cos`] — μ ≤ 0, subnormal — gives (0, 0);
+/// NaN gives NaN).
 pub fn split_sum<T: Real, RO: Rule, RI: Rule>(
     mu: T,
     ndf: Ndf<T>,
@@ -184,7 +185,8 @@ pub fn split_sum<T: Real, RO: Rule, RI: Rule>(
     if mu.is_nan() {
         return (T::NAN, T::NAN);
     }
-    if !(mu > T::ZERO) {
+    // μ below √(smallest normal) (subnormal included) is the horizon, as in the models.
+    if !(mu >= crate::geometry::min_cos()) {
         return (T::ZERO, T::ZERO);
     }
     let mu = mu.min(T::ONE);

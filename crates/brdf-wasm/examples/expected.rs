@@ -9,15 +9,12 @@
 //! * `OUT_DIR/web-expected.json`: the web page's Fig. 6 curves and the lit-sphere pixels at
 //!   fixed points for a few (model, parameters) settings.
 
+use brdf_core::catalogue;
 use brdf_core::fresnel::Fresnel;
 use brdf_core::masking::{
     g_blinn, g_smith_beckmann_correlated, g_smith_beckmann_separable, Convention, ModifiedG,
 };
-use brdf_core::models::{
-    AshikhminShirley, Bank, BankTangent, BlinnPhongNormalized, Brdf, CookTorrance, CoupledK,
-    CoupledSmooth, GeometricTerm, Ggx, Highlight, Lambert, LambertSpecularMix, MicrofacetSampling,
-    PhongNormalized, Rgb, ShirleyDamped, SmithForm, StandardLighting, TorranceSparrow, Ward,
-};
+use brdf_core::models::{Brdf, GeometricTerm, TorranceSparrow};
 use brdf_core::{Dots, Real, Vec3};
 use brdf_lut::{DfgTable, GTable, GTable3};
 use std::fmt::Write as _;
@@ -133,62 +130,10 @@ fn native_g_dots(kind: u32, sigma: f32, d: Dots<f32>) -> f32 {
 /// Model `name` with parameters `q` at (wi, wo), RGB, from brdf-core's constructors
 /// directly; `None` when a constructor (or a choice index) rejects the parameters.
 fn native_model(name: &str, q: &[f32], wi: Vec3<f32>, wo: Vec3<f32>) -> Option<[f32; 3]> {
-    let rgb = |k: usize| Rgb::new(q[k], q[k + 1], q[k + 2]);
-    let idx = |x: f32, n: usize| -> Option<usize> {
-        (x.fract() == 0.0 && x >= 0.0 && (x as usize) < n).then_some(x as usize)
-    };
-    let gt = |x: f32| Some(GeometricTerm::ALL[idx(x, 6)?]);
-    let c: Rgb<f32> = match name {
-        "torrance-sparrow" => {
-            let m = TorranceSparrow::<f32>::new(
-                q[0],
-                gt(q[1])?,
-                Fresnel::schlick(q[2]).ok()?,
-                q[3],
-                q[4],
-            )
-            .ok()?;
-            Rgb::splat(m.eval(wi, wo))
-        }
-        "lambert" => Lambert::new(rgb(0)).ok()?.eval(wi, wo),
-        "phong" => PhongNormalized::new(rgb(0), Rgb::splat(q[3]), q[4])
-            .ok()?
-            .eval(wi, wo),
-        "blinn-phong" => BlinnPhongNormalized::new(rgb(0), Rgb::splat(q[3]), q[4])
-            .ok()?
-            .eval(wi, wo),
-        "cook-torrance" => CookTorrance::new(rgb(0), Rgb::splat(q[3]), q[4], q[5], gt(q[6])?)
-            .ok()?
-            .eval(wi, wo),
-        "lambert-mirror" => LambertSpecularMix::new(rgb(0), q[3]).ok()?.eval(wi, wo),
-        "shirley-damped" => ShirleyDamped::new(rgb(0), q[3]).ok()?.eval(wi, wo),
-        "coupled-smooth" => {
-            let k = [CoupledK::Conserving, CoupledK::Printed][idx(q[4], 2)?];
-            CoupledSmooth::new(rgb(0), q[3], k).ok()?.eval(wi, wo)
-        }
-        "ashikhmin-shirley" => AshikhminShirley::new(Rgb::splat(q[3]), rgb(0), q[4], q[5])
-            .ok()?
-            .eval(wi, wo),
-        "bank" => Bank::new(rgb(0), Rgb::splat(q[3]), q[4], BankTangent::Azimuth(q[5]))
-            .ok()?
-            .eval(wi, wo),
-        "ward" => Ward::new(rgb(0), Rgb::splat(q[3]), q[4], q[5])
-            .ok()?
-            .eval(wi, wo),
-        "ggx" => {
-            let s = [SmithForm::Separable, SmithForm::Correlated][idx(q[4], 2)?];
-            Ggx::new(rgb(0), q[3], s, MicrofacetSampling::VisibleNormals)
-                .ok()?
-                .eval(wi, wo)
-        }
-        "standard" => {
-            let h = [Highlight::Phong, Highlight::BlinnPhong][idx(q[5], 2)?];
-            StandardLighting::new(Rgb::zero(), Rgb::zero(), rgb(0), Rgb::splat(q[3]), q[4], h)
-                .ok()?
-                .eval(wi, wo)
-        }
-        _ => panic!("no native mapping for model {name}"),
-    };
+    // The model catalogue of brdf-core (name → constructor), used directly: the exports'
+    // glue (ids, pointers, slot counts, status codes) is what the comparison checks.
+    let spec = catalogue::find(name).unwrap_or_else(|| panic!("no catalogue entry {name}"));
+    let c = spec.build::<f32>(q).ok()?.eval(wi, wo);
     Some([c.r, c.g, c.b])
 }
 
@@ -322,7 +267,8 @@ fn main() {
     groups.push(g);
 
     // Every model through brdf_eval: random parameters in range (integer ones integral),
-    // random directions. Rows: model id, parameters (padded to 8), wi, wo. Out: status, r, g, b.
+    // random directions. Rows: model id, parameters (the model's slots), wi, wo. Out: status,
+    // r, g, b.
     for (id, spec) in brdf_wasm::models::MODELS.iter().enumerate() {
         let mut g = Group {
             name: format!("model/{}", spec.name),
@@ -332,14 +278,14 @@ fn main() {
             out: vec![],
         };
         for k in 0..N + 1 {
-            let mut q: Vec<f32> = spec
-                .params
-                .iter()
-                .map(|p| {
+            let mut q: Vec<f32> = (0..spec.slots())
+                .map(|k| {
+                    let p = spec.slot(k).expect("slot").param;
+                    let (lo, hi) = (p.ui.0 as f32, p.ui.1 as f32);
                     if p.step == 1.0 {
-                        (rng.next() % (p.max as u64 + 1 - p.min as u64)) as f32 + p.min
+                        (rng.next() % (hi as u64 + 1 - lo as u64)) as f32 + lo
                     } else {
-                        rng.f(p.min, p.max)
+                        rng.f(lo, hi)
                     }
                 })
                 .collect();
@@ -364,7 +310,7 @@ fn main() {
         groups.push(g);
 
         // Batch: the default parameters for every row.
-        let q: Vec<f32> = spec.params.iter().map(|p| p.default).collect();
+        let q: Vec<f32> = spec.defaults::<f32>()[..spec.slots()].to_vec();
         let mut g = Group {
             name: format!("model_batch/{}", spec.name),
             export: "brdf_eval_batch",
@@ -546,10 +492,22 @@ fn write_web(out_dir: &std::path::Path) {
     let settings: Vec<(&str, Vec<f64>)> = vec![
         ("torrance-sparrow", vec![0.3, 4.0, 0.04, 1.0, 0.5]),
         ("torrance-sparrow", vec![0.12, 2.0, 0.5, 0.8, 0.2]),
-        ("ward", vec![0.2, 0.2, 0.3, 0.3, 0.08, 0.4]),
-        ("ashikhmin-shirley", vec![0.3, 0.1, 0.1, 0.4, 200.0, 20.0]),
-        ("standard", vec![0.5, 0.3, 0.2, 0.5, 30.0, 0.0]),
-        ("ggx", vec![0.95, 0.64, 0.54, 0.25, 1.0]),
+        ("ward", vec![0.2, 0.2, 0.3, 0.3, 0.3, 0.3, 0.08, 0.4]),
+        (
+            "ashikhmin-shirley",
+            vec![0.4, 0.4, 0.4, 0.3, 0.1, 0.1, 200.0, 20.0],
+        ),
+        (
+            "standard",
+            vec![
+                0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.5, 0.3, 0.2, 0.5, 0.5, 0.5, 30.0, 0.0,
+            ],
+        ),
+        ("ggx", vec![0.95, 0.64, 0.54, 0.25, 1.0, 0.0]),
+        (
+            "ggx-anisotropic",
+            vec![0.95, 0.64, 0.54, 0.05, 0.5, 1.0, 0.0],
+        ),
     ];
     let settings: Vec<(u32, Vec<f64>)> = settings
         .into_iter()

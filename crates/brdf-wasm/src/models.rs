@@ -11,334 +11,42 @@
 use crate::g::MAX_BATCH;
 use crate::memory::usable;
 use crate::status::{BAD_BUFFER, BAD_PARAM};
+use brdf_core::catalogue::AnyBrdf;
 use brdf_core::fresnel::Fresnel;
-use brdf_core::models::{
-    AshikhminShirley, Bank, BankTangent, BlinnPhongNormalized, Brdf, CookTorrance, CoupledK,
-    CoupledSmooth, GeometricTerm, Ggx, Highlight, Lambert, LambertSpecularMix, MicrofacetSampling,
-    PhongNormalized, Rgb, ShirleyDamped, SmithForm, StandardLighting, TorranceSparrow, Ward,
-};
+use brdf_core::models::{Brdf, GeometricTerm, TorranceSparrow};
 use brdf_core::{Dots, Vec3};
 
-/// One parameter of a model: name, range, default and the slider step a UI should use
-/// (1 for integer-valued choices).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ParamSpec {
-    /// Short name.
-    pub name: &'static str,
-    /// Smallest accepted value.
-    pub min: f32,
-    /// Largest accepted value.
-    pub max: f32,
-    /// Default value.
-    pub default: f32,
-    /// UI step; 1 means the parameter is an integer choice.
-    pub step: f32,
-}
-
-/// A model's name and parameters.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ModelSpec {
-    /// Short name.
-    pub name: &'static str,
-    /// Parameters, in the order of the f32 array the exports take.
-    pub params: &'static [ParamSpec],
-}
-
-const fn p(name: &'static str, min: f32, max: f32, default: f32, step: f32) -> ParamSpec {
-    ParamSpec {
-        name,
-        min,
-        max,
-        default,
-        step,
-    }
-}
-
-/// Every model, by id. Colours are RGB triples of sliders (`*_r`, `*_g`, `*_b`); the
-/// ranges are the constructors' ranges narrowed to what a UI needs.
-pub const MODELS: &[ModelSpec] = &[
-    ModelSpec {
-        // Paper eq 3 / conventions.md §5: k_s D F G/(4 cos θi cos θo) + ρ_d/π, Schlick F(R0);
-        // g = index into GeometricTerm::ALL (4 = the paper's modified G).
-        name: "torrance-sparrow",
-        params: &[
-            p("sigma", 0.05, 1.0, 0.3, 0.01),
-            p("g", 0.0, 5.0, 4.0, 1.0),
-            p("r0", 0.0, 1.0, 0.04, 0.01),
-            p("ks", 0.0, 4.0, 1.0, 0.01),
-            p("albedo", 0.0, 1.0, 0.5, 0.01),
-        ],
-    },
-    ModelSpec {
-        // ρ/π (seed 003, FCG §24.2).
-        name: "lambert",
-        params: &[
-            p("albedo_r", 0.0, 1.0, 0.8, 0.01),
-            p("albedo_g", 0.0, 1.0, 0.5, 0.01),
-            p("albedo_b", 0.0, 1.0, 0.3, 0.01),
-        ],
-    },
-    ModelSpec {
-        // Energy-normalised Phong lobe (seed 003).
-        name: "phong",
-        params: &[
-            p("kd_r", 0.0, 1.0, 0.5, 0.01),
-            p("kd_g", 0.0, 1.0, 0.2, 0.01),
-            p("kd_b", 0.0, 1.0, 0.1, 0.01),
-            p("ks", 0.0, 1.0, 0.3, 0.01),
-            p("n", 0.0, 500.0, 40.0, 1.0),
-        ],
-    },
-    ModelSpec {
-        // Energy-normalised Blinn-Phong lobe (seed 003).
-        name: "blinn-phong",
-        params: &[
-            p("kd_r", 0.0, 1.0, 0.1, 0.01),
-            p("kd_g", 0.0, 1.0, 0.3, 0.01),
-            p("kd_b", 0.0, 1.0, 0.5, 0.01),
-            p("ks", 0.0, 1.0, 0.3, 0.01),
-            p("n", 0.0, 500.0, 80.0, 1.0),
-        ],
-    },
-    ModelSpec {
-        // Seed 002 §10.1: k_d/π + k_s R_s, Beckmann m, Schlick R0, G by index (1 = V-groove).
-        name: "cook-torrance",
-        params: &[
-            p("kd_r", 0.0, 1.0, 0.4, 0.01),
-            p("kd_g", 0.0, 1.0, 0.1, 0.01),
-            p("kd_b", 0.0, 1.0, 0.1, 0.01),
-            p("ks", 0.0, 1.0, 0.6, 0.01),
-            p("m", 0.02, 1.0, 0.25, 0.01),
-            p("r0", 0.0, 1.0, 0.04, 0.01),
-            p("g", 0.0, 5.0, 1.0, 1.0),
-        ],
-    },
-    ModelSpec {
-        // FCG §24.4 Lambert + mirror (the Dirac part is not drawn); R_d + R_s ≤ 1.
-        name: "lambert-mirror",
-        params: &[
-            p("rd_r", 0.0, 0.5, 0.4, 0.01),
-            p("rd_g", 0.0, 0.5, 0.4, 0.01),
-            p("rd_b", 0.0, 0.5, 0.2, 0.01),
-            p("rs", 0.0, 0.5, 0.3, 0.01),
-        ],
-    },
-    ModelSpec {
-        // FCG §24.4 Shirley's damped model (not reciprocal).
-        name: "shirley-damped",
-        params: &[
-            p("rd_r", 0.0, 1.0, 0.6, 0.01),
-            p("rd_g", 0.0, 1.0, 0.3, 0.01),
-            p("rd_b", 0.0, 1.0, 0.2, 0.01),
-            p("r0", 0.0, 1.0, 0.05, 0.01),
-        ],
-    },
-    ModelSpec {
-        // FCG eq 24.3; k: 0 energy-conserving, 1 as printed.
-        name: "coupled-smooth",
-        params: &[
-            p("rm_r", 0.0, 1.0, 0.2, 0.01),
-            p("rm_g", 0.0, 1.0, 0.5, 0.01),
-            p("rm_b", 0.0, 1.0, 0.3, 0.01),
-            p("r0", 0.0, 0.95, 0.05, 0.01),
-            p("k", 0.0, 1.0, 0.0, 1.0),
-        ],
-    },
-    ModelSpec {
-        // FCG eqs 24.5–24.9 (anisotropic: nu along the tangent x, nv along y).
-        name: "ashikhmin-shirley",
-        params: &[
-            p("rd_r", 0.0, 1.0, 0.3, 0.01),
-            p("rd_g", 0.0, 1.0, 0.1, 0.01),
-            p("rd_b", 0.0, 1.0, 0.1, 0.01),
-            p("rs", 0.0, 1.0, 0.4, 0.01),
-            p("nu", 1.0, 1000.0, 100.0, 1.0),
-            p("nv", 1.0, 1000.0, 10.0, 1.0),
-        ],
-    },
-    ModelSpec {
-        // Seed 002 §10.3, fixed tangent at azimuth phi (radians) in the tangent plane.
-        name: "bank",
-        params: &[
-            p("kd_r", 0.0, 1.0, 0.3, 0.01),
-            p("kd_g", 0.0, 1.0, 0.2, 0.01),
-            p("kd_b", 0.0, 1.0, 0.1, 0.01),
-            p("ks", 0.0, 1.0, 0.5, 0.01),
-            p("ns", 1.0, 500.0, 30.0, 1.0),
-            p("phi", 0.0, core::f32::consts::PI, 0.0, 0.01),
-        ],
-    },
-    ModelSpec {
-        // Seed 002 §10.4, Ward's anisotropic Gaussian (RMS slopes ax, ay).
-        name: "ward",
-        params: &[
-            p("rd_r", 0.0, 1.0, 0.2, 0.01),
-            p("rd_g", 0.0, 1.0, 0.2, 0.01),
-            p("rd_b", 0.0, 1.0, 0.3, 0.01),
-            p("rs", 0.0, 1.0, 0.3, 0.01),
-            p("ax", 0.01, 1.0, 0.1, 0.01),
-            p("ay", 0.01, 1.0, 0.4, 0.01),
-        ],
-    },
-    ModelSpec {
-        // Trowbridge–Reitz with Smith masking; smith: 0 separable, 1 height-correlated.
-        name: "ggx",
-        params: &[
-            p("f0_r", 0.0, 1.0, 0.95, 0.01),
-            p("f0_g", 0.0, 1.0, 0.64, 0.01),
-            p("f0_b", 0.0, 1.0, 0.54, 0.01),
-            p("alpha", 0.01, 1.0, 0.3, 0.01),
-            p("smith", 0.0, 1.0, 1.0, 1.0),
-        ],
-    },
-    ModelSpec {
-        // Seed 003 lighting equation: the lit colour for a white unit light (includes n·l);
-        // highlight: 0 Phong (v·r), 1 Blinn-Phong (n·h).
-        name: "standard",
-        params: &[
-            p("diffuse_r", 0.0, 1.0, 0.5, 0.01),
-            p("diffuse_g", 0.0, 1.0, 0.3, 0.01),
-            p("diffuse_b", 0.0, 1.0, 0.2, 0.01),
-            p("specular", 0.0, 1.0, 0.5, 0.01),
-            p("gloss", 0.0, 500.0, 30.0, 1.0),
-            p("highlight", 0.0, 1.0, 1.0, 1.0),
-        ],
-    },
-];
+/// Every model, by id: the core's model catalogue (names, parameters, slider ranges,
+/// defaults). A model's f32 parameter array is the catalogue's flat layout (a colour takes
+/// three slots `*_r`, `*_g`, `*_b`, a choice one slot holding the option's index).
+pub use brdf_core::catalogue::MODELS;
 
 /// A model built from its parameters (validated once, evaluated many times).
 #[derive(Clone, Copy, Debug)]
-pub enum Model {
-    /// Torrance–Sparrow with a selectable G and Schlick Fresnel.
-    TorranceSparrow(TorranceSparrow<f32>),
-    /// Lambert.
-    Lambert(Lambert<f32>),
-    /// Normalised Phong.
-    Phong(PhongNormalized<f32>),
-    /// Normalised Blinn-Phong.
-    BlinnPhong(BlinnPhongNormalized<f32>),
-    /// Cook–Torrance.
-    CookTorrance(CookTorrance<f32>),
-    /// Lambert plus mirror.
-    Mix(LambertSpecularMix<f32>),
-    /// Shirley's damped model.
-    Shirley(ShirleyDamped<f32>),
-    /// Coupled smooth-layered model.
-    Coupled(CoupledSmooth<f32>),
-    /// Ashikhmin–Shirley.
-    AshikhminShirley(AshikhminShirley<f32>),
-    /// Bank.
-    Bank(Bank<f32>),
-    /// Ward.
-    Ward(Ward<f32>),
-    /// GGX.
-    Ggx(Ggx<f32>),
-    /// The standard lighting equation.
-    Standard(StandardLighting<f32>),
-}
-
-/// `Some(k)` when x is an integer in [0, n).
-fn choice(x: f32, n: usize) -> Option<usize> {
-    if x >= 0.0 && x < n as f32 && x == (x as u32) as f32 {
-        Some(x as usize)
-    } else {
-        None
-    }
-}
+pub struct Model(AnyBrdf<f32>);
 
 impl Model {
-    /// Builds model `id` from `params` (at least as many as the model has); `None` for an
-    /// unknown id or a parameter that is not finite or outside its range (or rejected by
-    /// the model's checked constructor, e.g. R_d + R_s > 1).
+    /// Builds model `id` from `params` (at least as many as the model has slots); `None` for
+    /// an unknown id, a choice that is not one of its indices, or a parameter its checked
+    /// constructor rejects (not finite, outside its range, or e.g. R_d + R_s > 1). The slider
+    /// ranges are advice for a user interface, not a limit.
     pub fn new(id: u32, params: &[f32]) -> Option<Self> {
         let spec = MODELS.get(id as usize)?;
-        let q = params.get(..spec.params.len())?;
-        for (x, s) in q.iter().zip(spec.params) {
-            if !(x.is_finite() && *x >= s.min && *x <= s.max) {
-                return None;
-            }
-        }
-        let rgb = |k: usize| Rgb::new(q[k], q[k + 1], q[k + 2]);
-        let g_term = |x: f32| Some(GeometricTerm::ALL[choice(x, GeometricTerm::ALL.len())?]);
-        Some(match spec.name {
-            "torrance-sparrow" => Model::TorranceSparrow(
-                TorranceSparrow::new(
-                    q[0],
-                    g_term(q[1])?,
-                    Fresnel::schlick(q[2]).ok()?,
-                    q[3],
-                    q[4],
-                )
-                .ok()?,
-            ),
-            "lambert" => Model::Lambert(Lambert::new(rgb(0)).ok()?),
-            "phong" => Model::Phong(PhongNormalized::new(rgb(0), Rgb::splat(q[3]), q[4]).ok()?),
-            "blinn-phong" => {
-                Model::BlinnPhong(BlinnPhongNormalized::new(rgb(0), Rgb::splat(q[3]), q[4]).ok()?)
-            }
-            "cook-torrance" => Model::CookTorrance(
-                CookTorrance::new(rgb(0), Rgb::splat(q[3]), q[4], q[5], g_term(q[6])?).ok()?,
-            ),
-            "lambert-mirror" => Model::Mix(LambertSpecularMix::new(rgb(0), q[3]).ok()?),
-            "shirley-damped" => Model::Shirley(ShirleyDamped::new(rgb(0), q[3]).ok()?),
-            "coupled-smooth" => {
-                let k = [CoupledK::Conserving, CoupledK::Printed][choice(q[4], 2)?];
-                Model::Coupled(CoupledSmooth::new(rgb(0), q[3], k).ok()?)
-            }
-            "ashikhmin-shirley" => Model::AshikhminShirley(
-                AshikhminShirley::new(Rgb::splat(q[3]), rgb(0), q[4], q[5]).ok()?,
-            ),
-            "bank" => Model::Bank(
-                Bank::new(rgb(0), Rgb::splat(q[3]), q[4], BankTangent::Azimuth(q[5])).ok()?,
-            ),
-            "ward" => Model::Ward(Ward::new(rgb(0), Rgb::splat(q[3]), q[4], q[5]).ok()?),
-            "ggx" => {
-                let smith = [SmithForm::Separable, SmithForm::Correlated][choice(q[4], 2)?];
-                Model::Ggx(Ggx::new(rgb(0), q[3], smith, MicrofacetSampling::VisibleNormals).ok()?)
-            }
-            "standard" => {
-                let h = [Highlight::Phong, Highlight::BlinnPhong][choice(q[5], 2)?];
-                Model::Standard(
-                    StandardLighting::new(
-                        Rgb::zero(),
-                        Rgb::zero(),
-                        rgb(0),
-                        Rgb::splat(q[3]),
-                        q[4],
-                        h,
-                    )
-                    .ok()?,
-                )
-            }
-            _ => return None,
-        })
+        let q = params.get(..spec.slots())?;
+        spec.build::<f32>(q).ok().map(Model)
     }
 
     /// `true` when [`Model::eval`] is already a lit colour (the standard lighting equation,
     /// which carries n·l itself) rather than a BRDF in 1/sr.
     pub fn is_lit_colour(&self) -> bool {
-        matches!(self, Model::Standard(_))
+        self.0.is_lit_colour()
     }
 
     /// f(wi, wo) in 1/sr per RGB channel, for local-frame unit directions (a scalar model
     /// repeats its value; the Dirac parts of the mirror models are not included). For the
     /// standard lighting model: the colour lit by a white unit light from wi.
     pub fn eval(&self, wi: Vec3<f32>, wo: Vec3<f32>) -> [f32; 3] {
-        let c: Rgb<f32> = match self {
-            Model::TorranceSparrow(m) => return [m.eval(wi, wo); 3],
-            Model::Lambert(m) => m.eval(wi, wo),
-            Model::Phong(m) => m.eval(wi, wo),
-            Model::BlinnPhong(m) => m.eval(wi, wo),
-            Model::CookTorrance(m) => m.eval(wi, wo),
-            Model::Mix(m) => m.eval(wi, wo),
-            Model::Shirley(m) => m.eval(wi, wo),
-            Model::Coupled(m) => m.eval(wi, wo),
-            Model::AshikhminShirley(m) => m.eval(wi, wo),
-            Model::Bank(m) => m.eval(wi, wo),
-            Model::Ward(m) => m.eval(wi, wo),
-            Model::Ggx(m) => m.eval(wi, wo),
-            Model::Standard(m) => m.eval(wi, wo),
-        };
+        let c = self.0.eval(wi, wo);
         [c.r, c.g, c.b]
     }
 }
@@ -352,13 +60,13 @@ pub extern "C" fn brdf_model_count() -> u32 {
 /// Number of parameters of model `id` (0 for an unknown id).
 #[no_mangle]
 pub extern "C" fn brdf_model_param_count(id: u32) -> u32 {
-    MODELS.get(id as usize).map_or(0, |m| m.params.len() as u32)
+    MODELS.get(id as usize).map_or(0, |m| m.slots() as u32)
 }
 
 fn model_str(id: u32, k: u32) -> &'static str {
     match MODELS.get(id as usize) {
         Some(m) if k == u32::MAX => m.name,
-        Some(m) => m.params.get(k as usize).map_or("", |p| p.name),
+        Some(m) => m.slot(k as usize).map_or("", |s| s.name),
         None => "",
     }
 }
@@ -376,23 +84,20 @@ pub extern "C" fn brdf_model_str_len(id: u32, k: u32) -> u32 {
     model_str(id, k).len() as u32
 }
 
-/// Field `field` of parameter `k` of model `id`: 0 min, 1 max, 2 default, 3 step;
-/// NaN when unknown.
+/// Field `field` of parameter slot `k` of model `id`: 0 slider min, 1 slider max,
+/// 2 default, 3 step (1 for a choice); NaN when unknown.
 #[no_mangle]
 pub extern "C" fn brdf_model_param(id: u32, k: u32, field: u32) -> f32 {
-    let Some(s) = MODELS
-        .get(id as usize)
-        .and_then(|m| m.params.get(k as usize))
-    else {
+    let Some(s) = MODELS.get(id as usize).and_then(|m| m.slot(k as usize)) else {
         return f32::NAN;
     };
-    match field {
-        0 => s.min,
-        1 => s.max,
+    (match field {
+        0 => s.param.ui.0,
+        1 => s.param.ui.1,
         2 => s.default,
-        3 => s.step,
-        _ => f32::NAN,
-    }
+        3 => s.param.step,
+        _ => f64::NAN,
+    }) as f32
 }
 
 /// Reads model `id`'s parameter array.
@@ -400,7 +105,7 @@ pub extern "C" fn brdf_model_param(id: u32, k: u32, field: u32) -> f32 {
 /// # Safety
 /// `params` must be valid for the model's parameter count.
 unsafe fn build(id: u32, params: *const f32) -> Option<Model> {
-    let n = MODELS.get(id as usize)?.params.len();
+    let n = MODELS.get(id as usize)?.slots();
     if !usable(params) {
         return None;
     }
@@ -508,16 +213,17 @@ mod tests {
     #[test]
     fn defaults_are_inside_their_ranges_and_build() {
         for (id, m) in MODELS.iter().enumerate() {
-            for s in m.params {
+            for k in 0..m.slots() {
+                let s = m.slot(k).unwrap();
                 assert!(
-                    s.min <= s.default && s.default <= s.max,
+                    s.param.ui.0 <= s.default && s.default <= s.param.ui.1,
                     "{} {}",
                     m.name,
                     s.name
                 );
-                assert!(s.step > 0.0);
+                assert!(s.param.step > 0.0);
             }
-            let d: [f32; 16] = core::array::from_fn(|k| m.params.get(k).map_or(0.0, |s| s.default));
+            let d = m.defaults::<f32>();
             assert!(Model::new(id as u32, &d).is_some(), "{}", m.name);
         }
     }

@@ -96,7 +96,7 @@ pub unsafe extern "C" fn brdf_render_sphere(
     let Some(spec) = MODELS.get(id as usize) else {
         return BAD_PARAM;
     };
-    let Some(m) = Model::new(id, core::slice::from_raw_parts(params, spec.params.len())) else {
+    let Some(m) = Model::new(id, core::slice::from_raw_parts(params, spec.slots())) else {
         return BAD_PARAM;
     };
     for py in 0..size {

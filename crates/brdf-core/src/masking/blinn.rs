@@ -22,7 +22,7 @@ pub fn g_blinn_dots<T: Real>(d: Dots<T>) -> T {
 
 /// min(1, 2(n·h)(n·wo)/(wo·h), 2(n·h)(n·wi)/(wo·h)), clamped to [0, 1].
 #[inline]
-fn g_blinn_cos<T: Real>(n_h: T, n_i: T, n_o: T, o_h: T) -> T {
+pub(crate) fn g_blinn_cos<T: Real>(n_h: T, n_i: T, n_o: T, o_h: T) -> T {
     if n_h.is_nan() || n_i.is_nan() || n_o.is_nan() || o_h.is_nan() {
         return T::NAN;
     }

@@ -23,11 +23,8 @@ use super::{
 use super::{mixture_pdf, mixture_sample};
 use crate::error::check_range;
 use crate::fresnel::Fresnel;
-use crate::geometry::{Dots, Vec3};
-use crate::sampling::{
-    beckmann_normal_pdf, beckmann_visible_normal_pdf, sample_beckmann_normal,
-    sample_beckmann_visible_normal,
-};
+use crate::geometry::Vec3;
+use crate::microfacet::Distribution;
 use crate::{ParamError, Real};
 
 /// Cook–Torrance BRDF (see the module docs).
@@ -55,8 +52,7 @@ impl<T: Real> CookTorrance<T> {
             "[1e-4, 1e4]",
         )?;
         let fresnel = Fresnel::schlick(r0)?;
-        let sigma = m / T::from_f64(core::f64::consts::SQRT_2);
-        let ts = TorranceSparrow::new(sigma, g, fresnel, T::ONE, T::ZERO)?;
+        let ts = TorranceSparrow::from_alpha(m, g, fresnel, T::ONE, T::ZERO)?;
         Ok(Self {
             kd,
             ks,
@@ -72,9 +68,10 @@ impl<T: Real> CookTorrance<T> {
         self.sampling = sampling;
         self
     }
-    /// The specular term R_s = D F G/(4 cos θi cos θo) (scalar, before k_s).
+    /// The specular term R_s = D F G/(4 cos θi cos θo) (scalar, before k_s), half vector
+    /// from the vectors.
     pub fn r_s(&self, wi: Vec3<T>, wo: Vec3<T>) -> T {
-        self.ts.eval_specular(Dots::from_local(wi, wo))
+        self.ts.eval_specular_local(wi, wo)
     }
     fn p_lobe(&self) -> T {
         lobe_prob(self.ks.mean(), self.kd.mean())
@@ -103,21 +100,20 @@ impl<T: Real> Brdf<T> for CookTorrance<T> {
         self.kd.scale(T::ONE / T::PI).add(self.ks.scale(rs))
     }
     fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
+        let dist = self.ts.distribution();
         mixture_pdf(self.p_lobe(), wo, wi, |h| match self.sampling {
-            MicrofacetSampling::Normals => beckmann_normal_pdf(h, self.m, self.m),
-            MicrofacetSampling::VisibleNormals => {
-                beckmann_visible_normal_pdf(wo, h, self.m, self.m)
-            }
+            MicrofacetSampling::Normals => dist.normal_pdf(h),
+            MicrofacetSampling::VisibleNormals => dist.visible_normal_pdf(wo, h),
         })
     }
     fn sample(&self, wo: Vec3<T>, u: [T; 2]) -> Option<BrdfSample<T>> {
+        let dist = self.ts.distribution();
         mixture_sample(self, self.p_lobe(), wo, u, |v| match self.sampling {
-            MicrofacetSampling::Normals => sample_beckmann_normal(self.m, self.m, v),
+            MicrofacetSampling::Normals => dist.sample_normal(v),
             // A failed sample becomes h = 0, which the mixture rejects (wo·h = 0 → None).
-            MicrofacetSampling::VisibleNormals => sample_beckmann_visible_normal(
-                wo, self.m, self.m, v,
-            )
-            .unwrap_or(Vec3::new(T::ZERO, T::ZERO, T::ZERO)),
+            MicrofacetSampling::VisibleNormals => dist
+                .sample_visible_normal(wo, v)
+                .unwrap_or(Vec3::new(T::ZERO, T::ZERO, T::ZERO)),
         })
     }
     fn lobe_hint(&self) -> LobeHint<T> {

@@ -1,11 +1,12 @@
-//! Trowbridge–Reitz (GGX) microfacet BRDF with Smith masking:
+//! Trowbridge–Reitz (GGX) microfacet BRDF with Smith masking, isotropic or anisotropic:
 //!
 //! f = D(h) F(wi·h) G / (4 cos θi cos θo),
-//! D = α²/(π((n·h)²(α² − 1) + 1)²) ([`crate::distribution::d_ggx`]),
+//! D = 1/(π αx αy ((h_x/αx)² + (h_y/αy)² + h_z²)²) ([`crate::microfacet::TrowbridgeReitz`];
+//! α²/(π((n·h)²(α² − 1) + 1)²) when αx = αy = α),
 //! F = F0 + (1 − F0)(1 − wi·h)^5 per channel (Schlick, F90 = 1, conventions.md §8),
 //! G = G1(θi) G1(θo) ([`SmithForm::Separable`]) or the height-correlated
 //! 1/(1 + Λ(θi) + Λ(θo)) ([`SmithForm::Correlated`], default, written as the visibility
-//! [`crate::masking::v_smith_ggx_correlated`]).
+//! [`TrowbridgeReitz::v_correlated`]).
 //!
 //! Reciprocal and energy conserving (a single-scattering microsurface model with F ≤ 1).
 //! Sampling: visible normals (default) or the distribution of normals D(h) cos θh
@@ -16,15 +17,10 @@ use super::rgb::check_rgb;
 use super::{
     above, finish, half_vector, u_ok, valid_wo, Brdf, BrdfFlags, BrdfSample, LobeHint, Rgb,
 };
-use crate::distribution::d_ggx;
-use crate::error::check_range;
 use crate::fresnel::f_schlick;
-use crate::geometry::Vec3;
-use crate::masking::{g_smith_ggx_separable, v_smith_ggx_correlated};
-use crate::sampling::{
-    ggx_normal_pdf, ggx_visible_normal_pdf, reflect_about, sample_ggx_normal,
-    sample_ggx_visible_normal, wi_pdf_from_h,
-};
+use crate::geometry::{half_vector_and_cos, Vec3};
+use crate::microfacet::{Distribution, TrowbridgeReitz};
+use crate::sampling::{reflect_about, wi_pdf_from_h};
 use crate::{ParamError, Real};
 
 /// Which Smith form masks the microfacets.
@@ -47,11 +43,12 @@ pub enum MicrofacetSampling {
     Normals,
 }
 
-/// GGX BRDF (see the module docs).
+/// GGX BRDF (see the module docs): the [`TrowbridgeReitz`] distribution, isotropic or
+/// anisotropic, composed with a Smith G ([`SmithForm`]) and Schlick's Fresnel.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ggx<T> {
     f0: Rgb<T>,
-    alpha: T,
+    dist: TrowbridgeReitz<T>,
     smith: SmithForm,
     sampling: MicrofacetSampling,
 }
@@ -64,23 +61,32 @@ impl<T: Real> Ggx<T> {
         smith: SmithForm,
         sampling: MicrofacetSampling,
     ) -> Result<Self, ParamError> {
+        let alpha = crate::microfacet::check_alpha("alpha", alpha)?;
+        Self::anisotropic(f0, alpha, alpha, smith, sampling)
+    }
+    /// Anisotropic checked constructor: widths αx (along the local x axis) and αy, each in
+    /// [1e-4, 1e4].
+    pub fn anisotropic(
+        f0: Rgb<T>,
+        alpha_x: T,
+        alpha_y: T,
+        smith: SmithForm,
+        sampling: MicrofacetSampling,
+    ) -> Result<Self, ParamError> {
         Ok(Self {
             f0: check_rgb("f0", f0, T::ZERO, T::ONE, "[0, 1]")?,
-            alpha: check_range(
-                "alpha",
-                alpha,
-                T::from_f64(1e-4),
-                false,
-                T::from_f64(1e4),
-                "[1e-4, 1e4]",
-            )?,
+            dist: TrowbridgeReitz::new(alpha_x, alpha_y)?,
             smith,
             sampling,
         })
     }
-    /// The roughness α.
+    /// The roughness α (αx for an anisotropic surface).
     pub fn alpha(&self) -> T {
-        self.alpha
+        self.dist.alpha().0
+    }
+    /// The distribution of normals.
+    pub fn distribution(&self) -> TrowbridgeReitz<T> {
+        self.dist
     }
 }
 
@@ -96,18 +102,17 @@ impl<T: Real> Brdf<T> for Ggx<T> {
         if !above(wi, wo) {
             return Rgb::zero();
         }
-        let h = match half_vector(wi, wo) {
-            Some(h) if h.z > T::ZERO => h,
+        let (h, ih) = match half_vector_and_cos(wi, wo) {
+            Some((h, ih)) if h.z > T::ZERO => (h, ih),
             _ => return Rgb::zero(),
         };
-        let d = d_ggx(h.z, self.alpha);
+        let d = self.dist.d(h);
         let v = match self.smith {
-            SmithForm::Correlated => v_smith_ggx_correlated(wi.z, wo.z, self.alpha),
+            SmithForm::Correlated => self.dist.v_correlated(wi, wo),
             SmithForm::Separable => {
-                g_smith_ggx_separable(wi.z, wo.z, self.alpha) / (T::from_f64(4.0) * wi.z * wo.z)
+                self.dist.g_separable(wi, wo) / (T::from_f64(4.0) * wi.z * wo.z)
             }
         };
-        let ih = wi.dot(h);
         self.f0.map(|f| d * v * f_schlick(f, ih))
     }
     fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
@@ -121,9 +126,9 @@ impl<T: Real> Brdf<T> for Ggx<T> {
         let oh = wo.dot(h);
         match self.sampling {
             MicrofacetSampling::VisibleNormals => {
-                wi_pdf_from_h(ggx_visible_normal_pdf(wo, h, self.alpha), oh)
+                wi_pdf_from_h(self.dist.visible_normal_pdf(wo, h), oh)
             }
-            MicrofacetSampling::Normals => wi_pdf_from_h(ggx_normal_pdf(h, self.alpha), oh),
+            MicrofacetSampling::Normals => wi_pdf_from_h(self.dist.normal_pdf(h), oh),
         }
     }
     fn sample(&self, wo: Vec3<T>, u: [T; 2]) -> Option<BrdfSample<T>> {
@@ -131,8 +136,8 @@ impl<T: Real> Brdf<T> for Ggx<T> {
             return None;
         }
         let h = match self.sampling {
-            MicrofacetSampling::VisibleNormals => sample_ggx_visible_normal(wo, self.alpha, u)?,
-            MicrofacetSampling::Normals => sample_ggx_normal(self.alpha, u),
+            MicrofacetSampling::VisibleNormals => self.dist.sample_visible_normal(wo, u)?,
+            MicrofacetSampling::Normals => self.dist.sample_normal(u),
         };
         if !(wo.dot(h) > T::ZERO) {
             return None;
@@ -140,6 +145,7 @@ impl<T: Real> Brdf<T> for Ggx<T> {
         finish(self, wo, reflect_about(wo, h))
     }
     fn lobe_hint(&self) -> LobeHint<T> {
-        LobeHint::iso(self.alpha)
+        let (ax, ay) = self.dist.alpha();
+        LobeHint::aniso(ax, ay)
     }
 }

@@ -14,7 +14,11 @@
 //! | [`LambertSpecularMix`], [`ShirleyDamped`], [`CoupledSmooth`] | FCG §24.4, eq 24.3 |
 //! | [`AshikhminShirley`] | FCG eqs 24.5–24.9 |
 //! | [`Bank`], [`Ward`] | seed 002 §10.3–10.4 |
-//! | [`Ggx`] | Trowbridge–Reitz with Smith masking (conventions.md §8) |
+//! | [`Ggx`] | Trowbridge–Reitz, isotropic or anisotropic, with Smith masking (conventions.md §8) |
+//! | [`TorranceSparrow`] | paper eq 3: Beckmann D, any [`GeometricTerm`], a [`crate::fresnel::Fresnel`] |
+//!
+//! The microfacet models compose a distribution of [`crate::microfacet`] with a G and a
+//! Fresnel term; every model is listed, with its parameters, in [`crate::catalogue`].
 
 // `!(x > 0)` is deliberate throughout: it is true for NaN as well.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
@@ -157,26 +161,26 @@ pub trait Brdf<T: Real> {
     }
 }
 
-/// `true` when both directions are strictly above the horizon (and not NaN).
+/// `true` when both directions are above the horizon: cosines at least
+/// [`crate::geometry::min_cos`] (so subnormal cosines count as the horizon) and not NaN.
 #[inline]
 pub(crate) fn above<T: Real>(wi: Vec3<T>, wo: Vec3<T>) -> bool {
-    wi.z > T::ZERO && wo.z > T::ZERO
+    let m = crate::geometry::min_cos();
+    wi.z >= m && wo.z >= m
 }
 
-/// `true` when `w` is finite and strictly above the horizon.
+/// `true` when `w` is finite and above the horizon (cosine at least
+/// [`crate::geometry::min_cos`]).
 #[inline]
 pub(crate) fn valid_wo<T: Real>(w: Vec3<T>) -> bool {
-    w.x.is_finite() && w.y.is_finite() && w.z.is_finite() && w.z > T::ZERO
+    w.x.is_finite() && w.y.is_finite() && w.z.is_finite() && w.z >= crate::geometry::min_cos()
 }
 
-/// The half vector (wi + wo)/|wi + wo|; `None` when wi = −wo.
-#[inline]
-pub(crate) fn half_vector<T: Real>(wi: Vec3<T>, wo: Vec3<T>) -> Option<Vec3<T>> {
-    wi.add(wo).normalize()
-}
+pub(crate) use crate::geometry::half_vector;
 
 /// Completes a continuous sample: pdf from the model, weight f·max(cos θi, 0)/pdf (0 below
-/// the horizon). `None` when the pdf is not positive and finite.
+/// the horizon). `None` when the pdf is not positive and finite, or the weight is not finite
+/// (a direction the sampler reaches with a vanishing density).
 pub(crate) fn finish<T: Real, B: Brdf<T> + ?Sized>(
     b: &B,
     wo: Vec3<T>,
@@ -191,6 +195,9 @@ pub(crate) fn finish<T: Real, B: Brdf<T> + ?Sized>(
     } else {
         Rgb::zero()
     };
+    if !(weight.r.is_finite() && weight.g.is_finite() && weight.b.is_finite()) {
+        return None;
+    }
     Some(BrdfSample {
         wi,
         pdf,
@@ -244,10 +251,12 @@ pub(crate) fn mixture_sample<T: Real, B: Brdf<T> + ?Sized>(
     finish(b, wo, wi)
 }
 
-/// Splits u0 ∈ [0, 1) between two lobes chosen with probabilities p and 1 − p, returning
-/// which lobe (`true` = the first) and u0 rescaled to [0, 1).
+/// Splits u0 between two lobes chosen with probabilities p and 1 − p, returning which lobe
+/// (`true` = the first) and u0 rescaled to [0, 1). u0 is first clamped into [0, 1) (so
+/// u0 = 1.0 and u0 < 0 behave as 1 − ε and 0): a lobe of probability 0 is never chosen.
 #[inline]
 pub(crate) fn pick<T: Real>(u0: T, p: T) -> (bool, T) {
+    let u0 = crate::sampling::unit(u0);
     if u0 < p {
         (true, (u0 / p).min(T::ONE - T::EPSILON))
     } else {

@@ -9,7 +9,7 @@
 //! [`crate::albedo`], ρ_s = 1, ρ_d = 0, θo = 89.9°: 1.04 for αx = αy = 0.3, 1.50 for 1; the
 //! plausibility suite checks the excess). Sampling: h with
 //! the anisotropic Beckmann density D(h) cos θh of the same exponent
-//! ([`crate::sampling::sample_beckmann_normal`]) and eq 24.12, with probability
+//! ([`crate::microfacet::Beckmann`], widths αx, αy) and eq 24.12, with probability
 //! mean ρ_s/(mean ρ_s + mean ρ_d), else the cosine-weighted hemisphere.
 
 use super::rgb::check_rgb;
@@ -17,7 +17,7 @@ use super::{above, half_vector, lobe_prob, Brdf, BrdfFlags, BrdfSample, LobeHint
 use super::{mixture_pdf, mixture_sample};
 use crate::error::check_range;
 use crate::geometry::Vec3;
-use crate::sampling::{beckmann_normal_pdf, sample_beckmann_normal};
+use crate::microfacet::{Beckmann, Distribution};
 use crate::{ParamError, Real};
 
 /// Ward's anisotropic BRDF (see the module docs).
@@ -61,21 +61,26 @@ impl<T: Real> Brdf<T> for Ward<T> {
             Some(h) if h.z > T::ZERO => {
                 let c2 = (h.z * h.z).min(T::ONE);
                 let e = (h.x * h.x / (self.ax * self.ax) + h.y * h.y / (self.ay * self.ay)) / c2;
-                (-e).exp() / (T::from_f64(4.0) * T::PI * self.ax * self.ay * (wi.z * wo.z).sqrt())
+                let g = (-e).exp();
+                if g > T::ZERO {
+                    // √cos θi √cos θo: both cosines are ≥ min_cos, whose square root is a
+                    // normal number; the product of the roots cannot underflow to 0.
+                    g / (T::from_f64(4.0) * T::PI * self.ax * self.ay * wi.z.sqrt() * wo.z.sqrt())
+                } else {
+                    T::ZERO
+                }
             }
             _ => T::ZERO,
         };
         self.rd.scale(T::ONE / T::PI).add(self.rs.scale(spec))
     }
     fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
-        mixture_pdf(self.p_lobe(), wo, wi, |h| {
-            beckmann_normal_pdf(h, self.ax, self.ay)
-        })
+        let dist = Beckmann::clamped(self.ax, self.ay);
+        mixture_pdf(self.p_lobe(), wo, wi, |h| dist.normal_pdf(h))
     }
     fn sample(&self, wo: Vec3<T>, u: [T; 2]) -> Option<BrdfSample<T>> {
-        mixture_sample(self, self.p_lobe(), wo, u, |v| {
-            sample_beckmann_normal(self.ax, self.ay, v)
-        })
+        let dist = Beckmann::clamped(self.ax, self.ay);
+        mixture_sample(self, self.p_lobe(), wo, u, |v| dist.sample_normal(v))
     }
     fn lobe_hint(&self) -> LobeHint<T> {
         LobeHint::aniso(self.ax, self.ay)

@@ -11,7 +11,7 @@
 //! * [`microfacet`]: Beckmann (isotropic and anisotropic, also Ward's lobe) and GGX normals
 //!   distributed as D(h) cos θh, and GGX visible normals.
 //! * [`visible_beckmann`]: Beckmann visible normals (anisotropic), by a bracketed Newton
-//!   inversion of the visible-slope CDF.
+//!   inversion of the visible-slope CDF (its home is [`crate::microfacet`]).
 
 // `!(x > 0)` is deliberate throughout: it is true for NaN as well.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
@@ -20,8 +20,12 @@ pub mod half_vector;
 pub mod hemisphere;
 pub mod lobe;
 pub mod microfacet;
-pub mod visible_beckmann;
+/// Beckmann visible normals (moved to [`crate::microfacet::beckmann_visible`]).
+pub use crate::microfacet::beckmann_visible as visible_beckmann;
 
+pub use crate::microfacet::beckmann_visible::{
+    beckmann_visible_normal_pdf, sample_beckmann_visible_normal,
+};
 pub use half_vector::{
     ashikhmin_shirley_pdf_h, reflect_about, sample_ashikhmin_shirley_h, wi_pdf_from_h,
 };
@@ -34,11 +38,11 @@ pub use microfacet::{
     beckmann_aniso_d, beckmann_normal_pdf, ggx_normal_pdf, ggx_visible_normal_pdf,
     sample_beckmann_normal, sample_ggx_normal, sample_ggx_visible_normal,
 };
-pub use visible_beckmann::{beckmann_visible_normal_pdf, sample_beckmann_visible_normal};
 
 use crate::Real;
 
-/// Clamps u into [0, 1).
+/// Clamps u into [0, 1): u = 1.0 (a routine output of `f32` random-number conversion) and
+/// u < 0 become 1 − ε and 0.
 #[inline]
 pub(crate) fn unit<T: Real>(u: T) -> T {
     u.clamp(T::ZERO, T::ONE - T::EPSILON)

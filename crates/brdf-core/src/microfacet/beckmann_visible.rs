@@ -1,5 +1,5 @@
 //! Beckmann visible normals: h distributed as G1(wo) max(wo·h, 0) D(h)/cos θo, with the
-//! anisotropic Beckmann D of widths (ax, ay) ([`super::beckmann_aniso_d`]) and the Smith
+//! anisotropic Beckmann D of widths (ax, ay) ([`super::Beckmann`]) and the Smith
 //! G1 = 1/(1 + Λ) of the projected width (conventions.md §5).
 //!
 //! Derivation (slope space, the same stretch as for GGX): scaling the slopes by 1/ax, 1/ay
@@ -18,9 +18,9 @@
 //! it), which converges for every u because F is increasing on the bracket. The slopes are
 //! then rotated back by v's azimuth and unstretched, and h = normalise(−x, −y, 1).
 
-use super::{beckmann_aniso_d, unit};
+use super::{Beckmann, Distribution};
 use crate::geometry::Vec3;
-use crate::masking::lambda_beckmann;
+use crate::sampling::unit;
 use crate::Real;
 
 /// 1/√π.
@@ -89,17 +89,23 @@ fn visible_x_slope<T: Real>(c: T, s: T, u: T) -> T {
     solve_increasing(f, df, u * f(hi), -m, hi)
 }
 
-/// Samples a Beckmann visible normal for the view direction `wo` (wo.z > 0) and widths
-/// ax, ay > 0. `None` for degenerate input (wo at or below the horizon, NaN).
+/// Samples a Beckmann visible normal for the view direction `wo` and widths ax, ay > 0.
+/// `None` for degenerate input (wo at or below the horizon, NaN, widths ≤ 0). The widths are
+/// clamped as by [`Beckmann::clamped`].
 pub fn sample_beckmann_visible_normal<T: Real>(
     wo: Vec3<T>,
     ax: T,
     ay: T,
     u: [T; 2],
 ) -> Option<Vec3<T>> {
-    if !(wo.z > T::ZERO && ax > T::ZERO && ay > T::ZERO) {
+    if !(ax > T::ZERO && ay > T::ZERO) {
         return None;
     }
+    Beckmann::clamped(ax, ay).sample_visible_normal(wo, u)
+}
+
+/// The sampler behind [`Beckmann`]'s visible normals (wo checked by the caller).
+pub(crate) fn sample<T: Real>(wo: Vec3<T>, ax: T, ay: T, u: [T; 2]) -> Option<Vec3<T>> {
     // Stretch to unit width.
     let v = Vec3::new(ax * wo.x, ay * wo.y, wo.z).normalize()?;
     let s = (v.x * v.x + v.y * v.y).sqrt();
@@ -117,22 +123,8 @@ pub fn sample_beckmann_visible_normal<T: Real>(
 }
 
 /// G1(wo) max(wo·h, 0) D(h)/cos θo: the density of [`sample_beckmann_visible_normal`] per
-/// unit solid angle of h. G1 uses the Smith Λ of the width projected on wo's azimuth,
-/// m² = cos²φ ax² + sin²φ ay².
+/// unit solid angle of h ([`Distribution::visible_normal_pdf`] of [`Beckmann::clamped`]).
+/// G1 uses the Smith Λ of the width projected on wo's azimuth.
 pub fn beckmann_visible_normal_pdf<T: Real>(wo: Vec3<T>, h: Vec3<T>, ax: T, ay: T) -> T {
-    if !(wo.z > T::ZERO) {
-        return if wo.z.is_nan() { T::NAN } else { T::ZERO };
-    }
-    let oh = wo.dot(h);
-    if !(oh > T::ZERO) {
-        return if oh.is_nan() { T::NAN } else { T::ZERO };
-    }
-    let r2 = wo.x * wo.x + wo.y * wo.y;
-    let m = if r2 > T::ZERO {
-        ((wo.x * wo.x * ax * ax + wo.y * wo.y * ay * ay) / r2).sqrt()
-    } else {
-        ax
-    };
-    let g1 = T::ONE / (T::ONE + lambda_beckmann(wo.z, m));
-    g1 * oh * beckmann_aniso_d(h, ax, ay) / wo.z
+    Beckmann::clamped(ax, ay).visible_normal_pdf(wo, h)
 }

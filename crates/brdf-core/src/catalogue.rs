@@ -1,0 +1,1045 @@
+//! The model catalogue: every reflection model of [`crate::models`] once, as static data —
+//! name (plus accepted old spellings), a one-line description, its parameters with units,
+//! the constructor's ranges, slider ranges and defaults, and static flags — with one
+//! constructor, [`ModelSpec::build`], from a flat array of numbers. The command line
+//! (`cargo xtask eval brdf`), the WASM module, the plausibility tests and the benches all
+//! read this table, so names and parameters cannot drift apart.
+//!
+//! Flat layout: a scalar parameter takes one slot, a colour three (r, g, b, named by
+//! [`ParamKind::Rgb`]), a choice one (the option's index, an integer). [`ModelSpec::slots`]
+//! is the total, at most [`MAX_SLOTS`].
+//!
+//! Roughness follows the crate's convention ([`crate::microfacet`]): Beckmann and GGX widths
+//! α; the Torrance–Sparrow model takes the paper's RMS slope σ = α/√2.
+
+use crate::error::check_range;
+use crate::fresnel::Fresnel;
+use crate::geometry::Vec3;
+use crate::models::*;
+use crate::{ParamError, Real};
+
+/// The most slots a model may have ([`ModelSpec::slots`]): 16, what the WASM module's
+/// JavaScript side reserves for a parameter array (64 bytes of f32).
+pub const MAX_SLOTS: usize = 16;
+
+/// How a parameter occupies the flat array.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ParamKind {
+    /// One number.
+    Scalar,
+    /// A colour: three numbers, with these per-channel names.
+    Rgb([&'static str; 3]),
+    /// One of these options, given as its index (an integer).
+    Choice(&'static [&'static str]),
+}
+
+/// One parameter.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ParamSpec {
+    /// Name (the command line's `--param` key).
+    pub name: &'static str,
+    /// Layout and meaning of its slots.
+    pub kind: ParamKind,
+    /// Unit ("1" for unitless, "rad", "-" for a choice).
+    #[cfg(feature = "catalogue-text")]
+    unit: &'static str,
+    /// The range the model's checked constructor accepts (per channel), in words.
+    #[cfg(feature = "catalogue-text")]
+    range: &'static str,
+    /// Slider range for a user interface (inside the accepted range).
+    pub ui: (f64, f64),
+    /// Slider step (1 for a choice).
+    pub step: f64,
+    /// Default, per channel (a scalar or a choice uses the first).
+    pub default: [f64; 3],
+    /// What it is.
+    #[cfg(feature = "catalogue-text")]
+    help: &'static str,
+}
+
+/// The texts of the catalogue are kept only with the `catalogue-text` feature (so that the
+/// WASM module and the firmware do not carry them); without it these return "".
+macro_rules! text {
+    ($self:ident . $f:ident) => {{
+        #[cfg(feature = "catalogue-text")]
+        {
+            $self.$f
+        }
+        #[cfg(not(feature = "catalogue-text"))]
+        {
+            let _ = $self;
+            ""
+        }
+    }};
+}
+
+impl ParamSpec {
+    /// Unit ("1" for unitless, "rad", "-" for a choice); "" without `catalogue-text`.
+    pub fn unit(&self) -> &'static str {
+        text!(self.unit)
+    }
+    /// The range the constructor accepts, in words; "" without `catalogue-text`.
+    pub fn range(&self) -> &'static str {
+        text!(self.range)
+    }
+    /// What it is; "" without `catalogue-text`.
+    pub fn help(&self) -> &'static str {
+        text!(self.help)
+    }
+    /// Slots taken in the flat array.
+    pub const fn width(&self) -> usize {
+        match self.kind {
+            ParamKind::Rgb(_) => 3,
+            _ => 1,
+        }
+    }
+}
+
+/// Static facts about a model (the parameter-dependent ones are [`BrdfFlags`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ModelFlags {
+    /// `eval` is a lit colour (it carries n·l itself), not a BRDF in 1/sr.
+    pub lit_colour: bool,
+    /// The model can have a Dirac (mirror) part.
+    pub has_delta: bool,
+    /// The model depends on the azimuth about the normal (x = tangent).
+    pub anisotropic: bool,
+}
+
+/// Which constructor a spec uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ModelId {
+    TorranceSparrow,
+    Lambert,
+    Phong,
+    BlinnPhong,
+    CookTorrance,
+    LambertMirror,
+    ShirleyDamped,
+    CoupledSmooth,
+    AshikhminShirley,
+    Bank,
+    Ward,
+    Ggx,
+    GgxAnisotropic,
+    Standard,
+}
+
+/// One model of the catalogue.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ModelSpec {
+    /// Name.
+    pub name: &'static str,
+    /// Older spellings still accepted by [`find`].
+    pub aliases: &'static [&'static str],
+    /// One-line description with its source ([`ModelSpec::about`]).
+    #[cfg(feature = "catalogue-text")]
+    about: &'static str,
+    /// Parameters, in flat-array order.
+    pub params: &'static [ParamSpec],
+    /// Static flags.
+    pub flags: ModelFlags,
+    /// The constructor.
+    pub id: ModelId,
+}
+
+/// One slot of the flat array, for interfaces that list scalars (the WASM module).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Slot {
+    /// Slot name (a colour's channel name, else the parameter's).
+    pub name: &'static str,
+    /// The parameter it belongs to.
+    pub param: &'static ParamSpec,
+    /// Default value.
+    pub default: f64,
+}
+
+impl ModelSpec {
+    /// One-line description with its source; "" without `catalogue-text`.
+    pub fn about(&self) -> &'static str {
+        text!(self.about)
+    }
+    /// Number of slots of the flat array.
+    pub fn slots(&self) -> usize {
+        self.params.iter().map(|p| p.width()).sum()
+    }
+    /// Slot `k` of the flat array.
+    pub fn slot(&self, k: usize) -> Option<Slot> {
+        let mut at = 0;
+        for p in self.params {
+            let w = p.width();
+            if k < at + w {
+                let c = k - at;
+                let name = match p.kind {
+                    ParamKind::Rgb(names) => names[c],
+                    _ => p.name,
+                };
+                return Some(Slot {
+                    name,
+                    param: p,
+                    default: p.default[c],
+                });
+            }
+            at += w;
+        }
+        None
+    }
+    /// The defaults as a flat array (the first [`ModelSpec::slots`] entries are used).
+    pub fn defaults<T: Real>(&self) -> [T; MAX_SLOTS] {
+        core::array::from_fn(|k| self.slot(k).map_or(T::ZERO, |s| T::from_f64(s.default)))
+    }
+    /// Builds the model from a flat array of at least [`ModelSpec::slots`] numbers. Every
+    /// range is the model's checked constructor's; a choice must be an integer index.
+    pub fn build<T: Real>(&self, v: &[T]) -> Result<AnyBrdf<T>, ParamError> {
+        let n = self.slots();
+        let Some(v) = v.get(..n) else {
+            return Err(ParamError::OutOfRange {
+                name: self.name,
+                range: "too few parameters",
+            });
+        };
+        // Choices first, in one place: an integer index into the options.
+        let mut at = 0;
+        for p in self.params {
+            if let ParamKind::Choice(o) = p.kind {
+                check_choice(p.name, v[at], o.len())?;
+            }
+            at += p.width();
+        }
+        // The slots by position (the layout of the table above; the catalogue tests check
+        // each entry against its constructor).
+        let x = |k: usize| v[k];
+        let c = |k: usize| Rgb::new(v[k], v[k + 1], v[k + 2]);
+        let i = |k: usize| Real::to_f64(v[k]) as usize;
+        Ok(match self.id {
+            ModelId::TorranceSparrow => {
+                let f = Fresnel::schlick(x(2))?;
+                let g = GeometricTerm::ALL[i(1)];
+                AnyBrdf::TorranceSparrow(TorranceSparrow::new(x(0), g, f, x(3), x(4))?)
+            }
+            ModelId::Lambert => AnyBrdf::Lambert(Lambert::new(c(0))?),
+            ModelId::Phong => AnyBrdf::Phong(PhongNormalized::new(c(0), c(3), x(6))?),
+            ModelId::BlinnPhong => {
+                AnyBrdf::BlinnPhong(BlinnPhongNormalized::new(c(0), c(3), x(6))?)
+            }
+            ModelId::CookTorrance => {
+                let g = GeometricTerm::ALL[i(8)];
+                let m = CookTorrance::new(c(0), c(3), x(6), x(7), g)?;
+                AnyBrdf::CookTorrance(m.with_sampling(SAMPLINGS[i(9)]))
+            }
+            ModelId::LambertMirror => AnyBrdf::LambertMirror(LambertSpecularMix::new(c(0), x(3))?),
+            ModelId::ShirleyDamped => AnyBrdf::ShirleyDamped(ShirleyDamped::new(c(0), x(3))?),
+            ModelId::CoupledSmooth => {
+                let k = [CoupledK::Conserving, CoupledK::Printed][i(4)];
+                AnyBrdf::CoupledSmooth(CoupledSmooth::new(c(0), x(3), k)?)
+            }
+            ModelId::AshikhminShirley => {
+                AnyBrdf::AshikhminShirley(AshikhminShirley::new(c(0), c(3), x(6), x(7))?)
+            }
+            ModelId::Bank => {
+                let t = if i(7) == 0 {
+                    BankTangent::Azimuth(x(8))
+                } else {
+                    BankTangent::NormalCrossView
+                };
+                AnyBrdf::Bank(Bank::new(c(0), c(3), x(6), t)?)
+            }
+            ModelId::Ward => AnyBrdf::Ward(Ward::new(c(0), c(3), x(6), x(7))?),
+            ModelId::Ggx => {
+                let (smith, s) = (SMITH[i(4)], SAMPLINGS[i(5)]);
+                AnyBrdf::Ggx(Ggx::new(c(0), x(3), smith, s)?)
+            }
+            ModelId::GgxAnisotropic => {
+                let (smith, s) = (SMITH[i(5)], SAMPLINGS[i(6)]);
+                AnyBrdf::Ggx(Ggx::anisotropic(c(0), x(3), x(4), smith, s)?)
+            }
+            ModelId::Standard => {
+                let h = [Highlight::Phong, Highlight::BlinnPhong][i(14)];
+                let m = StandardLighting::new(c(0), c(3), c(7), c(10), x(13), h)?;
+                let g_amb = check_range("g_amb", x(6), T::ZERO, false, T::INFINITY, "[0, ∞)")?;
+                AnyBrdf::Standard(StandardLit {
+                    m,
+                    g_amb: Rgb::splat(g_amb),
+                })
+            }
+        })
+    }
+}
+
+const SMITH: [SmithForm; 2] = [SmithForm::Separable, SmithForm::Correlated];
+const SAMPLINGS: [MicrofacetSampling; 2] = [
+    MicrofacetSampling::VisibleNormals,
+    MicrofacetSampling::Normals,
+];
+
+/// A choice slot must hold an integer index below `n`.
+fn check_choice<T: Real>(name: &'static str, x: T, n: usize) -> Result<(), ParamError> {
+    let xf: f64 = Real::to_f64(x);
+    if xf >= 0.0 && xf < n as f64 && xf == (xf as usize) as f64 {
+        Ok(())
+    } else if !x.is_finite() {
+        Err(ParamError::NotFinite { name })
+    } else {
+        Err(ParamError::OutOfRange {
+            name,
+            range: "an option index",
+        })
+    }
+}
+
+/// Finds a model by name or old spelling.
+pub fn find(name: &str) -> Option<&'static ModelSpec> {
+    MODELS
+        .iter()
+        .find(|m| m.name == name || m.aliases.contains(&name))
+}
+
+/// The standard lighting model as the catalogue evaluates it: the lit colour for one white
+/// unit light at wi and viewer wo, with emission and global ambient g_amb (not a BRDF).
+#[derive(Clone, Copy, Debug)]
+pub struct StandardLit<T> {
+    /// The model.
+    pub m: StandardLighting<T>,
+    /// The global ambient colour.
+    pub g_amb: Rgb<T>,
+}
+
+impl<T: Real> Brdf<T> for StandardLit<T> {
+    fn flags(&self) -> BrdfFlags {
+        self.m.flags()
+    }
+    fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
+        let light = Light {
+            dir: wi,
+            color: Rgb::splat(T::ONE),
+        };
+        let n = Vec3::new(T::ZERO, T::ZERO, T::ONE);
+        self.m.shade(n, wo, &[light], self.g_amb)
+    }
+    fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
+        self.m.pdf(wo, wi)
+    }
+    fn sample(&self, wo: Vec3<T>, u: [T; 2]) -> Option<BrdfSample<T>> {
+        self.m.sample(wo, u)
+    }
+}
+
+/// Any model of the catalogue (what [`ModelSpec::build`] returns).
+#[derive(Clone, Copy, Debug)]
+#[allow(clippy::large_enum_variant)]
+pub enum AnyBrdf<T> {
+    TorranceSparrow(TorranceSparrow<T>),
+    Lambert(Lambert<T>),
+    Phong(PhongNormalized<T>),
+    BlinnPhong(BlinnPhongNormalized<T>),
+    CookTorrance(CookTorrance<T>),
+    LambertMirror(LambertSpecularMix<T>),
+    ShirleyDamped(ShirleyDamped<T>),
+    CoupledSmooth(CoupledSmooth<T>),
+    AshikhminShirley(AshikhminShirley<T>),
+    Bank(Bank<T>),
+    Ward(Ward<T>),
+    Ggx(Ggx<T>),
+    Standard(StandardLit<T>),
+}
+
+macro_rules! dispatch {
+    ($s:expr, $m:ident => $e:expr) => {
+        match $s {
+            AnyBrdf::TorranceSparrow($m) => $e,
+            AnyBrdf::Lambert($m) => $e,
+            AnyBrdf::Phong($m) => $e,
+            AnyBrdf::BlinnPhong($m) => $e,
+            AnyBrdf::CookTorrance($m) => $e,
+            AnyBrdf::LambertMirror($m) => $e,
+            AnyBrdf::ShirleyDamped($m) => $e,
+            AnyBrdf::CoupledSmooth($m) => $e,
+            AnyBrdf::AshikhminShirley($m) => $e,
+            AnyBrdf::Bank($m) => $e,
+            AnyBrdf::Ward($m) => $e,
+            AnyBrdf::Ggx($m) => $e,
+            AnyBrdf::Standard($m) => $e,
+        }
+    };
+}
+
+impl<T: Real> AnyBrdf<T> {
+    /// `true` for the standard lighting model, whose `eval` is a lit colour.
+    pub fn is_lit_colour(&self) -> bool {
+        matches!(self, AnyBrdf::Standard(_))
+    }
+}
+
+impl<T: Real> Brdf<T> for AnyBrdf<T> {
+    fn flags(&self) -> BrdfFlags {
+        dispatch!(self, m => Brdf::flags(m))
+    }
+    fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
+        dispatch!(self, m => Brdf::eval(m, wi, wo))
+    }
+    fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
+        dispatch!(self, m => Brdf::pdf(m, wo, wi))
+    }
+    fn sample(&self, wo: Vec3<T>, u: [T; 2]) -> Option<BrdfSample<T>> {
+        dispatch!(self, m => Brdf::sample(m, wo, u))
+    }
+    fn delta(&self, wo: Vec3<T>) -> Option<DeltaLobe<T>> {
+        dispatch!(self, m => Brdf::delta(m, wo))
+    }
+    fn lobe_hint(&self) -> LobeHint<T> {
+        dispatch!(self, m => Brdf::lobe_hint(m))
+    }
+}
+
+// ---------------------------------------------------------------- the table
+
+const fn num(
+    name: &'static str,
+    unit: &'static str,
+    range: &'static str,
+    ui: (f64, f64),
+    step: f64,
+    default: f64,
+    help: &'static str,
+) -> ParamSpec {
+    let _ = (unit, range, help);
+    ParamSpec {
+        name,
+        kind: ParamKind::Scalar,
+        #[cfg(feature = "catalogue-text")]
+        unit,
+        #[cfg(feature = "catalogue-text")]
+        range,
+        ui,
+        step,
+        default: [default; 3],
+        #[cfg(feature = "catalogue-text")]
+        help,
+    }
+}
+
+const fn rgb(
+    name: &'static str,
+    channels: [&'static str; 3],
+    range: &'static str,
+    ui: (f64, f64),
+    default: [f64; 3],
+    help: &'static str,
+) -> ParamSpec {
+    let _ = (range, help);
+    ParamSpec {
+        name,
+        kind: ParamKind::Rgb(channels),
+        #[cfg(feature = "catalogue-text")]
+        unit: "1",
+        #[cfg(feature = "catalogue-text")]
+        range,
+        ui,
+        step: 0.01,
+        default,
+        #[cfg(feature = "catalogue-text")]
+        help,
+    }
+}
+
+const fn choice(
+    name: &'static str,
+    options: &'static [&'static str],
+    range: &'static str,
+    default: usize,
+    help: &'static str,
+) -> ParamSpec {
+    let _ = (range, help);
+    ParamSpec {
+        name,
+        kind: ParamKind::Choice(options),
+        #[cfg(feature = "catalogue-text")]
+        unit: "-",
+        #[cfg(feature = "catalogue-text")]
+        range,
+        ui: (0.0, options.len() as f64 - 1.0),
+        step: 1.0,
+        default: [default as f64; 3],
+        #[cfg(feature = "catalogue-text")]
+        help,
+    }
+}
+
+const fn flags(lit_colour: bool, has_delta: bool, anisotropic: bool) -> ModelFlags {
+    ModelFlags {
+        lit_colour,
+        has_delta,
+        anisotropic,
+    }
+}
+
+const G_TERMS: &[&str] = &[
+    "none",
+    "blinn",
+    "smith-separable",
+    "smith-correlated",
+    "modified",
+    "modified-printed",
+];
+const G_RANGE: &str =
+    "none | blinn | smith-separable | smith-correlated | modified | modified-printed";
+const SMITH_NAMES: &[&str] = &["separable", "correlated"];
+const SAMPLING_NAMES: &[&str] = &["visible-normals", "normals"];
+const U01: &str = "[0, 1]";
+const U0INF: &str = "[0, inf)";
+const EXP: &str = "[0, 1e6]";
+const ALPHA: &str = "[1e-4, 1e4]";
+
+/// Every model, in listing order (the WASM module's model ids are indices here).
+pub const MODELS: &[ModelSpec] = &[
+    ModelSpec {
+        name: "torrance-sparrow",
+        aliases: &[],
+        #[cfg(feature = "catalogue-text")]
+        about: "Torrance-Sparrow (paper eq 3): ks D F G/(4 cos_i cos_o) + albedo/pi, Beckmann D \
+                with alpha = sqrt2 sigma, Schlick F(r0), G selectable",
+        params: &[
+            num(
+                "sigma",
+                "1 (RMS slope)",
+                "[7.07e-5, 7.07e3]",
+                (0.05, 1.0),
+                0.01,
+                0.3,
+                "RMS slope of the Gaussian surface (alpha = sqrt2 sigma)",
+            ),
+            choice(
+                "g",
+                G_TERMS,
+                G_RANGE,
+                4,
+                "geometric term (modified = the paper's G)",
+            ),
+            num(
+                "r0",
+                "1",
+                U01,
+                (0.0, 1.0),
+                0.01,
+                0.04,
+                "Fresnel reflectance at normal incidence",
+            ),
+            num("ks", "1", U0INF, (0.0, 4.0), 0.01, 1.0, "specular scale"),
+            num(
+                "albedo",
+                "1",
+                U01,
+                (0.0, 1.0),
+                0.01,
+                0.5,
+                "Lambertian albedo of the diffuse term",
+            ),
+        ],
+        flags: flags(false, false, false),
+        id: ModelId::TorranceSparrow,
+    },
+    ModelSpec {
+        name: "lambert",
+        aliases: &[],
+        #[cfg(feature = "catalogue-text")]
+        about: "Lambertian f = albedo/pi (standard lighting model diffuse, FCG 24.2)",
+        params: &[rgb(
+            "albedo",
+            ["albedo_r", "albedo_g", "albedo_b"],
+            U01,
+            (0.0, 1.0),
+            [0.8, 0.5, 0.3],
+            "hemispherical reflectance",
+        )],
+        flags: flags(false, false, false),
+        id: ModelId::Lambert,
+    },
+    ModelSpec {
+        name: "phong",
+        aliases: &["phong-normalized"],
+        #[cfg(feature = "catalogue-text")]
+        about: "energy-normalised Phong kd/pi + ks (n+2)/(2pi) max(wo.r_i,0)^n",
+        params: &[
+            rgb(
+                "kd",
+                ["kd_r", "kd_g", "kd_b"],
+                U01,
+                (0.0, 1.0),
+                [0.5, 0.2, 0.1],
+                "diffuse reflectance",
+            ),
+            rgb(
+                "ks",
+                ["ks_r", "ks_g", "ks_b"],
+                U01,
+                (0.0, 1.0),
+                [0.3; 3],
+                "specular reflectance",
+            ),
+            num("n", "1", EXP, (0.0, 500.0), 1.0, 40.0, "Phong exponent"),
+        ],
+        flags: flags(false, false, false),
+        id: ModelId::Phong,
+    },
+    ModelSpec {
+        name: "blinn-phong",
+        aliases: &["blinn-phong-normalized"],
+        #[cfg(feature = "catalogue-text")]
+        about: "energy-normalised Blinn-Phong kd/pi + ks (n+2)(n+4)/(8pi(n+2^(-n/2))) (n.h)^n",
+        params: &[
+            rgb(
+                "kd",
+                ["kd_r", "kd_g", "kd_b"],
+                U01,
+                (0.0, 1.0),
+                [0.1, 0.3, 0.5],
+                "diffuse reflectance",
+            ),
+            rgb(
+                "ks",
+                ["ks_r", "ks_g", "ks_b"],
+                U01,
+                (0.0, 1.0),
+                [0.3; 3],
+                "specular reflectance",
+            ),
+            num(
+                "n",
+                "1",
+                EXP,
+                (0.0, 500.0),
+                1.0,
+                80.0,
+                "Blinn-Phong exponent",
+            ),
+        ],
+        flags: flags(false, false, false),
+        id: ModelId::BlinnPhong,
+    },
+    ModelSpec {
+        name: "cook-torrance",
+        aliases: &[],
+        #[cfg(feature = "catalogue-text")]
+        about: "Cook-Torrance kd/pi + ks D F G/(4 cos_i cos_o), Beckmann D of width m = alpha, \
+                Schlick F",
+        params: &[
+            rgb(
+                "kd",
+                ["kd_r", "kd_g", "kd_b"],
+                U01,
+                (0.0, 1.0),
+                [0.4, 0.1, 0.1],
+                "Lambertian reflectance",
+            ),
+            rgb(
+                "ks",
+                ["ks_r", "ks_g", "ks_b"],
+                U01,
+                (0.0, 1.0),
+                [0.6; 3],
+                "specular scale",
+            ),
+            num(
+                "m",
+                "1 (alpha = RMS slope * sqrt 2)",
+                ALPHA,
+                (0.02, 1.0),
+                0.01,
+                0.25,
+                "Beckmann roughness",
+            ),
+            num(
+                "r0",
+                "1",
+                U01,
+                (0.0, 1.0),
+                0.01,
+                0.04,
+                "Fresnel reflectance at normal incidence",
+            ),
+            choice(
+                "g",
+                G_TERMS,
+                G_RANGE,
+                1,
+                "geometric term (blinn = V-groove, paper eq 4)",
+            ),
+            choice(
+                "sampling",
+                SAMPLING_NAMES,
+                "visible-normals | normals",
+                1,
+                "half-vector density of the sampler",
+            ),
+        ],
+        flags: flags(false, false, false),
+        id: ModelId::CookTorrance,
+    },
+    ModelSpec {
+        name: "lambert-mirror",
+        aliases: &[],
+        #[cfg(feature = "catalogue-text")]
+        about: "Lambert plus mirror (FCG 24.4): rd/pi (+ rs times a Dirac mirror)",
+        params: &[
+            rgb(
+                "rd",
+                ["rd_r", "rd_g", "rd_b"],
+                "[0, 1], rd + rs <= 1",
+                (0.0, 0.5),
+                [0.4, 0.4, 0.2],
+                "matte reflectance",
+            ),
+            num(
+                "rs",
+                "1",
+                "[0, 1], rd + rs <= 1",
+                (0.0, 0.5),
+                0.01,
+                0.3,
+                "mirror reflectance",
+            ),
+        ],
+        flags: flags(false, true, false),
+        id: ModelId::LambertMirror,
+    },
+    ModelSpec {
+        name: "shirley-damped",
+        aliases: &["shirley"],
+        #[cfg(feature = "catalogue-text")]
+        about: "Shirley's damped model (FCG 24.4): rd (1 - R_f(theta_o))/pi (+ Dirac); NOT \
+                reciprocal",
+        params: &[
+            rgb(
+                "rd",
+                ["rd_r", "rd_g", "rd_b"],
+                U01,
+                (0.0, 1.0),
+                [0.6, 0.3, 0.2],
+                "matte reflectance",
+            ),
+            num(
+                "r0",
+                "1",
+                U01,
+                (0.0, 1.0),
+                0.01,
+                0.05,
+                "Fresnel reflectance at normal incidence",
+            ),
+        ],
+        flags: flags(false, true, false),
+        id: ModelId::ShirleyDamped,
+    },
+    ModelSpec {
+        name: "coupled-smooth",
+        aliases: &["coupled"],
+        #[cfg(feature = "catalogue-text")]
+        about: "coupled smooth-layered model (FCG eq 24.3): k rm f(theta_i) f(theta_o) (+ Dirac)",
+        params: &[
+            rgb(
+                "rm",
+                ["rm_r", "rm_g", "rm_b"],
+                U01,
+                (0.0, 1.0),
+                [1.0; 3],
+                "matte reflectance R_m",
+            ),
+            num(
+                "r0",
+                "1",
+                "[0, 1)",
+                (0.0, 0.95),
+                0.01,
+                0.05,
+                "Fresnel reflectance at normal incidence",
+            ),
+            choice(
+                "k",
+                &["conserving", "printed"],
+                "conserving | printed",
+                0,
+                "conserving: 21(1-R0)/(20pi); printed (FCG 24.2): 21/(20pi(1-R0)), albedo > 1",
+            ),
+        ],
+        flags: flags(false, true, false),
+        id: ModelId::CoupledSmooth,
+    },
+    ModelSpec {
+        name: "ashikhmin-shirley",
+        aliases: &[],
+        #[cfg(feature = "catalogue-text")]
+        about: "Ashikhmin-Shirley anisotropic Phong (FCG 24.5-24.9) + coupled diffuse (24.7); \
+                u = x, v = y",
+        params: &[
+            rgb(
+                "rs",
+                ["rs_r", "rs_g", "rs_b"],
+                U01,
+                (0.0, 1.0),
+                [0.4; 3],
+                "specular reflectance at normal incidence",
+            ),
+            rgb(
+                "rd",
+                ["rd_r", "rd_g", "rd_b"],
+                U01,
+                (0.0, 1.0),
+                [0.3, 0.1, 0.1],
+                "diffuse reflectance",
+            ),
+            num(
+                "nu",
+                "1",
+                EXP,
+                (1.0, 1000.0),
+                1.0,
+                100.0,
+                "exponent along x",
+            ),
+            num("nv", "1", EXP, (1.0, 1000.0), 1.0, 10.0, "exponent along y"),
+        ],
+        flags: flags(false, false, true),
+        id: ModelId::AshikhminShirley,
+    },
+    ModelSpec {
+        name: "bank",
+        aliases: &[],
+        #[cfg(feature = "catalogue-text")]
+        about: "Bank anisotropic BRDF: kd/pi + ks (sqrt(1-(L.T)^2) sqrt(1-(V.T)^2) - \
+                (L.T)(V.T))^ns",
+        params: &[
+            rgb(
+                "kd",
+                ["kd_r", "kd_g", "kd_b"],
+                U01,
+                (0.0, 1.0),
+                [0.3, 0.2, 0.1],
+                "Lambertian reflectance",
+            ),
+            rgb(
+                "ks",
+                ["ks_r", "ks_g", "ks_b"],
+                U0INF,
+                (0.0, 1.0),
+                [0.5; 3],
+                "specular coefficient",
+            ),
+            num("ns", "1", EXP, (1.0, 500.0), 1.0, 30.0, "specular exponent"),
+            choice(
+                "tangent",
+                &["fixed", "n-cross-v"],
+                "fixed | n-cross-v",
+                0,
+                "fixed material tangent (reciprocal) or T = n x wo (not reciprocal)",
+            ),
+            num(
+                "tangent_azimuth",
+                "rad",
+                "finite",
+                (0.0, core::f64::consts::PI),
+                0.01,
+                0.0,
+                "azimuth of the fixed tangent from x",
+            ),
+        ],
+        flags: flags(false, false, true),
+        id: ModelId::Bank,
+    },
+    ModelSpec {
+        name: "ward",
+        aliases: &[],
+        #[cfg(feature = "catalogue-text")]
+        about: "Ward anisotropic: rd/pi + rs exp(-tan^2 h (cos^2/ax^2 + sin^2/ay^2))/(4pi ax ay \
+                sqrt(cos_i cos_o))",
+        params: &[
+            rgb(
+                "rd",
+                ["rd_r", "rd_g", "rd_b"],
+                U01,
+                (0.0, 1.0),
+                [0.2, 0.2, 0.3],
+                "diffuse reflectance",
+            ),
+            rgb(
+                "rs",
+                ["rs_r", "rs_g", "rs_b"],
+                U01,
+                (0.0, 1.0),
+                [0.3; 3],
+                "specular reflectance",
+            ),
+            num(
+                "ax",
+                "1 (RMS slope)",
+                ALPHA,
+                (0.01, 1.0),
+                0.01,
+                0.1,
+                "roughness along x",
+            ),
+            num(
+                "ay",
+                "1 (RMS slope)",
+                ALPHA,
+                (0.01, 1.0),
+                0.01,
+                0.4,
+                "roughness along y",
+            ),
+        ],
+        flags: flags(false, false, true),
+        id: ModelId::Ward,
+    },
+    ModelSpec {
+        name: "ggx",
+        aliases: &[],
+        #[cfg(feature = "catalogue-text")]
+        about: "Trowbridge-Reitz (GGX) D F G/(4 cos_i cos_o), Schlick F (F90 = 1), Smith G",
+        params: &[
+            rgb(
+                "f0",
+                ["f0_r", "f0_g", "f0_b"],
+                U01,
+                (0.0, 1.0),
+                [0.95, 0.64, 0.54],
+                "Fresnel reflectance at normal incidence",
+            ),
+            num(
+                "alpha",
+                "1",
+                ALPHA,
+                (0.01, 1.0),
+                0.01,
+                0.3,
+                "GGX width (perceptual roughness squared)",
+            ),
+            choice(
+                "smith",
+                SMITH_NAMES,
+                "separable | correlated",
+                1,
+                "Smith masking form",
+            ),
+            choice(
+                "sampling",
+                SAMPLING_NAMES,
+                "visible-normals | normals",
+                0,
+                "half-vector density of the sampler",
+            ),
+        ],
+        flags: flags(false, false, false),
+        id: ModelId::Ggx,
+    },
+    ModelSpec {
+        name: "ggx-anisotropic",
+        aliases: &[],
+        #[cfg(feature = "catalogue-text")]
+        about: "anisotropic GGX: D = 1/(pi ax ay ((h_x/ax)^2 + (h_y/ay)^2 + h_z^2)^2), Smith G \
+                of the projected width, Schlick F",
+        params: &[
+            rgb(
+                "f0",
+                ["f0_r", "f0_g", "f0_b"],
+                U01,
+                (0.0, 1.0),
+                [0.95, 0.64, 0.54],
+                "Fresnel reflectance at normal incidence",
+            ),
+            num(
+                "alpha_x",
+                "1",
+                ALPHA,
+                (0.01, 1.0),
+                0.01,
+                0.1,
+                "GGX width along x",
+            ),
+            num(
+                "alpha_y",
+                "1",
+                ALPHA,
+                (0.01, 1.0),
+                0.01,
+                0.4,
+                "GGX width along y",
+            ),
+            choice(
+                "smith",
+                SMITH_NAMES,
+                "separable | correlated",
+                1,
+                "Smith masking form",
+            ),
+            choice(
+                "sampling",
+                SAMPLING_NAMES,
+                "visible-normals | normals",
+                0,
+                "half-vector density of the sampler",
+            ),
+        ],
+        flags: flags(false, false, true),
+        id: ModelId::GgxAnisotropic,
+    },
+    ModelSpec {
+        name: "standard",
+        aliases: &[],
+        #[cfg(feature = "catalogue-text")]
+        about: "standard lighting model: lit colour for one white unit light at wi, viewer wo: \
+                m_emis + g_amb*m_amb + m_diff max(n.l,0) + m_spec max(cos,0)^gloss (not a BRDF)",
+        params: &[
+            rgb(
+                "emission",
+                ["emission_r", "emission_g", "emission_b"],
+                U0INF,
+                (0.0, 1.0),
+                [0.0; 3],
+                "m_emis",
+            ),
+            rgb(
+                "ambient",
+                ["ambient_r", "ambient_g", "ambient_b"],
+                U0INF,
+                (0.0, 1.0),
+                [0.0; 3],
+                "m_amb",
+            ),
+            num(
+                "g_amb",
+                "1",
+                U0INF,
+                (0.0, 1.0),
+                0.01,
+                0.0,
+                "global ambient g_amb (grey)",
+            ),
+            rgb(
+                "diffuse",
+                ["diffuse_r", "diffuse_g", "diffuse_b"],
+                U0INF,
+                (0.0, 1.0),
+                [0.5, 0.3, 0.2],
+                "m_diff",
+            ),
+            rgb(
+                "specular",
+                ["specular_r", "specular_g", "specular_b"],
+                U0INF,
+                (0.0, 1.0),
+                [0.5; 3],
+                "m_spec",
+            ),
+            num("gloss", "1", EXP, (0.0, 500.0), 1.0, 30.0, "m_gls"),
+            choice(
+                "highlight",
+                &["phong", "blinn-phong"],
+                "phong | blinn-phong",
+                1,
+                "(v.r)^gloss or (n.h)^gloss",
+            ),
+        ],
+        flags: flags(true, false, false),
+        id: ModelId::Standard,
+    },
+];

@@ -1,0 +1,106 @@
+//! The Beckmann distribution (Gaussian slopes; the D of the Torrance–Sparrow BRDF, paper
+//! eq 3, and of Cook–Torrance), anisotropic widths (αx, αy) = √2 × the RMS slopes.
+//!
+//! * D(h) = exp(−((h_x/αx)² + (h_y/αy)²)/h_z²) / (π αx αy h_z⁴).
+//! * Smith's Λ(w) = (e^{−a²}/(a√π) − erfc a)/2 with a = w_z/√((αx w_x)² + (αy w_y)²)
+//!   (a = 1/(α tan θ) for the width α projected on w's azimuth); written with erfc, so the
+//!   difference has no cancellation for small a (grazing), and Λ < 1e-29 is returned as 0
+//!   for a > 8.
+//! * Normals, density D(h) cos θh: the stretched slopes (x/αx, y/αy) are a unit 2-D
+//!   Gaussian e^{−r²}/π, so r² = −ln(1 − u0) and the azimuth is 2πu1; h ∝ (αx r cos, αy r
+//!   sin, 1).
+//! * Visible normals: [`super::beckmann_visible`] (no closed-form inverse; a bracketed
+//!   Newton inversion of the visible-slope CDF).
+
+use super::{clamp_alpha, projected, stretched, Distribution, FRAC_1_SQRT_PI};
+use crate::geometry::{min_cos, Vec3};
+use crate::{ParamError, Real};
+
+/// The anisotropic Beckmann distribution with Smith masking.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Beckmann<T> {
+    ax: T,
+    ay: T,
+}
+
+impl<T: Real> Beckmann<T> {
+    /// Checked constructor: αx, αy ∈ [1e-4, 1e4] ([`super::ALPHA_MIN`], [`super::ALPHA_MAX`]).
+    pub fn new(ax: T, ay: T) -> Result<Self, ParamError> {
+        Ok(Self {
+            ax: super::check_alpha("alpha_x", ax)?,
+            ay: super::check_alpha("alpha_y", ay)?,
+        })
+    }
+    /// Isotropic checked constructor, α ∈ [1e-4, 1e4].
+    pub fn isotropic(alpha: T) -> Result<Self, ParamError> {
+        Self::new(alpha, alpha)
+    }
+    /// From the paper's RMS slope σ: α = √2 σ (isotropic, checked).
+    pub fn from_sigma(sigma: T) -> Result<Self, ParamError> {
+        Self::isotropic(T::from_f64(core::f64::consts::SQRT_2) * sigma)
+    }
+    /// Any widths, clamped into [ε², 1/ε²] (module docs of [`super`]); NaN stays NaN.
+    pub fn clamped(ax: T, ay: T) -> Self {
+        Self {
+            ax: clamp_alpha(ax),
+            ay: clamp_alpha(ay),
+        }
+    }
+}
+
+impl<T: Real> Distribution<T> for Beckmann<T> {
+    fn alpha(&self) -> (T, T) {
+        (self.ax, self.ay)
+    }
+    fn d(&self, h: Vec3<T>) -> T {
+        if h.z.is_nan() || self.ax.is_nan() || self.ay.is_nan() {
+            return T::NAN;
+        }
+        if !(h.z > T::ZERO) {
+            return T::ZERO;
+        }
+        let c2 = h.z * h.z;
+        if c2 == T::ZERO {
+            return T::ZERO;
+        }
+        let g = (-(stretched(self.ax, self.ay, h) / c2)).exp();
+        if g == T::ZERO {
+            return T::ZERO;
+        }
+        // Divided in steps so that no intermediate overflows before the small factors.
+        g / (T::PI * self.ax * self.ay) / c2 / c2
+    }
+    fn lambda(&self, w: Vec3<T>) -> T {
+        if w.z.is_nan() || self.ax.is_nan() || self.ay.is_nan() {
+            return T::NAN;
+        }
+        if !(w.z >= min_cos()) {
+            return T::INFINITY;
+        }
+        let a2 = projected(self.ax, self.ay, w);
+        if !(a2 > T::ZERO) {
+            return T::ZERO;
+        }
+        let a = w.z.min(T::ONE) / a2.sqrt();
+        if a > T::from_f64(8.0) {
+            return T::ZERO;
+        }
+        ((-(a * a)).exp() * T::from_f64(FRAC_1_SQRT_PI) / a - a.erfc()) * T::HALF
+    }
+    fn sample_normal(&self, u: [T; 2]) -> Vec3<T> {
+        let u0 = crate::sampling::unit(u[0]);
+        let (c, s) = super::azimuth(u[1]);
+        // 1 − u0 ≥ ε, so r is finite; ln(1 − u0) is exact near u0 = 0 only through the
+        // subtraction, which is exact for u0 < ½.
+        let r = (-(T::ONE - u0).ln()).max(T::ZERO).sqrt();
+        Vec3::new(self.ax * r * c, self.ay * r * s, T::ONE)
+            .normalize()
+            .unwrap_or(Vec3::new(T::ZERO, T::ZERO, T::ONE))
+    }
+    fn sample_visible_normal(&self, wo: Vec3<T>, u: [T; 2]) -> Option<Vec3<T>> {
+        if !(wo.x.is_finite() && wo.y.is_finite() && wo.z >= min_cos()) {
+            return None;
+        }
+        super::beckmann_visible::sample(wo, self.ax, self.ay, u)
+    }
+}
