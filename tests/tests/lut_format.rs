@@ -108,11 +108,11 @@ fn speed_tier_g_tables_meet_their_accuracy_at_fresh_points() {
     }
     let rms = (sum2 / n as f64).sqrt();
     println!("3-D trilinear G table: max |err| {worst:.3e}, RMS {rms:.3e}");
-    // The claim is the header's: its max over 2,000,000 generator points (about 1.3e-3, the
+    // The claim is the header's: its max over 2,000,000 generator points (about 1.7e-3, the
     // bilinear error across the kinks θr = ±θi); fresh points stay within it.
     let claim = LutView::parse(&b3).unwrap().header().error.max_abs as f64;
     assert!(
-        claim <= 1.5e-3 && worst <= claim && rms <= 3e-4,
+        claim <= 2e-3 && worst <= claim && rms <= 3e-4,
         "{worst} vs {claim}"
     );
     let b = asset("g_modified_sigma0.3_linear.blut");

@@ -11,6 +11,10 @@
 //! slice, and the channels' scale and offset are applied once at the end (the weights sum
 //! to 1).
 //!
+//! Feature `compact` (for size budgets: the WASM module, firmware): only `Unorm16` payloads
+//! get the specialised loops; `F16`/`F32` tables take the per-tap general path (the same
+//! values up to f32 summation order).
+//!
 //! Inlining: forced on hosted targets (speed); left to the optimiser on bare metal and
 //! WebAssembly, where code size has a budget.
 //!
@@ -172,7 +176,9 @@ trait Store {
     fn at(b: &[u8], k: usize) -> f32;
 }
 struct U16;
+#[cfg_attr(feature = "compact", allow(dead_code))]
 struct F16;
+#[cfg_attr(feature = "compact", allow(dead_code))]
 struct F32;
 impl Store for U16 {
     const BYTES: usize = 2;
@@ -266,12 +272,17 @@ impl Reader {
     ) -> [f32; C] {
         let raw = match (self.mode, self.encoding) {
             (Mode::Linear, Encoding::Unorm16) => self.linear::<U16, D, C>(data, x),
-            (Mode::Linear, Encoding::F16) => self.linear::<F16, D, C>(data, x),
-            (Mode::Linear, Encoding::F32) => self.linear::<F32, D, C>(data, x),
             (Mode::Cubic, Encoding::Unorm16) => self.cubic::<U16, D, C>(data, x),
+            #[cfg(not(feature = "compact"))]
+            (Mode::Linear, Encoding::F16) => self.linear::<F16, D, C>(data, x),
+            #[cfg(not(feature = "compact"))]
+            (Mode::Linear, Encoding::F32) => self.linear::<F32, D, C>(data, x),
+            #[cfg(not(feature = "compact"))]
             (Mode::Cubic, Encoding::F16) => self.cubic::<F16, D, C>(data, x),
+            #[cfg(not(feature = "compact"))]
             (Mode::Cubic, Encoding::F32) => self.cubic::<F32, D, C>(data, x),
-            (Mode::General, _) => {
+            // Short Catmull–Rom axes (and, with feature `compact`, float payloads).
+            _ => {
                 let v = grid.sample(data, &x);
                 let mut out = [0.0; C];
                 out.copy_from_slice(&v[..C]);
@@ -299,12 +310,16 @@ impl Reader {
     ) -> (f32, f32) {
         let (va, vb) = match (self.mode, self.encoding) {
             (Mode::Linear, Encoding::Unorm16) => self.pair3_linear::<U16>(data, a, b, z),
-            (Mode::Linear, Encoding::F16) => self.pair3_linear::<F16>(data, a, b, z),
-            (Mode::Linear, Encoding::F32) => self.pair3_linear::<F32>(data, a, b, z),
             (Mode::Cubic, Encoding::Unorm16) => self.pair3_cubic::<U16>(data, a, b, z),
+            #[cfg(not(feature = "compact"))]
+            (Mode::Linear, Encoding::F16) => self.pair3_linear::<F16>(data, a, b, z),
+            #[cfg(not(feature = "compact"))]
+            (Mode::Linear, Encoding::F32) => self.pair3_linear::<F32>(data, a, b, z),
+            #[cfg(not(feature = "compact"))]
             (Mode::Cubic, Encoding::F16) => self.pair3_cubic::<F16>(data, a, b, z),
+            #[cfg(not(feature = "compact"))]
             (Mode::Cubic, Encoding::F32) => self.pair3_cubic::<F32>(data, a, b, z),
-            (Mode::General, _) => {
+            _ => {
                 return (
                     self.sample::<3, 1>(grid, data, [a[0], a[1], z])[0],
                     self.sample::<3, 1>(grid, data, [b[0], b[1], z])[0],
