@@ -178,9 +178,9 @@ fn fixed_layout_lookup_equals_the_general_reader() {
         let mut worst = 0f32;
         for &(ti, tr, s) in &pts {
             let (gm, gs, _) = if v.dims() == 3 {
-                GTable3::from_view(v.clone()).unwrap().terms(ti, tr, s)
+                GTable3::from_view(v).unwrap().terms(ti, tr, s)
             } else {
-                GTable::from_view(v.clone()).unwrap().terms(ti, tr)
+                GTable::from_view(v).unwrap().terms(ti, tr)
             };
             let (rm, rs) = g_by_general_reader(&v, ti, tr, s);
             worst = worst.max((gm - rm).abs()).max((gs - rs).abs());
