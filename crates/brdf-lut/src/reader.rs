@@ -76,10 +76,16 @@ pub(crate) struct Lane {
 }
 
 impl Lane {
-    /// The lane of an axis; `None` when a constant is not finite or the scale is zero (the
-    /// f32 rule of docs/lut-format.md §6).
-    pub(crate) fn new(axis: &Axis<'_>, stride: usize) -> Option<Self> {
+    /// The lane of an axis, or which part of the f32 rule of docs/lut-format.md §3 it
+    /// breaks (every constant finite, the warped span and the scale non-zero).
+    pub(crate) fn new(axis: &Axis<'_>, stride: usize) -> Result<Self, &'static str> {
         let (lo, hi) = (axis.lo as f32, axis.hi as f32);
+        if !(lo.is_finite() && hi.is_finite()) {
+            return Err("range end overflows f32");
+        }
+        if lo >= hi {
+            return Err("range collapses to one f32 value");
+        }
         let nf = axis.count as f32;
         // t = s·A + B with s the unit coordinate.
         let (big_a, big_b) = match axis.placement {
@@ -88,17 +94,19 @@ impl Lane {
         };
         // s = (w(x) − w(lo)) / (w(hi) − w(lo)), w monotone.
         let (w0, w1) = (warp_w(axis.warp, lo, lo), warp_w(axis.warp, lo, hi));
-        let a = big_a / (w1 - w0);
+        if !(w0.is_finite() && w1.is_finite()) {
+            return Err("warped range end not finite in f32");
+        }
+        let span = w1 - w0;
+        if !(span.is_finite() && span != 0.0) {
+            return Err("warped span is zero or not finite in f32");
+        }
+        let a = big_a / span;
         let b = big_b - a * w0;
-        let ok = lo.is_finite()
-            && hi.is_finite()
-            && lo < hi
-            && w0.is_finite()
-            && w1.is_finite()
-            && a.is_finite()
-            && a != 0.0
-            && b.is_finite();
-        ok.then_some(Lane {
+        if !(a.is_finite() && a != 0.0 && b.is_finite()) {
+            return Err("index scale n / span overflows f32");
+        }
+        Ok(Lane {
             warp: axis.warp,
             lo,
             hi,
@@ -235,7 +243,7 @@ impl Reader {
             Interpolation::CatmullRom => Mode::Cubic,
         };
         for (k, a) in h.axes.iter().enumerate().take(3) {
-            lanes[k] = Lane::new(a, stride)?;
+            lanes[k] = Lane::new(a, stride).ok()?;
             stride = stride.checked_mul(a.count as usize)?;
             if mode == Mode::Cubic && a.count < 4 {
                 mode = Mode::General;
