@@ -174,7 +174,7 @@ pub fn run(a: FirmwareArgs) -> Result<()> {
 // ---------------------------------------------------------------------------------------
 // QEMU, build, run
 
-fn ensure_qemu(root: &Path) -> Result<PathBuf> {
+pub(crate) fn ensure_qemu(root: &Path) -> Result<PathBuf> {
     let script = root.join(".ci/install-qemu.sh");
     let out = Command::new("bash")
         .arg(&script)
@@ -211,7 +211,7 @@ fn locked_version(lock: &Path, krate: &str) -> Option<String> {
     None
 }
 
-fn target_base(root: &Path) -> PathBuf {
+pub(crate) fn target_base(root: &Path) -> PathBuf {
     std::env::var_os("CARGO_TARGET_DIR")
         .map(PathBuf::from)
         .unwrap_or_else(|| root.join("target"))
@@ -244,14 +244,14 @@ fn build(root: &Path, micromath: bool) -> Result<PathBuf> {
     Ok(tdir.join("thumbv7em-none-eabihf/release/brdf-firmware"))
 }
 
-struct QemuOut {
-    stdout: String,
-    stderr: String,
-    status: Option<i32>,
-    timed_out: bool,
+pub(crate) struct QemuOut {
+    pub(crate) stdout: String,
+    pub(crate) stderr: String,
+    pub(crate) status: Option<i32>,
+    pub(crate) timed_out: bool,
 }
 
-fn run_qemu(qemu: &Path, elf: &Path) -> Result<QemuOut> {
+pub(crate) fn run_qemu(qemu: &Path, elf: &Path) -> Result<QemuOut> {
     // Libraries unpacked beside an unpacked QEMU (see install-qemu.sh).
     let mut ld = String::new();
     let unpacked = !qemu.starts_with("/usr") && !qemu.starts_with("/bin");
@@ -771,7 +771,7 @@ impl Sizes {
     }
 }
 
-fn llvm_tool(name: &str) -> Result<PathBuf> {
+pub(crate) fn llvm_tool(name: &str) -> Result<PathBuf> {
     let mut cands: Vec<PathBuf> = vec![PathBuf::from(format!("/usr/bin/{name}"))];
     for v in (14..=21).rev() {
         cands.push(PathBuf::from(format!("/usr/lib/llvm-{v}/bin/{name}")));

@@ -4,6 +4,7 @@
 use clap::{Parser, Subcommand};
 
 mod bench;
+mod cffi;
 mod ci;
 mod eval;
 mod lut;
@@ -27,6 +28,9 @@ enum Cmd {
     Bench(bench::Args),
     /// Build the Cortex-M firmware, run it under QEMU and compare with the host.
     Firmware(platforms::FirmwareArgs),
+    /// Check the C header, build the C example for the Cortex-M4F and the host, run both and
+    /// compare bit for bit with the host's Rust values.
+    Cffi(cffi::Args),
     /// Build the WebAssembly module, optimise it and run the Node tests.
     Wasm(platforms::WasmArgs),
     /// Build the web example and run the headless-browser test.
@@ -45,6 +49,7 @@ fn main() {
         Cmd::Lut(a) => lut::run(a),
         Cmd::Bench(a) => bench::run(a),
         Cmd::Firmware(a) => platforms::firmware(a),
+        Cmd::Cffi(a) => cffi::run(a),
         Cmd::Wasm(a) => platforms::wasm(a),
         Cmd::Web(a) => platforms::web(a),
         Cmd::Plot(a) => plot::run(a),

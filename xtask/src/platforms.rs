@@ -1,7 +1,7 @@
 //! `cargo xtask firmware|wasm|web` (owned by the platforms issue).
 
 #[path = "firmware.rs"]
-mod firmware_impl;
+pub(crate) mod firmware_impl;
 pub use firmware_impl::FirmwareArgs;
 #[path = "wasm.rs"]
 mod wasm_impl;
