@@ -19,7 +19,7 @@ fn dfg() -> Lut {
 const MU_MIN: f32 = 0.017_452_406;
 
 fn f16(b: &[u8], i: usize) -> f32 {
-    brdf_core::lut::f16_to_f32(u16::from_le_bytes([b[2 * i], b[2 * i + 1]]))
+    brdf_lut::f16_to_f32(u16::from_le_bytes([b[2 * i], b[2 * i + 1]]))
 }
 
 /// Max |ΔA| over μ ≥ lo and max |ΔB| over all compared texels.

@@ -6,10 +6,10 @@
 
 use anyhow::{bail, Context, Result};
 use brdf_bench::{angle_pairs, env_brdf_approx, mu_roughness, read_asset, SIGMA};
-use brdf_core::lut::{DfgTable, GTable, GTable3};
 use brdf_core::masking::ModifiedG;
 use brdf_core::quadrature::{GaussLegendre, DEFAULT_NODES, NODE_COUNTS};
 use brdf_core::split_sum::{dfg_ggx, InnerRule, OuterRule};
+use brdf_lut::{DfgTable, GTable, GTable3};
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};

@@ -9,12 +9,12 @@
 use brdf_bench::*;
 use brdf_core::batch::{self, DotsSoa, Vec3Soa};
 use brdf_core::fresnel::Fresnel;
-use brdf_core::lut::{DfgTable, GTable, GTable3, LutView};
 use brdf_core::masking::{self, ModifiedG};
 use brdf_core::models::*;
 use brdf_core::quadrature::{GaussLegendre, DEFAULT_NODES};
 use brdf_core::split_sum::{dfg_ggx, InnerRule, OuterRule};
 use brdf_core::{albedo, Real, Vec3};
+use brdf_lut::{DfgTable, GTable, GTable3, LutView};
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use std::hint::black_box;
 
@@ -441,7 +441,140 @@ fn lut_parse(c: &mut Criterion) {
     grp.finish();
 }
 
+/// The LUT-layer figures under fixed names (compared across changes): the plain bilinear
+/// floor, the prepared no_std tables, the std crate's owned tables loaded from files, the
+/// analytic DFG fit and the direct G, over the same inputs as the callgrind harness.
+fn lut_targets(c: &mut Criterion) {
+    let (ti, tr) = angle_pairs::<f32>(BATCH);
+    let pts: Vec<(f32, f32)> = mu_roughness(BATCH)
+        .iter()
+        .map(|&(m, r)| (m as f32, r as f32))
+        .collect();
+    let mut grp = c.benchmark_group("lut");
+    grp.throughput(Throughput::Elements(BATCH as u64));
+    let floor = FloorBilinear2::new();
+    grp.bench_function("floor_bilinear2", |b| {
+        b.iter(|| {
+            for &(m, r) in &pts {
+                black_box(floor.fetch(black_box(m), black_box(r)));
+            }
+        })
+    });
+    if let Some(bytes) = read_asset(DFG_ASSET) {
+        let t = DfgTable::parse(&bytes).unwrap();
+        grp.bench_function("dfg_lut", |b| {
+            b.iter(|| {
+                for &(m, r) in &pts {
+                    black_box(t.ab(black_box(m), black_box(r)));
+                }
+            })
+        });
+        let t = brdf_lut::Lut::from_path(assets_dir().join(DFG_ASSET)).unwrap();
+        grp.bench_function("dfg_lut_std", |b| {
+            b.iter(|| {
+                for &(m, r) in &pts {
+                    black_box(t.dfg(black_box(m), black_box(r)).unwrap());
+                }
+            })
+        });
+    }
+    grp.bench_function("dfg_karis", |b| {
+        b.iter(|| {
+            for &(m, r) in &pts {
+                black_box(env_brdf_approx(black_box(m), black_box(r)));
+            }
+        })
+    });
+    if let Some(bytes) = read_asset(G2_LINEAR_ASSET) {
+        let t = GTable::parse(&bytes).unwrap();
+        grp.bench_function("g_lut2d_linear", |b| {
+            b.iter(|| {
+                for (&a, &r) in ti.iter().zip(&tr) {
+                    black_box(t.g(black_box(a), black_box(r)));
+                }
+            })
+        });
+        let t = brdf_lut::Lut::from_path(assets_dir().join(G2_LINEAR_ASSET)).unwrap();
+        grp.bench_function("g_lut2d_linear_std", |b| {
+            b.iter(|| {
+                for (&a, &r) in ti.iter().zip(&tr) {
+                    black_box(t.g(black_box(a), black_box(r), SIGMA as f32).unwrap());
+                }
+            })
+        });
+    }
+    if let Some(bytes) = read_asset(G3_LINEAR_ASSET) {
+        let t = GTable3::parse(&bytes).unwrap();
+        grp.bench_function("g_lut3d_linear", |b| {
+            b.iter(|| {
+                for (&a, &r) in ti.iter().zip(&tr) {
+                    black_box(t.g(black_box(a), black_box(r), SIGMA as f32));
+                }
+            })
+        });
+    }
+    // Batch entries: one call over all BATCH inputs per iteration (same element count).
+    let mu: Vec<f32> = pts.iter().map(|p| p.0).collect();
+    let rr: Vec<f32> = pts.iter().map(|p| p.1).collect();
+    let (mut o1, mut o2) = (vec![0f32; BATCH], vec![0f32; BATCH]);
+    if let Some(bytes) = read_asset(G2_LINEAR_ASSET) {
+        let t = GTable::parse(&bytes[..]).unwrap();
+        grp.bench_function("g_lut2d_linear_batch", |b| {
+            b.iter(|| black_box(t.g_batch(black_box(&ti), black_box(&tr), &mut o1)))
+        });
+    }
+    if let Some(bytes) = read_asset(G3_LINEAR_ASSET) {
+        let t = GTable3::parse(&bytes[..]).unwrap();
+        let s = SIGMA as f32;
+        grp.bench_function("g_lut3d_linear_batch", |b| {
+            b.iter(|| black_box(t.g_batch(black_box(&ti), black_box(&tr), s, &mut o1)))
+        });
+    }
+    if let Some(bytes) = read_asset(DFG_ASSET) {
+        let t = DfgTable::parse(&bytes[..]).unwrap();
+        grp.bench_function("dfg_lut_batch", |b| {
+            b.iter(|| black_box(t.ab_batch(black_box(&mu), black_box(&rr), &mut o1, &mut o2)))
+        });
+    }
+    if let Some(bytes) = read_asset(E_ASSET) {
+        let t = brdf_lut::AlbedoTable::parse(&bytes[..]).unwrap();
+        grp.bench_function("e_lut", |b| {
+            b.iter(|| {
+                for &(m, r) in &pts {
+                    black_box(t.e(black_box(m), black_box(r)));
+                }
+            })
+        });
+        grp.bench_function("e_lut_batch", |b| {
+            b.iter(|| black_box(t.e_batch(black_box(&mu), black_box(&rr), &mut o1)))
+        });
+    }
+    if let Some(bytes) = read_asset(EAVG_ASSET) {
+        let t = brdf_lut::AverageAlbedoTable::parse(&bytes[..]).unwrap();
+        grp.bench_function("eavg_lut", |b| {
+            b.iter(|| {
+                for &(_, r) in &pts {
+                    black_box(t.e_avg(black_box(r)));
+                }
+            })
+        });
+        grp.bench_function("eavg_lut_batch", |b| {
+            b.iter(|| black_box(t.e_avg_batch(black_box(&rr), &mut o1)))
+        });
+    }
+    let g = ModifiedG::<f32>::new(SIGMA as f32).unwrap();
+    grp.bench_function("g_direct_f32", |b| {
+        b.iter(|| {
+            for (&a, &r) in ti.iter().zip(&tr) {
+                black_box(g.g(black_box(a), black_box(r)));
+            }
+        })
+    });
+    grp.finish();
+}
+
 fn all(c: &mut Criterion) {
+    lut_targets(c);
     g_direct::<f32>(c);
     g_direct::<f64>(c);
     g_closed::<f32>(c);

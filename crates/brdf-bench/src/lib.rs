@@ -7,8 +7,8 @@
 //! Also holds the one kernel that exists only as a point of comparison: Karis's analytic
 //! approximation of the split-sum pair ([`env_brdf_approx`]).
 
-use brdf_core::lut::LutView;
 use brdf_core::{Dots, Real};
+use brdf_lut::LutView;
 use std::path::PathBuf;
 
 /// Inputs per benchmark iteration: every "per call" figure is an iteration's time divided
@@ -140,3 +140,58 @@ pub const G3_LINEAR_ASSET: &str = "g_modified_linear.blut";
 pub const G2_LINEAR_ASSET: &str = "g_modified_sigma0.3_linear.blut";
 /// The GGX split-sum table.
 pub const DFG_ASSET: &str = "dfg_ggx.blut";
+/// The GGX directional-albedo table E(μ, r).
+pub const E_ASSET: &str = "kc_e_ggx.blut";
+/// The GGX average-albedo table E_avg(r).
+pub const EAVG_ASSET: &str = "kc_eavg_ggx.blut";
+
+/// The floor every table lookup is held against: a plain bilinear fetch from a 64×64
+/// two-channel u16 array on linear, endpoint axes over [0, 1]², written as simply as
+/// possible (no header, no warp, no per-channel scale beyond 1/65535).
+pub struct FloorBilinear2 {
+    data: Vec<[u16; 2]>,
+}
+
+impl Default for FloorBilinear2 {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl FloorBilinear2 {
+    /// Nodes per axis.
+    pub const N: usize = 64;
+
+    /// A table of smooth made-up values (the content does not matter for the cost).
+    pub fn new() -> Self {
+        let n = Self::N;
+        let data = (0..n * n)
+            .map(|k| {
+                let (i, j) = ((k % n) as f64, (k / n) as f64);
+                let a = 0.5 + 0.4 * (0.1 * i).sin() * (0.07 * j).cos();
+                let b = 0.3 + 0.2 * (0.05 * (i + j)).cos();
+                [(a * 65535.0) as u16, (b * 65535.0) as u16]
+            })
+            .collect();
+        Self { data }
+    }
+
+    /// Bilinear (channel 0, channel 1) at (x, y) ∈ [0, 1]² (clamped).
+    #[inline]
+    pub fn fetch(&self, x: f32, y: f32) -> (f32, f32) {
+        let last = (Self::N - 1) as f32;
+        let tx = x.clamp(0.0, 1.0) * last;
+        let ty = y.clamp(0.0, 1.0) * last;
+        let i = (tx as usize).min(Self::N - 2);
+        let j = (ty as usize).min(Self::N - 2);
+        let (fx, fy) = (tx - i as f32, ty - j as f32);
+        let at = |i: usize, j: usize| self.data[j * Self::N + i];
+        let (p00, p10, p01, p11) = (at(i, j), at(i + 1, j), at(i, j + 1), at(i + 1, j + 1));
+        let lerp2 = |c: usize| {
+            let lo = p00[c] as f32 + fx * (p10[c] as f32 - p00[c] as f32);
+            let hi = p01[c] as f32 + fx * (p11[c] as f32 - p01[c] as f32);
+            (lo + fy * (hi - lo)) * (1.0 / 65535.0)
+        };
+        (lerp2(0), lerp2(1))
+    }
+}

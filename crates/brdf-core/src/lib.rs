@@ -29,7 +29,6 @@ pub mod distribution;
 pub mod error;
 pub mod fresnel;
 pub mod geometry;
-pub mod lut;
 pub mod masking;
 pub mod models;
 pub mod quadrature;

@@ -7,10 +7,10 @@
 //! semihosting) by symbol name. Invalid parameters give NaN, never a panic.
 
 use brdf_core::fresnel::Fresnel;
-use brdf_core::lut::GTable;
 use brdf_core::masking::ModifiedG;
 use brdf_core::models::{AshikhminShirley, Brdf, GeometricTerm, Rgb, TorranceSparrow};
 use brdf_core::{Dots, Vec3};
+use brdf_lut::GTable;
 
 /// The paper's modified G = min(GM, GS) (eq 13, reciprocal convention, conventions.md §4)
 /// for RMS slope `sigma` and in-plane angles θi ∈ [0, π/2], θr ∈ [−π/2, π/2] (radians).
@@ -25,14 +25,14 @@ pub fn g_direct(sigma: f32, theta_i: f32, theta_r: f32) -> f32 {
 /// Validates a per-σ G table (magic, version, header limits, payload length, CRC-32;
 /// docs/lut-format.md) and borrows it: zero-copy, no allocation. `None` on any defect.
 #[inline(never)]
-pub fn g_table(bytes: &[u8]) -> Option<GTable<'_>> {
+pub fn g_table(bytes: &[u8]) -> Option<GTable<&[u8]>> {
     GTable::parse(bytes).ok()
 }
 
 /// The modified G (reciprocal convention) looked up in a per-σ table at in-plane angles
 /// θi, θr (radians), interpolated as the table's header says.
 #[inline(never)]
-pub fn g_lut(table: &GTable<'_>, theta_i: f32, theta_r: f32) -> f32 {
+pub fn g_lut(table: &GTable<&[u8]>, theta_i: f32, theta_r: f32) -> f32 {
     table.g(theta_i, theta_r)
 }
 

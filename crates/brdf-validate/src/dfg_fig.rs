@@ -5,9 +5,9 @@
 
 use crate::figures::{self, diverging, pe};
 use anyhow::{bail, Context, Result};
-use brdf_core::lut::f16_to_f32;
 use brdf_core::quadrature::GaussLegendre;
 use brdf_core::split_sum::dfg_ggx;
+use brdf_lut::f16_to_f32;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use rayon::prelude::*;

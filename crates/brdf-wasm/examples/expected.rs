@@ -10,7 +10,6 @@
 //!   fixed points for a few (model, parameters) settings.
 
 use brdf_core::fresnel::Fresnel;
-use brdf_core::lut::{DfgTable, GTable, GTable3};
 use brdf_core::masking::{
     g_blinn, g_smith_beckmann_correlated, g_smith_beckmann_separable, Convention, ModifiedG,
 };
@@ -20,6 +19,7 @@ use brdf_core::models::{
     PhongNormalized, Rgb, ShirleyDamped, SmithForm, StandardLighting, TorranceSparrow, Ward,
 };
 use brdf_core::{Dots, Real, Vec3};
+use brdf_lut::{DfgTable, GTable, GTable3};
 use std::fmt::Write as _;
 use std::path::PathBuf;
 

@@ -1,5 +1,5 @@
-//! Look-up tables whose bytes the host copies into linear memory, read through brdf-core's
-//! no_std, zero-copy LUT view (`brdf_core::lut`, format in docs/lut-format.md).
+//! Look-up tables whose bytes the host copies into linear memory, read through the no_std,
+//! zero-copy readers of `brdf-lut` (format in docs/lut-format.md).
 //!
 //! Three slots, each a fixed static buffer for one table kind:
 //!
@@ -19,7 +19,7 @@
 use crate::g::MAX_BATCH;
 use crate::memory::{usable, StaticBuf};
 use crate::status::{BAD_BUFFER, BAD_LUT, NO_LUT, OK};
-use brdf_core::lut::{DfgTable, GTable, GTable3, LutError, LutView};
+use brdf_lut::{DfgTable, GTable, GTable3, LutError, LutView};
 use core::sync::atomic::{AtomicU32, Ordering};
 
 static SLOT0: StaticBuf<{ 256 * 1024 }> = StaticBuf::new();
@@ -130,21 +130,21 @@ pub extern "C" fn brdf_lut_error() -> u32 {
     LAST_ERROR.load(Ordering::Relaxed)
 }
 
-fn with_g3<R>(f: impl FnOnce(&GTable3<'_>) -> R) -> Option<R> {
+fn with_g3<R>(f: impl FnOnce(&GTable3<&[u8]>) -> R) -> Option<R> {
     // SAFETY: used within this call only.
     let bytes = unsafe { loaded(0)? };
     let t = GTable3::from_view(LutView::parse_skip_checksum(bytes).ok()?).ok()?;
     Some(f(&t))
 }
 
-fn with_g2<R>(f: impl FnOnce(&GTable<'_>) -> R) -> Option<R> {
+fn with_g2<R>(f: impl FnOnce(&GTable<&[u8]>) -> R) -> Option<R> {
     // SAFETY: as above.
     let bytes = unsafe { loaded(1)? };
     let t = GTable::from_view(LutView::parse_skip_checksum(bytes).ok()?).ok()?;
     Some(f(&t))
 }
 
-fn with_dfg<R>(f: impl FnOnce(&DfgTable<'_>) -> R) -> Option<R> {
+fn with_dfg<R>(f: impl FnOnce(&DfgTable<&[u8]>) -> R) -> Option<R> {
     // SAFETY: as above.
     let bytes = unsafe { loaded(2)? };
     let t = DfgTable::from_view(LutView::parse_skip_checksum(bytes).ok()?).ok()?;

@@ -55,9 +55,9 @@ pub fn run(a: Args) -> Result<()> {
             .lut
             .clone()
             .unwrap_or_else(|| crate::lut::assets_dir().join("dfg_ggx.blut"));
-        bytes = std::fs::read(&p).with_context(|| format!("reading {}", p.display()))?;
+        bytes = brdf_lut::read_capped(&p).with_context(|| format!("reading {}", p.display()))?;
         Some(
-            brdf_core::lut::DfgTable::parse(&bytes)
+            brdf_lut::DfgTable::parse(&bytes)
                 .map_err(|e| anyhow::anyhow!("{}: {e}", p.display()))?,
         )
     };

@@ -2,7 +2,7 @@
 //! a JSON sidecar that states axes, orientation, texel placement and that values are linear.
 
 use anyhow::{bail, Context, Result};
-use brdf_core::lut::{f32_to_f16, LutView, Placement, Warp};
+use brdf_lut::{f32_to_f16, LutView, Placement, Warp};
 use std::path::PathBuf;
 
 #[derive(clap::Args)]
@@ -44,7 +44,7 @@ fn warp_formula(w: Warp) -> &'static str {
 pub fn run(a: ExportArgs) -> Result<()> {
     let lut = brdf_lut::Lut::from_path(&a.file)
         .with_context(|| format!("loading {}", a.file.display()))?;
-    let v: LutView<'_> = lut.view();
+    let v: LutView<'_> = lut.view()?;
     let h = v.header();
     let nodes: usize = h.axes.iter().map(|x| x.count as usize).product();
     let nc = v.channels();

@@ -3,11 +3,11 @@
 use super::assets::{self, Spec};
 use super::GenArgs;
 use anyhow::{bail, Context, Result};
-use brdf_core::lut::{
-    encode_into, f32_to_f16, Channel, Encoding, ErrorStats, GTable, GTable3, Generator, Header,
-    LutView, TableKind, FORMAT_VERSION, MAGIC,
+use brdf_core::masking::ModifiedG;
+use brdf_lut::write::{self, ErrorAccumulator};
+use brdf_lut::{
+    Convention, Encoding, ErrorStats, GTable, GTable3, Generator, List, LutView, TableKind,
 };
-use brdf_core::masking::{Convention, ModifiedG};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rand::{Rng, SeedableRng};
 use rayon::prelude::*;
@@ -142,120 +142,46 @@ pub fn generate(g: GenArgs) -> Result<()> {
     Ok(())
 }
 
-fn header_for<'a>(s: &'a Spec, channels: &[Channel<'a>], error: ErrorStats) -> Result<Header<'a>> {
-    let mut nodes = heapless::Vec::new();
-    let counts: &[u16] = match s.kind {
+/// Quadrature node counts the direct kernels use, recorded in the header.
+fn quadrature_nodes(kind: TableKind) -> List<u16, { brdf_lut::MAX_GENERATOR_NODES }> {
+    let counts: &[u16] = match kind {
         TableKind::PassingFactor => &[brdf_core::quadrature::DEFAULT_NODES as u16],
         TableKind::AverageAlbedo => &[24, 32, 16, 4],
         _ => &[32, 16, 4],
     };
-    for &c in counts {
-        let _ = nodes.push(c);
-    }
-    Ok(Header {
-        magic: MAGIC,
-        version: FORMAT_VERSION,
+    List::from_slice(counts).unwrap_or_default()
+}
+
+/// Computes the nodes and hands them to the library writer, which quantises them, measures
+/// the error (with [`measure`]) and encodes the file.
+pub fn build(s: &Spec) -> Result<Vec<u8>> {
+    let spec = write::Spec {
         kind: s.kind,
-        axes: s.axes.iter().copied().collect(),
-        channels: channels.iter().copied().collect(),
+        axes: &s.axes,
+        channels: &s.channels,
         encoding: s.encoding,
         interpolation: s.interpolation,
         generator: Generator {
             model: s.model,
             convention: Convention::Reciprocal,
             sigma: s.sigma,
-            nodes,
+            nodes: quadrature_nodes(s.kind),
             tool: TOOL,
         },
-        error,
-        checksum: [0; 4],
-    })
-}
-
-fn encode(h: &Header<'_>, payload: &[u8]) -> Result<Vec<u8>> {
-    let mut buf = vec![0u8; payload.len() + 4096];
-    let n = encode_into(h, payload, &mut buf).map_err(|e| anyhow::anyhow!("{e}"))?;
-    buf.truncate(n);
-    Ok(buf)
-}
-
-/// Computes the nodes, quantises, measures the error and encodes one table.
-pub fn build(s: &Spec) -> Result<Vec<u8>> {
-    let dims: Vec<u32> = s.axes.iter().map(|a| a.count).collect();
-    let total: usize = dims.iter().map(|&n| n as usize).product();
-    let coords = |flat: usize| -> Vec<f64> {
-        let mut r = flat;
-        s.axes
-            .iter()
-            .map(|a| {
-                let i = (r % a.count as usize) as u32;
-                r /= a.count as usize;
-                a.node(i)
-            })
-            .collect()
     };
+    let total = spec.nodes();
     let pb = progress(total as u64, s.file.clone());
-    let values: Vec<Vec<f64>> = (0..total)
+    let values: Vec<f64> = (0..total)
         .into_par_iter()
-        .map(|k| {
-            let v = assets::node_value(s.kind, s.model, s.sigma, &coords(k));
+        .flat_map_iter(|k| {
+            let v = assets::node_value(s.kind, s.model, s.sigma, &write::node_coords(&s.axes, k));
             pb.inc(1);
             v
         })
         .collect();
     pb.finish_and_clear();
-    let nc = s.channels.len();
-    // Per-channel scale and offset (u16: [min, max] → [0, 65535]; floats: identity).
-    let mut chans = Vec::new();
-    for (c, &name) in s.channels.iter().enumerate() {
-        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-        for v in &values {
-            if !v[c].is_finite() {
-                bail!("{}: non-finite value at a node", s.file);
-            }
-            lo = lo.min(v[c]);
-            hi = hi.max(v[c]);
-        }
-        let (scale, offset) = match s.encoding {
-            Encoding::Unorm16 => {
-                let span = (hi - lo) as f32;
-                (if span > 0.0 { span } else { 1.0 }, lo as f32)
-            }
-            _ => (1.0f32, 0.0f32),
-        };
-        chans.push(Channel {
-            name,
-            scale,
-            offset,
-        });
-    }
-    let mut payload = Vec::with_capacity(total * nc * s.encoding.bytes());
-    for v in &values {
-        for (c, ch) in chans.iter().enumerate() {
-            match s.encoding {
-                Encoding::Unorm16 => {
-                    let q = ((v[c] - ch.offset as f64) / ch.scale as f64 * 65535.0)
-                        .round()
-                        .clamp(0.0, 65535.0) as u16;
-                    payload.extend_from_slice(&q.to_le_bytes());
-                }
-                Encoding::F16 => payload.extend_from_slice(&f32_to_f16(v[c] as f32).to_le_bytes()),
-                Encoding::F32 => payload.extend_from_slice(&(v[c] as f32).to_le_bytes()),
-            }
-        }
-    }
-    let zero = ErrorStats {
-        max_abs: 0.0,
-        rms: 0.0,
-        samples: 0,
-        seed: 0,
-    };
-    let first = encode(&header_for(s, &chans, zero)?, &payload)?;
-    let stats = {
-        let view = LutView::parse(&first).map_err(|e| anyhow::anyhow!("{e}"))?;
-        measure(&view, s.samples, SEED, true)
-    };
-    encode(&header_for(s, &chans, stats)?, &payload)
+    write::build(&spec, &values, |view| measure(view, s.samples, SEED, true))
+        .map_err(|e| anyhow::anyhow!("{}: {e}", s.file))
 }
 
 /// Max and RMS |table − direct kernel| at `n` random points (seeded), over all channels.
@@ -265,15 +191,29 @@ pub fn measure(view: &LutView<'_>, n: u32, seed: u64, bar: bool) -> ErrorStats {
     let mut rng = rand_pcg::Pcg64::seed_from_u64(seed);
     let kind = h.kind;
     let dims = h.axes.len();
+    // Uniform in [lo, hi]; a range rand cannot sample (empty, or a span that overflows) gives
+    // its lower end instead of a panic. A parsed header's ranges are finite, increasing and
+    // finite in f32, so this only guards the tool.
+    let uniform = |rng: &mut rand_pcg::Pcg64, lo: f64, hi: f64| -> f64 {
+        if lo < hi && (hi - lo).is_finite() {
+            rng.random_range(lo..=hi)
+        } else {
+            lo
+        }
+    };
     let pts: Vec<Vec<f64>> = (0..n)
         .map(|_| {
             if kind == TableKind::PassingFactor {
                 let mut p = vec![
-                    rng.random_range(0.0..=std::f64::consts::FRAC_PI_2),
-                    rng.random_range(-std::f64::consts::FRAC_PI_2..=std::f64::consts::FRAC_PI_2),
+                    uniform(&mut rng, 0.0, std::f64::consts::FRAC_PI_2),
+                    uniform(
+                        &mut rng,
+                        -std::f64::consts::FRAC_PI_2,
+                        std::f64::consts::FRAC_PI_2,
+                    ),
                 ];
                 if dims == 3 {
-                    p.push(rng.random_range(h.axes[2].lo..=h.axes[2].hi));
+                    p.push(uniform(&mut rng, h.axes[2].lo, h.axes[2].hi));
                 }
                 p
             } else {
@@ -281,7 +221,7 @@ pub fn measure(view: &LutView<'_>, n: u32, seed: u64, bar: bool) -> ErrorStats {
                     .iter()
                     .map(|a| {
                         let (lo, hi) = assets::verify_range(kind, a);
-                        rng.random_range(lo..=hi)
+                        uniform(&mut rng, lo, hi)
                     })
                     .collect()
             }
@@ -292,12 +232,12 @@ pub fn measure(view: &LutView<'_>, n: u32, seed: u64, bar: bool) -> ErrorStats {
         pb.set_draw_target(ProgressDrawTarget::hidden());
     }
     let g2 = if kind == TableKind::PassingFactor && dims == 2 {
-        GTable::from_view(view.clone()).ok()
+        GTable::from_view(*view).ok()
     } else {
         None
     };
     let g3 = if kind == TableKind::PassingFactor && dims == 3 {
-        GTable3::from_view(view.clone()).ok()
+        GTable3::from_view(*view).ok()
     } else {
         None
     };
@@ -334,21 +274,11 @@ pub fn measure(view: &LutView<'_>, n: u32, seed: u64, bar: bool) -> ErrorStats {
         })
         .collect();
     pb.finish_and_clear();
-    let (mut max, mut sum, mut cnt) = (0f64, 0f64, 0u64);
-    for e in &errs {
-        for &x in e {
-            let x = if x.is_nan() { f64::INFINITY } else { x };
-            max = max.max(x);
-            sum += x * x;
-            cnt += 1;
-        }
+    let mut acc = ErrorAccumulator::default();
+    for &x in errs.iter().flatten() {
+        acc.add(x);
     }
-    ErrorStats {
-        max_abs: max as f32,
-        rms: (sum / cnt.max(1) as f64).sqrt() as f32,
-        samples: n,
-        seed,
-    }
+    acc.finish(n, seed)
 }
 
 pub fn print_table(rows: &[Row]) {

@@ -1,5 +1,5 @@
 //! `cargo xtask lut`: LUT generation (default), verification, inspection and export.
-//! Format: `docs/lut-format.md`; readers: `brdf_core::lut` (no_std) and `brdf-lut` (std).
+//! Format, readers and writer: the `brdf-lut` crate (`docs/lut-format.md`).
 
 mod assets;
 mod export;
@@ -42,16 +42,23 @@ pub struct GenArgs {
 enum Cmd {
     /// Generate the default asset set (the default when no subcommand is given).
     Generate(GenArgs),
-    /// Recompute each table's error against the direct kernel at random points.
+    /// Recompute each table's error against the direct kernel at fresh random points; exit
+    /// non-zero when a table is worse than its header says (see `--tolerance`).
     Verify {
         /// Files (default: every `*.blut` in assets/).
         files: Vec<PathBuf>,
-        /// Random points per table (default: as recorded in each header).
+        /// Random points per table (default: as recorded in each header, at most
+        /// 200000; the work never depends on a number read from the file beyond that cap).
         #[arg(long)]
         samples: Option<u32>,
         /// Seed of the random points (default: a different one from the generator's).
         #[arg(long, default_value_t = 0x5EED_0002)]
         seed: u64,
+        /// Allowed excess of the measured max |err| over the recorded one, relative: fail
+        /// when measured > recorded × (1 + tolerance) + 1e-6. The default 0.1 covers the
+        /// spread of a maximum over a different random sample of the same kind.
+        #[arg(long, default_value_t = 0.1)]
+        tolerance: f64,
     },
     /// Print the header in words.
     Inspect { file: PathBuf },
@@ -79,29 +86,8 @@ pub fn run(a: Args) -> Result<()> {
             files,
             samples,
             seed,
-        }) => {
-            let files = if files.is_empty() {
-                list_assets(&assets_dir())?
-            } else {
-                files
-            };
-            let mut rows = Vec::new();
-            for f in &files {
-                let bytes = std::fs::read(f).with_context(|| format!("reading {}", f.display()))?;
-                let lut = brdf_lut::Lut::from_bytes(bytes)
-                    .with_context(|| format!("loading {}", f.display()))?;
-                let n = samples.unwrap_or(lut.header().error.samples).max(1);
-                let st = gen::measure(&lut.view(), n, seed, false);
-                rows.push(gen::Row {
-                    file: f.file_name().unwrap().to_string_lossy().into_owned(),
-                    bytes: lut.bytes().len(),
-                    stats: st,
-                    secs: None,
-                });
-            }
-            gen::print_table(&rows);
-            Ok(())
-        }
+            tolerance,
+        }) => verify(files, samples, seed, tolerance),
         Some(Cmd::Inspect { file }) => {
             let lut = brdf_lut::Lut::from_path(&file)
                 .with_context(|| format!("loading {}", file.display()))?;
@@ -110,6 +96,61 @@ pub fn run(a: Args) -> Result<()> {
         }
         Some(Cmd::Export(e)) => export::run(e),
     }
+}
+
+/// Most random points `lut verify` evaluates per table (the direct kernels cost up to
+/// milliseconds per point; memory is a few hundred bytes per point).
+pub const MAX_VERIFY_SAMPLES: u32 = 200_000;
+
+fn verify(files: Vec<PathBuf>, samples: Option<u32>, seed: u64, tolerance: f64) -> Result<()> {
+    if let Some(n) = samples {
+        if n == 0 || n > MAX_VERIFY_SAMPLES {
+            bail!("--samples must be in 1..={MAX_VERIFY_SAMPLES}, got {n}");
+        }
+    }
+    if !(tolerance.is_finite() && tolerance >= 0.0) {
+        bail!("--tolerance must be a finite number >= 0");
+    }
+    let files = if files.is_empty() {
+        list_assets(&assets_dir())?
+    } else {
+        files
+    };
+    let mut rows = Vec::new();
+    let mut worse = Vec::new();
+    for f in &files {
+        // Size-capped read (an endless file such as /dev/zero stops at the loader's cap).
+        let lut =
+            brdf_lut::Lut::from_path(f).with_context(|| format!("loading {}", f.display()))?;
+        let recorded = lut.header().error;
+        let n = samples.unwrap_or(recorded.samples.clamp(1, MAX_VERIFY_SAMPLES));
+        let st = gen::measure(&lut.view()?, n, seed, false);
+        let name = f.file_name().map_or_else(
+            || f.display().to_string(),
+            |s| s.to_string_lossy().into_owned(),
+        );
+        let limit = recorded.max_abs as f64 * (1.0 + tolerance) + 1e-6;
+        if st.max_abs.is_nan() || st.max_abs as f64 > limit {
+            worse.push(format!(
+                "{name}: measured max |err| {:.3e} > recorded {:.3e} x (1 + {tolerance}) + 1e-6",
+                st.max_abs, recorded.max_abs
+            ));
+        }
+        rows.push(gen::Row {
+            file: name,
+            bytes: lut.bytes().len(),
+            stats: st,
+            secs: None,
+        });
+    }
+    gen::print_table(&rows);
+    if !worse.is_empty() {
+        bail!(
+            "tables worse than their headers say:\n  {}",
+            worse.join("\n  ")
+        );
+    }
+    Ok(())
 }
 
 pub fn list_assets(dir: &Path) -> Result<Vec<PathBuf>> {

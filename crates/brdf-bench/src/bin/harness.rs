@@ -2,12 +2,14 @@
 //! inputs (cycling through [`brdf_bench::BATCH`] of them). Run it under
 //! `valgrind --tool=callgrind` with `n` and with 0: instructions per call =
 //! (Ir(n) − Ir(0))/n, which removes start-up, input preparation and table loading.
-//! `harness list` prints the kernel names.
+//! `harness list` prints the kernel names. The `*_batch` kernels make one batch call over all
+//! [`brdf_bench::BATCH`] inputs per call: divide their per-call figure by `BATCH` for the
+//! cost per lookup.
 
 use brdf_bench::*;
-use brdf_core::lut::{DfgTable, GTable, GTable3};
 use brdf_core::masking::{self, ModifiedG};
 use brdf_core::split_sum::{dfg_ggx, InnerRule, OuterRule};
+use brdf_lut::{AlbedoTable, AverageAlbedoTable, DfgTable, GTable, GTable3};
 use std::hint::black_box;
 
 const KERNELS: &[&str] = &[
@@ -22,6 +24,16 @@ const KERNELS: &[&str] = &[
     "dfg_lut",
     "dfg_karis",
     "dfg_direct_f64",
+    "floor_bilinear2",
+    "dfg_lut_std",
+    "g_lut2d_linear_std",
+    "g_lut2d_linear_batch",
+    "g_lut3d_linear_batch",
+    "dfg_lut_batch",
+    "e_lut_batch",
+    "eavg_lut_batch",
+    "e_lut",
+    "eavg_lut",
 ];
 
 fn main() {
@@ -49,7 +61,8 @@ fn main() {
     let mut acc = 0f64;
     macro_rules! run {
         ($body:expr) => {{
-            let f = $body;
+            #[allow(unused_mut)]
+            let mut f = $body;
             for k in 0..n {
                 acc += f(k % BATCH) as f64;
             }
@@ -116,6 +129,87 @@ fn main() {
                 dfg_ggx::<f64, OuterRule, InnerRule>(black_box(mr[k].0), black_box(mr[k].1));
             a + b
         }),
+        "floor_bilinear2" => {
+            let t = FloorBilinear2::new();
+            run!(|k: usize| {
+                let (a, b) = t.fetch(black_box(mr[k].0 as f32), black_box(mr[k].1 as f32));
+                a + b
+            })
+        }
+        "dfg_lut_std" => {
+            let t = brdf_lut::Lut::from_path(assets_dir().join(DFG_ASSET)).unwrap();
+            run!(|k: usize| {
+                let (a, b) = t
+                    .dfg(black_box(mr[k].0 as f32), black_box(mr[k].1 as f32))
+                    .unwrap();
+                a + b
+            })
+        }
+        "g_lut2d_linear_std" => {
+            let t = brdf_lut::Lut::from_path(assets_dir().join(G2_LINEAR_ASSET)).unwrap();
+            run!(|k: usize| t
+                .g(black_box(ti32[k]), black_box(tr32[k]), SIGMA as f32)
+                .unwrap())
+        }
+        "g_lut2d_linear_batch" => {
+            let b = asset(G2_LINEAR_ASSET);
+            let t = GTable::parse(&b[..]).unwrap();
+            let mut out = vec![0f32; BATCH];
+            run!(|_k: usize| {
+                t.g_batch(black_box(&ti32), black_box(&tr32), &mut out);
+                out[0]
+            })
+        }
+        "g_lut3d_linear_batch" => {
+            let b = asset(G3_LINEAR_ASSET);
+            let t = GTable3::parse(&b[..]).unwrap();
+            let mut out = vec![0f32; BATCH];
+            run!(|_k: usize| {
+                t.g_batch(black_box(&ti32), black_box(&tr32), SIGMA as f32, &mut out);
+                out[0]
+            })
+        }
+        "dfg_lut_batch" | "e_lut_batch" | "eavg_lut_batch" => {
+            let mu: Vec<f32> = mr.iter().map(|p| p.0 as f32).collect();
+            let r: Vec<f32> = mr.iter().map(|p| p.1 as f32).collect();
+            let (mut a, mut bb) = (vec![0f32; BATCH], vec![0f32; BATCH]);
+            match name {
+                "dfg_lut_batch" => {
+                    let b = asset(DFG_ASSET);
+                    let t = DfgTable::parse(&b[..]).unwrap();
+                    run!(|_k: usize| {
+                        t.ab_batch(black_box(&mu), black_box(&r), &mut a, &mut bb);
+                        a[0] + bb[0]
+                    })
+                }
+                "e_lut_batch" => {
+                    let b = asset(E_ASSET);
+                    let t = AlbedoTable::parse(&b[..]).unwrap();
+                    run!(|_k: usize| {
+                        t.e_batch(black_box(&mu), black_box(&r), &mut a);
+                        a[0]
+                    })
+                }
+                _ => {
+                    let b = asset(EAVG_ASSET);
+                    let t = AverageAlbedoTable::parse(&b[..]).unwrap();
+                    run!(|_k: usize| {
+                        t.e_avg_batch(black_box(&r), &mut a);
+                        a[0]
+                    })
+                }
+            }
+        }
+        "e_lut" => {
+            let b = asset(E_ASSET);
+            let t = AlbedoTable::parse(&b[..]).unwrap();
+            run!(|k: usize| t.e(black_box(mr[k].0 as f32), black_box(mr[k].1 as f32)))
+        }
+        "eavg_lut" => {
+            let b = asset(EAVG_ASSET);
+            let t = AverageAlbedoTable::parse(&b[..]).unwrap();
+            run!(|k: usize| t.e_avg(black_box(mr[k].1 as f32)))
+        }
         _ => {
             eprintln!("unknown kernel {name}; `harness list` prints the names");
             std::process::exit(2);

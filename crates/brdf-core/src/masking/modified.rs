@@ -32,9 +32,8 @@ use crate::quadrature::{DefaultRule, Rule};
 use crate::Real;
 
 /// Which reading of eq 12 to use.
-#[derive(
-    Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize,
-)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Convention {
     /// GS = M(θi, −α): the tilt toward the light (conventions.md §4). Reciprocal.
     #[default]

@@ -18,9 +18,8 @@ use crate::quadrature::{DefaultRule, Rule};
 use crate::Real;
 
 /// Which geometric attenuation factor the BRDF uses.
-#[derive(
-    Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize,
-)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum GeometricTerm {
     /// G = 1.
     None,

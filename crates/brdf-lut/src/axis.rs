@@ -11,7 +11,19 @@
 //!   v_{−1} = 3v_0 − 3v_1 + v_2 (and its mirror at the far end). Axes with two nodes
 //!   interpolate linearly.
 
-use super::header::{Axis, Placement, Warp};
+use crate::header::{Axis, Placement, Warp};
+
+/// min(max(x, lo), hi); NaN stays NaN and it cannot panic (`f32::clamp` asserts lo ≤ hi,
+/// which also links float formatting into size-constrained builds).
+#[inline(always)]
+pub(crate) fn clamp(x: f32, lo: f32, hi: f32) -> f32 {
+    let x = if x < lo { lo } else { x };
+    if x > hi {
+        hi
+    } else {
+        x
+    }
+}
 
 /// The per-axis constants of a lookup, in f32.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -45,14 +57,11 @@ impl AxisMap {
         let (base, span) = match a.warp {
             Warp::Linear | Warp::Sqrt => (lo, hi - lo),
             Warp::Log => (libm::logf(lo), libm::logf(hi) - libm::logf(lo)),
-            Warp::Cos => (
-                <f32 as crate::Real>::cos(lo),
-                <f32 as crate::Real>::cos(lo) - <f32 as crate::Real>::cos(hi),
-            ),
+            Warp::Cos => (libm::cosf(lo), libm::cosf(lo) - libm::cosf(hi)),
             Warp::SqrtCos => {
                 let (a, b) = (
-                    libm::sqrtf(<f32 as crate::Real>::cos(lo)),
-                    libm::sqrtf(<f32 as crate::Real>::cos(hi).max(0.0)),
+                    libm::sqrtf(libm::cosf(lo)),
+                    libm::sqrtf(libm::cosf(hi).max(0.0)),
                 );
                 (a, a - b)
             }
@@ -75,19 +84,15 @@ impl AxisMap {
 
     /// The unit coordinate s ∈ [0, 1] of x (clamped first).
     pub fn unit(&self, x: f32) -> f32 {
-        // Real::clamp: NaN stays NaN and it cannot panic (f32::clamp asserts lo ≤ hi, which
-        // also links float formatting into size-constrained builds).
-        let x = <f32 as crate::Real>::clamp(x, self.lo, self.hi);
+        let x = clamp(x, self.lo, self.hi);
         let s = match self.warp {
             Warp::Linear => (x - self.base) * self.inv,
             Warp::Sqrt => libm::sqrtf(((x - self.base) * self.inv).max(0.0)),
             Warp::Log => (libm::logf(x) - self.base) * self.inv,
-            Warp::Cos => (self.base - <f32 as crate::Real>::cos(x)) * self.inv,
-            Warp::SqrtCos => {
-                (self.base - libm::sqrtf(<f32 as crate::Real>::cos(x).max(0.0))) * self.inv
-            }
+            Warp::Cos => (self.base - libm::cosf(x)) * self.inv,
+            Warp::SqrtCos => (self.base - libm::sqrtf(libm::cosf(x).max(0.0))) * self.inv,
         };
-        s.clamp(0.0, 1.0)
+        clamp(s, 0.0, 1.0)
     }
 
     /// The fractional node index of x.
@@ -98,7 +103,7 @@ impl AxisMap {
             Placement::Endpoint => s * (nf - 1.0),
             Placement::TexelCentre => s * nf - 0.5,
         };
-        <f32 as crate::Real>::clamp(t, 0.0, nf - 1.0)
+        clamp(t, 0.0, nf - 1.0)
     }
 
     /// Writes the interpolation taps (node index, weight) of x; returns how many.

@@ -1,6 +1,6 @@
 //! Typed errors of the LUT reader.
 
-use super::header::TableKind;
+use crate::header::TableKind;
 use core::fmt;
 
 /// Why a byte string is not a usable LUT.
@@ -43,6 +43,25 @@ pub enum LutError {
     },
     /// The writer's output buffer is too small.
     BufferTooSmall,
+    /// A varint of the header is not in its shortest form (e.g. `81 00` for 1): every
+    /// header has exactly one encoding.
+    NonCanonical,
+    /// An axis that is valid in f64 but degenerate in the f32 the reader computes in
+    /// (docs/lut-format.md §6): every lookup would be NaN.
+    DegenerateAxis {
+        /// The axis (0 = fastest).
+        axis: u8,
+        /// Which part of the rule fails.
+        why: &'static str,
+    },
+    /// A decoded node value is not finite or exceeds
+    /// [`MAX_VALUE_MAGNITUDE`](crate::MAX_VALUE_MAGNITUDE) in magnitude.
+    BadValue {
+        /// Index of the stored number in the payload.
+        index: u64,
+    },
+    /// The values given to the writer do not fit the table (count, or not finite).
+    BadInput(&'static str),
 }
 
 impl fmt::Display for LutError {
@@ -67,6 +86,15 @@ impl fmt::Display for LutError {
                 write!(f, "expected a {expected:?} table, found {found:?}")
             }
             LutError::BufferTooSmall => write!(f, "output buffer too small"),
+            LutError::NonCanonical => write!(f, "LUT header varint not in its shortest form"),
+            LutError::DegenerateAxis { axis, why } => {
+                write!(f, "LUT axis {axis} is degenerate in f32: {why}")
+            }
+            LutError::BadValue { index } => write!(
+                f,
+                "LUT payload value {index} is not finite or exceeds the value limit"
+            ),
+            LutError::BadInput(why) => write!(f, "cannot write the table: {why}"),
         }
     }
 }

@@ -1,8 +1,8 @@
-//! The LUT file header (docs/lut-format.md §3): a postcard-encoded struct, decoded without
-//! allocation (strings are borrowed from the file, lists are `heapless::Vec`).
+//! The LUT file header (docs/lut-format.md §3), decoded without allocation: strings are
+//! borrowed from the file, lists are [`List`]s of fixed capacity. The byte encoding is in
+//! `codec.rs`.
 
-use crate::masking::Convention;
-use serde::{Deserialize, Serialize};
+use core::fmt;
 
 /// The four bytes every LUT file starts with.
 pub const MAGIC: [u8; 4] = *b"BLUT";
@@ -16,14 +16,101 @@ pub const MAX_CHANNELS: usize = 4;
 pub const MAX_AXIS_COUNT: u32 = 65_536;
 /// Most stored values (nodes × channels) in one table: 2²⁶ (a 256 MiB f32 payload).
 pub const MAX_VALUES: u64 = 1 << 26;
+/// Most quadrature node counts recorded in [`Generator::nodes`].
+pub const MAX_GENERATOR_NODES: usize = 4;
+/// Largest magnitude a decoded node value may have (docs/lut-format.md §4): far above any
+/// physical quantity a table holds, far enough below `f32::MAX` that no interpolation sum
+/// of at most 64 taps with Catmull–Rom weights (|w| ≤ 1.25 after end folding) overflows.
+pub const MAX_VALUE_MAGNITUDE: f32 = 1e30;
+
+/// The reading of eq 12 of the 2015 Acta Physica Sinica paper on the modified G that a table
+/// was generated with. The format's own enum: `brdf_core::masking::Convention` converts to
+/// and from it (`From` both ways).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Convention {
+    /// GS = M(θi, −α): reciprocal (docs/conventions.md).
+    #[default]
+    Reciprocal,
+    /// Eq 12 as printed (not reciprocal).
+    Printed,
+}
+
+/// A list of at most `N` items stored inline (the header's axes, channels and node counts).
+/// Dereferences to a slice.
+#[derive(Clone, Copy)]
+pub struct List<T, const N: usize> {
+    len: u8,
+    items: [T; N],
+}
+
+impl<T: Copy + Default, const N: usize> Default for List<T, N> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<T: Copy + Default, const N: usize> List<T, N> {
+    /// The empty list.
+    pub fn new() -> Self {
+        Self {
+            len: 0,
+            items: [T::default(); N],
+        }
+    }
+    /// A list holding `items`; `None` if there are more than `N`.
+    pub fn from_slice(items: &[T]) -> Option<Self> {
+        let mut l = Self::new();
+        for &t in items {
+            l.push(t).ok()?;
+        }
+        Some(l)
+    }
+    /// Appends `item`; gives it back when the list is full.
+    pub fn push(&mut self, item: T) -> Result<(), T> {
+        match self.items.get_mut(self.len as usize) {
+            Some(slot) => {
+                *slot = item;
+                self.len += 1;
+                Ok(())
+            }
+            None => Err(item),
+        }
+    }
+    /// The items.
+    pub fn as_slice(&self) -> &[T] {
+        &self.items[..self.len as usize]
+    }
+}
+
+impl<T, const N: usize> core::ops::Deref for List<T, N> {
+    type Target = [T];
+    fn deref(&self) -> &[T] {
+        // len ≤ N is kept by `push`, the only writer of `len`.
+        self.items.get(..self.len as usize).unwrap_or(&[])
+    }
+}
+
+impl<T: PartialEq, const N: usize> PartialEq for List<T, N> {
+    fn eq(&self, other: &Self) -> bool {
+        **self == **other
+    }
+}
+
+impl<T: fmt::Debug, const N: usize> fmt::Debug for List<T, N> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_list().entries(self.iter()).finish()
+    }
+}
 
 /// What a table holds.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum TableKind {
     /// The paper's one-sided passing factor F(θ, φ[, σ]) = M(θ, (θ − φ)/2) (channel `F`);
     /// G = min(F(|θr|, sgn θr · θi), F(θi, θr)).
+    #[default]
     PassingFactor,
-    /// Split-sum (A, B) (channels `A`, `B`), conventions.md §8.
+    /// Split-sum (A, B) (channels `A`, `B`): the environment-lighting pair of the split-sum
+    /// approximation, docs/conventions.md.
     SplitSum,
     /// Directional albedo E(μ, r) with F = 1 (channel `E`), Kulla–Conty.
     DirectionalAlbedo,
@@ -32,9 +119,10 @@ pub enum TableKind {
 }
 
 /// How a physical coordinate x ∈ [lo, hi] maps to the unit coordinate s ∈ [0, 1].
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Warp {
     /// s = (x − lo)/(hi − lo).
+    #[default]
     Linear,
     /// s = ln(x/lo)/ln(hi/lo); requires 0 < lo < hi.
     Log,
@@ -49,16 +137,17 @@ pub enum Warp {
 }
 
 /// Where the nodes sit in the unit coordinate.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Placement {
     /// Node i at s = i/(n − 1): the first and last nodes are the range ends.
+    #[default]
     Endpoint,
     /// Node i at s = (i + ½)/n (GPU texel centres).
     TexelCentre,
 }
 
 /// One axis of the grid. Axis 0 varies fastest in the payload.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Axis<'a> {
     /// Name of the physical variable, e.g. `theta`, `mu`, `roughness`, `sigma`.
     pub name: &'a str,
@@ -75,7 +164,7 @@ pub struct Axis<'a> {
 }
 
 /// One stored channel; the value is `offset + scale × stored`.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Channel<'a> {
     /// Channel name, e.g. `F`, `A`, `B`, `E`.
     pub name: &'a str,
@@ -86,9 +175,10 @@ pub struct Channel<'a> {
 }
 
 /// How each stored number is written (little-endian).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Encoding {
     /// u16, stored number = q/65535 ∈ [0, 1].
+    #[default]
     Unorm16,
     /// IEEE binary16.
     F16,
@@ -107,18 +197,20 @@ impl Encoding {
 }
 
 /// The interpolation the table is meant for (and its error was measured with).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Interpolation {
     /// Multilinear in the unit coordinates.
+    #[default]
     Linear,
     /// Catmull–Rom cubic in each unit coordinate (tensor product), clamped ends.
     CatmullRom,
 }
 
 /// The reflection model a table was generated from.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Model {
     /// The paper's modified G (Acta Phys. Sin. 64 184213, eqs 6–13).
+    #[default]
     ModifiedG,
     /// GGX (α = r²) with height-correlated Smith, Schlick F (F90 = 1).
     GgxSmithCorrelated,
@@ -131,7 +223,7 @@ pub enum Model {
 }
 
 /// How the table was generated.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Generator<'a> {
     /// The model.
     pub model: Model,
@@ -140,14 +232,14 @@ pub struct Generator<'a> {
     /// The fixed RMS slope σ of a per-σ table, if any.
     pub sigma: Option<f64>,
     /// Quadrature node counts used by the direct kernel (outer first).
-    pub nodes: heapless::Vec<u16, 4>,
+    pub nodes: List<u16, MAX_GENERATOR_NODES>,
     /// Free text naming the generator, e.g. `brdf-kernels xtask lut 0.1.0`.
     pub tool: &'a str,
 }
 
 /// Error of the interpolated table against the direct kernel, measured by the generator at
 /// random points (not at nodes).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ErrorStats {
     /// Largest absolute error over all channels and samples.
     pub max_abs: f32,
@@ -159,33 +251,27 @@ pub struct ErrorStats {
     pub seed: u64,
 }
 
-/// The decoded header. `checksum` is the CRC-32 of the encoded header bytes that precede it
-/// followed by the whole payload.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+/// The decoded header (without the magic and version, which are always [`MAGIC`] and
+/// [`FORMAT_VERSION`]). `checksum` is the CRC-32 of the encoded header bytes that precede it
+/// followed by the whole payload; the writer fills it in.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Header<'a> {
-    /// [`MAGIC`].
-    pub magic: [u8; 4],
-    /// [`FORMAT_VERSION`].
-    pub version: u16,
     /// What the table holds.
     pub kind: TableKind,
     /// The grid axes, fastest first.
-    #[serde(borrow)]
-    pub axes: heapless::Vec<Axis<'a>, MAX_AXES>,
+    pub axes: List<Axis<'a>, MAX_AXES>,
     /// The channels, interleaved innermost.
-    #[serde(borrow)]
-    pub channels: heapless::Vec<Channel<'a>, MAX_CHANNELS>,
+    pub channels: List<Channel<'a>, MAX_CHANNELS>,
     /// Number format.
     pub encoding: Encoding,
     /// Intended interpolation.
     pub interpolation: Interpolation,
     /// Generator parameters.
-    #[serde(borrow)]
     pub generator: Generator<'a>,
     /// Measured error.
     pub error: ErrorStats,
-    /// CRC-32 (little-endian bytes), see above.
-    pub checksum: [u8; 4],
+    /// CRC-32 of the file (see above).
+    pub checksum: u32,
 }
 
 impl Header<'_> {

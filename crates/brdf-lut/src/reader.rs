@@ -1,0 +1,491 @@
+//! The prepared reader: one lookup for every table kind, with the table's layout fixed once.
+//!
+//! At preparation every axis becomes a [`Lane`]: the physical coordinate maps to the
+//! fractional node index by t = a·w(x) + b, clamped to [0, n − 1], where w is the warp's
+//! monotone part (x, ln x, √(x − lo), cos x or √cos x) and a, b fold in the range, the warp's
+//! normalisation and the node placement (docs/lut-format.md §6). A query then touches only
+//! the payload: the encoding, the channel count, the number of axes and the interpolant are
+//! type parameters of the inner loops (decided once per query, not per tap), the taps of an
+//! axis are contiguous (linear: 2; Catmull–Rom: 4, the end extrapolation of
+//! docs/lut-format.md §7 folded into the weights), each row of taps is one bounds-checked
+//! slice, and the channels' scale and offset are applied once at the end (the weights sum
+//! to 1).
+//!
+//! Inlining: forced on hosted targets (speed); left to the optimiser on bare metal and
+//! WebAssembly, where code size has a budget.
+//!
+//! Arithmetic (the same for every kind, so batch and scalar lookups agree bit for bit):
+//! linear interpolation nests v = v₀ + f (v₁ − v₀) from axis 0 outward; Catmull–Rom sums
+//! Σ_j w1_j Σ_i w0_i v_ij per plane and Σ_k w2_k · plane_k over σ. A Catmull–Rom axis with
+//! 2 or 3 nodes has no contiguous 4-tap window; such (unusual) tables are read by the
+//! per-tap general path of [`Grid`](crate::view::Grid), which gives the same values up to
+//! f32 summation order.
+
+use crate::axis::clamp;
+use crate::f16::f16_to_f32;
+use crate::header::{Axis, Encoding, Header, Interpolation, Placement, Warp, MAX_CHANNELS};
+use crate::view::Grid;
+
+/// cos x for x ∈ [0, π/2] as sin(π/2 − x) by its Taylor series to r¹¹ (truncation < 1e-9,
+/// relative accuracy kept near π/2 where √cos x is steep). Only for the table warp, where an
+/// error of a few 1e-8 moves the interpolation point by < 1e-4 of a cell.
+#[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+#[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+fn cos_quadrant(x: f32) -> f32 {
+    let r = core::f32::consts::FRAC_PI_2 - x;
+    let r2 = r * r;
+    r * (1.0
+        + r2 * (-1.0 / 6.0
+            + r2 * (1.0 / 120.0
+                + r2 * (-1.0 / 5040.0 + r2 * (1.0 / 362_880.0 + r2 * (-1.0 / 39_916_800.0))))))
+}
+
+/// The warp's monotone part w(x) (x already clamped to the axis range).
+#[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+#[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+fn warp_w(warp: Warp, lo: f32, x: f32) -> f32 {
+    match warp {
+        Warp::Linear => x,
+        // The axis lies within [0, π/2] (checked when the header was parsed).
+        Warp::SqrtCos => libm::sqrtf(cos_quadrant(x).max(0.0)),
+        Warp::Log => libm::logf(x),
+        Warp::Sqrt => libm::sqrtf((x - lo).max(0.0)),
+        Warp::Cos => libm::cosf(x),
+    }
+}
+
+/// One axis: physical coordinate → fractional node index.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Lane {
+    warp: Warp,
+    lo: f32,
+    hi: f32,
+    a: f32,
+    b: f32,
+    /// n − 1.
+    last: f32,
+    /// n − 2, the last cell.
+    last_cell: i32,
+    /// Values (nodes × channels) between neighbouring nodes of this axis.
+    pub(crate) stride: usize,
+    pub(crate) n: usize,
+}
+
+impl Lane {
+    /// The lane of an axis; `None` when a constant is not finite or the scale is zero (the
+    /// f32 rule of docs/lut-format.md §6).
+    pub(crate) fn new(axis: &Axis<'_>, stride: usize) -> Option<Self> {
+        let (lo, hi) = (axis.lo as f32, axis.hi as f32);
+        let nf = axis.count as f32;
+        // t = s·A + B with s the unit coordinate.
+        let (big_a, big_b) = match axis.placement {
+            Placement::Endpoint => (nf - 1.0, 0.0),
+            Placement::TexelCentre => (nf, -0.5),
+        };
+        // s = (w(x) − w(lo)) / (w(hi) − w(lo)), w monotone.
+        let (w0, w1) = (warp_w(axis.warp, lo, lo), warp_w(axis.warp, lo, hi));
+        let a = big_a / (w1 - w0);
+        let b = big_b - a * w0;
+        let ok = lo.is_finite()
+            && hi.is_finite()
+            && lo < hi
+            && w0.is_finite()
+            && w1.is_finite()
+            && a.is_finite()
+            && a != 0.0
+            && b.is_finite();
+        ok.then_some(Lane {
+            warp: axis.warp,
+            lo,
+            hi,
+            a,
+            b,
+            last: nf - 1.0,
+            last_cell: axis.count as i32 - 2,
+            stride,
+            n: axis.count as usize,
+        })
+    }
+
+    /// A one-node placeholder for an axis the table does not have.
+    const NONE: Lane = Lane {
+        warp: Warp::Linear,
+        lo: 0.0,
+        hi: 1.0,
+        a: 0.0,
+        b: 0.0,
+        last: 0.0,
+        last_cell: 0,
+        stride: 0,
+        n: 1,
+    };
+
+    /// The fractional node index of x (x not NaN).
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    pub(crate) fn index(&self, x: f32) -> f32 {
+        let x = clamp(x, self.lo, self.hi);
+        clamp(
+            self.a * warp_w(self.warp, self.lo, x) + self.b,
+            0.0,
+            self.last,
+        )
+    }
+
+    /// Node i ≤ n − 2 and the fraction f ∈ [0, 1] of x.
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    fn cell(&self, x: f32) -> (usize, f32) {
+        let t = self.index(x);
+        // t ∈ [0, n − 1] with n ≤ 65536: the i32 conversion is exact and in range.
+        let i = (t as i32).min(self.last_cell).max(0);
+        (i as usize, t - i as f32)
+    }
+
+    /// First node and the four Catmull–Rom weights (docs/lut-format.md §7) of x on an axis
+    /// of n ≥ 4 nodes, the end extrapolation folded in.
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    fn cubic(&self, x: f32) -> (usize, [f32; 4]) {
+        let n = self.n;
+        let (i, f) = self.cell(x);
+        let (f2, f3) = (f * f, f * f * f);
+        let wm = 0.5 * (-f3 + 2.0 * f2 - f);
+        let w0 = 0.5 * (3.0 * f3 - 5.0 * f2 + 2.0);
+        let w1 = 0.5 * (-3.0 * f3 + 4.0 * f2 + f);
+        let w2 = 0.5 * (f3 - f2);
+        if i == 0 {
+            // v₋₁ = 3v₀ − 3v₁ + v₂, folded into nodes 0..2.
+            (0, [w0 + 3.0 * wm, w1 - 3.0 * wm, w2 + wm, 0.0])
+        } else if i == n - 2 {
+            // v_n = 3v_{n−1} − 3v_{n−2} + v_{n−3}, folded into nodes n−3..n−1.
+            (n - 4, [0.0, wm + w2, w0 - 3.0 * w2, w1 + 3.0 * w2])
+        } else {
+            (i - 1, [wm, w0, w1, w2])
+        }
+    }
+}
+
+/// How stored numbers become f32 (before the channel's scale and offset).
+trait Store {
+    const BYTES: usize;
+    fn at(b: &[u8], k: usize) -> f32;
+}
+struct U16;
+struct F16;
+struct F32;
+impl Store for U16 {
+    const BYTES: usize = 2;
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    fn at(b: &[u8], k: usize) -> f32 {
+        u16::from_le_bytes([b[2 * k], b[2 * k + 1]]) as f32
+    }
+}
+impl Store for F16 {
+    const BYTES: usize = 2;
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    fn at(b: &[u8], k: usize) -> f32 {
+        f16_to_f32(u16::from_le_bytes([b[2 * k], b[2 * k + 1]]))
+    }
+}
+impl Store for F32 {
+    const BYTES: usize = 4;
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    fn at(b: &[u8], k: usize) -> f32 {
+        f32::from_le_bytes([b[4 * k], b[4 * k + 1], b[4 * k + 2], b[4 * k + 3]])
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Mode {
+    Linear,
+    Cubic,
+    /// A Catmull–Rom axis of 2 or 3 nodes: the per-tap general path.
+    General,
+}
+
+/// The per-table constants of a lookup.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Reader {
+    lanes: [Lane; 3],
+    encoding: Encoding,
+    mode: Mode,
+    /// Per channel: value = offset + scale × stored (u16: scale already divided by 65535).
+    scale: [f32; MAX_CHANNELS],
+    offset: [f32; MAX_CHANNELS],
+}
+
+impl Reader {
+    /// The reader of a checked header; `None` if an axis breaks the f32 rule.
+    pub(crate) fn new(h: &Header<'_>) -> Option<Self> {
+        let c = h.channels.len();
+        let mut lanes = [Lane::NONE; 3];
+        let mut stride = c;
+        let mut mode = match h.interpolation {
+            Interpolation::Linear => Mode::Linear,
+            Interpolation::CatmullRom => Mode::Cubic,
+        };
+        for (k, a) in h.axes.iter().enumerate().take(3) {
+            lanes[k] = Lane::new(a, stride)?;
+            stride = stride.checked_mul(a.count as usize)?;
+            if mode == Mode::Cubic && a.count < 4 {
+                mode = Mode::General;
+            }
+        }
+        let q = if h.encoding == Encoding::Unorm16 {
+            1.0 / 65535.0
+        } else {
+            1.0
+        };
+        let (mut scale, mut offset) = ([1.0; MAX_CHANNELS], [0.0; MAX_CHANNELS]);
+        for (k, ch) in h.channels.iter().enumerate() {
+            scale[k] = ch.scale * q;
+            offset[k] = ch.offset;
+        }
+        Some(Reader {
+            lanes,
+            encoding: h.encoding,
+            mode,
+            scale,
+            offset,
+        })
+    }
+
+    /// Interpolated channels at x (D = the table's axes, C = its channels; x not NaN).
+    /// Out-of-range payload reads (impossible for a validated table) give NaN.
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    pub(crate) fn sample<const D: usize, const C: usize>(
+        &self,
+        grid: &Grid,
+        data: &[u8],
+        x: [f32; D],
+    ) -> [f32; C] {
+        let raw = match (self.mode, self.encoding) {
+            (Mode::Linear, Encoding::Unorm16) => self.linear::<U16, D, C>(data, x),
+            (Mode::Linear, Encoding::F16) => self.linear::<F16, D, C>(data, x),
+            (Mode::Linear, Encoding::F32) => self.linear::<F32, D, C>(data, x),
+            (Mode::Cubic, Encoding::Unorm16) => self.cubic::<U16, D, C>(data, x),
+            (Mode::Cubic, Encoding::F16) => self.cubic::<F16, D, C>(data, x),
+            (Mode::Cubic, Encoding::F32) => self.cubic::<F32, D, C>(data, x),
+            (Mode::General, _) => {
+                let v = grid.sample(data, &x);
+                let mut out = [0.0; C];
+                out.copy_from_slice(&v[..C]);
+                return out;
+            }
+        };
+        let mut out = [0.0; C];
+        for c in 0..C {
+            out[c] = self.offset[c] + self.scale[c] * raw[c];
+        }
+        out
+    }
+
+    /// Two one-channel 3-D lookups that share the last coordinate (the two one-sided factors
+    /// of G over σ): the σ taps are computed once. Equal to two [`Reader::sample`] calls.
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    pub(crate) fn pair3(
+        &self,
+        grid: &Grid,
+        data: &[u8],
+        a: [f32; 2],
+        b: [f32; 2],
+        z: f32,
+    ) -> (f32, f32) {
+        let (va, vb) = match (self.mode, self.encoding) {
+            (Mode::Linear, Encoding::Unorm16) => self.pair3_linear::<U16>(data, a, b, z),
+            (Mode::Linear, Encoding::F16) => self.pair3_linear::<F16>(data, a, b, z),
+            (Mode::Linear, Encoding::F32) => self.pair3_linear::<F32>(data, a, b, z),
+            (Mode::Cubic, Encoding::Unorm16) => self.pair3_cubic::<U16>(data, a, b, z),
+            (Mode::Cubic, Encoding::F16) => self.pair3_cubic::<F16>(data, a, b, z),
+            (Mode::Cubic, Encoding::F32) => self.pair3_cubic::<F32>(data, a, b, z),
+            (Mode::General, _) => {
+                return (
+                    self.sample::<3, 1>(grid, data, [a[0], a[1], z])[0],
+                    self.sample::<3, 1>(grid, data, [b[0], b[1], z])[0],
+                )
+            }
+        };
+        (
+            self.offset[0] + self.scale[0] * va,
+            self.offset[0] + self.scale[0] * vb,
+        )
+    }
+
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    fn pair3_linear<S: Store>(&self, data: &[u8], a: [f32; 2], b: [f32; 2], z: f32) -> (f32, f32) {
+        let l = &self.lanes;
+        let (k, f2) = l[2].cell(z);
+        let one = |x: [f32; 2]| {
+            let (i0, f0) = l[0].cell(x[0]);
+            let (i1, f1) = l[1].cell(x[1]);
+            let at = i0 + i1 * l[1].stride + k * l[2].stride;
+            let plane = |at: usize| {
+                let lo = Self::row::<S, 1>(data, at, f0);
+                let hi = Self::row::<S, 1>(data, at + l[1].stride, f0);
+                Self::lerp(lo, hi, f1)[0]
+            };
+            let (p0, p1) = (plane(at), plane(at + l[2].stride));
+            p0 + f2 * (p1 - p0)
+        };
+        (one(a), one(b))
+    }
+
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    fn pair3_cubic<S: Store>(&self, data: &[u8], a: [f32; 2], b: [f32; 2], z: f32) -> (f32, f32) {
+        let l = &self.lanes;
+        let (b2, w2) = l[2].cubic(z);
+        let one = |x: [f32; 2]| {
+            let (b0, w0) = l[0].cubic(x[0]);
+            let (b1, w1) = l[1].cubic(x[1]);
+            let at = b0 + b1 * l[1].stride;
+            let mut acc = 0.0;
+            for (k, &wk) in w2.iter().enumerate() {
+                if wk != 0.0 {
+                    let mut p = 0.0;
+                    for (j, wj) in w1.iter().enumerate() {
+                        let start = at + j * l[1].stride + (b2 + k) * l[2].stride;
+                        let Some(q) = data.get(start * S::BYTES..(start + 4) * S::BYTES) else {
+                            return f32::NAN;
+                        };
+                        let mut r = 0.0;
+                        for (i, wi) in w0.iter().enumerate() {
+                            r += wi * S::at(q, i);
+                        }
+                        p += wj * r;
+                    }
+                    acc += wk * p;
+                }
+            }
+            acc
+        };
+        (one(a), one(b))
+    }
+
+    /// Two neighbouring nodes (all channels) starting at value index `at`.
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    fn pair<S: Store, const C: usize>(data: &[u8], at: usize) -> Option<([f32; C], [f32; C])> {
+        let p = data.get(at * S::BYTES..(at + 2 * C) * S::BYTES)?;
+        let (mut a, mut b) = ([0.0; C], [0.0; C]);
+        for c in 0..C {
+            a[c] = S::at(p, c);
+            b[c] = S::at(p, C + c);
+        }
+        Some((a, b))
+    }
+
+    /// Linear along axis 0 in the row starting at value index `at`.
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    fn row<S: Store, const C: usize>(data: &[u8], at: usize, f: f32) -> [f32; C] {
+        match Self::pair::<S, C>(data, at) {
+            Some((a, b)) => {
+                let mut v = [0.0; C];
+                for c in 0..C {
+                    v[c] = a[c] + f * (b[c] - a[c]);
+                }
+                v
+            }
+            None => [f32::NAN; C],
+        }
+    }
+
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    fn lerp<const C: usize>(a: [f32; C], b: [f32; C], f: f32) -> [f32; C] {
+        let mut v = [0.0; C];
+        for c in 0..C {
+            v[c] = a[c] + f * (b[c] - a[c]);
+        }
+        v
+    }
+
+    /// (Bi/tri)linear in stored units.
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    fn linear<S: Store, const D: usize, const C: usize>(
+        &self,
+        data: &[u8],
+        x: [f32; D],
+    ) -> [f32; C] {
+        let l = &self.lanes;
+        let (i0, f0) = l[0].cell(x[0]);
+        if D == 1 {
+            return Self::row::<S, C>(data, i0 * C, f0);
+        }
+        let (i1, f1) = l[1].cell(x[1]);
+        let at = i0 * C + i1 * l[1].stride;
+        let plane = |at: usize| {
+            let lo = Self::row::<S, C>(data, at, f0);
+            let hi = Self::row::<S, C>(data, at + l[1].stride, f0);
+            Self::lerp(lo, hi, f1)
+        };
+        if D == 2 {
+            return plane(at);
+        }
+        let (i2, f2) = l[2].cell(x[2]);
+        let at = at + i2 * l[2].stride;
+        Self::lerp(plane(at), plane(at + l[2].stride), f2)
+    }
+
+    /// Catmull–Rom in stored units.
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    fn cubic<S: Store, const D: usize, const C: usize>(
+        &self,
+        data: &[u8],
+        x: [f32; D],
+    ) -> [f32; C] {
+        let l = &self.lanes;
+        let (b0, w0) = l[0].cubic(x[0]);
+        let row = |at: usize| -> [f32; C] {
+            let Some(p) = data.get(at * S::BYTES..(at + 4 * C) * S::BYTES) else {
+                return [f32::NAN; C];
+            };
+            let mut r = [0.0; C];
+            for (i, wi) in w0.iter().enumerate() {
+                for (c, rc) in r.iter_mut().enumerate() {
+                    *rc += wi * S::at(p, i * C + c);
+                }
+            }
+            r
+        };
+        if D == 1 {
+            return row(b0 * C);
+        }
+        let (b1, w1) = l[1].cubic(x[1]);
+        let patch = |at: usize| -> [f32; C] {
+            let mut acc = [0.0; C];
+            for (j, wj) in w1.iter().enumerate() {
+                let r = row(at + j * l[1].stride);
+                for (a, rc) in acc.iter_mut().zip(r) {
+                    *a += wj * rc;
+                }
+            }
+            acc
+        };
+        let at = b0 * C + b1 * l[1].stride;
+        if D == 2 {
+            return patch(at);
+        }
+        let (b2, w2) = l[2].cubic(x[2]);
+        let mut acc = [0.0; C];
+        for (k, &wk) in w2.iter().enumerate() {
+            if wk != 0.0 {
+                let p = patch(at + (b2 + k) * l[2].stride);
+                for c in 0..C {
+                    acc[c] += wk * p[c];
+                }
+            }
+        }
+        acc
+    }
+}

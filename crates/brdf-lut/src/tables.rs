@@ -1,0 +1,407 @@
+//! Typed tables: a table of one kind whose bytes were validated once and whose lookup
+//! constants were prepared once, borrowed (`GTable<&[u8]>`, e.g. `&'static` bytes from
+//! flash) or owned (`GTable<Vec<u8>>`, any `B: AsRef<[u8]>`). A query touches only the
+//! payload.
+
+use crate::header::{Convention, TableKind};
+use crate::reader::Reader;
+use crate::view::{Grid, LutView};
+use crate::LutError;
+use core::f32::consts::FRAC_PI_2;
+
+/// What every query of a table needs, computed once from its header.
+#[derive(Clone, Copy, Debug)]
+#[cfg_attr(not(feature = "std"), allow(dead_code))]
+pub(crate) struct Prepared {
+    pub(crate) header_len: usize,
+    pub(crate) kind: TableKind,
+    pub(crate) grid: Grid,
+    pub(crate) reader: Reader,
+    /// σ of a per-σ G table (NaN if the header does not say).
+    pub(crate) sigma: f32,
+    /// A passing-factor table in the reciprocal convention.
+    pub(crate) reciprocal: bool,
+    /// Range of the last axis (σ of a 3-D G table, roughness otherwise).
+    pub(crate) last_range: (f32, f32),
+}
+
+impl Prepared {
+    /// The prepared form of a view.
+    pub(crate) fn new(view: &LutView<'_>) -> Self {
+        let h = view.header();
+        let grid = *view.grid();
+        let last = h
+            .axes
+            .last()
+            .map_or((0.0, 1.0), |a| (a.lo as f32, a.hi as f32));
+        Prepared {
+            header_len: view.header_len(),
+            kind: h.kind,
+            grid,
+            reader: *view.reader(),
+            sigma: h.generator.sigma.map_or(f32::NAN, |s| s as f32),
+            last_range: last,
+            reciprocal: h.generator.convention == Convention::Reciprocal,
+        }
+    }
+
+    /// `view` must hold `kind` with `dims` axes (G tables: the reciprocal convention).
+    pub(crate) fn expect(
+        view: &LutView<'_>,
+        kind: TableKind,
+        dims: usize,
+    ) -> Result<Self, LutError> {
+        if view.kind() != kind || view.dims() != dims {
+            return Err(LutError::WrongKind {
+                expected: kind,
+                found: view.kind(),
+            });
+        }
+        if kind == TableKind::PassingFactor
+            && view.header().generator.convention != Convention::Reciprocal
+        {
+            return Err(LutError::Inconsistent(
+                "G tables must use the reciprocal convention",
+            ));
+        }
+        Ok(Self::new(view))
+    }
+
+    /// (GM, GS, G) of a 2-D passing-factor table.
+    #[inline]
+    pub(crate) fn g2(&self, payload: &[u8], theta_i: f32, theta_r: f32) -> (f32, f32, f32) {
+        if theta_i.is_nan() || theta_r.is_nan() {
+            return (f32::NAN, f32::NAN, f32::NAN);
+        }
+        let (m, s) = g_args(theta_i, theta_r);
+        let r = &self.reader;
+        let gm = unit01(r.sample::<2, 1>(&self.grid, payload, m)[0]);
+        let gs = unit01(r.sample::<2, 1>(&self.grid, payload, s)[0]);
+        (gm, gs, gm.min(gs))
+    }
+
+    /// (GM, GS, G) of a 3-D passing-factor table.
+    #[inline]
+    pub(crate) fn g3(
+        &self,
+        payload: &[u8],
+        theta_i: f32,
+        theta_r: f32,
+        sigma: f32,
+    ) -> (f32, f32, f32) {
+        if theta_i.is_nan() || theta_r.is_nan() || sigma.is_nan() {
+            return (f32::NAN, f32::NAN, f32::NAN);
+        }
+        let (m, s) = g_args(theta_i, theta_r);
+        let (gm, gs) = self.reader.pair3(&self.grid, payload, m, s, sigma);
+        let (gm, gs) = (unit01(gm), unit01(gs));
+        (gm, gs, gm.min(gs))
+    }
+
+    /// (GM, GS, G) of a 2-D or 3-D passing-factor table from the table arguments of the two
+    /// sides.
+    #[inline]
+    pub(crate) fn g_from_args(
+        &self,
+        payload: &[u8],
+        m: [f32; 2],
+        s: [f32; 2],
+        sigma: f32,
+    ) -> (f32, f32, f32) {
+        let r = &self.reader;
+        let (gm, gs) = if self.grid.dims == 3 {
+            r.pair3(&self.grid, payload, m, s, sigma)
+        } else {
+            (
+                r.sample::<2, 1>(&self.grid, payload, m)[0],
+                r.sample::<2, 1>(&self.grid, payload, s)[0],
+            )
+        };
+        let (gm, gs) = (unit01(gm), unit01(gs));
+        (gm, gs, gm.min(gs))
+    }
+
+    /// G from dot products (see [`dots_args`]).
+    #[inline]
+    pub(crate) fn g_dots(&self, payload: &[u8], n_l: f32, n_v: f32, l_v: f32, sigma: f32) -> f32 {
+        if n_l.is_nan() || n_v.is_nan() || l_v.is_nan() || sigma.is_nan() {
+            return f32::NAN;
+        }
+        match dots_args(n_l, n_v, l_v) {
+            Some((m, s)) => self.g_from_args(payload, m, s, sigma).2,
+            None => 0.0,
+        }
+    }
+
+    /// Channels 0 and 1 of a 2-D table.
+    #[inline]
+    pub(crate) fn two(&self, payload: &[u8], x: f32, y: f32) -> (f32, f32) {
+        let [a, b] = self.reader.sample::<2, 2>(&self.grid, payload, [x, y]);
+        (a, b)
+    }
+
+    /// Channel 0 of a 2-D one-channel table.
+    #[inline]
+    pub(crate) fn two1(&self, payload: &[u8], x: f32, y: f32) -> f32 {
+        self.reader.sample::<2, 1>(&self.grid, payload, [x, y])[0]
+    }
+
+    /// Channel 0 of a 1-D table.
+    #[inline]
+    pub(crate) fn one(&self, payload: &[u8], x: f32) -> f32 {
+        self.reader.sample::<1, 1>(&self.grid, payload, [x])[0]
+    }
+}
+
+/// (GM, GS) arguments of the passing-factor table F(θ, φ) = M(θ, (θ − φ)/2) (reciprocal
+/// convention, docs/conventions.md): GM = F(|θr|, sgn θr · θi), GS = F(θi, θr).
+#[inline]
+fn g_args(theta_i: f32, theta_r: f32) -> ([f32; 2], [f32; 2]) {
+    let ti = crate::axis::clamp(theta_i, 0.0, FRAC_PI_2);
+    let tr = crate::axis::clamp(theta_r, -FRAC_PI_2, FRAC_PI_2);
+    let s = if tr < 0.0 { -ti } else { ti };
+    ([tr.abs(), s], [ti, tr])
+}
+
+/// The table arguments (θ, φ) of both sides of G from the dot products of unit vectors
+/// n·l, n·v, l·v, through the reciprocal 3-D extension of the modified G (the kernel's
+/// `ModifiedG::terms_dots`): each side w ∈ {v (GM), l (GS)} is M(θ_w, a_w) with
+/// tan a_w = (t + sin²θ_w) / (sin θ_w (cos θ_l + cos θ_v)), t = l·v − cos θ_l cos θ_v the
+/// tangential dot product; the table stores F(θ, φ) = M(θ, (θ − φ)/2), so φ_w = θ_w − 2 a_w.
+/// `None` when a direction is at or below the horizon (G = 0 there); NaN is handled by the
+/// caller. In the plane of incidence this gives the in-plane arguments.
+#[inline]
+fn dots_args(n_l: f32, n_v: f32, l_v: f32) -> Option<([f32; 2], [f32; 2])> {
+    if !(n_l > 0.0 && n_v > 0.0) {
+        return None;
+    }
+    let (ci, co) = (n_l.min(1.0), n_v.min(1.0));
+    let (si, so) = (
+        libm::sqrtf((1.0 - ci * ci).max(0.0)),
+        libm::sqrtf((1.0 - co * co).max(0.0)),
+    );
+    let tt = crate::axis::clamp(l_v, -1.0, 1.0) - ci * co;
+    let hz = ci + co;
+    let side = |c: f32, s: f32| -> [f32; 2] {
+        let theta = libm::atan2f(s, c);
+        // With s = 0 the tilt does not matter (M(0, a) = 1): take a = 0.
+        let a = if s > 0.0 {
+            libm::atan2f(tt + s * s, s * hz)
+        } else {
+            0.0
+        };
+        [theta, theta - 2.0 * a]
+    };
+    Some((side(co, so), side(ci, si)))
+}
+
+#[inline]
+fn unit01(x: f32) -> f32 {
+    crate::axis::clamp(x, 0.0, 1.0)
+}
+
+macro_rules! typed_table {
+    ($(#[$doc:meta])* $name:ident, $kind:expr, $dims:expr) => {
+        $(#[$doc])*
+        #[derive(Clone, Debug)]
+        pub struct $name<B = &'static [u8]> {
+            bytes: B,
+            p: Prepared,
+        }
+
+        impl<B: AsRef<[u8]>> $name<B> {
+            /// Validates `bytes` (every check of [`LutView::parse`], CRC included), checks
+            /// the kind and shape, and prepares the lookup constants.
+            pub fn parse(bytes: B) -> Result<Self, LutError> {
+                let p = Prepared::expect(&LutView::parse(bytes.as_ref())?, $kind, $dims)?;
+                Ok(Self { bytes, p })
+            }
+            /// The table's bytes.
+            pub fn bytes(&self) -> &[u8] {
+                self.bytes.as_ref()
+            }
+            /// Gives the bytes back.
+            pub fn into_bytes(self) -> B {
+                self.bytes
+            }
+            /// A view of the bytes (header, raw payload, general sampling). Re-decodes the
+            /// header without the CRC; fails only if `B` no longer gives the bytes that
+            /// were parsed.
+            pub fn view(&self) -> Result<LutView<'_>, LutError> {
+                LutView::parse_skip_checksum(self.bytes.as_ref())
+            }
+            #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+            #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+            fn payload(&self) -> &[u8] {
+                self.bytes.as_ref().get(self.p.header_len..).unwrap_or(&[])
+            }
+        }
+
+        impl<'a> $name<&'a [u8]> {
+            /// Wraps a parsed view (no second validation).
+            pub fn from_view(view: LutView<'a>) -> Result<Self, LutError> {
+                let p = Prepared::expect(&view, $kind, $dims)?;
+                let bytes = view.bytes();
+                Ok(Self { bytes, p })
+            }
+        }
+    };
+}
+
+typed_table!(
+    /// The modified G (reciprocal convention) for one fixed σ, from a 2-D passing-factor
+    /// table over (θ, φ).
+    GTable,
+    TableKind::PassingFactor,
+    2
+);
+typed_table!(
+    /// The modified G (reciprocal convention) over σ, from a 3-D passing-factor table over
+    /// (θ, φ, σ).
+    GTable3,
+    TableKind::PassingFactor,
+    3
+);
+typed_table!(
+    /// Split-sum (A, B) over (μ = n·v, roughness): specular E = F0·A + F90·B.
+    DfgTable,
+    TableKind::SplitSum,
+    2
+);
+typed_table!(
+    /// Directional albedo E(μ, r) with F = 1 (Kulla–Conty).
+    AlbedoTable,
+    TableKind::DirectionalAlbedo,
+    2
+);
+typed_table!(
+    /// Average albedo E_avg(r) = 2∫₀¹ E(μ, r) μ dμ (Kulla–Conty).
+    AverageAlbedoTable,
+    TableKind::AverageAlbedo,
+    1
+);
+
+impl<B: AsRef<[u8]>> GTable<B> {
+    /// The table's σ (NaN if the header does not say).
+    pub fn sigma(&self) -> f32 {
+        self.p.sigma
+    }
+    /// (GM, GS, G) at in-plane angles in radians, θi ∈ [0, π/2], θr ∈ [−π/2, π/2] signed
+    /// (clamped; NaN gives NaN). G = min(GM, GS), each clamped to [0, 1] (paper eq 13).
+    #[inline]
+    pub fn terms(&self, theta_i: f32, theta_r: f32) -> (f32, f32, f32) {
+        self.p.g2(self.payload(), theta_i, theta_r)
+    }
+    /// G = min(GM, GS); see [`GTable::terms`].
+    #[inline]
+    pub fn g(&self, theta_i: f32, theta_r: f32) -> f32 {
+        self.terms(theta_i, theta_r).2
+    }
+    /// G from the dot products a shader has: n·l, n·v, l·v of unit vectors (l toward the
+    /// light, v toward the viewer), through the reciprocal 3-D extension of the modified G
+    /// (the kernel's `ModifiedG::g_dots`). A direction at or below the horizon gives 0; NaN
+    /// gives NaN. In the plane of incidence equal to [`GTable::g`] at the same angles up to
+    /// f32 rounding of the angles.
+    #[inline]
+    pub fn g_dots(&self, n_l: f32, n_v: f32, l_v: f32) -> f32 {
+        self.p.g_dots(self.payload(), n_l, n_v, l_v, 0.0)
+    }
+    /// [`GTable::g`] over slices: `out[k] = g(theta_i[k], theta_r[k])` for k below the
+    /// shortest length, which is returned. Bit-identical to the scalar lookup.
+    pub fn g_batch(&self, theta_i: &[f32], theta_r: &[f32], out: &mut [f32]) -> usize {
+        let p = self.payload();
+        let n = theta_i.len().min(theta_r.len()).min(out.len());
+        for ((o, &a), &b) in out[..n].iter_mut().zip(theta_i).zip(theta_r) {
+            *o = self.p.g2(p, a, b).2;
+        }
+        n
+    }
+}
+
+impl<B: AsRef<[u8]>> GTable3<B> {
+    /// The σ range [lo, hi] of the table (queries outside are clamped).
+    pub fn sigma_range(&self) -> (f32, f32) {
+        self.p.last_range
+    }
+    /// (GM, GS, G) at in-plane angles in radians and RMS slope σ (all clamped to the table's
+    /// ranges; NaN gives NaN). G = min(GM, GS) (paper eq 13).
+    #[inline]
+    pub fn terms(&self, theta_i: f32, theta_r: f32, sigma: f32) -> (f32, f32, f32) {
+        self.p.g3(self.payload(), theta_i, theta_r, sigma)
+    }
+    /// G = min(GM, GS); see [`GTable3::terms`].
+    #[inline]
+    pub fn g(&self, theta_i: f32, theta_r: f32, sigma: f32) -> f32 {
+        self.terms(theta_i, theta_r, sigma).2
+    }
+    /// G from the dot products n·l, n·v, l·v at RMS slope σ; see [`GTable::g_dots`].
+    #[inline]
+    pub fn g_dots(&self, n_l: f32, n_v: f32, l_v: f32, sigma: f32) -> f32 {
+        self.p.g_dots(self.payload(), n_l, n_v, l_v, sigma)
+    }
+    /// [`GTable3::g`] over slices at one σ; returns the number written (the shortest
+    /// length). Bit-identical to the scalar lookup.
+    pub fn g_batch(&self, theta_i: &[f32], theta_r: &[f32], sigma: f32, out: &mut [f32]) -> usize {
+        let p = self.payload();
+        let n = theta_i.len().min(theta_r.len()).min(out.len());
+        for ((o, &a), &b) in out[..n].iter_mut().zip(theta_i).zip(theta_r) {
+            *o = self.p.g3(p, a, b, sigma).2;
+        }
+        n
+    }
+}
+
+impl<B: AsRef<[u8]>> DfgTable<B> {
+    /// (A, B) at μ = n·v and roughness (perceptual r for GGX, σ for Torrance–Sparrow tables;
+    /// see the header), clamped to the table's ranges; NaN gives NaN.
+    #[inline]
+    pub fn ab(&self, mu: f32, roughness: f32) -> (f32, f32) {
+        self.p.two(self.payload(), mu, roughness)
+    }
+    /// [`DfgTable::ab`] over slices: `a[k], b[k] = ab(mu[k], roughness[k])` for k below the
+    /// shortest length, which is returned. Bit-identical to the scalar lookup.
+    pub fn ab_batch(&self, mu: &[f32], roughness: &[f32], a: &mut [f32], b: &mut [f32]) -> usize {
+        let p = self.payload();
+        let n = mu.len().min(roughness.len()).min(a.len()).min(b.len());
+        for k in 0..n {
+            (a[k], b[k]) = self.p.two(p, mu[k], roughness[k]);
+        }
+        n
+    }
+}
+
+impl<B: AsRef<[u8]>> AlbedoTable<B> {
+    /// E(μ, r), clamped coordinates; NaN gives NaN.
+    #[inline]
+    pub fn e(&self, mu: f32, roughness: f32) -> f32 {
+        self.p.two1(self.payload(), mu, roughness)
+    }
+    /// [`AlbedoTable::e`] over slices; returns the number written (the shortest length).
+    /// Bit-identical to the scalar lookup.
+    pub fn e_batch(&self, mu: &[f32], roughness: &[f32], out: &mut [f32]) -> usize {
+        let p = self.payload();
+        let n = mu.len().min(roughness.len()).min(out.len());
+        for ((o, &m), &r) in out[..n].iter_mut().zip(mu).zip(roughness) {
+            *o = self.p.two1(p, m, r);
+        }
+        n
+    }
+}
+
+impl<B: AsRef<[u8]>> AverageAlbedoTable<B> {
+    /// E_avg(r), clamped coordinate; NaN gives NaN.
+    #[inline]
+    pub fn e_avg(&self, roughness: f32) -> f32 {
+        self.p.one(self.payload(), roughness)
+    }
+    /// [`AverageAlbedoTable::e_avg`] over a slice; returns the number written (the shorter
+    /// length). Bit-identical to the scalar lookup.
+    pub fn e_avg_batch(&self, roughness: &[f32], out: &mut [f32]) -> usize {
+        let p = self.payload();
+        let n = roughness.len().min(out.len());
+        for (o, &r) in out[..n].iter_mut().zip(roughness) {
+            *o = self.p.one(p, r);
+        }
+        n
+    }
+}

@@ -1,0 +1,605 @@
+//! The zero-copy, allocation-free view of a LUT file (format: `docs/lut-format.md`).
+//!
+//! ```text
+//! file = magic ++ version ++ header ++ payload
+//! ```
+//!
+//! [`LutView::parse`] validates a borrowed `&[u8]` (magic, version, header, limits, the f32
+//! rules of the axes, payload length, CRC-32, node values) and keeps only borrows, so
+//! firmware can `include_bytes!` a table straight from flash. Queries take physical
+//! coordinates (radians, μ, roughness, σ), clamp them to each axis' range and interpolate in
+//! the axes' unit coordinates ([`Interpolation`]).
+
+use crate::axis::AxisMap;
+use crate::codec::{Reader as Decoder, Writer};
+use crate::crc::Crc32;
+use crate::f16::f16_to_f32;
+use crate::header::*;
+use crate::reader::{Lane, Reader};
+use crate::LutError;
+
+/// Channel values returned by a lookup; entries past [`LutView::channels`] are 0.
+pub type Values = [f32; MAX_CHANNELS];
+
+/// What a lookup needs from the header, in f32, without borrows (the prepared form a typed
+/// table keeps next to its bytes).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Grid {
+    pub(crate) maps: [AxisMap; MAX_AXES],
+    pub(crate) dims: usize,
+    pub(crate) channels: usize,
+    pub(crate) encoding: Encoding,
+    pub(crate) cubic: bool,
+    pub(crate) scale: [f32; MAX_CHANNELS],
+    pub(crate) offset: [f32; MAX_CHANNELS],
+}
+
+impl Grid {
+    /// The prepared form of a checked header.
+    pub(crate) fn new(h: &Header<'_>) -> Self {
+        let mut maps = [AxisMap::UNIT; MAX_AXES];
+        for (m, a) in maps.iter_mut().zip(h.axes.iter()) {
+            *m = AxisMap::new(a);
+        }
+        let (mut scale, mut offset) = ([1.0; MAX_CHANNELS], [0.0; MAX_CHANNELS]);
+        for (k, c) in h.channels.iter().enumerate() {
+            scale[k] = c.scale;
+            offset[k] = c.offset;
+        }
+        Grid {
+            maps,
+            dims: h.axes.len(),
+            channels: h.channels.len(),
+            encoding: h.encoding,
+            cubic: h.interpolation == Interpolation::CatmullRom,
+            scale,
+            offset,
+        }
+    }
+
+    /// The decoded value at a flat node index and channel; NaN when out of range.
+    #[inline]
+    pub(crate) fn node_value(&self, payload: &[u8], flat: usize, ch: usize) -> f32 {
+        let c = self.channels;
+        if ch >= c {
+            return f32::NAN;
+        }
+        let nb = self.encoding.bytes();
+        let off = (flat * c + ch) * nb;
+        let Some(b) = payload.get(off..off + nb) else {
+            return f32::NAN;
+        };
+        let stored = match self.encoding {
+            Encoding::Unorm16 => u16::from_le_bytes([b[0], b[1]]) as f32 * (1.0 / 65535.0),
+            Encoding::F16 => f16_to_f32(u16::from_le_bytes([b[0], b[1]])),
+            Encoding::F32 => f32::from_le_bytes([b[0], b[1], b[2], b[3]]),
+        };
+        self.offset[ch] + self.scale[ch] * stored
+    }
+
+    /// The per-tap general path (Catmull–Rom axes of 3 nodes; see `reader.rs`).
+    pub(crate) fn sample(&self, payload: &[u8], x: &[f32]) -> Values {
+        let d = self.dims;
+        let mut taps = [[(0usize, 0f32); 4]; MAX_AXES];
+        let mut ntaps = [1usize; MAX_AXES];
+        for k in 0..d {
+            let xk = x.get(k).copied().unwrap_or(f32::NEG_INFINITY);
+            if xk.is_nan() {
+                return [f32::NAN; MAX_CHANNELS];
+            }
+            ntaps[k] = self.maps[k].taps(xk, self.cubic, &mut taps[k]);
+        }
+        let mut out = [0f32; MAX_CHANNELS];
+        let c = self.channels;
+        let n0 = self.maps[0].count();
+        let n1 = if d > 1 { self.maps[1].count() } else { 1 };
+        for &(i2, w2) in &taps[2][..ntaps[2]] {
+            for &(i1, w1) in &taps[1][..ntaps[1]] {
+                let w21 = if d > 2 { w2 } else { 1.0 } * if d > 1 { w1 } else { 1.0 };
+                for &(i0, w0) in &taps[0][..ntaps[0]] {
+                    let w = w21 * w0;
+                    let flat = (i2 * n1 + i1) * n0 + i0;
+                    for (ch, o) in out.iter_mut().enumerate().take(c) {
+                        *o += w * self.node_value(payload, flat, ch);
+                    }
+                }
+            }
+        }
+        out
+    }
+}
+
+/// A validated, borrowed LUT.
+#[derive(Clone, Copy, Debug)]
+pub struct LutView<'a> {
+    bytes: &'a [u8],
+    header: Header<'a>,
+    header_len: usize,
+    payload: &'a [u8],
+    grid: Grid,
+    reader: Reader,
+}
+
+/// The f32 rule of one axis (docs/lut-format.md §6): the reader computes in f32, so the
+/// range ends rounded to f32, their warped values, the warped span and the index scale
+/// n / span must all be finite, and the span positive. Otherwise every lookup would be NaN.
+fn check_axis_f32(a: &Axis<'_>) -> Result<(), &'static str> {
+    let (lo, hi) = (a.lo as f32, a.hi as f32);
+    if !(lo.is_finite() && hi.is_finite()) {
+        return Err("range end overflows f32");
+    }
+    if lo >= hi {
+        return Err("range collapses to one f32 value");
+    }
+    let w = |x: f32| match a.warp {
+        Warp::Linear | Warp::Sqrt => x,
+        Warp::Log => libm::logf(x),
+        Warp::Cos => -libm::cosf(x),
+        Warp::SqrtCos => -libm::sqrtf(libm::cosf(x).max(0.0)),
+    };
+    let span = w(hi) - w(lo);
+    if !(w(lo).is_finite() && w(hi).is_finite()) {
+        return Err("warped range end not finite in f32");
+    }
+    if !(span.is_finite() && span > 0.0) {
+        return Err("warped span is zero or not finite in f32");
+    }
+    if !((a.count as f32) / span).is_finite() {
+        return Err("index scale n / span overflows f32");
+    }
+    Ok(())
+}
+
+/// Every check of the header alone (docs/lut-format.md §4–§6).
+pub(crate) fn check_header(h: &Header<'_>) -> Result<(), LutError> {
+    use LutError::Inconsistent as I;
+    if h.axes.is_empty() {
+        return Err(I("no axes"));
+    }
+    if h.channels.is_empty() {
+        return Err(I("no channels"));
+    }
+    for (k, a) in h.axes.iter().enumerate() {
+        if a.count < 2 || a.count > MAX_AXIS_COUNT {
+            return Err(I("axis count outside [2, 65536]"));
+        }
+        if !(a.lo.is_finite() && a.hi.is_finite() && a.lo < a.hi) {
+            return Err(I("axis range not finite or not increasing"));
+        }
+        match a.warp {
+            Warp::Log if a.lo <= 0.0 => return Err(I("log axis must start above 0")),
+            Warp::Cos if a.lo < 0.0 || a.hi > core::f64::consts::PI => {
+                return Err(I("cos axis must lie in [0, π]"))
+            }
+            Warp::SqrtCos if a.lo < 0.0 || a.hi > core::f64::consts::FRAC_PI_2 => {
+                return Err(I("sqrt-cos axis must lie in [0, π/2]"))
+            }
+            _ => {}
+        }
+        check_axis_f32(a).map_err(|why| LutError::DegenerateAxis { axis: k as u8, why })?;
+        if Lane::new(a, 1).is_none() {
+            return Err(LutError::DegenerateAxis {
+                axis: k as u8,
+                why: "lookup constants not finite in f32",
+            });
+        }
+    }
+    for c in h.channels.iter() {
+        if !(c.scale.is_finite() && c.offset.is_finite()) {
+            return Err(I("channel scale or offset not finite"));
+        }
+        if h.encoding == Encoding::Unorm16 {
+            // Decoded values run from offset to offset + scale.
+            let top = c.offset + c.scale;
+            if !(top.is_finite()
+                && c.offset.abs() <= MAX_VALUE_MAGNITUDE
+                && top.abs() <= MAX_VALUE_MAGNITUDE)
+            {
+                return Err(I("u16 channel range exceeds the value limit"));
+            }
+        }
+    }
+    let values = h.nodes().saturating_mul(h.channels.len() as u64);
+    if values > MAX_VALUES {
+        return Err(I("table larger than the format allows"));
+    }
+    let (d, c) = (h.axes.len(), h.channels.len());
+    let ok = match h.kind {
+        TableKind::PassingFactor => c == 1 && (d == 2 || d == 3),
+        TableKind::SplitSum => c == 2 && d == 2,
+        TableKind::DirectionalAlbedo => c == 1 && d == 2,
+        TableKind::AverageAlbedo => c == 1 && d == 1,
+    };
+    if !ok {
+        return Err(I("axis or channel count does not fit the table kind"));
+    }
+    Ok(())
+}
+
+/// Magic and version; the reader positioned after them.
+fn open(bytes: &[u8]) -> Result<Decoder<'_>, LutError> {
+    if bytes.len() < 4 {
+        return Err(if MAGIC.starts_with(bytes) {
+            LutError::Truncated
+        } else {
+            LutError::BadMagic
+        });
+    }
+    if bytes[..4] != MAGIC {
+        return Err(LutError::BadMagic);
+    }
+    let mut r = Decoder::new(&bytes[4..]);
+    let version = r.varint(16)? as u16;
+    if version != FORMAT_VERSION {
+        return Err(LutError::UnsupportedVersion { found: version });
+    }
+    Ok(r)
+}
+
+/// Length of the encoded header (magic and version included) at the start of `bytes`: where
+/// the payload starts. Decodes the header's syntax only (no limits, sizes or CRC), so tools
+/// that edit a file (and the fuzz harness, which re-signs mutated files) can locate the
+/// checksum: its 4 bytes end the header.
+pub fn header_len(bytes: &[u8]) -> Result<usize, LutError> {
+    let mut r = open(bytes)?;
+    r.header()?;
+    Ok(4 + r.pos())
+}
+
+impl<'a> LutView<'a> {
+    /// Validates `bytes` and borrows them. Never panics and never allocates; every defect
+    /// is a [`LutError`]. Work is linear in the length of `bytes`.
+    pub fn parse(bytes: &'a [u8]) -> Result<Self, LutError> {
+        Self::parse_inner(bytes, true)
+    }
+
+    /// [`LutView::parse`] without recomputing the CRC-32, for owners of bytes that were
+    /// validated before (every other check still runs, so this cannot panic either).
+    pub fn parse_skip_checksum(bytes: &'a [u8]) -> Result<Self, LutError> {
+        Self::parse_inner(bytes, false)
+    }
+
+    fn parse_inner(bytes: &'a [u8], crc: bool) -> Result<Self, LutError> {
+        let mut r = open(bytes)?;
+        let header = r.header()?;
+        let header_len = 4 + r.pos();
+        let payload = &bytes[header_len..];
+        check_header(&header)?;
+        let expected = header.payload_len();
+        if expected != payload.len() as u64 {
+            return Err(LutError::PayloadLength {
+                expected,
+                found: payload.len() as u64,
+            });
+        }
+        if crc {
+            let stored = header.checksum;
+            let computed = Crc32::new()
+                .update(&bytes[..header_len - 4])
+                .update(payload)
+                .finish();
+            if stored != computed {
+                return Err(LutError::Checksum { stored, computed });
+            }
+        }
+        let grid = Grid::new(&header);
+        // Cannot fail after `check_header` (same lane rule); kept total.
+        let reader = Reader::new(&header).ok_or(LutError::Inconsistent("axis constants"))?;
+        if header.encoding != Encoding::Unorm16 {
+            // Float payloads: every decoded value finite and within the value limit.
+            let n = (payload.len() / header.encoding.bytes()) as u64;
+            let c = grid.channels as u64;
+            for k in 0..n {
+                let v = grid.node_value(payload, (k / c) as usize, (k % c) as usize);
+                if v.is_nan() || v.abs() > MAX_VALUE_MAGNITUDE {
+                    return Err(LutError::BadValue { index: k });
+                }
+            }
+        }
+        Ok(Self {
+            bytes,
+            header,
+            header_len,
+            payload,
+            grid,
+            reader,
+        })
+    }
+
+    pub(crate) fn grid(&self) -> &Grid {
+        &self.grid
+    }
+    pub(crate) fn reader(&self) -> &Reader {
+        &self.reader
+    }
+
+    /// The whole file.
+    pub fn bytes(&self) -> &'a [u8] {
+        self.bytes
+    }
+    /// The decoded header.
+    pub fn header(&self) -> &Header<'a> {
+        &self.header
+    }
+    /// Length of the encoded header in bytes, magic and version included (the payload
+    /// starts here).
+    pub fn header_len(&self) -> usize {
+        self.header_len
+    }
+    /// The raw payload.
+    pub fn payload(&self) -> &'a [u8] {
+        self.payload
+    }
+    /// What the table holds.
+    pub fn kind(&self) -> TableKind {
+        self.header.kind
+    }
+    /// Number of axes (1–3).
+    pub fn dims(&self) -> usize {
+        self.grid.dims
+    }
+    /// Number of channels (1–4).
+    pub fn channels(&self) -> usize {
+        self.grid.channels
+    }
+    /// The coordinate map of axis `k`; `None` if `k ≥ dims()`.
+    pub fn axis_map(&self, k: usize) -> Option<&AxisMap> {
+        self.grid.maps[..self.grid.dims].get(k)
+    }
+
+    /// The decoded value at a flat node index (axis 0 fastest) and channel. Out-of-range
+    /// indices give NaN.
+    pub fn node_value(&self, flat: usize, ch: usize) -> f32 {
+        self.grid.node_value(self.payload, flat, ch)
+    }
+
+    /// Interpolated channel values at physical coordinates `x` (one per axis; missing
+    /// coordinates count as the axis' lower end, extra ones are ignored). Coordinates are
+    /// clamped to each axis' range; a NaN coordinate gives NaN in every channel. The same
+    /// prepared reader as the typed tables, so the values are theirs bit for bit (G tables
+    /// before the G clamp to [0, 1]).
+    pub fn sample(&self, x: &[f32]) -> Values {
+        let at = |k: usize| x.get(k).copied().unwrap_or(f32::NEG_INFINITY);
+        if (0..self.grid.dims).any(|k| at(k).is_nan()) {
+            return [f32::NAN; MAX_CHANNELS];
+        }
+        let (g, p, r) = (&self.grid, self.payload, &self.reader);
+        let mut out = [0.0; MAX_CHANNELS];
+        macro_rules! go {
+            ($d:literal, $c:literal, $x:expr) => {
+                out[..$c].copy_from_slice(&r.sample::<$d, $c>(g, p, $x))
+            };
+        }
+        let (x0, x1, x2) = (at(0), at(1), at(2));
+        // The shapes the table kinds allow (checked at parse); anything else cannot occur
+        // and takes the general path.
+        match (g.dims, g.channels) {
+            (1, 1) => go!(1, 1, [x0]),
+            (2, 1) => go!(2, 1, [x0, x1]),
+            (2, 2) => go!(2, 2, [x0, x1]),
+            (3, 1) => go!(3, 1, [x0, x1, x2]),
+            _ => return g.sample(p, x),
+        }
+        out
+    }
+
+    /// [`LutView::sample`] for a 1-D table.
+    pub fn sample1(&self, x: f32) -> Values {
+        self.sample(&[x])
+    }
+    /// [`LutView::sample`] for a 2-D table: `x` on axis 0, `y` on axis 1.
+    pub fn sample2(&self, x: f32, y: f32) -> Values {
+        self.sample(&[x, y])
+    }
+    /// [`LutView::sample`] for a 3-D table.
+    pub fn sample3(&self, x: f32, y: f32, z: f32) -> Values {
+        self.sample(&[x, y, z])
+    }
+}
+
+/// Writes `magic ++ version ++ header ++ payload` into `out` with the checksum filled in
+/// (the `checksum` field of `header` is ignored). Returns the number of bytes written. The
+/// header is checked as a reader would check it. No allocation.
+pub fn encode_into(header: &Header<'_>, payload: &[u8], out: &mut [u8]) -> Result<usize, LutError> {
+    check_header(header)?;
+    if header.payload_len() != payload.len() as u64 {
+        return Err(LutError::PayloadLength {
+            expected: header.payload_len(),
+            found: payload.len() as u64,
+        });
+    }
+    let mut w = Writer::new(out);
+    w.header(header)?;
+    let hl = w.pos();
+    w.bytes(payload)?;
+    let total = w.pos();
+    let crc = Crc32::new().update(&out[..hl - 4]).update(payload).finish();
+    out[hl - 4..hl].copy_from_slice(&crc.to_le_bytes());
+    // A float payload must pass the same value check as on reading.
+    LutView::parse_skip_checksum(&out[..total])?;
+    Ok(total)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 2-D f32 table of f(x, y) on the given axes, encoded.
+    fn table(
+        buf: &mut [u8],
+        axes: [Axis<'static>; 2],
+        interp: Interpolation,
+        f: impl Fn(f64, f64) -> f64,
+    ) -> usize {
+        let mut payload = [0u8; 4 * 64];
+        let (n0, n1) = (axes[0].count, axes[1].count);
+        for j in 0..n1 {
+            for i in 0..n0 {
+                let v = f(axes[0].node(i), axes[1].node(j)) as f32;
+                let k = ((j * n0 + i) * 4) as usize;
+                payload[k..k + 4].copy_from_slice(&v.to_le_bytes());
+            }
+        }
+        let len = (n0 * n1 * 4) as usize;
+        let h = Header {
+            kind: TableKind::DirectionalAlbedo,
+            axes: List::from_slice(&axes).unwrap(),
+            channels: List::from_slice(&[Channel {
+                name: "E",
+                scale: 1.0,
+                offset: 0.0,
+            }])
+            .unwrap(),
+            encoding: Encoding::F32,
+            interpolation: interp,
+            generator: Generator {
+                model: Model::GgxSmithCorrelated,
+                convention: Convention::Reciprocal,
+                sigma: None,
+                nodes: List::new(),
+                tool: "test",
+            },
+            error: ErrorStats {
+                max_abs: 0.0,
+                rms: 0.0,
+                samples: 0,
+                seed: 0,
+            },
+            checksum: 0,
+        };
+        encode_into(&h, &payload[..len], buf).unwrap()
+    }
+
+    fn ax(count: u32, lo: f64, hi: f64, warp: Warp, placement: Placement) -> Axis<'static> {
+        Axis {
+            name: "x",
+            count,
+            lo,
+            hi,
+            warp,
+            placement,
+        }
+    }
+
+    #[test]
+    fn linear_reproduces_bilinear_functions_and_nodes() {
+        let mut buf = [0u8; 1024];
+        let axes = [
+            ax(5, 0.0, 1.0, Warp::Linear, Placement::Endpoint),
+            ax(4, -1.0, 2.0, Warp::Linear, Placement::TexelCentre),
+        ];
+        let n = table(&mut buf, axes, Interpolation::Linear, |x, y| {
+            2.0 * x - 3.0 * y + x * y
+        });
+        let v = LutView::parse(&buf[..n]).unwrap();
+        // Inside the texel-centre span of axis 1 ([-0.625, 1.625]) bilinear is exact.
+        for &(x, y) in &[(0.1f32, -0.5f32), (0.77, 1.2), (1.0, 0.0), (0.0, 1.6)] {
+            let want = 2.0 * x - 3.0 * y + x * y;
+            assert!((v.sample2(x, y)[0] - want).abs() < 1e-5, "{x} {y}");
+        }
+        // Outside it the value is clamped to the edge nodes.
+        let edge = v.sample2(0.5, 1.625)[0];
+        assert!((v.sample2(0.5, 2.0)[0] - edge).abs() < 1e-6);
+        assert!(v.sample2(f32::NAN, 0.0)[0].is_nan());
+    }
+
+    #[test]
+    fn catmull_rom_with_quadratic_ends_reproduces_quadratics() {
+        let mut buf = [0u8; 1024];
+        let axes = [
+            ax(6, 0.0, 1.0, Warp::Linear, Placement::Endpoint),
+            ax(5, 0.1, 2.0, Warp::Log, Placement::Endpoint),
+        ];
+        // Quadratic in the unit coordinates of both axes.
+        let s1 = |y: f64| (y / 0.1).ln() / 20f64.ln();
+        let f = |x: f64, y: f64| 1.0 + x - 2.0 * x * x + 0.5 * s1(y) * s1(y) - x * s1(y);
+        let n = table(&mut buf, axes, Interpolation::CatmullRom, f);
+        let v = LutView::parse(&buf[..n]).unwrap();
+        for &(x, y) in &[
+            (0.01, 0.11),
+            (0.5, 0.7),
+            (0.93, 1.95),
+            (0.3, 0.1),
+            (1.0, 2.0),
+        ] {
+            let got = v.sample2(x as f32, y as f32)[0] as f64;
+            assert!(
+                (got - f(x, y)).abs() < 2e-5,
+                "{x} {y}: {got} vs {}",
+                f(x, y)
+            );
+        }
+    }
+
+    #[test]
+    fn catmull_rom_tables_with_short_axes_interpolate_linearly_there() {
+        // Axis 0 has 2 nodes (linear by the format's rule), axis 1 has 3 (Catmull–Rom with
+        // both ends extrapolated quadratically): f = 1 + 2x + y² is reproduced exactly.
+        let mut buf = [0u8; 1024];
+        let axes = [
+            ax(2, 0.0, 1.0, Warp::Linear, Placement::Endpoint),
+            ax(3, 0.0, 2.0, Warp::Linear, Placement::Endpoint),
+        ];
+        let f = |x: f64, y: f64| 1.0 + 2.0 * x + y * y / 4.0;
+        let n = table(&mut buf, axes, Interpolation::CatmullRom, f);
+        let v = LutView::parse(&buf[..n]).unwrap();
+        for &(x, y) in &[(0.0f32, 0.0f32), (0.3, 0.7), (1.0, 2.0), (0.5, 1.9)] {
+            let got = v.sample2(x, y)[0] as f64;
+            let want = f(x as f64, y as f64);
+            assert!((got - want).abs() < 1e-5, "({x}, {y}): {got} vs {want}");
+        }
+    }
+
+    #[test]
+    fn warps_invert() {
+        for a in [
+            ax(9, 0.05, 1.0, Warp::Log, Placement::Endpoint),
+            ax(9, 0.0, 1.0, Warp::Sqrt, Placement::TexelCentre),
+            ax(
+                9,
+                0.0,
+                core::f64::consts::FRAC_PI_2,
+                Warp::Cos,
+                Placement::Endpoint,
+            ),
+            ax(
+                9,
+                0.0,
+                core::f64::consts::FRAC_PI_2,
+                Warp::SqrtCos,
+                Placement::Endpoint,
+            ),
+        ] {
+            let m = AxisMap::new(&a);
+            for i in 0..9 {
+                let t = m.index(a.node(i) as f32);
+                assert!((t - i as f32).abs() < 2e-4, "{:?} node {i}: {t}", a.warp);
+            }
+        }
+    }
+
+    #[test]
+    fn encode_checks_and_round_trips() {
+        let mut buf = [0u8; 1024];
+        let axes = [
+            ax(3, 0.0, 1.0, Warp::Linear, Placement::Endpoint),
+            ax(2, 0.0, 1.0, Warp::Linear, Placement::Endpoint),
+        ];
+        let n = table(&mut buf, axes, Interpolation::Linear, |x, y| x + y);
+        let v = LutView::parse(&buf[..n]).unwrap();
+        assert_eq!(v.payload().len(), 3 * 2 * 4);
+        assert_eq!(v.header_len() + 24, n);
+        assert_eq!(v.node_value(5, 0), 2.0);
+        assert!(v.node_value(6, 0).is_nan() && v.node_value(0, 1).is_nan());
+        let mut small = [0u8; 16];
+        let h = *v.header();
+        assert_eq!(
+            encode_into(&h, v.payload(), &mut small),
+            Err(LutError::BufferTooSmall)
+        );
+        assert!(matches!(
+            encode_into(&h, &v.payload()[..8], &mut [0u8; 1024]),
+            Err(LutError::PayloadLength { .. })
+        ));
+    }
+}
