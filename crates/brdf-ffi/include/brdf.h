@@ -35,9 +35,9 @@
 #define BRDF_GGX_WORDS 8
 
 // Storage words (8 bytes each) of every table handle.
-#define BRDF_TABLE_WORDS 96
+#define BRDF_TABLE_WORDS 56
 
-// A status code: [`BRDF_STATUS_OK`] (0) or one of the `BRDF_STATUS_*` errors.
+// A status code: `BRDF_STATUS_OK` (0) or one of the `BRDF_STATUS_*` errors.
 typedef int32_t BrdfStatus;
 
 // A prepared modified G for one surface (σ, convention). Fill it with
@@ -242,6 +242,9 @@ typedef struct BrdfAverageAlbedoTable {
 // Table: a valid table of another kind than the handle reads.
 #define BRDF_STATUS_TABLE_WRONG_KIND 17
 
+// Table: a stored value is not finite or out of the format's range.
+#define BRDF_STATUS_TABLE_BAD_VALUE 18
+
 // GS = M(θi, −α): the tilt toward the light; reciprocal (the default reading).
 #define BRDF_CONVENTION_RECIPROCAL 0
 
@@ -295,7 +298,7 @@ typedef struct BrdfAverageAlbedoTable {
 extern "C" {
 #endif // __cplusplus
 
-// The ABI version the library was built with ([`BRDF_ABI_VERSION`]); compare with the
+// The ABI version the library was built with (`BRDF_ABI_VERSION`); compare with the
 // header's macro to catch a stale library.
 uint32_t brdf_abi_version(void);
 
@@ -510,6 +513,12 @@ struct BrdfGTermsF32 brdf_g_table_terms(const struct BrdfGTable *t, float theta_
 // G ∈ [0, 1] from the table; see `brdf_g_table_terms`.
 float brdf_g_table_g(const struct BrdfGTable *t, float theta_i, float theta_r);
 
+// G ∈ [0, 1] from the dot products n·wi, n·wo, wi·wo of unit vectors (the reciprocal 3-D
+// extension of the modified G, as `brdf_modified_g_dots_f32`), interpolated in the table.
+// A direction at or below the horizon gives 0; NaN for a non-finite dot product or a bad
+// handle.
+float brdf_g_table_g_dots(const struct BrdfGTable *t, float n_i, float n_o, float i_o);
+
 // `out[k] = brdf_g_table_g(t, theta_i[k], theta_r[k])` for k < n. Returns
 // `BRDF_STATUS_NOT_INITIALISED` (bad handle), `BRDF_STATUS_NULL_POINTER` (an array null with
 // n > 0), `BRDF_STATUS_BAD_LENGTH` (n too large) — writing nothing — or `BRDF_STATUS_OK`.
@@ -530,6 +539,10 @@ struct BrdfGTermsF32 brdf_g_table3_terms(const struct BrdfGTable3 *t, float thet
 
 // G ∈ [0, 1] from the 3-D table; see `brdf_g_table3_terms`.
 float brdf_g_table3_g(const struct BrdfGTable3 *t, float theta_i, float theta_r, float sigma);
+
+// G ∈ [0, 1] from dot products (see `brdf_g_table_g_dots`) at RMS slope σ (clamped to the
+// table's range); NaN for non-finite input or a bad handle.
+float brdf_g_table3_g_dots(const struct BrdfGTable3 *t, float n_i, float n_o, float i_o, float sigma);
 
 // `out[k] = brdf_g_table3_g(t, theta_i[k], theta_r[k], sigma[k])` for k < n; status codes
 // as for `brdf_g_table_g_batch`.

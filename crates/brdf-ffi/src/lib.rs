@@ -8,9 +8,8 @@
 //!
 //! * **No panics across the boundary, no allocation.** Bad input gives a [`BrdfStatus`]
 //!   code (functions that fill handles or arrays) or NaN (functions that return a value), as
-//!   each function documents. On `thumbv7em-none-eabihf` the crate is `no_std` with a panic
-//!   handler that the exports cannot reach (`cargo xtask cffi` checks that no panic code is
-//!   left in the linked C firmware).
+//!   each function documents. On `thumbv7em-none-eabihf` the crate is `no_std` (panic =
+//!   abort) with a panic handler that traps; see the handler for what is checked.
 //! * **Caller-allocated handles.** A prepared surface or a parsed table lives in a plain
 //!   struct of a size the header states ([`BrdfGTable`], …): the caller allocates it (static,
 //!   stack, anywhere), an `*_init`/`*_parse` function fills it, queries read it. A handle
@@ -39,7 +38,7 @@ pub mod lut;
 pub use kernels::*;
 pub use lut::*;
 
-/// A status code: [`BRDF_STATUS_OK`] (0) or one of the `BRDF_STATUS_*` errors.
+/// A status code: `BRDF_STATUS_OK` (0) or one of the `BRDF_STATUS_*` errors.
 pub type BrdfStatus = i32;
 
 /// Success.
@@ -68,11 +67,13 @@ pub const BRDF_STATUS_TABLE_PAYLOAD_LENGTH: BrdfStatus = 15;
 pub const BRDF_STATUS_TABLE_CHECKSUM: BrdfStatus = 16;
 /// Table: a valid table of another kind than the handle reads.
 pub const BRDF_STATUS_TABLE_WRONG_KIND: BrdfStatus = 17;
+/// Table: a stored value is not finite or out of the format's range.
+pub const BRDF_STATUS_TABLE_BAD_VALUE: BrdfStatus = 18;
 
 /// Version of this ABI; bumped whenever a signature, a handle size or a constant changes.
 pub const BRDF_ABI_VERSION: u32 = 1;
 
-/// The ABI version the library was built with ([`BRDF_ABI_VERSION`]); compare with the
+/// The ABI version the library was built with (`BRDF_ABI_VERSION`); compare with the
 /// header's macro to catch a stale library.
 #[no_mangle]
 pub extern "C" fn brdf_abi_version() -> u32 {
@@ -97,6 +98,7 @@ pub extern "C" fn brdf_status_str(status: BrdfStatus) -> *const core::ffi::c_cha
         BRDF_STATUS_TABLE_PAYLOAD_LENGTH => c"table payload length mismatch",
         BRDF_STATUS_TABLE_CHECKSUM => c"table checksum mismatch",
         BRDF_STATUS_TABLE_WRONG_KIND => c"table of another kind",
+        BRDF_STATUS_TABLE_BAD_VALUE => c"table value not finite or out of range",
         _ => c"unknown status",
     };
     s.as_ptr()
@@ -234,12 +236,21 @@ pub(crate) fn check_arrays(ptrs: &[bool], n: usize, elem: usize) -> BrdfStatus {
     BRDF_STATUS_OK
 }
 
-/// Device builds: a panic cannot come from the exports (every index is checked, every
-/// error is a value), and `cargo xtask cffi` checks that the linked C firmware contains no
-/// panic code at all. Should one ever be reached, the core stops here.
+/// Device builds (`target_os = "none"`): the exports never panic by design (every pointer,
+/// length and index is checked, every error is a value), and `cargo xtask cffi` checks that
+/// no code of brdf-core or brdf-ffi in the linked C firmware calls into the panic machinery
+/// (it lists the bounds checks the optimiser kept elsewhere). Should a panic ever be reached
+/// anyway, the core executes a permanently undefined instruction: a HardFault the
+/// firmware's fault handler sees, never a silent hang or an unwind into C.
 #[cfg(all(target_os = "none", not(test)))]
 #[panic_handler]
 fn panic(_: &core::panic::PanicInfo<'_>) -> ! {
+    #[cfg(target_arch = "arm")]
+    // SAFETY: UDF only raises the undefined-instruction fault; it touches no state.
+    unsafe {
+        core::arch::asm!("udf #0", options(noreturn, nomem, nostack))
+    }
+    #[cfg(not(target_arch = "arm"))]
     loop {
         core::hint::spin_loop();
     }

@@ -9,16 +9,17 @@
 
 use crate::kernels::BrdfGTermsF32;
 use crate::{
-    handle, rd, wr, BrdfStatus, BRDF_STATUS_BAD_LENGTH, BRDF_STATUS_NOT_INITIALISED,
-    BRDF_STATUS_NULL_POINTER, BRDF_STATUS_OK, BRDF_STATUS_TABLE_BAD_MAGIC,
-    BRDF_STATUS_TABLE_CHECKSUM, BRDF_STATUS_TABLE_INCONSISTENT, BRDF_STATUS_TABLE_MALFORMED_HEADER,
+    handle, rd, wr, BrdfStatus, BRDF_STATUS_BAD_LENGTH, BRDF_STATUS_INVALID_ARGUMENT,
+    BRDF_STATUS_NOT_INITIALISED, BRDF_STATUS_NULL_POINTER, BRDF_STATUS_OK,
+    BRDF_STATUS_TABLE_BAD_MAGIC, BRDF_STATUS_TABLE_BAD_VALUE, BRDF_STATUS_TABLE_CHECKSUM,
+    BRDF_STATUS_TABLE_INCONSISTENT, BRDF_STATUS_TABLE_MALFORMED_HEADER,
     BRDF_STATUS_TABLE_PAYLOAD_LENGTH, BRDF_STATUS_TABLE_TRUNCATED,
     BRDF_STATUS_TABLE_UNSUPPORTED_VERSION, BRDF_STATUS_TABLE_WRONG_KIND,
 };
-use brdf_core::lut::{AlbedoTable, AverageAlbedoTable, DfgTable, GTable, GTable3, LutError};
+use brdf_lut::{AlbedoTable, AverageAlbedoTable, DfgTable, GTable, GTable3, LutError};
 
 /// Storage words (8 bytes each) of every table handle.
-pub const BRDF_TABLE_WORDS: usize = 96;
+pub const BRDF_TABLE_WORDS: usize = 56;
 
 const TAG_G: u64 = 0x4252_4446_4c47_3032;
 const TAG_G3: u64 = 0x4252_4446_4c47_3033;
@@ -33,7 +34,7 @@ pub struct BrdfGTable {
     tag: u64,
     storage: [u64; BRDF_TABLE_WORDS],
 }
-handle!(BrdfGTable, GTable<'static>, TAG_G);
+handle!(BrdfGTable, GTable<&'static [u8]>, TAG_G);
 
 /// A parsed modified-G table over σ (3-D passing-factor table). Fill it with
 /// `brdf_g_table3_parse`; the fields are private to the library.
@@ -42,7 +43,7 @@ pub struct BrdfGTable3 {
     tag: u64,
     storage: [u64; BRDF_TABLE_WORDS],
 }
-handle!(BrdfGTable3, GTable3<'static>, TAG_G3);
+handle!(BrdfGTable3, GTable3<&'static [u8]>, TAG_G3);
 
 /// A parsed split-sum table (A, B) over (μ, roughness). Fill it with `brdf_dfg_table_parse`;
 /// the fields are private to the library.
@@ -51,7 +52,7 @@ pub struct BrdfDfgTable {
     tag: u64,
     storage: [u64; BRDF_TABLE_WORDS],
 }
-handle!(BrdfDfgTable, DfgTable<'static>, TAG_DFG);
+handle!(BrdfDfgTable, DfgTable<&'static [u8]>, TAG_DFG);
 
 /// A parsed directional-albedo table E(μ, roughness). Fill it with
 /// `brdf_albedo_table_parse`; the fields are private to the library.
@@ -60,7 +61,7 @@ pub struct BrdfAlbedoTable {
     tag: u64,
     storage: [u64; BRDF_TABLE_WORDS],
 }
-handle!(BrdfAlbedoTable, AlbedoTable<'static>, TAG_E);
+handle!(BrdfAlbedoTable, AlbedoTable<&'static [u8]>, TAG_E);
 
 /// A parsed average-albedo table E_avg(roughness). Fill it with
 /// `brdf_average_albedo_table_parse`; the fields are private to the library.
@@ -71,7 +72,7 @@ pub struct BrdfAverageAlbedoTable {
 }
 handle!(
     BrdfAverageAlbedoTable,
-    AverageAlbedoTable<'static>,
+    AverageAlbedoTable<&'static [u8]>,
     TAG_EAVG
 );
 
@@ -95,6 +96,10 @@ fn status(e: LutError) -> BrdfStatus {
         LutError::PayloadLength { .. } => BRDF_STATUS_TABLE_PAYLOAD_LENGTH,
         LutError::Checksum { .. } => BRDF_STATUS_TABLE_CHECKSUM,
         LutError::WrongKind { .. } => BRDF_STATUS_TABLE_WRONG_KIND,
+        LutError::NonCanonical => BRDF_STATUS_TABLE_MALFORMED_HEADER,
+        LutError::DegenerateAxis { .. } => BRDF_STATUS_TABLE_INCONSISTENT,
+        LutError::BadValue { .. } => BRDF_STATUS_TABLE_BAD_VALUE,
+        LutError::BadInput(_) => BRDF_STATUS_INVALID_ARGUMENT,
         // Only the encoder reports this; a reader cannot.
         LutError::BufferTooSmall => BRDF_STATUS_TABLE_MALFORMED_HEADER,
     }
@@ -178,6 +183,23 @@ pub unsafe extern "C" fn brdf_g_table_g(t: *const BrdfGTable, theta_i: f32, thet
     BrdfGTable::get(t).map_or(f32::NAN, |t| t.g(theta_i, theta_r))
 }
 
+/// G ∈ [0, 1] from the dot products n·wi, n·wo, wi·wo of unit vectors (the reciprocal 3-D
+/// extension of the modified G, as `brdf_modified_g_dots_f32`), interpolated in the table.
+/// A direction at or below the horizon gives 0; NaN for a non-finite dot product or a bad
+/// handle.
+#[no_mangle]
+pub unsafe extern "C" fn brdf_g_table_g_dots(
+    t: *const BrdfGTable,
+    n_i: f32,
+    n_o: f32,
+    i_o: f32,
+) -> f32 {
+    match BrdfGTable::get(t) {
+        Some(t) if n_i.is_finite() && n_o.is_finite() && i_o.is_finite() => t.g_dots(n_i, n_o, i_o),
+        _ => f32::NAN,
+    }
+}
+
 /// `out[k] = brdf_g_table_g(t, theta_i[k], theta_r[k])` for k < n. Returns
 /// `BRDF_STATUS_NOT_INITIALISED` (bad handle), `BRDF_STATUS_NULL_POINTER` (an array null with
 /// n > 0), `BRDF_STATUS_BAD_LENGTH` (n too large) — writing nothing — or `BRDF_STATUS_OK`.
@@ -258,6 +280,24 @@ pub unsafe extern "C" fn brdf_g_table3_g(
     sigma: f32,
 ) -> f32 {
     BrdfGTable3::get(t).map_or(f32::NAN, |t| t.g(theta_i, theta_r, sigma))
+}
+
+/// G ∈ [0, 1] from dot products (see `brdf_g_table_g_dots`) at RMS slope σ (clamped to the
+/// table's range); NaN for non-finite input or a bad handle.
+#[no_mangle]
+pub unsafe extern "C" fn brdf_g_table3_g_dots(
+    t: *const BrdfGTable3,
+    n_i: f32,
+    n_o: f32,
+    i_o: f32,
+    sigma: f32,
+) -> f32 {
+    match BrdfGTable3::get(t) {
+        Some(t) if n_i.is_finite() && n_o.is_finite() && i_o.is_finite() && !sigma.is_nan() => {
+            t.g_dots(n_i, n_o, i_o, sigma)
+        }
+        _ => f32::NAN,
+    }
 }
 
 /// `out[k] = brdf_g_table3_g(t, theta_i[k], theta_r[k], sigma[k])` for k < n; status codes
