@@ -257,7 +257,7 @@ fn have(cmd: &str) -> bool {
 fn ensure_arm_gcc() -> Result<()> {
     let newlib = Path::new("/usr/lib/arm-none-eabi/newlib/librdimon.a").is_file()
         || Path::new("/usr/lib/arm-none-eabi/lib/librdimon.a").is_file();
-    if have("arm-none-eabi-gcc") && newlib {
+    if have("arm-none-eabi-gcc") && newlib && have("make") {
         return Ok(());
     }
     println!("cffi: installing gcc-arm-none-eabi and libnewlib-arm-none-eabi");
