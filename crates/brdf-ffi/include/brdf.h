@@ -587,3 +587,33 @@ BrdfStatus brdf_average_albedo_table_e_avg_batch(const struct BrdfAverageAlbedoT
 #endif  // __cplusplus
 
 #endif  /* BRDF_H */
+
+#ifndef BRDF_H_HANDLE_SIZES
+#define BRDF_H_HANDLE_SIZES
+/* Handle sizes in bytes: a tag word plus the storage words; every handle is 8-byte aligned.
+ * The library checks at compile time that its types fit (size and alignment). */
+#define BRDF_MODIFIED_G_HANDLE_SIZE (8u * (1u + BRDF_MODIFIED_G_WORDS))
+#define BRDF_TORRANCE_SPARROW_HANDLE_SIZE (8u * (1u + BRDF_TORRANCE_SPARROW_WORDS))
+#define BRDF_GGX_HANDLE_SIZE (8u * (1u + BRDF_GGX_WORDS))
+#define BRDF_TABLE_HANDLE_SIZE (8u * (1u + BRDF_TABLE_WORDS))
+
+#if defined(__cplusplus)
+#define BRDF_STATIC_ASSERT(c, m) static_assert(c, m)
+#elif defined(__STDC_VERSION__) && __STDC_VERSION__ >= 201112L
+#define BRDF_STATIC_ASSERT(c, m) _Static_assert(c, m)
+#endif
+#ifdef BRDF_STATIC_ASSERT
+BRDF_STATIC_ASSERT(sizeof(BrdfModifiedGF32) == BRDF_MODIFIED_G_HANDLE_SIZE, "handle size");
+BRDF_STATIC_ASSERT(sizeof(BrdfModifiedGF64) == BRDF_MODIFIED_G_HANDLE_SIZE, "handle size");
+BRDF_STATIC_ASSERT(sizeof(BrdfTorranceSparrowF32) == BRDF_TORRANCE_SPARROW_HANDLE_SIZE, "handle size");
+BRDF_STATIC_ASSERT(sizeof(BrdfTorranceSparrowF64) == BRDF_TORRANCE_SPARROW_HANDLE_SIZE, "handle size");
+BRDF_STATIC_ASSERT(sizeof(BrdfGgxF32) == BRDF_GGX_HANDLE_SIZE, "handle size");
+BRDF_STATIC_ASSERT(sizeof(BrdfGgxF64) == BRDF_GGX_HANDLE_SIZE, "handle size");
+BRDF_STATIC_ASSERT(sizeof(BrdfGTable) == BRDF_TABLE_HANDLE_SIZE, "handle size");
+BRDF_STATIC_ASSERT(sizeof(BrdfGTable3) == BRDF_TABLE_HANDLE_SIZE, "handle size");
+BRDF_STATIC_ASSERT(sizeof(BrdfDfgTable) == BRDF_TABLE_HANDLE_SIZE, "handle size");
+BRDF_STATIC_ASSERT(sizeof(BrdfAlbedoTable) == BRDF_TABLE_HANDLE_SIZE, "handle size");
+BRDF_STATIC_ASSERT(sizeof(BrdfAverageAlbedoTable) == BRDF_TABLE_HANDLE_SIZE, "handle size");
+#undef BRDF_STATIC_ASSERT
+#endif
+#endif /* BRDF_H_HANDLE_SIZES */
