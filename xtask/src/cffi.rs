@@ -255,13 +255,22 @@ fn have(cmd: &str) -> bool {
 
 /// arm-none-eabi-gcc and newlib from Debian when missing (CI machines start without them).
 fn ensure_arm_gcc() -> Result<()> {
-    let newlib = Path::new("/usr/lib/arm-none-eabi/newlib/librdimon.a").is_file()
-        || Path::new("/usr/lib/arm-none-eabi/lib/librdimon.a").is_file();
+    // newlib-nano for the Cortex-M4F hard-float multilib (gcc prints the bare name when absent).
+    let newlib = Command::new("arm-none-eabi-gcc")
+        .args([
+            "-mcpu=cortex-m4",
+            "-mthumb",
+            "-mfloat-abi=hard",
+            "-mfpu=fpv4-sp-d16",
+        ])
+        .arg("-print-file-name=libc_nano.a")
+        .output()
+        .is_ok_and(|o| Path::new(String::from_utf8_lossy(&o.stdout).trim()).is_file());
     if have("arm-none-eabi-gcc") && newlib && have("make") {
         return Ok(());
     }
     println!("cffi: installing gcc-arm-none-eabi and libnewlib-arm-none-eabi");
-    let root = unsafe_is_root();
+    let root = is_root();
     let apt = |args: &[&str]| -> Result<()> {
         let mut c = if root {
             Command::new("apt-get")
@@ -298,7 +307,7 @@ fn ensure_arm_gcc() -> Result<()> {
 }
 
 /// `true` when running as root (from `id -u`; no libc call needed).
-fn unsafe_is_root() -> bool {
+fn is_root() -> bool {
     Command::new("id")
         .arg("-u")
         .output()
@@ -904,7 +913,7 @@ enum Part {
     Readers,
     /// The embedded table bytes.
     Tables,
-    /// The C program, its start-up and newlib/librdimon.
+    /// The C program, its start-up and newlib-nano (memcpy, memset).
     Program,
 }
 
@@ -1018,7 +1027,7 @@ fn print_sizes(s: &Sizes, stack: Option<u64>) {
         (Part::Tables, "embedded tables (4 files)"),
         (
             Part::Program,
-            "C program, start-up, newlib/librdimon",
+            "C program, start-up, newlib-nano",
         ),
     ] {
         println!("| {label} | {} |", s.parts.get(&p).copied().unwrap_or(0));
