@@ -108,11 +108,11 @@ fn speed_tier_g_tables_meet_their_accuracy_at_fresh_points() {
     }
     let rms = (sum2 / n as f64).sqrt();
     println!("3-D trilinear G table: max |err| {worst:.3e}, RMS {rms:.3e}");
-    // The claim is the header's: its max over 2,000,000 generator points (about 1.3e-3, the
+    // The claim is the header's: its max over 2,000,000 generator points (about 1.7e-3, the
     // bilinear error across the kinks θr = ±θi); fresh points stay within it.
     let claim = LutView::parse(&b3).unwrap().header().error.max_abs as f64;
     assert!(
-        claim <= 1.5e-3 && worst <= claim && rms <= 3e-4,
+        claim <= 2e-3 && worst <= claim && rms <= 3e-4,
         "{worst} vs {claim}"
     );
     let b = asset("g_modified_sigma0.3_linear.blut");
@@ -178,9 +178,9 @@ fn fixed_layout_lookup_equals_the_general_reader() {
         let mut worst = 0f32;
         for &(ti, tr, s) in &pts {
             let (gm, gs, _) = if v.dims() == 3 {
-                GTable3::from_view(v.clone()).unwrap().terms(ti, tr, s)
+                GTable3::from_view(v).unwrap().terms(ti, tr, s)
             } else {
-                GTable::from_view(v.clone()).unwrap().terms(ti, tr)
+                GTable::from_view(v).unwrap().terms(ti, tr)
             };
             let (rm, rs) = g_by_general_reader(&v, ti, tr, s);
             worst = worst.max((gm - rm).abs()).max((gs - rs).abs());

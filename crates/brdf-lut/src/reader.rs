@@ -11,6 +11,10 @@
 //! slice, and the channels' scale and offset are applied once at the end (the weights sum
 //! to 1).
 //!
+//! Feature `compact` (for size budgets: the WASM module, firmware): only `Unorm16` payloads
+//! get the specialised loops; `F16`/`F32` tables take the per-tap general path (the same
+//! values up to f32 summation order).
+//!
 //! Inlining: forced on hosted targets (speed); left to the optimiser on bare metal and
 //! WebAssembly, where code size has a budget.
 //!
@@ -72,10 +76,16 @@ pub(crate) struct Lane {
 }
 
 impl Lane {
-    /// The lane of an axis; `None` when a constant is not finite or the scale is zero (the
-    /// f32 rule of docs/lut-format.md §6).
-    pub(crate) fn new(axis: &Axis<'_>, stride: usize) -> Option<Self> {
+    /// The lane of an axis, or which part of the f32 rule of docs/lut-format.md §3 it
+    /// breaks (every constant finite, the warped span and the scale non-zero).
+    pub(crate) fn new(axis: &Axis<'_>, stride: usize) -> Result<Self, &'static str> {
         let (lo, hi) = (axis.lo as f32, axis.hi as f32);
+        if !(lo.is_finite() && hi.is_finite()) {
+            return Err("range end overflows f32");
+        }
+        if lo >= hi {
+            return Err("range collapses to one f32 value");
+        }
         let nf = axis.count as f32;
         // t = s·A + B with s the unit coordinate.
         let (big_a, big_b) = match axis.placement {
@@ -84,17 +94,19 @@ impl Lane {
         };
         // s = (w(x) − w(lo)) / (w(hi) − w(lo)), w monotone.
         let (w0, w1) = (warp_w(axis.warp, lo, lo), warp_w(axis.warp, lo, hi));
-        let a = big_a / (w1 - w0);
+        if !(w0.is_finite() && w1.is_finite()) {
+            return Err("warped range end not finite in f32");
+        }
+        let span = w1 - w0;
+        if !(span.is_finite() && span != 0.0) {
+            return Err("warped span is zero or not finite in f32");
+        }
+        let a = big_a / span;
         let b = big_b - a * w0;
-        let ok = lo.is_finite()
-            && hi.is_finite()
-            && lo < hi
-            && w0.is_finite()
-            && w1.is_finite()
-            && a.is_finite()
-            && a != 0.0
-            && b.is_finite();
-        ok.then_some(Lane {
+        if !(a.is_finite() && a != 0.0 && b.is_finite()) {
+            return Err("index scale n / span overflows f32");
+        }
+        Ok(Lane {
             warp: axis.warp,
             lo,
             hi,
@@ -172,7 +184,9 @@ trait Store {
     fn at(b: &[u8], k: usize) -> f32;
 }
 struct U16;
+#[cfg_attr(feature = "compact", allow(dead_code))]
 struct F16;
+#[cfg_attr(feature = "compact", allow(dead_code))]
 struct F32;
 impl Store for U16 {
     const BYTES: usize = 2;
@@ -229,7 +243,7 @@ impl Reader {
             Interpolation::CatmullRom => Mode::Cubic,
         };
         for (k, a) in h.axes.iter().enumerate().take(3) {
-            lanes[k] = Lane::new(a, stride)?;
+            lanes[k] = Lane::new(a, stride).ok()?;
             stride = stride.checked_mul(a.count as usize)?;
             if mode == Mode::Cubic && a.count < 4 {
                 mode = Mode::General;
@@ -266,12 +280,17 @@ impl Reader {
     ) -> [f32; C] {
         let raw = match (self.mode, self.encoding) {
             (Mode::Linear, Encoding::Unorm16) => self.linear::<U16, D, C>(data, x),
-            (Mode::Linear, Encoding::F16) => self.linear::<F16, D, C>(data, x),
-            (Mode::Linear, Encoding::F32) => self.linear::<F32, D, C>(data, x),
             (Mode::Cubic, Encoding::Unorm16) => self.cubic::<U16, D, C>(data, x),
+            #[cfg(not(feature = "compact"))]
+            (Mode::Linear, Encoding::F16) => self.linear::<F16, D, C>(data, x),
+            #[cfg(not(feature = "compact"))]
+            (Mode::Linear, Encoding::F32) => self.linear::<F32, D, C>(data, x),
+            #[cfg(not(feature = "compact"))]
             (Mode::Cubic, Encoding::F16) => self.cubic::<F16, D, C>(data, x),
+            #[cfg(not(feature = "compact"))]
             (Mode::Cubic, Encoding::F32) => self.cubic::<F32, D, C>(data, x),
-            (Mode::General, _) => {
+            // Short Catmull–Rom axes (and, with feature `compact`, float payloads).
+            _ => {
                 let v = grid.sample(data, &x);
                 let mut out = [0.0; C];
                 out.copy_from_slice(&v[..C]);
@@ -299,12 +318,16 @@ impl Reader {
     ) -> (f32, f32) {
         let (va, vb) = match (self.mode, self.encoding) {
             (Mode::Linear, Encoding::Unorm16) => self.pair3_linear::<U16>(data, a, b, z),
-            (Mode::Linear, Encoding::F16) => self.pair3_linear::<F16>(data, a, b, z),
-            (Mode::Linear, Encoding::F32) => self.pair3_linear::<F32>(data, a, b, z),
             (Mode::Cubic, Encoding::Unorm16) => self.pair3_cubic::<U16>(data, a, b, z),
+            #[cfg(not(feature = "compact"))]
+            (Mode::Linear, Encoding::F16) => self.pair3_linear::<F16>(data, a, b, z),
+            #[cfg(not(feature = "compact"))]
+            (Mode::Linear, Encoding::F32) => self.pair3_linear::<F32>(data, a, b, z),
+            #[cfg(not(feature = "compact"))]
             (Mode::Cubic, Encoding::F16) => self.pair3_cubic::<F16>(data, a, b, z),
+            #[cfg(not(feature = "compact"))]
             (Mode::Cubic, Encoding::F32) => self.pair3_cubic::<F32>(data, a, b, z),
-            (Mode::General, _) => {
+            _ => {
                 return (
                     self.sample::<3, 1>(grid, data, [a[0], a[1], z])[0],
                     self.sample::<3, 1>(grid, data, [b[0], b[1], z])[0],

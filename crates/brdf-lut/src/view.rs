@@ -120,36 +120,6 @@ pub struct LutView<'a> {
     reader: Reader,
 }
 
-/// The f32 rule of one axis (docs/lut-format.md §6): the reader computes in f32, so the
-/// range ends rounded to f32, their warped values, the warped span and the index scale
-/// n / span must all be finite, and the span positive. Otherwise every lookup would be NaN.
-fn check_axis_f32(a: &Axis<'_>) -> Result<(), &'static str> {
-    let (lo, hi) = (a.lo as f32, a.hi as f32);
-    if !(lo.is_finite() && hi.is_finite()) {
-        return Err("range end overflows f32");
-    }
-    if lo >= hi {
-        return Err("range collapses to one f32 value");
-    }
-    let w = |x: f32| match a.warp {
-        Warp::Linear | Warp::Sqrt => x,
-        Warp::Log => libm::logf(x),
-        Warp::Cos => -libm::cosf(x),
-        Warp::SqrtCos => -libm::sqrtf(libm::cosf(x).max(0.0)),
-    };
-    let span = w(hi) - w(lo);
-    if !(w(lo).is_finite() && w(hi).is_finite()) {
-        return Err("warped range end not finite in f32");
-    }
-    if !(span.is_finite() && span > 0.0) {
-        return Err("warped span is zero or not finite in f32");
-    }
-    if !((a.count as f32) / span).is_finite() {
-        return Err("index scale n / span overflows f32");
-    }
-    Ok(())
-}
-
 /// Every check of the header alone (docs/lut-format.md §4–§6).
 pub(crate) fn check_header(h: &Header<'_>) -> Result<(), LutError> {
     use LutError::Inconsistent as I;
@@ -176,13 +146,8 @@ pub(crate) fn check_header(h: &Header<'_>) -> Result<(), LutError> {
             }
             _ => {}
         }
-        check_axis_f32(a).map_err(|why| LutError::DegenerateAxis { axis: k as u8, why })?;
-        if Lane::new(a, 1).is_none() {
-            return Err(LutError::DegenerateAxis {
-                axis: k as u8,
-                why: "lookup constants not finite in f32",
-            });
-        }
+        // The f32 rule (docs/lut-format.md §3): the reader's own constants, checked here.
+        Lane::new(a, 1).map_err(|why| LutError::DegenerateAxis { axis: k as u8, why })?;
     }
     for c in h.channels.iter() {
         if !(c.scale.is_finite() && c.offset.is_finite()) {

@@ -100,7 +100,7 @@ impl ErrorAccumulator {
     pub fn finish(&self, samples: u32, seed: u64) -> ErrorStats {
         ErrorStats {
             max_abs: self.max as f32,
-            rms: (self.sum_sq / self.n.max(1) as f64).sqrt() as f32,
+            rms: libm::sqrt(self.sum_sq / self.n.max(1) as f64) as f32,
             samples,
             seed,
         }
@@ -149,8 +149,8 @@ pub fn quantise<'a>(
         for (v, ch) in node.iter().zip(chans.iter()) {
             match spec.encoding {
                 Encoding::Unorm16 => {
-                    let q = ((v - ch.offset as f64) / ch.scale as f64 * 65535.0)
-                        .round()
+                    // libm's round and sqrt are exact like std's, also without std.
+                    let q = libm::round((v - ch.offset as f64) / ch.scale as f64 * 65535.0)
                         .clamp(0.0, 65535.0) as u16;
                     payload.extend_from_slice(&q.to_le_bytes());
                 }
