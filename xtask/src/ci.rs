@@ -157,6 +157,11 @@ const STEPS: &[Step] = &[
         slow: true,
     },
     Step {
+        name: "C ABI: header up to date, C example on QEMU and host, bit-exact",
+        cmd: &["cargo", "xtask", "cffi"],
+        slow: true,
+    },
+    Step {
         name: "firmware on QEMU (micromath, tolerance)",
         cmd: &["cargo", "xtask", "firmware", "--micromath"],
         slow: true,

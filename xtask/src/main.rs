@@ -5,6 +5,7 @@ use clap::{Parser, Subcommand};
 
 mod anchors;
 mod bench;
+mod cffi;
 mod ci;
 mod engine;
 mod eval;
@@ -33,6 +34,9 @@ enum Cmd {
     Bench(bench::Args),
     /// Build the Cortex-M firmware, run it under QEMU and compare with the host.
     Firmware(firmware::FirmwareArgs),
+    /// Check the C header, build the C example for the Cortex-M4F and the host, run both and
+    /// compare bit for bit with the host's Rust values.
+    Cffi(cffi::Args),
     /// Build the WebAssembly module, optimise it and run the Node tests.
     Wasm(wasm::WasmArgs),
     /// Build the web example and run the headless-browser test.
@@ -59,6 +63,7 @@ fn main() {
         Cmd::Firmware(a) => firmware::run(a),
         Cmd::Wasm(a) => wasm::run_cmd(a),
         Cmd::Web(a) => web::run_cmd(a),
+        Cmd::Cffi(a) => cffi::run(a),
         Cmd::Plot(a) => plot::run(a),
     };
     if let Err(e) = res {

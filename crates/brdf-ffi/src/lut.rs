@@ -1,0 +1,478 @@
+//! LUT readers: parse a table (format: docs/lut-format.md) from a byte buffer the caller
+//! owns into a caller-allocated handle, then query it: the modified G (per σ or over σ), the
+//! split-sum (A, B), the directional albedo E(μ, r) and the average albedo E_avg(r), one
+//! value at a time or over caller-owned arrays. All in `f32`, like the tables.
+//!
+//! Parsing validates everything (magic, version, header, sizes, CRC-32) and never reads
+//! past `len`; a query never reads outside the payload. Coordinates outside a table's axes
+//! (including ±∞) are clamped to the axes' ranges; a NaN coordinate gives NaN.
+
+use crate::kernels::BrdfGTermsF32;
+use crate::{
+    handle, rd, wr, BrdfStatus, BRDF_STATUS_BAD_LENGTH, BRDF_STATUS_INVALID_ARGUMENT,
+    BRDF_STATUS_NOT_INITIALISED, BRDF_STATUS_NULL_POINTER, BRDF_STATUS_OK,
+    BRDF_STATUS_TABLE_BAD_MAGIC, BRDF_STATUS_TABLE_BAD_VALUE, BRDF_STATUS_TABLE_CHECKSUM,
+    BRDF_STATUS_TABLE_INCONSISTENT, BRDF_STATUS_TABLE_MALFORMED_HEADER,
+    BRDF_STATUS_TABLE_PAYLOAD_LENGTH, BRDF_STATUS_TABLE_TRUNCATED,
+    BRDF_STATUS_TABLE_UNSUPPORTED_VERSION, BRDF_STATUS_TABLE_WRONG_KIND,
+};
+use brdf_lut::{AlbedoTable, AverageAlbedoTable, DfgTable, GTable, GTable3, LutError};
+
+/// Storage words (8 bytes each) of every table handle.
+pub const BRDF_TABLE_WORDS: usize = 56;
+
+const TAG_G: u64 = 0x4252_4446_4c47_3032;
+const TAG_G3: u64 = 0x4252_4446_4c47_3033;
+const TAG_DFG: u64 = 0x4252_4446_4c44_4647;
+const TAG_E: u64 = 0x4252_4446_4c45_3032;
+const TAG_EAVG: u64 = 0x4252_4446_4c45_4156;
+
+/// A parsed per-σ modified-G table (2-D passing-factor table, reciprocal convention). Fill
+/// it with `brdf_g_table_parse`; the fields are private to the library.
+#[repr(C)]
+pub struct BrdfGTable {
+    tag: u64,
+    storage: [u64; BRDF_TABLE_WORDS],
+}
+handle!(BrdfGTable, GTable<&'static [u8]>, TAG_G);
+
+/// A parsed modified-G table over σ (3-D passing-factor table). Fill it with
+/// `brdf_g_table3_parse`; the fields are private to the library.
+#[repr(C)]
+pub struct BrdfGTable3 {
+    tag: u64,
+    storage: [u64; BRDF_TABLE_WORDS],
+}
+handle!(BrdfGTable3, GTable3<&'static [u8]>, TAG_G3);
+
+/// A parsed split-sum table (A, B) over (μ, roughness). Fill it with `brdf_dfg_table_parse`;
+/// the fields are private to the library.
+#[repr(C)]
+pub struct BrdfDfgTable {
+    tag: u64,
+    storage: [u64; BRDF_TABLE_WORDS],
+}
+handle!(BrdfDfgTable, DfgTable<&'static [u8]>, TAG_DFG);
+
+/// A parsed directional-albedo table E(μ, roughness). Fill it with
+/// `brdf_albedo_table_parse`; the fields are private to the library.
+#[repr(C)]
+pub struct BrdfAlbedoTable {
+    tag: u64,
+    storage: [u64; BRDF_TABLE_WORDS],
+}
+handle!(BrdfAlbedoTable, AlbedoTable<&'static [u8]>, TAG_E);
+
+/// A parsed average-albedo table E_avg(roughness). Fill it with
+/// `brdf_average_albedo_table_parse`; the fields are private to the library.
+#[repr(C)]
+pub struct BrdfAverageAlbedoTable {
+    tag: u64,
+    storage: [u64; BRDF_TABLE_WORDS],
+}
+handle!(
+    BrdfAverageAlbedoTable,
+    AverageAlbedoTable<&'static [u8]>,
+    TAG_EAVG
+);
+
+/// The split-sum pair: specular E = F0·A + F90·B.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BrdfDfgF32 {
+    /// The F0 coefficient A.
+    pub a: f32,
+    /// The F90 coefficient B.
+    pub b: f32,
+}
+
+fn status(e: LutError) -> BrdfStatus {
+    match e {
+        LutError::Truncated => BRDF_STATUS_TABLE_TRUNCATED,
+        LutError::BadMagic => BRDF_STATUS_TABLE_BAD_MAGIC,
+        LutError::UnsupportedVersion { .. } => BRDF_STATUS_TABLE_UNSUPPORTED_VERSION,
+        LutError::MalformedHeader => BRDF_STATUS_TABLE_MALFORMED_HEADER,
+        LutError::Inconsistent(_) => BRDF_STATUS_TABLE_INCONSISTENT,
+        LutError::PayloadLength { .. } => BRDF_STATUS_TABLE_PAYLOAD_LENGTH,
+        LutError::Checksum { .. } => BRDF_STATUS_TABLE_CHECKSUM,
+        LutError::WrongKind { .. } => BRDF_STATUS_TABLE_WRONG_KIND,
+        LutError::NonCanonical => BRDF_STATUS_TABLE_MALFORMED_HEADER,
+        LutError::DegenerateAxis { .. } => BRDF_STATUS_TABLE_INCONSISTENT,
+        LutError::BadValue { .. } => BRDF_STATUS_TABLE_BAD_VALUE,
+        LutError::BadInput(_) => BRDF_STATUS_INVALID_ARGUMENT,
+        // Only the encoder reports this; a reader cannot.
+        LutError::BufferTooSmall => BRDF_STATUS_TABLE_MALFORMED_HEADER,
+    }
+}
+
+/// The caller's buffer as a slice with the handle's (caller-guaranteed) lifetime.
+///
+/// # Safety
+/// `p` valid for `len` reads for as long as the handle is used.
+unsafe fn bytes<'a>(p: *const u8, len: usize) -> Result<&'a [u8], BrdfStatus> {
+    if p.is_null() {
+        return Err(BRDF_STATUS_NULL_POINTER);
+    }
+    if len > isize::MAX as usize {
+        return Err(BRDF_STATUS_BAD_LENGTH);
+    }
+    Ok(core::slice::from_raw_parts(p, len))
+}
+
+/// Shared body of the `*_parse` functions.
+macro_rules! parse_into {
+    ($h:ty, $inner:ident, $out:expr, $p:expr, $len:expr) => {{
+        let out = $out;
+        if out.is_null() {
+            return BRDF_STATUS_NULL_POINTER;
+        }
+        <$h>::clear(out);
+        let b = match bytes($p, $len) {
+            Ok(b) => b,
+            Err(s) => return s,
+        };
+        match $inner::parse(b) {
+            Ok(t) => {
+                <$h>::put(out, t);
+                BRDF_STATUS_OK
+            }
+            Err(e) => status(e),
+        }
+    }};
+}
+
+/// Parses a per-σ modified-G table from `len` bytes at `bytes` into `*out`. The bytes are
+/// borrowed, not copied: keep them alive and unchanged while `*out` is used. Returns
+/// `BRDF_STATUS_OK`, `BRDF_STATUS_NULL_POINTER` (`out` or `bytes` null),
+/// `BRDF_STATUS_BAD_LENGTH`, a `BRDF_STATUS_TABLE_*` code for a corrupt table, or
+/// `BRDF_STATUS_TABLE_WRONG_KIND` for a valid table of another kind; on error `*out` is left
+/// not initialised.
+#[no_mangle]
+pub unsafe extern "C" fn brdf_g_table_parse(
+    out: *mut BrdfGTable,
+    bytes: *const u8,
+    len: usize,
+) -> BrdfStatus {
+    parse_into!(BrdfGTable, GTable, out, bytes, len)
+}
+
+/// The table's σ; NaN when the header does not record it or the handle is bad.
+#[no_mangle]
+pub unsafe extern "C" fn brdf_g_table_sigma(t: *const BrdfGTable) -> f32 {
+    BrdfGTable::get(t).map_or(f32::NAN, |t| t.sigma())
+}
+
+/// GM, GS and G = min(GM, GS) ∈ [0, 1] at in-plane angles in radians (θi ∈ [0, π/2],
+/// θr ∈ [−π/2, π/2] signed; clamped), interpolated in the table. All NaN for a NaN angle or a
+/// null or uninitialised handle.
+#[no_mangle]
+pub unsafe extern "C" fn brdf_g_table_terms(
+    t: *const BrdfGTable,
+    theta_i: f32,
+    theta_r: f32,
+) -> BrdfGTermsF32 {
+    let (gm, gs, g) = BrdfGTable::get(t).map_or((f32::NAN, f32::NAN, f32::NAN), |t| {
+        t.terms(theta_i, theta_r)
+    });
+    BrdfGTermsF32 { gm, gs, g }
+}
+
+/// G ∈ [0, 1] from the table; see `brdf_g_table_terms`.
+#[no_mangle]
+pub unsafe extern "C" fn brdf_g_table_g(t: *const BrdfGTable, theta_i: f32, theta_r: f32) -> f32 {
+    BrdfGTable::get(t).map_or(f32::NAN, |t| t.g(theta_i, theta_r))
+}
+
+/// G ∈ [0, 1] from the dot products n·wi, n·wo, wi·wo of unit vectors (the reciprocal 3-D
+/// extension of the modified G, as `brdf_modified_g_dots_f32`), interpolated in the table.
+/// A direction at or below the horizon gives 0; NaN for a non-finite dot product or a bad
+/// handle.
+#[no_mangle]
+pub unsafe extern "C" fn brdf_g_table_g_dots(
+    t: *const BrdfGTable,
+    n_i: f32,
+    n_o: f32,
+    i_o: f32,
+) -> f32 {
+    match BrdfGTable::get(t) {
+        Some(t) if n_i.is_finite() && n_o.is_finite() && i_o.is_finite() => t.g_dots(n_i, n_o, i_o),
+        _ => f32::NAN,
+    }
+}
+
+/// `out[k] = brdf_g_table_g(t, theta_i[k], theta_r[k])` for k < n. Returns
+/// `BRDF_STATUS_NOT_INITIALISED` (bad handle), `BRDF_STATUS_NULL_POINTER` (an array null with
+/// n > 0), `BRDF_STATUS_BAD_LENGTH` (n too large) — writing nothing — or `BRDF_STATUS_OK`.
+/// `out` may alias an input.
+#[no_mangle]
+pub unsafe extern "C" fn brdf_g_table_g_batch(
+    t: *const BrdfGTable,
+    theta_i: *const f32,
+    theta_r: *const f32,
+    out: *mut f32,
+    n: usize,
+) -> BrdfStatus {
+    let Some(t) = BrdfGTable::get(t) else {
+        return BRDF_STATUS_NOT_INITIALISED;
+    };
+    let s = crate::check_arrays(&[theta_i.is_null(), theta_r.is_null(), out.is_null()], n, 4);
+    if s != BRDF_STATUS_OK {
+        return s;
+    }
+    for k in 0..n {
+        wr(out, k, t.g(rd(theta_i, k), rd(theta_r, k)));
+    }
+    BRDF_STATUS_OK
+}
+
+/// Parses a modified-G table over σ (3-D); contract as for `brdf_g_table_parse`.
+#[no_mangle]
+pub unsafe extern "C" fn brdf_g_table3_parse(
+    out: *mut BrdfGTable3,
+    bytes: *const u8,
+    len: usize,
+) -> BrdfStatus {
+    parse_into!(BrdfGTable3, GTable3, out, bytes, len)
+}
+
+/// Writes the table's σ range to `*lo` and `*hi` (queries outside it are clamped). Returns
+/// `BRDF_STATUS_OK`, `BRDF_STATUS_NULL_POINTER` (`lo` or `hi` null) or
+/// `BRDF_STATUS_NOT_INITIALISED`.
+#[no_mangle]
+pub unsafe extern "C" fn brdf_g_table3_sigma_range(
+    t: *const BrdfGTable3,
+    lo: *mut f32,
+    hi: *mut f32,
+) -> BrdfStatus {
+    let Some(t) = BrdfGTable3::get(t) else {
+        return BRDF_STATUS_NOT_INITIALISED;
+    };
+    if lo.is_null() || hi.is_null() {
+        return BRDF_STATUS_NULL_POINTER;
+    }
+    let (a, b) = t.sigma_range();
+    lo.write_unaligned(a);
+    hi.write_unaligned(b);
+    BRDF_STATUS_OK
+}
+
+/// GM, GS and G ∈ [0, 1] at in-plane angles (radians, clamped) and RMS slope σ (clamped to
+/// the table's range). All NaN for NaN input or a bad handle.
+#[no_mangle]
+pub unsafe extern "C" fn brdf_g_table3_terms(
+    t: *const BrdfGTable3,
+    theta_i: f32,
+    theta_r: f32,
+    sigma: f32,
+) -> BrdfGTermsF32 {
+    let (gm, gs, g) = BrdfGTable3::get(t).map_or((f32::NAN, f32::NAN, f32::NAN), |t| {
+        t.terms(theta_i, theta_r, sigma)
+    });
+    BrdfGTermsF32 { gm, gs, g }
+}
+
+/// G ∈ [0, 1] from the 3-D table; see `brdf_g_table3_terms`.
+#[no_mangle]
+pub unsafe extern "C" fn brdf_g_table3_g(
+    t: *const BrdfGTable3,
+    theta_i: f32,
+    theta_r: f32,
+    sigma: f32,
+) -> f32 {
+    BrdfGTable3::get(t).map_or(f32::NAN, |t| t.g(theta_i, theta_r, sigma))
+}
+
+/// G ∈ [0, 1] from dot products (see `brdf_g_table_g_dots`) at RMS slope σ (clamped to the
+/// table's range); NaN for non-finite input or a bad handle.
+#[no_mangle]
+pub unsafe extern "C" fn brdf_g_table3_g_dots(
+    t: *const BrdfGTable3,
+    n_i: f32,
+    n_o: f32,
+    i_o: f32,
+    sigma: f32,
+) -> f32 {
+    match BrdfGTable3::get(t) {
+        Some(t) if n_i.is_finite() && n_o.is_finite() && i_o.is_finite() && !sigma.is_nan() => {
+            t.g_dots(n_i, n_o, i_o, sigma)
+        }
+        _ => f32::NAN,
+    }
+}
+
+/// `out[k] = brdf_g_table3_g(t, theta_i[k], theta_r[k], sigma[k])` for k < n; status codes
+/// as for `brdf_g_table_g_batch`.
+#[no_mangle]
+pub unsafe extern "C" fn brdf_g_table3_g_batch(
+    t: *const BrdfGTable3,
+    theta_i: *const f32,
+    theta_r: *const f32,
+    sigma: *const f32,
+    out: *mut f32,
+    n: usize,
+) -> BrdfStatus {
+    let Some(t) = BrdfGTable3::get(t) else {
+        return BRDF_STATUS_NOT_INITIALISED;
+    };
+    let s = crate::check_arrays(
+        &[
+            theta_i.is_null(),
+            theta_r.is_null(),
+            sigma.is_null(),
+            out.is_null(),
+        ],
+        n,
+        4,
+    );
+    if s != BRDF_STATUS_OK {
+        return s;
+    }
+    for k in 0..n {
+        wr(out, k, t.g(rd(theta_i, k), rd(theta_r, k), rd(sigma, k)));
+    }
+    BRDF_STATUS_OK
+}
+
+/// Parses a split-sum table; contract as for `brdf_g_table_parse`.
+#[no_mangle]
+pub unsafe extern "C" fn brdf_dfg_table_parse(
+    out: *mut BrdfDfgTable,
+    bytes: *const u8,
+    len: usize,
+) -> BrdfStatus {
+    parse_into!(BrdfDfgTable, DfgTable, out, bytes, len)
+}
+
+/// (A, B) at μ = n·v ∈ [0, 1] and roughness (perceptual r for GGX tables, σ for
+/// Torrance–Sparrow tables; the table's header says which), both clamped to the table's
+/// axes. Both NaN for NaN input or a bad handle.
+#[no_mangle]
+pub unsafe extern "C" fn brdf_dfg_table_ab(
+    t: *const BrdfDfgTable,
+    mu: f32,
+    roughness: f32,
+) -> BrdfDfgF32 {
+    let (a, b) = BrdfDfgTable::get(t).map_or((f32::NAN, f32::NAN), |t| t.ab(mu, roughness));
+    BrdfDfgF32 { a, b }
+}
+
+/// `a_out[k], b_out[k] = brdf_dfg_table_ab(t, mu[k], roughness[k])` for k < n; status codes
+/// as for `brdf_g_table_g_batch`. Outputs may alias inputs (not each other).
+#[no_mangle]
+pub unsafe extern "C" fn brdf_dfg_table_ab_batch(
+    t: *const BrdfDfgTable,
+    mu: *const f32,
+    roughness: *const f32,
+    a_out: *mut f32,
+    b_out: *mut f32,
+    n: usize,
+) -> BrdfStatus {
+    let Some(t) = BrdfDfgTable::get(t) else {
+        return BRDF_STATUS_NOT_INITIALISED;
+    };
+    let s = crate::check_arrays(
+        &[
+            mu.is_null(),
+            roughness.is_null(),
+            a_out.is_null(),
+            b_out.is_null(),
+        ],
+        n,
+        4,
+    );
+    if s != BRDF_STATUS_OK {
+        return s;
+    }
+    for k in 0..n {
+        let (a, b) = t.ab(rd(mu, k), rd(roughness, k));
+        wr(a_out, k, a);
+        wr(b_out, k, b);
+    }
+    BRDF_STATUS_OK
+}
+
+/// Parses a directional-albedo table E(μ, r); contract as for `brdf_g_table_parse`.
+#[no_mangle]
+pub unsafe extern "C" fn brdf_albedo_table_parse(
+    out: *mut BrdfAlbedoTable,
+    bytes: *const u8,
+    len: usize,
+) -> BrdfStatus {
+    parse_into!(BrdfAlbedoTable, AlbedoTable, out, bytes, len)
+}
+
+/// E(μ, r) ∈ [0, 1] (F = 1) at μ = n·v and roughness, clamped to the table's axes; NaN for
+/// NaN input or a bad handle.
+#[no_mangle]
+pub unsafe extern "C" fn brdf_albedo_table_e(
+    t: *const BrdfAlbedoTable,
+    mu: f32,
+    roughness: f32,
+) -> f32 {
+    BrdfAlbedoTable::get(t).map_or(f32::NAN, |t| t.e(mu, roughness))
+}
+
+/// `out[k] = brdf_albedo_table_e(t, mu[k], roughness[k])` for k < n; status codes as for
+/// `brdf_g_table_g_batch`.
+#[no_mangle]
+pub unsafe extern "C" fn brdf_albedo_table_e_batch(
+    t: *const BrdfAlbedoTable,
+    mu: *const f32,
+    roughness: *const f32,
+    out: *mut f32,
+    n: usize,
+) -> BrdfStatus {
+    let Some(t) = BrdfAlbedoTable::get(t) else {
+        return BRDF_STATUS_NOT_INITIALISED;
+    };
+    let s = crate::check_arrays(&[mu.is_null(), roughness.is_null(), out.is_null()], n, 4);
+    if s != BRDF_STATUS_OK {
+        return s;
+    }
+    for k in 0..n {
+        wr(out, k, t.e(rd(mu, k), rd(roughness, k)));
+    }
+    BRDF_STATUS_OK
+}
+
+/// Parses an average-albedo table E_avg(r); contract as for `brdf_g_table_parse`.
+#[no_mangle]
+pub unsafe extern "C" fn brdf_average_albedo_table_parse(
+    out: *mut BrdfAverageAlbedoTable,
+    bytes: *const u8,
+    len: usize,
+) -> BrdfStatus {
+    parse_into!(BrdfAverageAlbedoTable, AverageAlbedoTable, out, bytes, len)
+}
+
+/// E_avg(r) = 2∫₀¹ E(μ, r) μ dμ at roughness r, clamped to the table's axis; NaN for NaN
+/// input or a bad handle.
+#[no_mangle]
+pub unsafe extern "C" fn brdf_average_albedo_table_e_avg(
+    t: *const BrdfAverageAlbedoTable,
+    roughness: f32,
+) -> f32 {
+    BrdfAverageAlbedoTable::get(t).map_or(f32::NAN, |t| t.e_avg(roughness))
+}
+
+/// `out[k] = brdf_average_albedo_table_e_avg(t, roughness[k])` for k < n; status codes as
+/// for `brdf_g_table_g_batch`.
+#[no_mangle]
+pub unsafe extern "C" fn brdf_average_albedo_table_e_avg_batch(
+    t: *const BrdfAverageAlbedoTable,
+    roughness: *const f32,
+    out: *mut f32,
+    n: usize,
+) -> BrdfStatus {
+    let Some(t) = BrdfAverageAlbedoTable::get(t) else {
+        return BRDF_STATUS_NOT_INITIALISED;
+    };
+    let s = crate::check_arrays(&[roughness.is_null(), out.is_null()], n, 4);
+    if s != BRDF_STATUS_OK {
+        return s;
+    }
+    for k in 0..n {
+        wr(out, k, t.e_avg(rd(roughness, k)));
+    }
+    BRDF_STATUS_OK
+}

@@ -1,0 +1,237 @@
+//! The C ABI called from Rust: values against closed forms, handle semantics, table status
+//! codes. (The C program in examples/c checks the same contract from C, on the device and
+//! the host; `cargo xtask cffi` runs it.)
+
+use brdf_ffi::*;
+use std::mem::MaybeUninit;
+
+fn modified(sigma: f32, conv: BrdfConvention) -> Box<BrdfModifiedGF32> {
+    let mut h = Box::new(MaybeUninit::<BrdfModifiedGF32>::uninit());
+    let st = unsafe { brdf_modified_g_init_f32(h.as_mut_ptr(), sigma, conv) };
+    assert_eq!(st, BRDF_STATUS_OK);
+    unsafe { Box::from_raw(Box::into_raw(h).cast()) }
+}
+
+#[test]
+fn smith_ggx_g1_matches_its_closed_form() {
+    // G1 = 2/(1 + √(1 + α² tan²θ)) (Smith masking for the Trowbridge–Reitz distribution).
+    // Tolerance: a few f32 roundings of a value in [0, 1].
+    for &(c, a) in &[(0.9f64, 0.1f64), (0.5, 0.3), (0.2, 0.8), (0.05, 0.5)] {
+        let t2 = (1.0 - c * c) / (c * c);
+        let want = 2.0 / (1.0 + (1.0 + a * a * t2).sqrt());
+        let got = brdf_g1_smith_f32(BRDF_SMITH_GGX, c as f32, a as f32) as f64;
+        assert!((got - want).abs() < 4e-7, "{c} {a}: {got} vs {want}");
+        let got64 = brdf_g1_smith_f64(BRDF_SMITH_GGX, c, a);
+        assert!((got64 - want).abs() < 1e-15);
+    }
+}
+
+#[test]
+fn blinn_matches_eq_4_at_a_pair_worked_by_hand() {
+    // θi = 0, θr = 60°: α = 30°, β = 30°; 2 cos α cos θr / cos β = 2 cos 60° = 1, and
+    // 2 cos α cos θi / cos β = 2: G = min(1, 1, 2) = 1. At θr = 80°: α = β = 40°,
+    // 2 cos 80° = 0.347296…
+    let g = brdf_g_blinn_f64(0.0, 80f64.to_radians());
+    assert!((g - 2.0 * 80f64.to_radians().cos()).abs() < 1e-15);
+    assert!((brdf_g_blinn_f32(0.0, 60f32.to_radians()) - 1.0).abs() < 2e-7);
+}
+
+#[test]
+fn modified_g_is_one_at_normal_incidence_and_f32_tracks_f64() {
+    let g = modified(0.3, BRDF_CONVENTION_RECIPROCAL);
+    let mut g64 = MaybeUninit::<BrdfModifiedGF64>::uninit();
+    assert_eq!(
+        unsafe { brdf_modified_g_init_f64(g64.as_mut_ptr(), 0.3, BRDF_CONVENTION_RECIPROCAL) },
+        BRDF_STATUS_OK
+    );
+    // M(0, a) = 1 exactly (the fully passing integral covers the whole density, eq 6).
+    assert_eq!(unsafe { brdf_modified_g_f32(&*g, 0.0, 0.0) }, 1.0);
+    // The f32 instantiation against the f64 one: quadrature in f32 over ~16 nodes, 1e-5.
+    for &(ti, tr) in &[(0.3f32, 0.5f32), (1.2, -0.9), (0.7, 1.4)] {
+        let a = unsafe { brdf_modified_g_f32(&*g, ti, tr) } as f64;
+        let b = unsafe { brdf_modified_g_f64(g64.as_ptr(), ti as f64, tr as f64) };
+        assert!((a - b).abs() < 1e-5, "{ti} {tr}: {a} vs {b}");
+        assert!((0.0..=1.0).contains(&b));
+    }
+}
+
+#[test]
+fn handles_refuse_null_zeroed_failed_and_foreign_handles() {
+    let zero = MaybeUninit::<BrdfModifiedGF32>::zeroed();
+    assert!(unsafe { brdf_modified_g_f32(zero.as_ptr(), 0.1, 0.1) }.is_nan());
+    assert!(unsafe { brdf_modified_g_f32(std::ptr::null(), 0.1, 0.1) }.is_nan());
+    let mut g = *modified(0.3, BRDF_CONVENTION_PRINTED);
+    // A failed re-init clears a valid handle.
+    assert_eq!(
+        unsafe { brdf_modified_g_init_f32(&mut g, f32::NAN, 0) },
+        BRDF_STATUS_INVALID_ARGUMENT
+    );
+    assert!(unsafe { brdf_modified_g_f32(&g, 0.1, 0.1) }.is_nan());
+    // The handle of a GGX surface is not a modified-G handle.
+    let mut gx = MaybeUninit::<BrdfGgxF32>::uninit();
+    let f0 = BrdfRgbF32 {
+        r: 0.04,
+        g: 0.04,
+        b: 0.04,
+    };
+    assert_eq!(
+        unsafe { brdf_ggx_init_f32(gx.as_mut_ptr(), f0, 0.3, BRDF_SMITH_FORM_CORRELATED) },
+        BRDF_STATUS_OK
+    );
+    let foreign = gx.as_ptr().cast::<BrdfModifiedGF32>();
+    assert!(unsafe { brdf_modified_g_f32(foreign, 0.1, 0.1) }.is_nan());
+}
+
+#[test]
+fn a_copied_handle_answers_like_the_original() {
+    let g = modified(0.6, BRDF_CONVENTION_RECIPROCAL);
+    let mut copy = MaybeUninit::<BrdfModifiedGF32>::uninit();
+    unsafe {
+        std::ptr::copy_nonoverlapping(&*g, copy.as_mut_ptr(), 1);
+        let a = brdf_modified_g_dots_f32(&*g, 0.4, 0.8, 0.1);
+        let b = brdf_modified_g_dots_f32(copy.as_ptr(), 0.4, 0.8, 0.1);
+        assert_eq!(a.to_bits(), b.to_bits());
+    }
+}
+
+#[test]
+fn batch_checks_arrays_and_allows_in_place_output() {
+    let g = modified(0.3, BRDF_CONVENTION_RECIPROCAL);
+    let (ni, no, io) = ([0.9f32, 0.5, 0.3], [0.7f32, 0.5, 0.95], [0.5f32, 0.2, 0.1]);
+    let mut buf = io;
+    unsafe {
+        let p = buf.as_mut_ptr();
+        assert_eq!(
+            brdf_modified_g_dots_batch_f32(&*g, ni.as_ptr(), no.as_ptr(), p, p, 3),
+            BRDF_STATUS_OK
+        );
+        for k in 0..3 {
+            let single = brdf_modified_g_dots_f32(&*g, ni[k], no[k], io[k]);
+            assert_eq!(buf[k].to_bits(), single.to_bits());
+        }
+        let o = buf.as_mut_ptr();
+        assert_eq!(
+            brdf_modified_g_dots_batch_f32(&*g, ni.as_ptr(), std::ptr::null(), io.as_ptr(), o, 3),
+            BRDF_STATUS_NULL_POINTER
+        );
+        assert_eq!(
+            brdf_modified_g_dots_batch_f32(
+                &*g,
+                ni.as_ptr(),
+                no.as_ptr(),
+                io.as_ptr(),
+                o,
+                usize::MAX
+            ),
+            BRDF_STATUS_BAD_LENGTH
+        );
+    }
+}
+
+fn asset(name: &str) -> &'static [u8] {
+    let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../assets")
+        .join(name);
+    Box::leak(std::fs::read(p).unwrap().into_boxed_slice())
+}
+
+#[test]
+fn table_status_codes_follow_the_format() {
+    let bytes = asset("kc_eavg_ggx.blut");
+    let mut t = MaybeUninit::<BrdfAverageAlbedoTable>::uninit();
+    let parse = |t: &mut MaybeUninit<BrdfAverageAlbedoTable>, b: &[u8]| unsafe {
+        brdf_average_albedo_table_parse(t.as_mut_ptr(), b.as_ptr(), b.len())
+    };
+    assert_eq!(parse(&mut t, bytes), BRDF_STATUS_OK);
+    // E_avg = 2∫ E μ dμ ∈ (0, 1] for F = 1 (energy conservation), and falls with roughness.
+    let (smooth, rough) = unsafe {
+        (
+            brdf_average_albedo_table_e_avg(t.as_ptr(), 0.05),
+            brdf_average_albedo_table_e_avg(t.as_ptr(), 1.0),
+        )
+    };
+    assert!(smooth <= 1.0 + 1e-3 && rough > 0.0 && rough < smooth);
+    let mut bad = bytes.to_vec();
+    *bad.last_mut().unwrap() ^= 1;
+    assert_eq!(parse(&mut t, &bad), BRDF_STATUS_TABLE_CHECKSUM);
+    assert!(unsafe { brdf_average_albedo_table_e_avg(t.as_ptr(), 0.5) }.is_nan());
+    assert_eq!(
+        parse(&mut t, &bytes[..bytes.len() - 1]),
+        BRDF_STATUS_TABLE_PAYLOAD_LENGTH
+    );
+    assert_eq!(parse(&mut t, &bytes[..2]), BRDF_STATUS_TABLE_TRUNCATED);
+    assert_eq!(parse(&mut t, b"NOPE...."), BRDF_STATUS_TABLE_BAD_MAGIC);
+    let mut g = MaybeUninit::<BrdfGTable>::uninit();
+    assert_eq!(
+        unsafe { brdf_g_table_parse(g.as_mut_ptr(), bytes.as_ptr(), bytes.len()) },
+        BRDF_STATUS_TABLE_WRONG_KIND
+    );
+    assert_eq!(
+        unsafe { brdf_g_table_parse(g.as_mut_ptr(), std::ptr::null(), 0) },
+        BRDF_STATUS_NULL_POINTER
+    );
+}
+
+#[test]
+fn g_table_agrees_with_the_direct_g_within_its_stated_error() {
+    // The table's header states its interpolation error (max |ΔG| over random points,
+    // 9.8e-4 or less for the committed G tables); allow twice that.
+    let bytes = asset("g_modified_sigma0.3.blut");
+    let mut t = MaybeUninit::<BrdfGTable>::uninit();
+    assert_eq!(
+        unsafe { brdf_g_table_parse(t.as_mut_ptr(), bytes.as_ptr(), bytes.len()) },
+        BRDF_STATUS_OK
+    );
+    let g = modified(0.3, BRDF_CONVENTION_RECIPROCAL);
+    assert_eq!(unsafe { brdf_g_table_sigma(t.as_ptr()) }, 0.3);
+    for &(ti, tr) in &[(0.2f32, 0.4f32), (1.0, -0.7), (0.6, 1.3), (1.4, 1.4)] {
+        let a = unsafe { brdf_g_table_g(t.as_ptr(), ti, tr) };
+        let b = unsafe { brdf_modified_g_f32(&*g, ti, tr) };
+        assert!((a - b).abs() < 2e-3, "{ti} {tr}: table {a}, direct {b}");
+    }
+}
+
+#[test]
+fn every_status_has_a_name() {
+    for s in -1..=20 {
+        let p = brdf_status_str(s);
+        assert!(!p.is_null());
+        let name = unsafe { std::ffi::CStr::from_ptr(p) }.to_str().unwrap();
+        assert!(!name.is_empty());
+    }
+    assert_eq!(brdf_abi_version(), BRDF_ABI_VERSION);
+}
+
+#[test]
+fn g_table_over_sigma_agrees_with_the_direct_g_within_its_stated_error() {
+    // The 3-D table states max |ΔG| = 4.0e-4 over random points (README table); the direct
+    // f32 G adds ~1e-5. Allowed: 2e-3.
+    let bytes = asset("g_modified.blut");
+    let mut t = MaybeUninit::<BrdfGTable3>::uninit();
+    assert_eq!(
+        unsafe { brdf_g_table3_parse(t.as_mut_ptr(), bytes.as_ptr(), bytes.len()) },
+        BRDF_STATUS_OK
+    );
+    let (mut lo, mut hi) = (0f32, 0f32);
+    assert_eq!(
+        unsafe { brdf_g_table3_sigma_range(t.as_ptr(), &mut lo, &mut hi) },
+        BRDF_STATUS_OK
+    );
+    assert!(lo < 0.3 && 0.6 < hi);
+    for &s in &[0.3f32, 0.6] {
+        let g = modified(s, BRDF_CONVENTION_RECIPROCAL);
+        for &(ti, tr) in &[(0.2f32, 0.4f32), (1.0, -0.7), (0.6, 1.3)] {
+            let a = unsafe { brdf_g_table3_g(t.as_ptr(), ti, tr, s) };
+            let b = unsafe { brdf_modified_g_f32(&*g, ti, tr) };
+            assert!(
+                (a - b).abs() < 2e-3,
+                "σ {s} {ti} {tr}: table {a}, direct {b}"
+            );
+        }
+        let (ni, no, io) = (0.8f32, 0.6f32, 0.3f32);
+        let a = unsafe { brdf_g_table3_g_dots(t.as_ptr(), ni, no, io, s) };
+        let b = unsafe { brdf_modified_g_dots_f32(&*g, ni, no, io) };
+        assert!((a - b).abs() < 2e-3, "σ {s} dots: table {a}, direct {b}");
+    }
+    assert!(unsafe { brdf_g_table3_g(t.as_ptr(), f32::NAN, 0.1, 0.3) }.is_nan());
+}
