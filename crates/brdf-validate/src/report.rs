@@ -155,7 +155,7 @@ fn markdown(
     }
     let _ = writeln!(
         m,
-        "\n**G.** G(θi, θr) is the fraction of the facets with tilt α = (θr − θi)/2 (slope −tan α; conventions.md §1) \
+        "\n**G.** G(θi, θr) is the fraction of the facets with tilt α = (θr − θi)/2 (slope −tan α; docs/conventions.md §1) \
          that are both lit and seen. Each sample picks a facet uniformly, conditions the Gaussian profile on that facet \
          having exactly the required slope (adding k_m·(s − d) around it, k_m = cov(h_m, d)/var(d), which is an exact \
          sample of the conditioned process), picks a point uniformly along the facet and traces one ray to the light \
@@ -435,7 +435,7 @@ fn markdown(
 fn defects(m: &mut String, sweeps: &[Sweep], fig6: &Sweep, fig7: &Sweep, brdf_rows: &[BrdfRow]) {
     let _ = writeln!(m, "## 5. Defects of the sources, with evidence\n");
     // eq 12.
-    let _ = writeln!(m, "**Eq 12's sign (paper).** As printed, the shadowing term uses the same tilt α as the masking term (GS = M(θi, α)); the geometry of Fig. 5 needs the tilt toward the light, −α (conventions.md §4).\n");
+    let _ = writeln!(m, "**Eq 12's sign (paper).** As printed, the shadowing term uses the same tilt α as the masking term (GS = M(θi, α)); the geometry of Fig. 5 needs the tilt toward the light, −α (docs/conventions.md §4).\n");
     let mut asym = Vec::new();
     for sw in sweeps {
         let (mut ap, mut ar) = (0.0f64, 0.0f64);
