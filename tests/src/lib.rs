@@ -3,7 +3,7 @@
 //! The references here are deliberately built by a different route from the kernels: the
 //! kernels integrate in the working variable v = tan γ/(√2σ) with a fixed Gauss–Legendre
 //! rule; the references integrate the paper's formulas as printed (in γ, eqs 5–11 with the
-//! readings of docs/conventions.md) with adaptive Gauss–Kronrod to 1e-13.
+//! readings of docs/conventions.md §§2–3) with adaptive Gauss–Kronrod to 1e-13.
 
 pub mod anchors;
 pub mod reference;

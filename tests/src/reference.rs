@@ -129,7 +129,7 @@ impl RefDensity {
             1e-14 * self.mass,
         ) / self.mass
     }
-    /// M(θ, a) straight from conventions.md §3 (eqs 6–11 with r = eq 9 × cos θ).
+    /// M(θ, a) straight from docs/conventions.md §3 (eqs 6–11 with r = eq 9 × cos θ).
     pub fn passing(&self, theta: f64, a: f64) -> f64 {
         if theta == 0.0 {
             return 1.0;
@@ -144,7 +144,7 @@ impl RefDensity {
         let cb = (theta - a).cos();
         full + self.integral(lo, hi, |g| (cb + (g + theta).cos()) / cb)
     }
-    /// (GM, GS, G) in the reciprocal convention (conventions.md §4).
+    /// (GM, GS, G) in the reciprocal convention (docs/conventions.md §4).
     pub fn g_reciprocal(&self, ti: f64, tr: f64) -> (f64, f64, f64) {
         let alpha = 0.5 * (tr - ti);
         let gm = if tr == 0.0 {

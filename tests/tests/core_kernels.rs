@@ -202,7 +202,7 @@ fn torrance_sparrow_matches_eq3_and_is_reciprocal() {
         for i in 1..=17 {
             for j in -17..=17 {
                 let (ti, tr) = (i as f64 * 5.0 * DEG, j as f64 * 5.0 * DEG);
-                // Eq 3 (conventions.md §5) in the paper's angles: α = (θr−θi)/2.
+                // Eq 3 (docs/conventions.md §5) in the paper's angles: α = (θr−θi)/2.
                 let alpha = 0.5 * (tr - ti);
                 let d = (-(alpha.tan().powi(2)) / (2.0 * sigma * sigma)).exp()
                     / (2.0 * PI * sigma * sigma * alpha.cos().powi(4));

@@ -1,9 +1,9 @@
 //! The paper's modified G against an independent high-accuracy reference, and the properties
-//! of conventions.md §4.
+//! of docs/conventions.md §4.
 //!
 //! Reference: `brdf_tests::reference::RefDensity` integrates eqs 5–11 in γ, as printed (with
-//! the readings of conventions.md), by adaptive Gauss–Kronrod to ~1e-14. The kernel integrates
-//! in v = tan γ/(√2σ) with a fixed Gauss–Legendre rule; the two share no code.
+//! the readings of docs/conventions.md §§2–3), by adaptive Gauss–Kronrod to ~1e-14. The kernel
+//! integrates in v = tan γ/(√2σ) with a fixed Gauss–Legendre rule; the two share no code.
 
 use brdf_core::masking::{Convention, ModifiedG};
 use brdf_core::quadrature::{GaussLegendre, Rule};
@@ -207,7 +207,8 @@ fn range_and_normal_incidence() {
 }
 
 /// Reciprocity in the default convention: swapping light and viewer maps (θi, θr) to
-/// (|θr|, sign(θr)·θi). The printed eq 12 breaks it (conventions.md §4: up to ≈ 0.39).
+/// (|θr|, sign(θr)·θi). The printed eq 12 breaks it (docs/conventions.md §4; its table of
+/// departures gives the measured size).
 #[test]
 fn reciprocal_convention_is_reciprocal_printed_is_not() {
     let mut worst_printed = 0f64;

@@ -1,6 +1,6 @@
 //! The committed split-sum asset against the engines' published tables (fetched by
 //! `cargo xtask anchors` into `.cache/anchors/`, or read from `../shared/anchors/`; layouts and
-//! the engines' own error bounds are described in docs/conventions.md), and Karis' legacy
+//! the engines' own error bounds are described in docs/conventions.md §8), and Karis' legacy
 //! table against the direct kernel of its own (Schlick–GGX) model.
 //!
 //! The Khronos, three.js and Bevy tables are required (a missing file fails the test, naming
@@ -80,7 +80,7 @@ fn khronos_lut_ggx() {
         "khronos: |dA| mu>=0.25 {a25:.5}, >=0.125 {a125:.5}, all {a0:.5}; |dB| {:.5}",
         d.b
     );
-    // The bounds measured against a converged quadrature (docs/conventions.md, "Published
+    // The bounds measured against a converged quadrature (docs/conventions.md §8, "Published
     // tables"), plus ½ LSB for our own table error and 8-bit rounding slack.
     let slack = 0.5 / 255.0;
     assert!(d.b <= 0.65 / 255.0 + slack);
@@ -173,7 +173,7 @@ fn filament_dfg_dds() {
         d.max_a(0.1),
         d.b
     );
-    // docs/conventions.md gives no bound against a converged integral for Filament's 1024-sample
+    // docs/conventions.md §8 gives no bound against a converged integral for Filament's 1024-sample
     // table (only its agreement with Filament's own generator); we bound it by twice the
     // all-μ bound of the other 64-texel f16 table (Bevy). Measured here: |dA| ≈ 0.009,
     // |dB| ≈ 0.0016 (Filament's Monte-Carlo noise and its shifted roughness rows).
@@ -217,6 +217,6 @@ fn karis_legacy_png_vs_its_model() {
         max * 255.0
     );
     assert!(mean <= 1.0 / 255.0);
-    // docs/conventions.md: "up to ~9/255 at grazing"; the sampled texels reach 11.6/255.
+    // docs/conventions.md §8: "up to ~9/255 at grazing"; the sampled texels reach 11.6/255.
     assert!(max <= 12.0 / 255.0);
 }

@@ -128,7 +128,7 @@ fn speed_tier_g_tables_meet_their_accuracy_at_fresh_points() {
     assert!(worst <= 1e-4);
 }
 
-/// GM = F(|θr|, sgn θr · θi), GS = F(θi, θr) through the general reader (conventions.md §4),
+/// GM = F(|θr|, sgn θr · θi), GS = F(θi, θr) through the general reader (docs/conventions.md §4),
 /// written out here independently of `GTable`.
 fn g_by_general_reader(v: &LutView<'_>, ti: f32, tr: f32, sigma: f32) -> (f32, f32) {
     let ti = ti.clamp(0.0, FRAC_PI_2 as f32);

@@ -1,4 +1,4 @@
-//! The physical-plausibility suite of the reflection models (issue 3).
+//! The physical-plausibility suite of the reflection models.
 //!
 //! * Chi-square goodness of fit of every sampler against its own pdf (histogram over the
 //!   whole sphere; expected counts from adaptive integration of the pdf per cell; cells with

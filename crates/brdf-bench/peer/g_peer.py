@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """The benchmark peer: the paper's modified G computed the way a researcher would without
-this project, straight from the formulas (conventions.md sections 2-4) with SciPy's adaptive
+this project, straight from the formulas (docs/conventions.md sections 2-4) with SciPy's adaptive
 quadrature (scipy.integrate.quad, default tolerances).
 
   p(g)   = C / (2 pi s^2 cos^3 g) * exp(-tan^2 g / (2 s^2)),  int p dg = 1 on [-pi/2, pi/2]
@@ -47,7 +47,7 @@ def density(sigma):
 
 
 def passing(p, t, a):
-    """M(t, a), conventions.md section 3 (limits clamped to [-pi/2, pi/2])."""
+    """M(t, a), docs/conventions.md section 3 (limits clamped to [-pi/2, pi/2])."""
     if t == 0.0:
         return 1.0
     lo = max(-HALF_PI, min(HALF_PI, HALF_PI - t))
@@ -61,7 +61,7 @@ def passing(p, t, a):
 
 
 def g_modified(p, ti, tr):
-    """G = min(GM, GS), reciprocal convention (conventions.md section 4)."""
+    """G = min(GM, GS), reciprocal convention (docs/conventions.md section 4)."""
     alpha = 0.5 * (tr - ti)
     gm = 1.0 if tr == 0.0 else passing(p, abs(tr), math.copysign(1.0, tr) * alpha)
     gs = passing(p, ti, -alpha)

@@ -127,6 +127,7 @@ fn map2_sqrt<T: BatchReal>(
 
 /// Why a batch call was refused (nothing is written).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum BatchError {
     /// An input or output slice has a length different from the first input's.
     LengthMismatch {
@@ -212,7 +213,7 @@ impl<T: Real> Vec3Soa<'_, T> {
     }
 }
 
-/// The paper's modified G = min(GM, GS) (eqs 6–13, conventions.md §4) from in-plane angles
+/// The paper's modified G = min(GM, GS) (eqs 6–13, docs/conventions.md §4) from in-plane angles
 /// in radians (θi ∈ [0, π/2], θr ∈ [−π/2, π/2] signed): `out[k] = g.g(theta_i[k], theta_r[k])`.
 pub fn g_modified<T: Real, R: Rule>(
     g: &ModifiedG<T, R>,
@@ -251,7 +252,7 @@ pub fn g_blinn_dots<T: Real>(d: DotsSoa<'_, T>, out: &mut [T]) -> Result<(), Bat
     Ok(())
 }
 
-/// Height-correlated Smith–Beckmann G = 1/(1 + Λ(θi) + Λ(θo)) (conventions.md §6) for
+/// Height-correlated Smith–Beckmann G = 1/(1 + Λ(θi) + Λ(θo)) (docs/conventions.md §6) for
 /// Beckmann roughness `m` = √2σ, from the cosines n·wi and n·wo.
 pub fn g_smith_beckmann_correlated<T: Real>(
     cos_i: &[T],
@@ -299,7 +300,7 @@ pub fn g_smith_ggx_correlated<T: BatchReal>(
 }
 
 /// Height-correlated Smith–GGX visibility V = G/(4 cos θi cos θo) in its grazing-safe
-/// closed form ([`masking::v_smith_ggx_correlated`], conventions.md §8), in 1 (unitless),
+/// closed form ([`masking::v_smith_ggx_correlated`], docs/conventions.md §8), in 1 (unitless),
 /// from the scalar kernel's own pieces.
 pub fn v_smith_ggx_correlated<T: BatchReal>(
     cos_i: &[T],
@@ -322,7 +323,7 @@ pub fn v_smith_ggx_correlated<T: BatchReal>(
     Ok(())
 }
 
-/// The Torrance–Sparrow BRDF (paper eq 3, conventions.md §5) from dot products, in 1/sr:
+/// The Torrance–Sparrow BRDF (paper eq 3, docs/conventions.md §5) from dot products, in 1/sr:
 /// `out[k] = ts.eval_dots(d[k])`, with whichever G the model was built with.
 pub fn torrance_sparrow<T: Real, R: Rule>(
     ts: &TorranceSparrow<T, R>,

@@ -109,19 +109,33 @@ pub struct ModelFlags {
 /// Which constructor a spec uses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ModelId {
+    /// [`TorranceSparrow`]: Beckmann D with a chosen geometric term and Fresnel term.
     TorranceSparrow,
+    /// [`Lambert`]: ideal diffuse.
     Lambert,
+    /// [`PhongNormalized`]: energy-normalised Phong.
     Phong,
+    /// [`BlinnPhongNormalized`]: energy-normalised Blinn–Phong.
     BlinnPhong,
+    /// [`CookTorrance`]: Cook–Torrance (Beckmann D, Schlick F, V-groove G by default).
     CookTorrance,
+    /// [`LambertSpecularMix`]: Lambertian plus mirror.
     LambertMirror,
+    /// [`ShirleyDamped`]: Shirley's damped Lambert-plus-mirror model.
     ShirleyDamped,
+    /// [`CoupledSmooth`]: the coupled smooth-layered model.
     CoupledSmooth,
+    /// [`AshikhminShirley`]: the Ashikhmin–Shirley anisotropic Phong model.
     AshikhminShirley,
+    /// [`Bank`]: the Bank model.
     Bank,
+    /// [`Ward`]: the anisotropic Ward model.
     Ward,
+    /// [`Ggx`]: isotropic GGX microfacet model.
     Ggx,
+    /// [`Ggx`] with separate roughness along tangent and bitangent.
     GgxAnisotropic,
+    /// [`StandardLit`]: the standard lighting model (a lit colour, not a BRDF).
     Standard,
 }
 
@@ -328,18 +342,31 @@ impl<T: Real> Brdf<T> for StandardLit<T> {
 #[derive(Clone, Copy, Debug)]
 #[allow(clippy::large_enum_variant)]
 pub enum AnyBrdf<T> {
+    /// A [`TorranceSparrow`] (from [`ModelId::TorranceSparrow`]).
     TorranceSparrow(TorranceSparrow<T>),
+    /// A [`Lambert`] (from [`ModelId::Lambert`]).
     Lambert(Lambert<T>),
+    /// A [`PhongNormalized`] (from [`ModelId::Phong`]).
     Phong(PhongNormalized<T>),
+    /// A [`BlinnPhongNormalized`] (from [`ModelId::BlinnPhong`]).
     BlinnPhong(BlinnPhongNormalized<T>),
+    /// A [`CookTorrance`] (from [`ModelId::CookTorrance`]).
     CookTorrance(CookTorrance<T>),
+    /// A [`LambertSpecularMix`] (from [`ModelId::LambertMirror`]).
     LambertMirror(LambertSpecularMix<T>),
+    /// A [`ShirleyDamped`] (from [`ModelId::ShirleyDamped`]).
     ShirleyDamped(ShirleyDamped<T>),
+    /// A [`CoupledSmooth`] (from [`ModelId::CoupledSmooth`]).
     CoupledSmooth(CoupledSmooth<T>),
+    /// A [`AshikhminShirley`] (from [`ModelId::AshikhminShirley`]).
     AshikhminShirley(AshikhminShirley<T>),
+    /// A [`Bank`] (from [`ModelId::Bank`]).
     Bank(Bank<T>),
+    /// A [`Ward`] (from [`ModelId::Ward`]).
     Ward(Ward<T>),
+    /// A [`Ggx`] (from [`ModelId::Ggx`] or [`ModelId::GgxAnisotropic`]).
     Ggx(Ggx<T>),
+    /// A [`StandardLit`] (from [`ModelId::Standard`]).
     Standard(StandardLit<T>),
 }
 

@@ -1,9 +1,9 @@
 //! Facet-slope distributions.
 //!
 //! * The paper's slope-angle density p(γ; σ) (Acta Phys. Sin. 64 184213, eqs 2 and 5) with
-//!   its 1-D normalisation C(σ) (conventions.md §2).
+//!   its 1-D normalisation C(σ) (docs/conventions.md §2).
 //! * The Beckmann normal distribution D used in the Torrance–Sparrow BRDF (eq 3,
-//!   conventions.md §5), Beckmann roughness m = √2 σ.
+//!   docs/conventions.md §5), Beckmann roughness m = √2 σ.
 //! * The Trowbridge–Reitz (GGX) normal distribution.
 //!
 //! Working variable. With u = tan γ and v = u/(√2 σ), p(γ) dγ ∝ √(1 + u²) e^{−v²} dv. The
@@ -81,7 +81,7 @@ impl<T: Real, R: Rule> SlopeDistribution<T, R> {
         self.inv_2z
     }
     /// The normalisation constant C(σ) of eq 2 under ∫p dγ = 1 over [−π/2, π/2]:
-    /// C = πσ/(√2 Z) (conventions.md §2; C → √(2π)σ as σ → 0).
+    /// C = πσ/(√2 Z) (docs/conventions.md §2; C → √(2π)σ as σ → 0).
     pub fn normalisation_c(&self) -> T {
         self.c
     }

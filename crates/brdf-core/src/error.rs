@@ -4,6 +4,7 @@ use core::fmt;
 
 /// A parameter that a checked constructor rejected.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum ParamError {
     /// The value was NaN or ±∞.
     NotFinite {

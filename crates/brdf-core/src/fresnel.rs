@@ -1,5 +1,5 @@
 //! Fresnel reflectance. Every function takes cos of the angle between the direction and the
-//! (micro)normal; for microfacet BRDFs that is wi·h = cos β (paper eq 3, conventions.md §5).
+//! (micro)normal; for microfacet BRDFs that is wi·h = cos β (paper eq 3, docs/conventions.md §5).
 
 use crate::error::{check_range, ParamError};
 use crate::Real;

@@ -1,6 +1,6 @@
 //! Vectors, the local shading frame (z up) and the in-plane angle convention of the paper.
 //!
-//! In-plane convention (conventions.md §1): light arrives from the −x side at polar angle
+//! In-plane convention (docs/conventions.md §1): light arrives from the −x side at polar angle
 //! θi ∈ [0, π/2]; θr ∈ [−π/2, π/2] is signed, θr > 0 on the forward (+x) side. The mirror
 //! direction is θr = θi, retro-reflection θr = −θi. Facet tilt α = (θr − θi)/2, half angle
 //! between the directions β = (θi + θr)/2.
@@ -10,8 +10,11 @@ use crate::Real;
 /// A 3-vector. Directions point away from the surface.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Vec3<T> {
+    /// x component (tangent direction in the local frame).
     pub x: T,
+    /// y component (bitangent direction in the local frame).
     pub y: T,
+    /// z component (normal direction in the local frame).
     pub z: T,
 }
 
@@ -82,8 +85,11 @@ impl<T: Real> Vec3<T> {
 /// An orthonormal frame: tangent `s`, bitangent `t`, normal `n` (z of the local frame).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Frame<T> {
+    /// Unit tangent (local x).
     pub s: Vec3<T>,
+    /// Unit bitangent (local y), n × s.
     pub t: Vec3<T>,
+    /// Unit normal (local z).
     pub n: Vec3<T>,
 }
 

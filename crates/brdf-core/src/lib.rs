@@ -1,6 +1,7 @@
 #![doc = include_str!("../README.md")]
 #![no_std]
 #![deny(missing_debug_implementations)]
+#![warn(missing_docs)]
 // `!(x > 0)` is the deliberate idiom here: unlike `x <= 0` it is also true for NaN, which is
 // how the kernels route NaN input to its documented result.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]

@@ -3,7 +3,7 @@
 //! Gauss–Legendre quadrature: the "direct" kernels the LUT assets are generated from.
 //!
 //! For μ = n·v, the specular directional integral with Schlick F (F90 = 1),
-//! F = F0 + (1 − F0) F_c, F_c = (1 − v·h)⁵ (conventions.md §8), splits as
+//! F = F0 + (1 − F0) F_c, F_c = (1 − v·h)⁵ (docs/conventions.md §8), splits as
 //!
 //! ```text
 //! E_spec = ∫ f cos θl dωl = F0·A + B,
@@ -247,7 +247,7 @@ pub fn split_sum<T: Real, RO: Rule, RI: Rule>(
     ((a1 + a2 + a3) * inv_pi, (b1 + b2 + b3) * inv_pi)
 }
 
-/// GGX split sum (A, B) with height-correlated Smith, α = r² (conventions.md §8), for
+/// GGX split sum (A, B) with height-correlated Smith, α = r² (docs/conventions.md §8), for
 /// μ ∈ (0, 1] and perceptual roughness r ∈ [0, 1] (clamped). r = 0 is the mirror limit
 /// A = 1 − (1 − μ)⁵, B = (1 − μ)⁵.
 pub fn dfg_ggx<T: Real, RO: Rule, RI: Rule>(mu: T, r: T) -> (T, T) {
@@ -264,7 +264,7 @@ pub fn dfg_ggx<T: Real, RO: Rule, RI: Rule>(mu: T, r: T) -> (T, T) {
     })
 }
 
-/// Beckmann split sum (A, B) with height-correlated Smith–Beckmann (conventions.md §6) for
+/// Beckmann split sum (A, B) with height-correlated Smith–Beckmann (docs/conventions.md §6) for
 /// Beckmann roughness m ≥ 0 (m = 0: mirror limit).
 pub fn dfg_beckmann<T: Real, RO: Rule, RI: Rule>(mu: T, m: T) -> (T, T) {
     if m.is_nan() {
@@ -280,7 +280,7 @@ pub fn dfg_beckmann<T: Real, RO: Rule, RI: Rule>(mu: T, m: T) -> (T, T) {
 }
 
 /// Torrance–Sparrow split sum (A, B) for Gaussian slopes of RMS slope σ (Beckmann D,
-/// m = √2σ, paper eq 3 / conventions.md §5) with height-correlated Smith G (§6).
+/// m = √2σ, paper eq 3 / docs/conventions.md §5) with height-correlated Smith G (§6).
 pub fn dfg_ts_smith<T: Real, RO: Rule, RI: Rule>(mu: T, sigma: T) -> (T, T) {
     dfg_beckmann::<T, RO, RI>(mu, T::from_f64(core::f64::consts::SQRT_2) * sigma)
 }
@@ -288,7 +288,7 @@ pub fn dfg_ts_smith<T: Real, RO: Rule, RI: Rule>(mu: T, sigma: T) -> (T, T) {
 /// Torrance–Sparrow split sum (A, B) for Gaussian slopes of RMS slope σ with the paper's
 /// modified G (eqs 6–13, reciprocal 3-D extension [`ModifiedG::g_dots`]). σ must be > 0
 /// (otherwise NaN). Because the modified G stays ≥ ½ at grazing, A + B grows like 1/μ as
-/// μ → 0 (conventions.md §4).
+/// μ → 0 (docs/conventions.md §4).
 pub fn dfg_ts_modified<T: Real, RO: Rule, RI: Rule>(mu: T, sigma: T) -> (T, T) {
     let Ok(gm) = ModifiedG::<T>::new(sigma) else {
         return (T::NAN, T::NAN);

@@ -33,7 +33,7 @@ use brdf_core::models::{AshikhminShirley, Brdf, GeometricTerm, Rgb, TorranceSpar
 use brdf_core::{Dots, Vec3};
 use brdf_lut::GTable;
 
-/// The paper's modified G = min(GM, GS) (eq 13, reciprocal convention, conventions.md §4)
+/// The paper's modified G = min(GM, GS) (eq 13, reciprocal convention, docs/conventions.md §4)
 /// for RMS slope `sigma` and in-plane angles θi ∈ [0, π/2], θr ∈ [−π/2, π/2] (radians).
 #[inline(never)]
 pub fn g_direct(sigma: f32, theta_i: f32, theta_r: f32) -> f32 {
@@ -72,7 +72,7 @@ pub fn g_dots(sigma: f32, n_i: f32, n_o: f32, i_o: f32) -> f32 {
     }
 }
 
-/// The Torrance–Sparrow BRDF (paper eq 3, conventions.md §5) in 1/sr with the modified G,
+/// The Torrance–Sparrow BRDF (paper eq 3, docs/conventions.md §5) in 1/sr with the modified G,
 /// Beckmann D (m = √2σ), Schlick Fresnel with normal reflectance `r0`, k_s = 1 and a
 /// Lambertian term of albedo `albedo`, from the dot products.
 #[inline(never)]

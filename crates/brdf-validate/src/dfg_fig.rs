@@ -1,7 +1,7 @@
 //! Difference images: each engine's published split-sum (DFG) table in `../shared/anchors/`
 //! (layouts from its MANIFEST.txt) minus the project's converged table, i.e.
 //! `brdf_core::split_sum::dfg_ggx` (GGX, height-correlated Smith, α = r², F90 = 1,
-//! conventions.md §8) with 32 × 32-point Gauss–Legendre rules, at the table's own (μ, r).
+//! docs/conventions.md §8) with 32 × 32-point Gauss–Legendre rules, at the table's own (μ, r).
 
 use crate::figures::{self, diverging, pe};
 use anyhow::{bail, Context, Result};
@@ -243,7 +243,7 @@ pub fn write(dir: &Path, anchors: &Path) -> Result<String> {
     let mut md = String::from(
         "Published split-sum (DFG) tables minus the project's converged table (`brdf_core::split_sum::dfg_ggx`, GGX with \
          height-correlated Smith, α = r², 32 × 32-point Gauss–Legendre), at each table's own texel centres \
-         (layouts: `../shared/anchors/MANIFEST.txt`). Red: the published table is higher.\n\n\
+         (layouts: docs/conventions.md §8). Red: the published table is higher.\n\n\
          ![DFG differences](figures/dfg_difference.svg)\n\n\
          | table | texels | max \\|ΔA\\| | max \\|ΔA\\|, μ ≥ 0.1 | max \\|ΔB\\| | RMS ΔA | note |\n|---|---|---|---|---|---|---|\n",
     );

@@ -1,6 +1,6 @@
 //! The paper's single-neighbour facet model, simulated geometrically.
 //!
-//! Assumptions (paper §3, conventions.md §3): facet 1 has tilt α and unit length; each of its
+//! Assumptions (paper §3, docs/conventions.md §3): facet 1 has tilt α and unit length; each of its
 //! two neighbours has unit length (the equal-length assumption under which eq 9's fraction
 //! holds) and an independent tilt drawn from the paper's slope-angle density p(γ; σ) (eq 2,
 //! normalised); only the adjacent facet on the ray's side can block a ray. A sample picks a
@@ -16,7 +16,7 @@ use rand_distr::StandardNormal;
 use rand_pcg::Pcg64;
 
 /// Draws u = tan γ from the density ∝ √(1 + u²) exp(−u²/(2σ²)) — p(γ) dγ in the variable
-/// u (conventions.md §2) — by rejection from the envelope (1 + |u|)·N(0, σ²), a mixture of a
+/// u (docs/conventions.md §2) — by rejection from the envelope (1 + |u|)·N(0, σ²), a mixture of a
 /// normal and a signed Rayleigh(σ); acceptance √(1 + u²)/(1 + |u|) ≥ 1/√2.
 pub fn sample_neighbour_slope<R: Rng>(rng: &mut R, sigma: f64) -> f64 {
     let w_rayleigh = sigma * (2.0 / std::f64::consts::PI).sqrt();

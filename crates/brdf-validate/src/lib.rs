@@ -1,4 +1,4 @@
-//! Validation of the masking–shadowing terms against physics (issue 7).
+//! Validation of the masking–shadowing terms against physics.
 //!
 //! * [`profile`]: long periodic 1-D random profiles with Gaussian heights and a Gaussian
 //!   autocorrelation, and the exact conditioning of such a profile on one facet's slope.
@@ -10,7 +10,7 @@
 //! * [`study`]: the grids, error tables and figure data; [`figures`] and [`report`] write
 //!   the SVG/PNG figures and `docs/validation.md` (`cargo xtask plot`).
 //!
-//! Geometry follows conventions.md §1: the light comes from the −x side at θi ≥ 0, θr is
+//! Geometry follows docs/conventions.md §1: the light comes from the −x side at θi ≥ 0, θr is
 //! signed (θr > 0 forward), the facet tilt is α = (θr − θi)/2, so a facet that mirrors the
 //! light into the viewer has slope dz/dx = −tan α.
 

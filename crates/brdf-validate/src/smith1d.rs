@@ -2,7 +2,7 @@
 //! independently of `brdf_core`: with μ = cot θ and slope density N(0, σ²),
 //! Λ(θ) = (1/μ) ∫_μ^∞ (q − μ) p(q) dq = (e^{−a²}/(a√π) − erfc a)/2, a = μ/(√2σ),
 //! and G1 = 1/(1 + Λ). For the in-plane case this equals the Beckmann Λ with m = √2σ
-//! (conventions.md §6).
+//! (docs/conventions.md §6).
 
 /// Smith's Λ(θ) for RMS slope σ (θ in radians, |θ| < π/2; Λ(0) = 0).
 pub fn lambda(theta: f64, sigma: f64) -> f64 {

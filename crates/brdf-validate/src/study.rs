@@ -74,7 +74,7 @@ impl Settings {
 pub enum Model {
     /// Blinn's V-groove G (paper eq 4).
     Blinn,
-    /// The paper's G, reciprocal convention (conventions.md §4).
+    /// The paper's G, reciprocal convention (docs/conventions.md §4).
     Modified,
     /// The paper's G with eq 12 as printed.
     ModifiedPrinted,

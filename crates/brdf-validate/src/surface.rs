@@ -1,7 +1,7 @@
 //! Ray-traced masking and shadowing on random profiles (the ground truth).
 //!
 //! For a pair (θi, θr) the facets that reflect the light into the viewer have tilt
-//! α = (θr − θi)/2, i.e. slope −tan α (conventions.md §1). G(θi, θr) is the fraction of such
+//! α = (θr − θi)/2, i.e. slope −tan α (docs/conventions.md §1). G(θi, θr) is the fraction of such
 //! facets — of their length, equivalently of their horizontal extent since all have the same
 //! slope — that are both lit and seen. A sample picks a facet uniformly, conditions the profile
 //! on that facet having exactly the required slope ([`crate::profile`]), picks a point

@@ -1,5 +1,5 @@
 //! Numerical evidence for the two typos of Fundamentals of Computer Graphics ch. 24
-//! (conventions.md §7), computed here from the printed formulas with no project code.
+//! (docs/conventions.md §7), computed here from the printed formulas with no project code.
 
 /// Directional albedo at incidence θ of the coupled model eq 24.3 with R_m = 1 and an ideal
 /// mirror as ρ_s (albedo 1), for the matte constant `k`:

@@ -89,7 +89,7 @@ fn json_group(g: &Group) -> String {
     )
 }
 
-/// The in-plane G of each kind, from brdf-core directly (Smith: m = √2σ, conventions.md §6).
+/// The in-plane G of each kind, from brdf-core directly (Smith: m = √2σ, docs/conventions.md §6).
 fn native_g(kind: u32, sigma: f32, ti: f32, tr: f32) -> f32 {
     if !(sigma > 0.0 && sigma.is_finite()) || kind > 5 {
         return f32::NAN; // the exports' documented result for bad parameters

@@ -2,8 +2,8 @@
 //!
 //! `kind` selects the G by its index in [`GeometricTerm::ALL`]:
 //! 0 none (G = 1), 1 Blinn's V-groove (paper eq 4), 2 Smith–Beckmann separable, 3 Smith–Beckmann
-//! height-correlated (conventions.md §6, m = √2σ), 4 the paper's modified G (eqs 6–13,
-//! reciprocal convention, conventions.md §4), 5 the modified G with eq 12 as printed.
+//! height-correlated (docs/conventions.md §6, m = √2σ), 4 the paper's modified G (eqs 6–13,
+//! reciprocal convention, docs/conventions.md §4), 5 the modified G with eq 12 as printed.
 //! σ is the RMS slope (finite, > 0; accuracy specified for [0.05, 1]).
 
 use crate::memory::usable;
@@ -227,7 +227,7 @@ mod tests {
     }
 
     /// Smith separable equals the product of the one-sided closed forms Λ(a) with erfc
-    /// (conventions.md §6), computed here in f64 independently of brdf-core.
+    /// (docs/conventions.md §6), computed here in f64 independently of brdf-core.
     #[test]
     fn smith_matches_closed_form() {
         fn lambda(theta: f64, m: f64) -> f64 {

@@ -315,7 +315,7 @@ mod tests {
         assert_eq!(unsafe { brdf_dfg(0.5, 0.5, ab.as_mut_ptr()) }, OK);
         let (a, b) = DfgTable::parse(&dfg).unwrap().ab(0.5, 0.5);
         assert_eq!(ab, [a, b]);
-        // Directional albedo with F = 1 is A + B ∈ (0, 1] (conventions.md §8).
+        // Directional albedo with F = 1 is A + B ∈ (0, 1] (docs/conventions.md §8).
         assert!(a + b > 0.5 && a + b <= 1.0, "{a} + {b}");
     }
 }

@@ -178,7 +178,7 @@ pub unsafe extern "C" fn brdf_eval_batch(
     n as i32
 }
 
-/// The Torrance–Sparrow BRDF (paper eq 3, conventions.md §5) in shader form:
+/// The Torrance–Sparrow BRDF (paper eq 3, docs/conventions.md §5) in shader form:
 /// k_s·D·F·G/(4 n·wi n·wo) + ρ_d/π with Beckmann D (m = √2σ), Schlick F(R0) at wi·h and G of
 /// kind `g_kind` (see [`crate::g`]), from n·wi, n·wo, wi·wo. NaN for bad parameters; 0 below
 /// the horizon.

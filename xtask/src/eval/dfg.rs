@@ -1,5 +1,5 @@
 //! `cargo xtask eval dfg`: rows `mu,roughness` in, `mu,roughness,A,B` out: the split sum for
-//! GGX with height-correlated Smith (docs/conventions.md), looked up in the default table
+//! GGX with height-correlated Smith (docs/conventions.md §8), looked up in the default table
 //! `assets/dfg_ggx.blut` (f32, as a shader would) or, with `--direct`, integrated by the
 //! f64 kernel `brdf_core::split_sum::dfg_ggx` (17 significant digits).
 //!

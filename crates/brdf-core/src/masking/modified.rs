@@ -1,5 +1,5 @@
 //! The paper's modified geometric attenuation factor (Acta Phys. Sin. 64 184213, eqs 6–13),
-//! read as fixed in docs/conventions.md (the passing factor and the two conventions).
+//! read as fixed in docs/conventions.md §§3–4 (the passing factor and the two conventions).
 //!
 //! One-sided passing factor, for a ray leaving at polar angle θ ≥ 0 from a facet tilted by a
 //! signed angle a toward the ray's side, with the neighbour's tilt γ drawn from p(γ; σ):
@@ -54,7 +54,7 @@ use crate::Real;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Convention {
-    /// GS = M(θi, −α): the tilt toward the light (docs/conventions.md). Reciprocal.
+    /// GS = M(θi, −α): the tilt toward the light (docs/conventions.md §4). Reciprocal.
     #[default]
     Reciprocal,
     /// Eq 12 as printed: GS = M(θi, α), GM = 1 for θr ≤ 0. Not reciprocal (kept for

@@ -1,6 +1,6 @@
 //! Beckmann visible normals: h distributed as G1(wo) max(wo·h, 0) D(h)/cos θo, with the
 //! anisotropic Beckmann D of widths (ax, ay) ([`super::Beckmann`]) and the Smith
-//! G1 = 1/(1 + Λ) of the projected width (conventions.md §5).
+//! G1 = 1/(1 + Λ) of the projected width (docs/conventions.md §6).
 //!
 //! Derivation (slope space, the same stretch as for GGX): scaling the slopes by 1/ax, 1/ay
 //! turns D into the unit-width P22(x, y) = e^{−x²−y²}/π and wo into v = normalise(ax wo.x,

@@ -7,7 +7,7 @@
 //! ρ = ρ_s + ρ_d                                                       (eq 24.8).
 //!
 //! u = x, v = y of the local frame; k·h = wi·h = wo·h. Eq 24.9 as printed puts the
-//! denominator (h·k) max(cos θi, cos θo) inside the exponent, a typo (conventions.md §7): here
+//! denominator (h·k) max(cos θi, cos θo) inside the exponent, a typo (docs/conventions.md §7): here
 //! it divides, as in eq 24.5. R_s and R_d are per channel.
 //!
 //! Reciprocal. Flagged energy conserving when R_s + R_d ≤ 1 per channel, the claim of the

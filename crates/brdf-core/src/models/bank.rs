@@ -1,4 +1,4 @@
-//! The Bank anisotropic BRDF of seed 002 (§10.3), specular part
+//! The Bank anisotropic BRDF of the Cook–Torrance and Bank notes (§10.3), specular part
 //!
 //! f_s = k_s (√(1 − (L·T)²) √(1 − (V·T)²) − (L·T)(V·T))^{n_s},
 //!
@@ -6,7 +6,7 @@
 //! α the angles from T; a negative base is dropped (0), as is any pair with a direction at or
 //! below the horizon.
 //!
-//! The tangent ([`BankTangent`]): seed 002 takes T = n × V ("the vertex normal crossed with
+//! The tangent ([`BankTangent`]): the notes take T = n × V ("the vertex normal crossed with
 //! the view direction"), which makes T depend on the viewer: then V·T = 0, f_s =
 //! k_s (1 − (L·T)²)^{n_s/2}, and the model is **not reciprocal** (flagged). A fixed material
 //! tangent at azimuth φ_T in the tangent plane ([`BankTangent::Azimuth`], the default, φ_T = 0
@@ -25,7 +25,8 @@ use crate::{ParamError, Real};
 pub enum BankTangent<T> {
     /// A fixed tangent (cos φ_T, sin φ_T, 0), φ_T in radians. Reciprocal.
     Azimuth(T),
-    /// T = normalize(n × wo) as in seed 002 (x axis when wo = n). Not reciprocal.
+    /// T = normalize(n × wo) as in the Cook–Torrance and Bank notes (x axis when wo = n).
+    /// Not reciprocal.
     NormalCrossView,
 }
 

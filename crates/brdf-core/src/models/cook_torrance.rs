@@ -1,11 +1,12 @@
-//! The Cook–Torrance model of seed 002 (§10.1): I = I_diff + k_s I_l R_s, written as a BRDF
+//! The Cook–Torrance model of the Cook–Torrance and Bank notes (§10.1):
+//! I = I_diff + k_s I_l R_s, written as a BRDF
 //!
 //! f = k_d/π + k_s ⊗ R_s,  R_s = D(h) F(wi·h) G / (4 cos θi cos θo),
 //!
-//! with the Beckmann D of roughness m (conventions.md §5), Schlick's F from R0 (FCG §24.3)
+//! with the Beckmann D of roughness m (docs/conventions.md §5), Schlick's F from R0 (FCG §24.3)
 //! and by default Blinn's V-groove G (paper eq 4); R_s is the core's
 //! [`TorranceSparrow`] specular term (paper eq 3), so any of its G can be chosen.
-//! (Cook and Torrance's paper writes π instead of 4 in the denominator; seed 002 does not
+//! (Cook and Torrance's paper writes π instead of 4 in the denominator; the notes do not
 //! give R_s, and the 4 of the microfacet derivation is used, as in the core.)
 //!
 //! Reciprocal unless the paper's printed G is chosen. Flagged energy conserving when

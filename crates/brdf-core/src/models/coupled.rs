@@ -3,7 +3,7 @@
 //! ρ = [R0 + (1 − cos θ)^5 (1 − R0)] ρ_s + k R_m [1 − (1 − cos θ)^5][1 − (1 − cos θ')^5]
 //! (FCG eq 24.3), ρ_s the mirror (a Dirac delta, reported by [`Brdf::delta`]).
 //!
-//! The constant k (conventions.md §7). Constraint 24.1 with f(θ) = 1 − (1 − cos θ)^5 and
+//! The constant k (docs/conventions.md §7). Constraint 24.1 with f(θ) = 1 − (1 − cos θ)^5 and
 //! 1 − R_f(θ) = (1 − R0) f(θ) needs 2πk ∫₀¹ f(c) c dc = 1 − R0; ∫₀¹ f c dc = 1/2 − 1/42 =
 //! 10/21, so k = 21(1 − R0)/(20π) ([`CoupledK::Conserving`], the default: with R_m = 1 the
 //! albedo is then exactly 1 for every angle). FCG eq 24.2 prints k = 21/(20π(1 − R0))

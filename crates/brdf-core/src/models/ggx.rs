@@ -3,7 +3,7 @@
 //! f = D(h) F(wi·h) G / (4 cos θi cos θo),
 //! D = 1/(π αx αy ((h_x/αx)² + (h_y/αy)² + h_z²)²) ([`crate::microfacet::TrowbridgeReitz`];
 //! α²/(π((n·h)²(α² − 1) + 1)²) when αx = αy = α),
-//! F = F0 + (1 − F0)(1 − wi·h)^5 per channel (Schlick, F90 = 1, conventions.md §8),
+//! F = F0 + (1 − F0)(1 − wi·h)^5 per channel (Schlick, F90 = 1, docs/conventions.md §8),
 //! G = G1(θi) G1(θo) ([`SmithForm::Separable`]) or the height-correlated
 //! 1/(1 + Λ(θi) + Λ(θo)) ([`SmithForm::Correlated`], default, written as the visibility
 //! [`TrowbridgeReitz::v_correlated`]).

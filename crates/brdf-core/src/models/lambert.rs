@@ -1,5 +1,5 @@
-//! The Lambertian BRDF f = ρ/π (seed 003's diffuse term as a BRDF; FCG §24.2), sampled with
-//! the cosine-weighted hemisphere.
+//! The Lambertian BRDF f = ρ/π (the diffuse term of the standard lighting model notes as a
+//! BRDF; FCG §24.2), sampled with the cosine-weighted hemisphere.
 
 use super::rgb::check_rgb;
 use super::{above, Brdf, BrdfFlags, BrdfSample, Rgb};

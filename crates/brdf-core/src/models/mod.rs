@@ -8,13 +8,13 @@
 //!
 //! | model | source |
 //! |---|---|
-//! | [`StandardLighting`] | seed 003, the standard (Phong / Blinn-Phong) lighting equation |
-//! | [`Lambert`], [`PhongNormalized`], [`BlinnPhongNormalized`] | seed 003 / FCG §24.2 |
-//! | [`CookTorrance`] | seed 002 §10.1, with [`TorranceSparrow`] (paper eq 3) |
+//! | [`StandardLighting`] | the standard lighting model notes (Phong / Blinn-Phong lighting equation) |
+//! | [`Lambert`], [`PhongNormalized`], [`BlinnPhongNormalized`] | the standard lighting model notes / FCG §24.2 |
+//! | [`CookTorrance`] | the Cook–Torrance and Bank notes §10.1, with [`TorranceSparrow`] (paper eq 3) |
 //! | [`LambertSpecularMix`], [`ShirleyDamped`], [`CoupledSmooth`] | FCG §24.4, eq 24.3 |
 //! | [`AshikhminShirley`] | FCG eqs 24.5–24.9 |
-//! | [`Bank`], [`Ward`] | seed 002 §10.3–10.4 |
-//! | [`Ggx`] | Trowbridge–Reitz, isotropic or anisotropic, with Smith masking (conventions.md §8) |
+//! | [`Bank`], [`Ward`] | the Cook–Torrance and Bank notes §10.3–10.4 |
+//! | [`Ggx`] | Trowbridge–Reitz, isotropic or anisotropic, with Smith masking (docs/conventions.md §8) |
 //! | [`TorranceSparrow`] | paper eq 3: Beckmann D, any [`GeometricTerm`], a [`crate::fresnel::Fresnel`] |
 //!
 //! The microfacet models compose a distribution of [`crate::microfacet`] with a G and a

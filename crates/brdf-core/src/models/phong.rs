@@ -1,5 +1,5 @@
-//! Energy-normalised Phong and Blinn-Phong lobes as BRDFs (the highlights of seed 003 with
-//! a Lambertian term and a normalisation constant).
+//! Energy-normalised Phong and Blinn-Phong lobes as BRDFs (the highlights of the standard
+//! lighting model notes with a Lambertian term and a normalisation constant).
 //!
 //! * Phong: f = k_d/π + k_s (n+2)/(2π) max(wo·r_i, 0)^n, r_i = 2(n·wi)n − wi. The constant
 //!   makes the lobe's albedo exactly 1 at normal incidence: 2π ∫₀¹ (n+2)/(2π) c^{n+1} dc = 1.

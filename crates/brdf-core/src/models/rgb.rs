@@ -1,12 +1,15 @@
-//! Per-channel (RGB) colour triples: the "⊗" of the standard lighting model (seed 003).
+//! Per-channel (RGB) colour triples: the "⊗" of the standard lighting model notes.
 
 use crate::Real;
 
-/// An RGB triple. Products are per channel (seed 003's ⊗).
+/// An RGB triple. Products are per channel (the ⊗ of the standard lighting model notes).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Rgb<T> {
+    /// Red channel.
     pub r: T,
+    /// Green channel.
     pub g: T,
+    /// Blue channel.
     pub b: T,
 }
 

@@ -1,4 +1,5 @@
-//! The standard lighting model of seed 003 (Phong / Blinn-Phong lighting):
+//! The standard lighting model (Phong / Blinn-Phong lighting), as in the standard lighting
+//! model notes (docs/conventions.md §10):
 //!
 //! c_lit = Σ_k [ (s_k ⊗ m_spec) max(cos, 0)^{m_gls} + (s_k ⊗ m_diff) max(n·l_k, 0) ]
 //!         + g_amb ⊗ m_amb + m_emis,
@@ -6,11 +7,11 @@
 //! with cos = v·r_k, r_k = 2(n·l_k)n − l_k (Phong), or cos = n·h_k,
 //! h_k = (v + l_k)/|v + l_k| (Blinn-Phong); ⊗ is the per-channel product.
 //!
-//! Departures from the seed, on purpose:
-//! * The summary equation of seed 003 prints the diffuse term as max(n·l, 0)^{m_gls}; the
-//!   diffuse section of the same seed (Lambert's law) has (n·l) with no exponent. The
+//! Departures from the notes, on purpose:
+//! * The notes' summary equation prints the diffuse term as max(n·l, 0)^{m_gls}; the
+//!   diffuse section of the same notes (Lambert's law) has (n·l) with no exponent. The
 //!   exponent is a typo and is not applied.
-//! * "When cos θ < 0, ignore c_spec" (seed 003) is applied, and a light at or below the
+//! * "When cos θ < 0, ignore c_spec" (the notes) is applied, and a light at or below the
 //!   horizon (n·l ≤ 0) contributes neither term, nor does a viewer at or below the horizon.
 //!
 //! This is a lighting equation, not a BRDF: the diffuse term carries n·l. Through the
@@ -36,10 +37,12 @@ pub enum Highlight {
 }
 
 /// One light: unit direction toward the light (local or world frame, the same as the
-/// normal's) and its colour/intensity s (seed 003: s_spec = s_diff).
+/// normal's) and its colour/intensity s (the standard lighting model notes: s_spec = s_diff).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Light<T> {
+    /// Unit direction toward the light.
     pub dir: Vec3<T>,
+    /// Colour/intensity s of the light, per channel.
     pub color: Rgb<T>,
 }
 
@@ -88,7 +91,8 @@ impl<T: Real> StandardLighting<T> {
     }
 
     /// The contribution of one light: (s ⊗ m_spec) max(cos, 0)^{m_gls} + (s ⊗ m_diff)(n·l),
-    /// 0 when n·l ≤ 0 or n·v ≤ 0 (seed 003, with the diffuse exponent typo fixed).
+    /// 0 when n·l ≤ 0 or n·v ≤ 0 (the standard lighting model notes, with the diffuse
+    /// exponent typo fixed).
     pub fn light_term(&self, n: Vec3<T>, v: Vec3<T>, light: &Light<T>) -> Rgb<T> {
         let nl = n.dot(light.dir);
         let nv = n.dot(v);
@@ -110,7 +114,7 @@ impl<T: Real> StandardLighting<T> {
     }
 
     /// The full lighting equation c_lit for unit normal `n`, unit direction to the viewer
-    /// `v`, any number of lights and the global ambient g_amb (seed 003).
+    /// `v`, any number of lights and the global ambient g_amb (the standard lighting model notes).
     pub fn shade(&self, n: Vec3<T>, v: Vec3<T>, lights: &[Light<T>], g_amb: Rgb<T>) -> Rgb<T> {
         let mut c = g_amb.mul(self.ambient).add(self.emission);
         for l in lights {

@@ -1,4 +1,4 @@
-//! The Torrance–Sparrow specular BRDF of the paper (eq 3, conventions.md §5) with a
+//! The Torrance–Sparrow specular BRDF of the paper (eq 3, docs/conventions.md §5) with a
 //! selectable G and Fresnel term, plus an explicit Lambertian diffuse term.
 //!
 //! f(wi, wo) = k_s · D(h) F(wi·h) G / (4 cos θi cos θo) + ρ_d/π,

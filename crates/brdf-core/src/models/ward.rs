@@ -1,5 +1,5 @@
-//! Ward's anisotropic model (named in seed 002 §10.4; Ward 1992, "Measuring and modeling
-//! anisotropic reflection"):
+//! Ward's anisotropic model (named in the Cook–Torrance and Bank notes §10.4; Ward 1992,
+//! "Measuring and modeling anisotropic reflection"):
 //!
 //! f = ρ_d/π + ρ_s · exp(−tan²θh (cos²φh/αx² + sin²φh/αy²)) / (4π αx αy √(cos θi cos θo)),
 //!

@@ -4,7 +4,7 @@
 //! `f32` (devices, shaders) and `f64` (table generation, references). Both always use
 //! `libm`, except for the f32 functions this module implements itself in f32 arithmetic
 //! ([`sin_cos_f32`], [`exp_f32`], [`erfc_f32`]). The `micromath` feature adds a third
-//! scalar, [`Micro`] (an `f32` whose transcendental functions come from micromath where
+//! scalar, `Micro` (an `f32` whose transcendental functions come from micromath where
 //! that keeps the kernels within 2e-2 of libm); it never changes what `f32` computes, so
 //! enabling it in one crate leaves every other crate's f32 results alone.
 
@@ -51,8 +51,11 @@ pub trait Real:
     /// Widens to `f64` (exact).
     fn to_f64(self) -> f64;
 
+    /// |x|.
     fn abs(self) -> Self;
+    /// √x (NaN for x < 0).
     fn sqrt(self) -> Self;
+    /// eˣ.
     fn exp(self) -> Self;
     /// eˣ for x ∈ [−87, 0] (the range of e^{−v²} in the kernels' integrands), without the
     /// range checks of [`Real::exp`]; x below −87 is taken as −87 (result < 1.7e-38), x
@@ -61,20 +64,30 @@ pub trait Real:
     fn exp_bounded(self) -> Self {
         self.exp()
     }
+    /// Natural logarithm ln x (NaN for x < 0, −∞ at 0).
     fn ln(self) -> Self;
+    /// sin x (x in radians).
     fn sin(self) -> Self;
+    /// cos x (x in radians).
     fn cos(self) -> Self;
     /// (sin, cos) of the same argument, sharing the argument reduction.
     #[inline]
     fn sin_cos(self) -> (Self, Self) {
         (self.sin(), self.cos())
     }
+    /// tan x (x in radians).
     fn tan(self) -> Self;
+    /// arcsin x in [−π/2, π/2] (NaN outside [−1, 1]).
     fn asin(self) -> Self;
+    /// arccos x in [0, π] (NaN outside [−1, 1]).
     fn acos(self) -> Self;
+    /// arctan x in (−π/2, π/2).
     fn atan(self) -> Self;
+    /// The angle of the point (x, self) in (−π, π], with `self` as the y coordinate.
     fn atan2(self, x: Self) -> Self;
+    /// self raised to the real power `e`.
     fn powf(self, e: Self) -> Self;
+    /// The largest integer not greater than x.
     fn floor(self) -> Self;
     /// The error function, always from `libm`.
     fn erf(self) -> Self;

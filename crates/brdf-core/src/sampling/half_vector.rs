@@ -71,7 +71,7 @@ pub fn ashikhmin_shirley_pdf_h<T: Real>(nu: T, nv: T, h: Vec3<T>) -> T {
 }
 
 /// The anisotropic exponent (nu h_x² + nv h_y²)/(1 − h_z²) (FCG eq 24.9, the part in the
-/// exponent per conventions.md §7); at h = n, where it is undefined and (n·h)^e = 1 for any
+/// exponent per docs/conventions.md §7); at h = n, where it is undefined and (n·h)^e = 1 for any
 /// e, it returns (nu + nv)/2.
 #[inline]
 pub(crate) fn as_exponent<T: Real>(nu: T, nv: T, h: Vec3<T>) -> T {

@@ -1,5 +1,5 @@
-//! A cosine-power lobe around an arbitrary unit axis (the Phong lobe, seed 003 (v·r)^n):
-//! p(w) = (n + 1)/(2π) · max(w·axis, 0)^n per unit solid angle, sampled by
+//! A cosine-power lobe around an arbitrary unit axis (the Phong lobe (v·r)^n of the standard
+//! lighting model notes): p(w) = (n + 1)/(2π) · max(w·axis, 0)^n per unit solid angle, sampled by
 //! cos α = u0^{1/(n+1)}, φ = 2π u1 about the axis.
 
 use super::unit;
