@@ -228,9 +228,7 @@ pub(crate) fn check_arrays(ptrs: &[bool], n: usize, elem: usize) -> BrdfStatus {
     if ptrs.iter().any(|&null| null) {
         return BRDF_STATUS_NULL_POINTER;
     }
-    if n.checked_mul(elem)
-        .map_or(true, |b| b > isize::MAX as usize)
-    {
+    if !matches!(n.checked_mul(elem), Some(b) if b <= isize::MAX as usize) {
         return BRDF_STATUS_BAD_LENGTH;
     }
     BRDF_STATUS_OK

@@ -382,7 +382,7 @@ mod codec_tests {
         let mut n = 0;
         for e in std::fs::read_dir(&dir).unwrap() {
             let p = e.unwrap().path();
-            if p.extension().map_or(true, |x| x != "blut") {
+            if p.extension() != Some(std::ffi::OsStr::new("blut")) {
                 continue;
             }
             let bytes = std::fs::read(&p).unwrap();
