@@ -102,6 +102,9 @@ fn status(e: LutError) -> BrdfStatus {
         LutError::BadInput(_) => BRDF_STATUS_INVALID_ARGUMENT,
         // Only the encoder reports this; a reader cannot.
         LutError::BufferTooSmall => BRDF_STATUS_TABLE_MALFORMED_HEADER,
+        // `LutError` is non-exhaustive: a reason added by a later brdf-lut is still a table
+        // this library cannot read, reported with the generic status of a corrupt header.
+        _ => BRDF_STATUS_TABLE_MALFORMED_HEADER,
     }
 }
 

@@ -5,6 +5,7 @@ use core::fmt;
 
 /// Why a byte string is not a usable LUT.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub enum LutError {
     /// The bytes end before the header does.
     Truncated,

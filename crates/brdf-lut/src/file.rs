@@ -13,6 +13,7 @@ pub const MAX_FILE_BYTES: u64 = 64 << 20;
 
 /// Why a LUT could not be loaded or queried.
 #[derive(Debug)]
+#[non_exhaustive]
 pub enum Error {
     /// Reading failed.
     Io(std::io::Error),

@@ -148,6 +148,7 @@ pub struct Spec {
 
 /// Why a spec cannot be built; each names the real problem.
 #[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum GenError {
     /// An option is invalid; the text says which and why.
     Invalid(String),

@@ -28,7 +28,7 @@ pub const MAX_VALUE_MAGNITUDE: f32 = 1e30;
 /// and from it (`From` both ways).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Convention {
-    /// GS = M(θi, −α): reciprocal (docs/conventions.md).
+    /// GS = M(θi, −α): reciprocal (docs/conventions.md §4).
     #[default]
     Reciprocal,
     /// Eq 12 as printed (not reciprocal).
@@ -110,7 +110,7 @@ pub enum TableKind {
     #[default]
     PassingFactor,
     /// Split-sum (A, B) (channels `A`, `B`): the environment-lighting pair of the split-sum
-    /// approximation, docs/conventions.md.
+    /// approximation, docs/conventions.md §8.
     SplitSum,
     /// Directional albedo E(μ, r) with F = 1 (channel `E`), Kulla–Conty.
     DirectionalAlbedo,

@@ -1,4 +1,16 @@
 #![doc = include_str!("../README.md")]
+//!
+// Targets of the README's links to feature-gated items: the local item when the feature is
+// on, the published documentation otherwise (so the docs build warning-free on any features).
+#![cfg_attr(feature = "alloc", doc = "[`write`]: mod@write")]
+#![cfg_attr(
+    not(feature = "alloc"),
+    doc = "[`write`]: https://docs.rs/brdf-lut/latest/brdf_lut/write/index.html"
+)]
+#![cfg_attr(
+    not(feature = "std"),
+    doc = "[`Lut`]: https://docs.rs/brdf-lut/latest/brdf_lut/struct.Lut.html"
+)]
 #![no_std]
 #![warn(missing_docs)]
 

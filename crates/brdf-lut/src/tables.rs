@@ -154,7 +154,7 @@ impl Prepared {
 }
 
 /// (GM, GS) arguments of the passing-factor table F(θ, φ) = M(θ, (θ − φ)/2) (reciprocal
-/// convention, docs/conventions.md): GM = F(|θr|, sgn θr · θi), GS = F(θi, θr).
+/// convention, docs/conventions.md §4): GM = F(|θr|, sgn θr · θi), GS = F(θi, θr).
 #[inline]
 fn g_args(theta_i: f32, theta_r: f32) -> ([f32; 2], [f32; 2]) {
     let ti = crate::axis::clamp(theta_i, 0.0, FRAC_PI_2);
