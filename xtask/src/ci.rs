@@ -106,6 +106,11 @@ const STEPS: &[Step] = &[
         slow: false,
     },
     Step {
+        name: "publishable crates: warning-free docs, cargo package (each built from its archive)",
+        cmd: &["cargo", "xtask", "package"],
+        slow: false,
+    },
+    Step {
         name: "publishable crates on their declared rust-version (installs that toolchain)",
         cmd: &["cargo", "xtask", "msrv"],
         slow: true,

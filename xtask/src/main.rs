@@ -13,6 +13,7 @@ mod firmware;
 mod fsio;
 mod lut;
 mod msrv;
+mod package;
 mod plot;
 mod wasm;
 mod web;
@@ -47,6 +48,9 @@ enum Cmd {
     Anchors(anchors::Args),
     /// Build and test the publishable crates with the toolchain their rust-version declares.
     Msrv(msrv::Args),
+    /// Check what publishing needs: warning-free docs and `cargo package` of the publishable
+    /// crates (both archives built and compiled on their own).
+    Package(package::Args),
     /// Everything CI runs: format, clippy, tests, no_std builds (the README's test command).
     Ci(ci::Args),
 }
@@ -57,6 +61,7 @@ fn main() {
         Cmd::Eval(a) => eval::run(a),
         Cmd::Anchors(a) => anchors::run(a),
         Cmd::Msrv(a) => msrv::run(a),
+        Cmd::Package(a) => package::run(a),
         Cmd::Ci(a) => ci::run(a),
         Cmd::Lut(a) => lut::run(a),
         Cmd::Bench(a) => bench::run(a),

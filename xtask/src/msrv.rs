@@ -1,8 +1,18 @@
 //! `cargo xtask msrv`: builds and tests the publishable crates with exactly the toolchain
-//! their `rust-version` declares. Reads each crate's `rust-version` (`cargo metadata`),
-//! installs that toolchain (`rustup toolchain install <ver> --profile minimal`, plus the
-//! Cortex-M target), then runs `cargo +<ver> test -p <crate>` (unit tests and doctests) and
-//! `cargo +<ver> build -p brdf-core --target thumbv7em-none-eabihf` into `target/msrv-<ver>`.
+//! their `rust-version` declares. Reads each crate's `rust-version` (`cargo metadata`) and,
+//! once per distinct toolchain:
+//!
+//! 1. installs it (`rustup toolchain install <ver> --profile minimal`, plus the Cortex-M
+//!    target);
+//! 2. `cargo +<ver> test --locked --all-features -p …` (unit, integration and doc tests, with
+//!    `std`);
+//! 3. builds the crates without their default features for `thumbv7em-none-eabihf`, which has
+//!    no `std` at all: the `no_std` configuration the firmware, the WASM module and the C ABI
+//!    use (its API floor differs from the `std` one: `f32::abs` is in `core` only since 1.84);
+//!    brdf-lut also with `alloc,compact`;
+//! 4. builds the unpublished `brdf-ffi` (`no_std` readers), which declares the same floor.
+//!
+//! Everything goes into `target/msrv-<ver>`, so the main build stays untouched.
 
 use anyhow::{bail, Context, Result};
 use std::path::Path;
@@ -10,6 +20,12 @@ use std::process::Command;
 
 /// The crates published to crates.io.
 pub const PUBLISHABLE: &[&str] = &["brdf-core", "brdf-lut"];
+
+/// Unpublished crates that declare a `rust-version` the check also holds them to (build only).
+const ALSO_BUILT: &[&str] = &["brdf-ffi"];
+
+/// The no_std target of the firmware.
+const NO_STD_TARGET: &str = "thumbv7em-none-eabihf";
 
 #[derive(clap::Args)]
 pub struct Args {}
@@ -30,6 +46,18 @@ fn toolchain_of(rust_version: &str) -> String {
     }
 }
 
+/// Crates grouped by toolchain, in first-seen order: one install and one build per toolchain.
+fn group(plan: &[(String, String)]) -> Vec<(String, Vec<String>)> {
+    let mut out: Vec<(String, Vec<String>)> = Vec::new();
+    for (name, tc) in plan {
+        match out.iter_mut().find(|(t, _)| t == tc) {
+            Some((_, names)) => names.push(name.clone()),
+            None => out.push((tc.clone(), vec![name.clone()])),
+        }
+    }
+    out
+}
+
 fn status(cmd: &mut Command, what: &str) -> Result<()> {
     eprintln!("msrv: {what}");
     let st = cmd.status().with_context(|| format!("running {what}"))?;
@@ -37,6 +65,17 @@ fn status(cmd: &mut Command, what: &str) -> Result<()> {
         bail!("{what} failed ({st})");
     }
     Ok(())
+}
+
+fn rust_version(meta: &serde_json::Value, name: &str) -> Result<String> {
+    let pkg = meta["packages"]
+        .as_array()
+        .and_then(|ps| ps.iter().find(|p| p["name"] == name))
+        .with_context(|| format!("{name} is not a workspace member"))?;
+    let rv = pkg["rust_version"]
+        .as_str()
+        .with_context(|| format!("{name} declares no rust-version"))?;
+    Ok(toolchain_of(rv))
 }
 
 pub fn run(_a: Args) -> Result<()> {
@@ -52,16 +91,19 @@ pub fn run(_a: Args) -> Result<()> {
     let meta: serde_json::Value = serde_json::from_slice(&out.stdout)?;
     let mut plan: Vec<(String, String)> = Vec::new();
     for name in PUBLISHABLE {
-        let pkg = meta["packages"]
-            .as_array()
-            .and_then(|ps| ps.iter().find(|p| p["name"] == *name))
-            .with_context(|| format!("{name} is not a workspace member"))?;
-        let rv = pkg["rust_version"]
-            .as_str()
-            .with_context(|| format!("{name} declares no rust-version"))?;
-        plan.push((name.to_string(), toolchain_of(rv)));
+        plan.push((name.to_string(), rust_version(&meta, name)?));
     }
-    for (name, tc) in &plan {
+    let mut extra: Vec<(String, String)> = Vec::new();
+    for name in ALSO_BUILT {
+        extra.push((name.to_string(), rust_version(&meta, name)?));
+    }
+    let mut toolchains = group(&plan);
+    for (_, tc) in &extra {
+        if !toolchains.iter().any(|(t, _)| t == tc) {
+            toolchains.push((tc.clone(), Vec::new()));
+        }
+    }
+    for (tc, names) in &toolchains {
         status(
             Command::new("rustup").args([
                 "toolchain",
@@ -70,7 +112,7 @@ pub fn run(_a: Args) -> Result<()> {
                 "--profile",
                 "minimal",
                 "--target",
-                "thumbv7em-none-eabihf",
+                NO_STD_TARGET,
             ]),
             &format!("rustup toolchain install {tc}"),
         )?;
@@ -84,30 +126,57 @@ pub fn run(_a: Args) -> Result<()> {
                 .env("CARGO_TARGET_DIR", &tdir)
                 .env_remove("RUSTC")
                 .env_remove("CARGO")
-                .env_remove("RUSTDOC");
+                .env_remove("RUSTDOC")
+                .env_remove("RUSTFLAGS")
+                .env_remove("RUSTDOCFLAGS");
             c
         };
-        status(
-            &mut cargo(&["test", "--locked", "-p", name]),
-            &format!("cargo +{tc} test -p {name}"),
-        )?;
-        if name == "brdf-core" {
+        let pkgs: Vec<&str> = names.iter().flat_map(|n| ["-p", n.as_str()]).collect();
+        if !names.is_empty() {
+            let mut args = vec!["test", "--locked", "--all-features"];
+            args.extend(&pkgs);
             status(
-                &mut cargo(&[
-                    "build",
-                    "--locked",
-                    "-p",
-                    name,
-                    "--target",
-                    "thumbv7em-none-eabihf",
-                ]),
-                &format!("cargo +{tc} build -p {name} --target thumbv7em-none-eabihf"),
+                &mut cargo(&args),
+                &format!("cargo +{tc} test --all-features {}", names.join(" ")),
+            )?;
+            let mut args = vec!["build", "--locked", "--no-default-features"];
+            args.extend(&pkgs);
+            args.extend(["--target", NO_STD_TARGET]);
+            status(
+                &mut cargo(&args),
+                &format!(
+                    "cargo +{tc} build --no-default-features {} --target {NO_STD_TARGET}",
+                    names.join(" ")
+                ),
+            )?;
+            if names.iter().any(|n| n == "brdf-lut") {
+                status(
+                    &mut cargo(&[
+                        "build",
+                        "--locked",
+                        "-p",
+                        "brdf-lut",
+                        "--no-default-features",
+                        "--features",
+                        "alloc,compact",
+                        "--target",
+                        NO_STD_TARGET,
+                    ]),
+                    &format!("cargo +{tc} build brdf-lut --features alloc,compact (no_std)"),
+                )?;
+            }
+        }
+        for (name, _) in extra.iter().filter(|(_, t)| t == tc) {
+            status(
+                &mut cargo(&["build", "--locked", "-p", name]),
+                &format!("cargo +{tc} build -p {name}"),
             )?;
         }
     }
     eprintln!(
         "msrv: OK ({})",
         plan.iter()
+            .chain(&extra)
             .map(|(n, t)| format!("{n} {t}"))
             .collect::<Vec<_>>()
             .join(", ")
@@ -117,11 +186,46 @@ pub fn run(_a: Args) -> Result<()> {
 
 #[cfg(test)]
 mod tests {
-    use super::toolchain_of;
+    use super::{group, toolchain_of, PUBLISHABLE};
+
+    /// The README states each publishable crate's minimum Rust; it must be the declared one.
+    #[test]
+    fn readme_states_the_declared_rust_versions() {
+        let root = super::root();
+        let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+        for name in PUBLISHABLE {
+            let manifest = root.join("crates").join(name).join("Cargo.toml");
+            let t: toml::Table = std::fs::read_to_string(&manifest).unwrap().parse().unwrap();
+            let rv = t["package"]["rust-version"]
+                .as_str()
+                .unwrap_or_else(|| panic!("{name}: rust-version must be a literal"));
+            let at = readme
+                .find(&format!("`{name}` ("))
+                .unwrap_or_else(|| panic!("README.md does not describe `{name}`"));
+            let sentence = &readme[at..readme.len().min(at + 120)];
+            assert!(
+                sentence.contains(&format!("Rust {rv} or later")),
+                "README.md: `{name}` should say \"Rust {rv} or later\": {sentence:?}"
+            );
+        }
+    }
 
     #[test]
     fn rust_version_to_toolchain() {
         assert_eq!(toolchain_of("1.81"), "1.81.0");
         assert_eq!(toolchain_of("1.87.1"), "1.87.1");
+    }
+
+    #[test]
+    fn one_install_per_toolchain() {
+        let p = |n: &str, t: &str| (n.to_string(), t.to_string());
+        let g = group(&[p("a", "1.84.0"), p("b", "1.82.0"), p("c", "1.84.0")]);
+        assert_eq!(
+            g,
+            vec![
+                ("1.84.0".to_string(), vec!["a".to_string(), "c".to_string()]),
+                ("1.82.0".to_string(), vec!["b".to_string()]),
+            ]
+        );
     }
 }
