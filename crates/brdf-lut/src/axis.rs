@@ -13,6 +13,15 @@
 
 use crate::header::{Axis, Placement, Warp};
 
+/// cos x in f32 arithmetic only: brdf-core's f32 sine/cosine kernel (Cody–Waite reduction,
+/// Taylor polynomials; within 2 ulp for |x| ≤ 6400). libm's `cosf` evaluates in f64, which
+/// on a single-precision FPU links kilobytes of soft-float code; this kernel is shared with
+/// the direct kernels and gives the same bits on every target.
+#[inline]
+pub(crate) fn cos(x: f32) -> f32 {
+    brdf_core::Real::sin_cos(x).1
+}
+
 /// min(max(x, lo), hi); NaN stays NaN and it cannot panic (`f32::clamp` asserts lo ≤ hi,
 /// which also links float formatting into size-constrained builds).
 #[inline(always)]
@@ -57,12 +66,9 @@ impl AxisMap {
         let (base, span) = match a.warp {
             Warp::Linear | Warp::Sqrt => (lo, hi - lo),
             Warp::Log => (libm::logf(lo), libm::logf(hi) - libm::logf(lo)),
-            Warp::Cos => (libm::cosf(lo), libm::cosf(lo) - libm::cosf(hi)),
+            Warp::Cos => (cos(lo), cos(lo) - cos(hi)),
             Warp::SqrtCos => {
-                let (a, b) = (
-                    libm::sqrtf(libm::cosf(lo)),
-                    libm::sqrtf(libm::cosf(hi).max(0.0)),
-                );
+                let (a, b) = (libm::sqrtf(cos(lo)), libm::sqrtf(cos(hi).max(0.0)));
                 (a, a - b)
             }
         };
@@ -89,8 +95,8 @@ impl AxisMap {
             Warp::Linear => (x - self.base) * self.inv,
             Warp::Sqrt => libm::sqrtf(((x - self.base) * self.inv).max(0.0)),
             Warp::Log => (libm::logf(x) - self.base) * self.inv,
-            Warp::Cos => (self.base - libm::cosf(x)) * self.inv,
-            Warp::SqrtCos => (self.base - libm::sqrtf(libm::cosf(x).max(0.0))) * self.inv,
+            Warp::Cos => (self.base - cos(x)) * self.inv,
+            Warp::SqrtCos => (self.base - libm::sqrtf(cos(x).max(0.0))) * self.inv,
         };
         clamp(s, 0.0, 1.0)
     }
@@ -110,11 +116,12 @@ impl AxisMap {
     pub(crate) fn taps(&self, x: f32, cubic: bool, out: &mut [(usize, f32); 4]) -> usize {
         let t = self.index(x);
         let n = self.n as usize;
-        let i = (t as usize).min(n - 2);
+        let i = (t as usize).min(n.saturating_sub(2));
         let f = t - i as f32;
         if !cubic || n < 3 {
-            out[0] = (i, 1.0 - f);
-            out[1] = (i + 1, f);
+            let [o0, o1, ..] = out;
+            *o0 = (i, 1.0 - f);
+            *o1 = (i + 1, f);
             return 2;
         }
         let (f2, f3) = (f * f, f * f * f);
@@ -124,12 +131,15 @@ impl AxisMap {
             0.5 * (-3.0 * f3 + 4.0 * f2 + f),
             0.5 * (f3 - f2),
         ];
+        // At most 4 distinct nodes: the window i − 1..=i + 2, with an end extrapolation
+        // folding into nodes of that window (n ≥ 3). `get_mut` keeps that unprovable to the
+        // compiler bound free of a panic path; a fifth node cannot occur.
         let mut m = 0usize;
         let mut add = |idx: usize, wt: f32| {
-            if let Some(t) = out[..m].iter_mut().find(|t| t.0 == idx) {
+            if let Some(t) = out.iter_mut().take(m).find(|t| t.0 == idx) {
                 t.1 += wt;
-            } else {
-                out[m] = (idx, wt);
+            } else if let Some(slot) = out.get_mut(m) {
+                *slot = (idx, wt);
                 m += 1;
             }
         };

@@ -2,13 +2,14 @@
 //! 0xFFFFFFFF): the checksum of a LUT file (docs/lut-format.md §5). Check value:
 //! `crc32(b"123456789") == 0xCBF43926`.
 
-const fn make_table() -> [u32; 256] {
-    let mut t = [0u32; 256];
+/// The CRC register after shifting in the low `BITS` bits of every index (`N` = 2^BITS).
+const fn make_table<const N: usize, const BITS: u32>() -> [u32; N] {
+    let mut t = [0u32; N];
     let mut i = 0;
-    while i < 256 {
+    while i < N {
         let mut c = i as u32;
         let mut k = 0;
-        while k < 8 {
+        while k < BITS {
             c = if c & 1 != 0 {
                 0xEDB8_8320 ^ (c >> 1)
             } else {
@@ -22,7 +23,12 @@ const fn make_table() -> [u32; 256] {
     t
 }
 
-static TABLE: [u32; 256] = make_table();
+/// Byte-at-a-time table (1 KiB).
+#[cfg(not(feature = "compact"))]
+static TABLE: [u32; 256] = make_table::<256, 8>();
+/// Nibble-at-a-time table (64 B) for size budgets: the same CRC, two steps per byte.
+#[cfg(feature = "compact")]
+static TABLE: [u32; 16] = make_table::<16, 4>();
 
 /// A running CRC-32: `Crc32::new().update(a).update(b).finish()` is the CRC of `a ++ b`.
 #[derive(Clone, Copy, Debug)]
@@ -42,7 +48,16 @@ impl Crc32 {
     /// Feeds bytes.
     pub fn update(mut self, bytes: &[u8]) -> Self {
         for &b in bytes {
-            self.0 = TABLE[((self.0 ^ b as u32) & 0xFF) as usize] ^ (self.0 >> 8);
+            #[cfg(not(feature = "compact"))]
+            {
+                self.0 = TABLE[((self.0 ^ b as u32) & 0xFF) as usize] ^ (self.0 >> 8);
+            }
+            #[cfg(feature = "compact")]
+            {
+                let c = self.0 ^ b as u32;
+                let c = TABLE[(c & 0xF) as usize] ^ (c >> 4);
+                self.0 = TABLE[(c & 0xF) as usize] ^ (c >> 4);
+            }
         }
         self
     }

@@ -54,7 +54,7 @@ fn warp_w(warp: Warp, lo: f32, x: f32) -> f32 {
         Warp::SqrtCos => libm::sqrtf(cos_quadrant(x).max(0.0)),
         Warp::Log => libm::logf(x),
         Warp::Sqrt => libm::sqrtf((x - lo).max(0.0)),
-        Warp::Cos => libm::cosf(x),
+        Warp::Cos => crate::axis::cos(x),
     }
 }
 
@@ -181,6 +181,8 @@ impl Lane {
 /// How stored numbers become f32 (before the channel's scale and offset).
 trait Store {
     const BYTES: usize;
+    /// Stored number `k` of `b`. Callers pass a row taken with `get` that holds every `k`
+    /// they ask for; a short row gives NaN (no panic path), like the other unreadable cases.
     fn at(b: &[u8], k: usize) -> f32;
 }
 struct U16;
@@ -193,7 +195,10 @@ impl Store for U16 {
     #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
     #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     fn at(b: &[u8], k: usize) -> f32 {
-        u16::from_le_bytes([b[2 * k], b[2 * k + 1]]) as f32
+        match b.get(2 * k..2 * k + 2) {
+            Some(&[b0, b1]) => u16::from_le_bytes([b0, b1]) as f32,
+            _ => f32::NAN,
+        }
     }
 }
 impl Store for F16 {
@@ -201,7 +206,10 @@ impl Store for F16 {
     #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
     #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     fn at(b: &[u8], k: usize) -> f32 {
-        f16_to_f32(u16::from_le_bytes([b[2 * k], b[2 * k + 1]]))
+        match b.get(2 * k..2 * k + 2) {
+            Some(&[b0, b1]) => f16_to_f32(u16::from_le_bytes([b0, b1])),
+            _ => f32::NAN,
+        }
     }
 }
 impl Store for F32 {
@@ -209,7 +217,10 @@ impl Store for F32 {
     #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
     #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     fn at(b: &[u8], k: usize) -> f32 {
-        f32::from_le_bytes([b[4 * k], b[4 * k + 1], b[4 * k + 2], b[4 * k + 3]])
+        match b.get(4 * k..4 * k + 4) {
+            Some(&[b0, b1, b2, b3]) => f32::from_le_bytes([b0, b1, b2, b3]),
+            _ => f32::NAN,
+        }
     }
 }
 
@@ -255,9 +266,13 @@ impl Reader {
             1.0
         };
         let (mut scale, mut offset) = ([1.0; MAX_CHANNELS], [0.0; MAX_CHANNELS]);
-        for (k, ch) in h.channels.iter().enumerate() {
-            scale[k] = ch.scale * q;
-            offset[k] = ch.offset;
+        for ((s, o), ch) in scale
+            .iter_mut()
+            .zip(offset.iter_mut())
+            .zip(h.channels.iter())
+        {
+            *s = ch.scale * q;
+            *o = ch.offset;
         }
         Some(Reader {
             lanes,

@@ -42,9 +42,13 @@ impl Grid {
             *m = AxisMap::new(a);
         }
         let (mut scale, mut offset) = ([1.0; MAX_CHANNELS], [0.0; MAX_CHANNELS]);
-        for (k, c) in h.channels.iter().enumerate() {
-            scale[k] = c.scale;
-            offset[k] = c.offset;
+        for ((s, o), c) in scale
+            .iter_mut()
+            .zip(offset.iter_mut())
+            .zip(h.channels.iter())
+        {
+            *s = c.scale;
+            *o = c.offset;
         }
         Grid {
             maps,
@@ -66,15 +70,21 @@ impl Grid {
         }
         let nb = self.encoding.bytes();
         let off = (flat * c + ch) * nb;
-        let Some(b) = payload.get(off..off + nb) else {
+        let (Some(b), Some(offset), Some(scale)) = (
+            payload.get(off..off + nb),
+            self.offset.get(ch),
+            self.scale.get(ch),
+        ) else {
             return f32::NAN;
         };
-        let stored = match self.encoding {
-            Encoding::Unorm16 => u16::from_le_bytes([b[0], b[1]]) as f32 * (1.0 / 65535.0),
-            Encoding::F16 => f16_to_f32(u16::from_le_bytes([b[0], b[1]])),
-            Encoding::F32 => f32::from_le_bytes([b[0], b[1], b[2], b[3]]),
+        let stored = match (self.encoding, b) {
+            (Encoding::Unorm16, &[b0, b1]) => u16::from_le_bytes([b0, b1]) as f32 * (1.0 / 65535.0),
+            (Encoding::F16, &[b0, b1]) => f16_to_f32(u16::from_le_bytes([b0, b1])),
+            (Encoding::F32, &[b0, b1, b2, b3]) => f32::from_le_bytes([b0, b1, b2, b3]),
+            // `b` has the encoding's width (taken above).
+            _ => return f32::NAN,
         };
-        self.offset[ch] + self.scale[ch] * stored
+        offset + scale * stored
     }
 
     /// The per-tap general path (Catmull–Rom axes of 3 nodes; see `reader.rs`).
@@ -82,21 +92,31 @@ impl Grid {
         let d = self.dims;
         let mut taps = [[(0usize, 0f32); 4]; MAX_AXES];
         let mut ntaps = [1usize; MAX_AXES];
-        for k in 0..d {
+        for (k, ((map, t), nt)) in self
+            .maps
+            .iter()
+            .zip(taps.iter_mut())
+            .zip(ntaps.iter_mut())
+            .enumerate()
+            .take(d)
+        {
             let xk = x.get(k).copied().unwrap_or(f32::NEG_INFINITY);
             if xk.is_nan() {
                 return [f32::NAN; MAX_CHANNELS];
             }
-            ntaps[k] = self.maps[k].taps(xk, self.cubic, &mut taps[k]);
+            *nt = map.taps(xk, self.cubic, t);
         }
         let mut out = [0f32; MAX_CHANNELS];
         let c = self.channels;
-        let n0 = self.maps[0].count();
-        let n1 = if d > 1 { self.maps[1].count() } else { 1 };
-        for &(i2, w2) in &taps[2][..ntaps[2]] {
-            for &(i1, w1) in &taps[1][..ntaps[1]] {
+        let [m0, m1, _] = &self.maps;
+        let [t0, t1, t2] = &taps;
+        let [n_t0, n_t1, n_t2] = ntaps;
+        let n0 = m0.count();
+        let n1 = if d > 1 { m1.count() } else { 1 };
+        for &(i2, w2) in t2.iter().take(n_t2) {
+            for &(i1, w1) in t1.iter().take(n_t1) {
                 let w21 = if d > 2 { w2 } else { 1.0 } * if d > 1 { w1 } else { 1.0 };
-                for &(i0, w0) in &taps[0][..ntaps[0]] {
+                for &(i0, w0) in t0.iter().take(n_t0) {
                     let w = w21 * w0;
                     let flat = (i2 * n1 + i1) * n0 + i0;
                     for (ch, o) in out.iter_mut().enumerate().take(c) {
@@ -120,6 +140,20 @@ pub struct LutView<'a> {
     reader: Reader,
 }
 
+/// An integer whose order is the IEEE order of finite (and infinite) f64 values, −0 = +0:
+/// the magnitude bits, negated for a set sign bit. The header checks compare with it so that
+/// a target without a double-precision FPU links no soft-float comparisons for them.
+/// Meaningless for NaN (the callers test `is_finite` first).
+fn order_key(x: f64) -> i64 {
+    let b = x.to_bits() as i64;
+    if b < 0 {
+        // b = i64::MIN + magnitude → −magnitude (−0.0 → 0).
+        i64::MIN.wrapping_sub(b)
+    } else {
+        b
+    }
+}
+
 /// Every check of the header alone (docs/lut-format.md §4–§6).
 pub(crate) fn check_header(h: &Header<'_>) -> Result<(), LutError> {
     use LutError::Inconsistent as I;
@@ -133,15 +167,16 @@ pub(crate) fn check_header(h: &Header<'_>) -> Result<(), LutError> {
         if a.count < 2 || a.count > MAX_AXIS_COUNT {
             return Err(I("axis count outside [2, 65536]"));
         }
-        if !(a.lo.is_finite() && a.hi.is_finite() && a.lo < a.hi) {
+        let (lo, hi) = (order_key(a.lo), order_key(a.hi));
+        if !(a.lo.is_finite() && a.hi.is_finite() && lo < hi) {
             return Err(I("axis range not finite or not increasing"));
         }
         match a.warp {
-            Warp::Log if a.lo <= 0.0 => return Err(I("log axis must start above 0")),
-            Warp::Cos if a.lo < 0.0 || a.hi > core::f64::consts::PI => {
+            Warp::Log if lo <= 0 => return Err(I("log axis must start above 0")),
+            Warp::Cos if lo < 0 || hi > order_key(core::f64::consts::PI) => {
                 return Err(I("cos axis must lie in [0, π]"))
             }
-            Warp::SqrtCos if a.lo < 0.0 || a.hi > core::f64::consts::FRAC_PI_2 => {
+            Warp::SqrtCos if lo < 0 || hi > order_key(core::f64::consts::FRAC_PI_2) => {
                 return Err(I("sqrt-cos axis must lie in [0, π/2]"))
             }
             _ => {}
@@ -190,10 +225,11 @@ fn open(bytes: &[u8]) -> Result<Decoder<'_>, LutError> {
             LutError::BadMagic
         });
     }
-    if bytes[..4] != MAGIC {
+    let (magic, rest) = bytes.split_at_checked(4).ok_or(LutError::Truncated)?;
+    if magic != MAGIC {
         return Err(LutError::BadMagic);
     }
-    let mut r = Decoder::new(&bytes[4..]);
+    let mut r = Decoder::new(rest);
     let version = r.varint(16)? as u16;
     if version != FORMAT_VERSION {
         return Err(LutError::UnsupportedVersion { found: version });
@@ -228,7 +264,14 @@ impl<'a> LutView<'a> {
         let mut r = open(bytes)?;
         let header = r.header()?;
         let header_len = 4 + r.pos();
-        let payload = &bytes[header_len..];
+        // The decoder consumed header_len − 4 ≥ 4 bytes (the checksum ends the header) of
+        // `bytes[4..]`, so both splits exist; `Truncated` keeps the code free of panics.
+        let (signed, payload) = bytes
+            .split_at_checked(header_len)
+            .ok_or(LutError::Truncated)?;
+        let signed = signed
+            .get(..header_len.saturating_sub(4))
+            .ok_or(LutError::Truncated)?;
         check_header(&header)?;
         let expected = header.payload_len();
         if expected != payload.len() as u64 {
@@ -239,10 +282,7 @@ impl<'a> LutView<'a> {
         }
         if crc {
             let stored = header.checksum;
-            let computed = Crc32::new()
-                .update(&bytes[..header_len - 4])
-                .update(payload)
-                .finish();
+            let computed = Crc32::new().update(signed).update(payload).finish();
             if stored != computed {
                 return Err(LutError::Checksum { stored, computed });
             }
@@ -252,12 +292,19 @@ impl<'a> LutView<'a> {
         let reader = Reader::new(&header).ok_or(LutError::Inconsistent("axis constants"))?;
         if header.encoding != Encoding::Unorm16 {
             // Float payloads: every decoded value finite and within the value limit.
-            let n = (payload.len() / header.encoding.bytes()) as u64;
-            let c = grid.channels as u64;
+            // Flat value index k = node × channels + channel, counted without a division.
+            let n = payload.len() / header.encoding.bytes();
+            let c = grid.channels.max(1);
+            let (mut node, mut ch) = (0usize, 0usize);
             for k in 0..n {
-                let v = grid.node_value(payload, (k / c) as usize, (k % c) as usize);
+                let v = grid.node_value(payload, node, ch);
                 if v.is_nan() || v.abs() > MAX_VALUE_MAGNITUDE {
-                    return Err(LutError::BadValue { index: k });
+                    return Err(LutError::BadValue { index: k as u64 });
+                }
+                ch += 1;
+                if ch == c {
+                    ch = 0;
+                    node += 1;
                 }
             }
         }
@@ -309,7 +356,7 @@ impl<'a> LutView<'a> {
     }
     /// The coordinate map of axis `k`; `None` if `k ≥ dims()`.
     pub fn axis_map(&self, k: usize) -> Option<&AxisMap> {
-        self.grid.maps[..self.grid.dims].get(k)
+        self.grid.maps.iter().take(self.grid.dims).nth(k)
     }
 
     /// The decoded value at a flat node index (axis 0 fastest) and channel. Out-of-range
@@ -512,6 +559,33 @@ mod tests {
             let got = v.sample2(x, y)[0] as f64;
             let want = f(x as f64, y as f64);
             assert!((got - want).abs() < 1e-5, "({x}, {y}): {got} vs {want}");
+        }
+    }
+
+    #[test]
+    fn order_key_orders_like_ieee() {
+        // Against f64's own comparison on values spanning signs, zeros, subnormals and
+        // infinities.
+        let v = [
+            f64::NEG_INFINITY,
+            -f64::MAX,
+            -1.5,
+            -f64::MIN_POSITIVE,
+            -5e-324,
+            -0.0,
+            0.0,
+            5e-324,
+            f64::MIN_POSITIVE,
+            1.0,
+            core::f64::consts::PI,
+            f64::MAX,
+            f64::INFINITY,
+        ];
+        for &a in &v {
+            for &b in &v {
+                assert_eq!(order_key(a) < order_key(b), a < b, "{a} < {b}");
+                assert_eq!(order_key(a) <= order_key(b), a <= b, "{a} <= {b}");
+            }
         }
     }
 
