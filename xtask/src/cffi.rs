@@ -34,6 +34,10 @@ pub struct Args {
     /// Print every compared value.
     #[arg(long)]
     pub verbose: bool,
+    /// Rewrite the README's C-build size table with the measured figures. Without it, a
+    /// README that disagrees with the measurement is an error.
+    #[arg(long)]
+    pub update_readme: bool,
 }
 
 /// Wall-clock limit for one run of a C program (QEMU or host).
@@ -184,6 +188,12 @@ pub fn run(a: Args) -> Result<()> {
     // 6. Sizes and the panic check.
     let sz = sizes(&elf)?;
     print_sizes(&sz, parsed[0].1.stack);
+    readme_sizes(
+        &root.join("README.md"),
+        &sz,
+        parsed[0].1.stack,
+        a.update_readme,
+    )?;
     let callers = panic_callers(&elf)?;
     let (lut, other): (Vec<_>, Vec<_>) = callers.iter().partition(|c| c.contains("brdf_lut::"));
     if callers.is_empty() {
@@ -1040,9 +1050,119 @@ fn print_sizes(s: &Sizes, stack: Option<u64>) {
     );
 }
 
+/// The README's C-build size table: (row prefix, flash cell, RAM cell or None) as measured.
+fn readme_rows(s: &Sizes, stack: Option<u64>) -> Vec<(&'static str, String, Option<String>)> {
+    let sec = |n: &str| s.sections.get(n).copied().unwrap_or(0);
+    let part = |p: Part| s.parts.get(&p).copied().unwrap_or(0);
+    let flash = sec(".vectors") + sec(".text") + sec(".rodata") + sec(".ARM.exidx") + sec(".data");
+    let ram = sec(".data") + sec(".bss");
+    let ram_cell = format!(
+        "{} B static, {} B peak stack, no heap",
+        thousands(ram),
+        stack.map_or("?".into(), thousands)
+    );
+    vec![
+        (
+            "| C ABI library: kernels",
+            thousands(part(Part::Kernels)),
+            None,
+        ),
+        (
+            "| C ABI library: LUT readers",
+            thousands(part(Part::Readers)),
+            None,
+        ),
+        ("| embedded tables", thousands(part(Part::Tables)), None),
+        (
+            "| C program, start-up",
+            thousands(part(Part::Program)),
+            None,
+        ),
+        ("| whole C firmware", thousands(flash), Some(ram_cell)),
+    ]
+}
+
+/// 132510 → "132,510".
+fn thousands(v: u64) -> String {
+    let d = v.to_string();
+    let mut out = String::new();
+    for (i, c) in d.chars().enumerate() {
+        if i > 0 && (d.len() - i).is_multiple_of(3) {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
+}
+
+/// Checks (or with `update`, rewrites) the README's C-build size table against the
+/// measurement, so that no size in the README is a figure copied by hand.
+fn readme_sizes(path: &Path, s: &Sizes, stack: Option<u64>, update: bool) -> Result<()> {
+    let text =
+        std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
+    let mut out = String::with_capacity(text.len());
+    let mut stale = Vec::new();
+    let rows = readme_rows(s, stack);
+    let mut seen = vec![false; rows.len()];
+    for line in text.split_inclusive('\n') {
+        let Some(k) = rows.iter().position(|r| line.starts_with(r.0)) else {
+            out.push_str(line);
+            continue;
+        };
+        seen[k] = true;
+        let (_, flash, ram) = &rows[k];
+        let cells: Vec<&str> = line.trim_end().split('|').collect();
+        // "| label | flash | ram |" splits into ["", label, flash, ram, ""].
+        if cells.len() != 5 {
+            bail!(
+                "README.md: size row {:?} is not a 3-column table row",
+                line.trim_end()
+            );
+        }
+        let want_ram = ram.clone().unwrap_or_default();
+        if cells[2].trim() != flash || cells[3].trim() != want_ram {
+            stale.push(format!(
+                "{}: README {} / {:?}, measured {flash} / {want_ram:?}",
+                cells[1].trim(),
+                cells[2].trim(),
+                cells[3].trim()
+            ));
+        }
+        out.push_str(&format!("|{}| {flash} | {want_ram} |\n", cells[1]));
+    }
+    if let Some(k) = seen.iter().position(|&b| !b) {
+        bail!("README.md has no C size row starting with {:?}", rows[k].0);
+    }
+    if stale.is_empty() {
+        println!("README.md: C size table matches the measurement");
+        return Ok(());
+    }
+    if update {
+        crate::fsio::replace(path, out.as_bytes())?;
+        println!(
+            "README.md: C size table rewritten ({} rows changed)",
+            stale.len()
+        );
+        return Ok(());
+    }
+    bail!(
+        "README.md's C size table disagrees with the measurement (run `cargo xtask cffi --update-readme`):\n  {}",
+        stale.join("\n  ")
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn thousands_groups_digits() {
+        assert_eq!(thousands(0), "0");
+        assert_eq!(thousands(999), "999");
+        assert_eq!(thousands(1000), "1,000");
+        assert_eq!(thousands(132_510), "132,510");
+        assert_eq!(thousands(1_234_567), "1,234,567");
+    }
 
     #[test]
     fn fnv1a_matches_the_published_test_vectors() {
