@@ -482,7 +482,9 @@ fn write_web(out_dir: &std::path::Path) {
     let g3 = GTable3::parse(&g3_bytes).expect("valid G table");
     let v: Vec<u32> = tr.iter().map(|&t| bits(g3.g(ti, t, sigma))).collect();
     write!(s, ",\"modified_lut\":{}", json_u32s(&v)).unwrap();
-    s.push_str("},\"size\":256,\"spheres\":[");
+    // The page's status line names the module's model count: the native catalogue's.
+    write!(s, "}},\"models\":{}", catalogue::MODELS.len()).unwrap();
+    s.push_str(",\"size\":256,\"spheres\":[");
     let size = 256u32;
     let points: Vec<(u32, u32)> = (0..41)
         .flat_map(|i| (0..41).map(move |j| (3 + 6 * i, 3 + 6 * j)))
