@@ -76,9 +76,20 @@ pub fn run(a: ExportArgs) -> Result<()> {
     let out = a.out.clone().unwrap_or_else(|| default_out(&a.file, ext));
     let side_path = PathBuf::from(format!("{}.json", out.display()));
     let policy = crate::fsio::Policy::new(a.force, &[&a.file]);
-    crate::fsio::check(&[&out, &side_path], &policy)?;
+    crate::fsio::check(
+        &[
+            &out,
+            &side_path,
+            &PathBuf::from(format!("{}.glsl", out.display())),
+            &PathBuf::from(format!("{}.wgsl", out.display())),
+        ],
+        &policy,
+    )?;
     let payload: Vec<u8>;
     let mut png_map = serde_json::Value::Null;
+    // Channel decode of the texture: identity for float exports, the PNG's offset/scale.
+    let mut decode: super::export_shaders::Decode = vec![(0.0, 1.0); nc];
+    let mut singles: Vec<(PathBuf, Vec<u8>)> = Vec::new();
     if a.png16 {
         if h.axes.len() > 2 || nc > 2 {
             bail!("--png16 needs a 1- or 2-D table with at most 2 channels; use --raw-f32");
@@ -134,6 +145,36 @@ pub fn run(a: ExportArgs) -> Result<()> {
         wr.write_image_data(&data)?;
         wr.finish()?;
         payload = encoded;
+        decode = ranges.clone();
+        // Single-channel 16-bit greyscale PNGs per channel: loaders that silently reduce
+        // 16-bit RGB to 8 bits (Pillow) read 16-bit greyscale at full depth.
+        if nc > 1 {
+            let stem = out
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_default();
+            for (c, ch) in h.channels.iter().enumerate() {
+                let (off, sc) = ranges[c];
+                let mut d = Vec::with_capacity(nodes * 2);
+                for k in 0..nodes {
+                    let x = ((vals[k * nc + c] - off) / sc).clamp(0.0, 1.0);
+                    d.extend_from_slice(&((x * 65535.0).round() as u16).to_be_bytes());
+                }
+                let mut e = Vec::new();
+                let mut enc = png::Encoder::new(&mut e, w, ht);
+                enc.set_color(png::ColorType::Grayscale);
+                enc.set_depth(png::BitDepth::Sixteen);
+                let mut wr = enc.write_header()?;
+                wr.write_image_data(&d)?;
+                wr.finish()?;
+                let cname: String = ch
+                    .name
+                    .chars()
+                    .filter(|c| c.is_ascii_alphanumeric() || *c == '_')
+                    .collect();
+                singles.push((out.with_file_name(format!("{stem}_{cname}.png")), e));
+            }
+        }
         png_map = serde_json::json!(ranges
             .iter()
             .zip(h.channels.iter())
@@ -172,7 +213,55 @@ pub fn run(a: ExportArgs) -> Result<()> {
     } else {
         "axis 0 varies fastest, then axis 1, then axis 2; channels interleaved innermost"
     };
+    let fname: String = out
+        .file_name()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default()
+        .split('.')
+        .next()
+        .unwrap_or_default()
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() {
+                c.to_ascii_lowercase()
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    let fname = format!("sample_{fname}");
+    let shaders = super::export_shaders::shaders(h, &fname, &decode);
+    let glsl_path = PathBuf::from(format!("{}.glsl", out.display()));
+    let wgsl_path = PathBuf::from(format!("{}.wgsl", out.display()));
+    let shaders_json = match &shaders {
+        Some(_) => serde_json::json!({
+            "function": fname,
+            "glsl": glsl_path.file_name().map(|s| s.to_string_lossy().into_owned()),
+            "wgsl": wgsl_path.file_name().map(|s| s.to_string_lossy().into_owned()),
+            "signature_glsl": format!("{} {fname}(sampler2D lut, float p0, float p1)", if nc == 1 { "float" } else { "vec2" }),
+            "signature_wgsl": format!("fn {fname}(lut: texture_2d<f32>, samp: sampler, p0: f32, p1: f32) -> {}", if nc == 1 { "f32" } else { "vec2<f32>" }),
+            "arguments": "p0 = physical value on axis 0, p1 = on axis 1 (clamped to the axis ranges)",
+            "texture_setup": "width = axis 0 count, height = axis 1 count, first data row at v = 0 (no vertical flip on upload), linear (UNORM or float, never sRGB) format, bilinear filtering, clamp-to-edge, no mipmaps",
+            "interpolation": if h.interpolation == brdf_lut::Interpolation::Linear {
+                "the table is meant for linear interpolation: bilinear sampling at these uv reproduces it up to the texture format's rounding (and the GPU's filter-weight precision)"
+            } else {
+                "the table is meant for Catmull-Rom interpolation: bilinear sampling gives its linear interpolation instead, and the header's error figure is for Catmull-Rom"
+            },
+        }),
+        None => serde_json::json!({
+            "function": null,
+            "note": format!("no shader emitted: sampling functions are generated for 2-D tables with 1 or 2 channels only; this table has {} axes. Use inverse_mapping per axis (a 1-D table as a Nx1 texture, a 3-D table as a 3-D texture or layers along axis 2)", h.axes.len()),
+        }),
+    };
     let side = serde_json::json!({
+        "inverse_mapping": h.axes.iter().enumerate().map(|(k, x)| super::export_shaders::axis_mapping(k, x)).collect::<Vec<_>>(),
+        "inverse_mapping_note": "t is the warped unit coordinate; endpoint nodes i sit at t = i/(N-1) = texel centre (i + 0.5)/N, hence u = (t*(N-1) + 0.5)/N; texel-centre nodes at t = (i + 0.5)/N, hence u = t",
+        "roughness": super::export_shaders::roughness_convention(h.generator.model),
+        "clamp_ranges": h.axes.iter().map(|x| serde_json::json!({"name": x.name, "lo": x.lo, "hi": x.hi})).collect::<Vec<_>>(),
+        "channel_decode": h.channels.iter().zip(decode.iter()).map(|(c, (o, s))| serde_json::json!({"channel": c.name, "offset": o, "scale": s, "value": "offset + scale * texel"})).collect::<Vec<_>>(),
+        "single_channel_pngs": singles.iter().map(|(p, _)| p.file_name().map(|s| s.to_string_lossy().into_owned())).collect::<Vec<_>>(),
+        "single_channel_pngs_note": if a.png16 && nc > 1 { "one 16-bit greyscale PNG per channel is written besides the RGB one: Pillow and some other loaders silently read 16-bit RGB PNGs as 8-bit, 16-bit greyscale at full depth" } else { "not needed: the PNG is already single-channel 16-bit greyscale (or the export is raw)" },
+        "shaders": shaders_json,
         "source": a.file.file_name().map(|s| s.to_string_lossy().into_owned()),
         "format": fmt,
         "kind": format!("{:?}", h.kind),
@@ -188,10 +277,19 @@ pub fn run(a: ExportArgs) -> Result<()> {
         "error_vs_direct_kernel": {"max_abs": h.error.max_abs, "rms": h.error.rms},
     });
     let side_bytes = (serde_json::to_string_pretty(&side)? + "\n").into_bytes();
-    crate::fsio::write_together(
-        &[(out.clone(), payload), (side_path.clone(), side_bytes)],
+    let single_paths: Vec<PathBuf> = singles.iter().map(|(p, _)| p.clone()).collect();
+    crate::fsio::check(
+        &single_paths.iter().map(|p| p.as_path()).collect::<Vec<_>>(),
         &policy,
     )?;
-    println!("wrote {} and {}", out.display(), side_path.display());
+    let mut files = vec![(out.clone(), payload), (side_path.clone(), side_bytes)];
+    files.extend(singles);
+    if let Some((g, w)) = shaders {
+        files.push((glsl_path, g.into_bytes()));
+        files.push((wgsl_path, w.into_bytes()));
+    }
+    let names: Vec<String> = files.iter().map(|(p, _)| p.display().to_string()).collect();
+    crate::fsio::write_together(&files, &policy)?;
+    println!("wrote {}", names.join(", "));
     Ok(())
 }

@@ -3,6 +3,7 @@
 
 mod assets;
 mod export;
+mod export_shaders;
 mod gen;
 mod generate;
 

@@ -1,0 +1,252 @@
+//! What a shader needs to read an exported table: the per-axis inverse mapping (physical value
+//! → texture coordinate) as sidecar JSON, the roughness convention of the table's model, and a
+//! GLSL and a WGSL function that sample an exported 2-D table (warp, placement, `texture()`,
+//! channel decode).
+//!
+//! Warps (docs/lut-format.md): t = (x − lo)/(hi − lo) (linear), ln(x/lo)/ln(hi/lo) (log),
+//! √((x − lo)/(hi − lo)) (sqrt), (cos lo − cos x)/(cos lo − cos hi) (cos),
+//! (√cos lo − √cos x)/(√cos lo − √cos hi) (sqrt-cos), x clamped to [lo, hi] first and t to
+//! [0, 1]. Placement: endpoint nodes sit at t = i/(N − 1), i.e. at texel centres
+//! u = (i + ½)/N, so u = (t·(N − 1) + ½)/N; texel-centre nodes sit at t = (i + ½)/N, so u = t.
+
+use brdf_lut::{Axis, Header, Interpolation, Model, Placement, Warp};
+use serde_json::{json, Value};
+
+/// The warp name used in the sidecar.
+pub fn warp_name(w: Warp) -> &'static str {
+    match w {
+        Warp::Linear => "linear",
+        Warp::Log => "log",
+        Warp::Sqrt => "sqrt",
+        Warp::Cos => "cos",
+        Warp::SqrtCos => "sqrt-cos",
+    }
+}
+
+fn warp_t_formula(w: Warp) -> &'static str {
+    match w {
+        Warp::Linear => "t = (x - lo) / (hi - lo)",
+        Warp::Log => "t = ln(x / lo) / ln(hi / lo)",
+        Warp::Sqrt => "t = sqrt((x - lo) / (hi - lo))",
+        Warp::Cos => "t = (cos(lo) - cos(x)) / (cos(lo) - cos(hi))   (x in radians)",
+        Warp::SqrtCos => {
+            "t = (sqrt(cos(lo)) - sqrt(max(cos(x), 0))) / (sqrt(cos(lo)) - sqrt(max(cos(hi), 0)))   (x in radians)"
+        }
+    }
+}
+
+fn u_formula(p: Placement) -> &'static str {
+    match p {
+        Placement::Endpoint => "u = (t * (N - 1) + 0.5) / N",
+        Placement::TexelCentre => "u = t",
+    }
+}
+
+/// The warp origin and 1/span in f32, exactly as `brdf_lut::AxisMap` computes them.
+fn warp_consts(a: &Axis<'_>) -> (f32, f32) {
+    let (lo, hi) = (a.lo as f32, a.hi as f32);
+    let (base, span) = match a.warp {
+        Warp::Linear | Warp::Sqrt => (lo, hi - lo),
+        Warp::Log => (lo.ln(), hi.ln() - lo.ln()),
+        Warp::Cos => (lo.cos(), lo.cos() - hi.cos()),
+        Warp::SqrtCos => {
+            let (p, q) = (lo.cos().sqrt(), hi.cos().max(0.0).sqrt());
+            (p, p - q)
+        }
+    };
+    (base, 1.0 / span)
+}
+
+/// The sidecar's `inverse_mapping` entry of one axis.
+pub fn axis_mapping(k: usize, a: &Axis<'_>) -> Value {
+    let (base, inv) = warp_consts(a);
+    json!({
+        "axis": k,
+        "name": a.name,
+        "texture_coordinate": if k == 0 { "u (x, columns)" } else if k == 1 { "v (y, rows; row 0 = first row of the data, v = 0)" } else { "w / layer" },
+        "warp": warp_name(a.warp),
+        "lo": a.lo,
+        "hi": a.hi,
+        "clamp": [a.lo, a.hi],
+        "count": a.count,
+        "placement": match a.placement { Placement::Endpoint => "endpoint", Placement::TexelCentre => "texel-centre" },
+        "step_1_clamp": "x = clamp(x, lo, hi)",
+        "step_2_warp": warp_t_formula(a.warp),
+        "step_3_clamp": "t = clamp(t, 0, 1)",
+        "step_4_placement": u_formula(a.placement),
+        "warp_base_f32": base,
+        "warp_inv_span_f32": inv,
+        "warp_compact": match a.warp {
+            Warp::Linear => "t = (x - base) * inv",
+            Warp::Log => "t = (ln(x) - base) * inv",
+            Warp::Sqrt => "t = sqrt(max((x - base) * inv, 0))",
+            Warp::Cos => "t = (base - cos(x)) * inv",
+            Warp::SqrtCos => "t = (base - sqrt(max(cos(x), 0))) * inv",
+        },
+    })
+}
+
+/// The roughness convention of a model's roughness axis.
+pub fn roughness_convention(m: Model) -> &'static str {
+    match m {
+        Model::GgxSmithCorrelated | Model::GgxSmithSeparable => {
+            "perceptual roughness r in [0, 1]; GGX alpha = r^2"
+        }
+        Model::BeckmannSmithCorrelated | Model::BeckmannSmithSeparable => {
+            "perceptual roughness r in [0, 1]; Beckmann m = alpha = r^2"
+        }
+        Model::ModifiedG => {
+            "sigma = RMS surface slope of the Gaussian surface (the 2015 Acta Physica Sinica paper, eqs 6-13); not a perceptual roughness"
+        }
+        Model::TorranceSparrowModifiedG
+        | Model::TorranceSparrowSmith
+        | Model::TorranceSparrowSmithSeparable
+        | Model::TorranceSparrowVCavity => {
+            "sigma = RMS slope of the Gaussian slope distribution; Beckmann m = sqrt(2) * sigma; not a perceptual roughness"
+        }
+    }
+}
+
+/// A float literal both GLSL ES 3.0 and WGSL read as f32 (always with a decimal point or an
+/// exponent; Rust's shortest round-trip form). Only finite values reach it (validated header).
+fn lit(x: f32) -> String {
+    let s = format!("{x:?}");
+    let s = if s.contains('.') || s.contains('e') {
+        s
+    } else {
+        format!("{s}.0")
+    };
+    // Parenthesised when negative, so `a - -b` never reads as a decrement token.
+    if s.starts_with('-') {
+        format!("({s})")
+    } else {
+        s
+    }
+}
+
+/// The shader expression of t for axis `a` on variable `x` (`wgsl` picks `max`/`log` forms
+/// valid in both languages — they are the same here).
+fn t_expr(a: &Axis<'_>, x: &str) -> String {
+    let (base, inv) = warp_consts(a);
+    let (b, i) = (lit(base), lit(inv));
+    match a.warp {
+        Warp::Linear => format!("({x} - {b}) * {i}"),
+        Warp::Log => format!("(log({x}) - {b}) * {i}"),
+        Warp::Sqrt => format!("sqrt(max(({x} - {b}) * {i}, 0.0))"),
+        Warp::Cos => format!("({b} - cos({x})) * {i}"),
+        Warp::SqrtCos => format!("({b} - sqrt(max(cos({x}), 0.0))) * {i}"),
+    }
+}
+
+fn u_expr(a: &Axis<'_>, t: &str) -> String {
+    match a.placement {
+        Placement::Endpoint => {
+            let n = a.count as f32;
+            format!("({t} * {} + 0.5) / {}", lit(n - 1.0), lit(n))
+        }
+        Placement::TexelCentre => t.to_string(),
+    }
+}
+
+/// A name from the file made safe for a shader comment.
+fn ident(s: &str) -> String {
+    s.chars()
+        .filter(|c| c.is_ascii_alphanumeric() || *c == '_')
+        .take(32)
+        .collect()
+}
+
+/// Channel decode value = offset + scale × texel, per channel (identity for float textures).
+pub type Decode = Vec<(f32, f32)>;
+
+/// The GLSL ES 3.0 and WGSL sampling functions for a 2-D table named `name`; `None` for other
+/// dimensions or more than 2 channels.
+pub fn shaders(h: &Header<'_>, name: &str, decode: &Decode) -> Option<(String, String)> {
+    if h.axes.len() != 2 || !(1..=2).contains(&decode.len()) {
+        return None;
+    }
+    let (a0, a1) = (&h.axes[0], &h.axes[1]);
+    let nc = decode.len();
+    let lines = |var: &str, decl: &str| -> Vec<String> {
+        vec![
+            format!(
+                "    {decl}x0 = clamp({}, {}, {});",
+                format_args!("{var}0"),
+                lit(a0.lo as f32),
+                lit(a0.hi as f32)
+            ),
+            format!(
+                "    {decl}x1 = clamp({}, {}, {});",
+                format_args!("{var}1"),
+                lit(a1.lo as f32),
+                lit(a1.hi as f32)
+            ),
+            format!("    {decl}t0 = clamp({}, 0.0, 1.0);", t_expr(a0, "x0")),
+            format!("    {decl}t1 = clamp({}, 0.0, 1.0);", t_expr(a1, "x1")),
+        ]
+    };
+    let (off, sc): (Vec<String>, Vec<String>) =
+        decode.iter().map(|&(o, s)| (lit(o), lit(s))).unzip();
+    let head = format!(
+        "// Samples the exported 2-D table at p0 = axis 0 `{}` (on u), p1 = axis 1 `{}` (on v)\n\
+         // with bilinear filtering and clamp-to-edge; values are linear. Generated by\n\
+         // `cargo xtask lut export`.\n",
+        ident(a0.name),
+        ident(a1.name)
+    );
+    let interp_note = if h.interpolation == Interpolation::CatmullRom {
+        "// The table was built for Catmull-Rom interpolation; bilinear sampling is its linear\n// interpolation instead, so the header's stated error does not apply exactly.\n"
+    } else {
+        ""
+    };
+    // GLSL
+    let (gty, gswz, gdec) = if nc == 1 {
+        ("float", "r", format!("{} + {} * c", off[0], sc[0]))
+    } else {
+        (
+            "vec2",
+            "rg",
+            format!(
+                "vec2({}, {}) + vec2({}, {}) * c",
+                off[0], off[1], sc[0], sc[1]
+            ),
+        )
+    };
+    let mut glsl =
+        format!("{head}{interp_note}{gty} {name}(sampler2D lut, float p0, float p1) {{\n");
+    for l in lines("p", "float ") {
+        glsl.push_str(&l);
+        glsl.push('\n');
+    }
+    glsl.push_str(&format!(
+        "    vec2 uv = vec2({}, {});\n    {gty} c = texture(lut, uv).{gswz};\n    return {gdec};\n}}\n",
+        u_expr(a0, "t0"),
+        u_expr(a1, "t1")
+    ));
+    // WGSL
+    let (wty, wdec) = if nc == 1 {
+        ("f32", format!("{} + {} * c", off[0], sc[0]))
+    } else {
+        (
+            "vec2<f32>",
+            format!(
+                "vec2<f32>({}, {}) + vec2<f32>({}, {}) * c",
+                off[0], off[1], sc[0], sc[1]
+            ),
+        )
+    };
+    let mut wgsl = format!(
+        "{head}{interp_note}fn {name}(lut: texture_2d<f32>, samp: sampler, p0: f32, p1: f32) -> {wty} {{\n"
+    );
+    for l in lines("p", "let ") {
+        wgsl.push_str(&l);
+        wgsl.push('\n');
+    }
+    wgsl.push_str(&format!(
+        "    let uv = vec2<f32>({}, {});\n    let c = textureSampleLevel(lut, samp, uv, 0.0).{};\n    return {wdec};\n}}\n",
+        u_expr(a0, "t0"),
+        u_expr(a1, "t1"),
+        if nc == 1 { "r" } else { "rg" }
+    ));
+    Some((glsl, wgsl))
+}

@@ -1,0 +1,200 @@
+//! `cargo xtask lut export`: the sidecar's inverse mapping and the emitted shaders read the
+//! exported texture at the table's own values.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+
+fn assets() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets")
+}
+
+/// Exports `asset` with `fmt` into a fresh temp dir; returns the dir and the output path.
+fn export(asset: &str, fmt: &str, out: &str) -> (tempfile::TempDir, PathBuf) {
+    let d = tempfile::tempdir().unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_xtask"))
+        .args(["lut", "export"])
+        .arg(assets().join(asset))
+        .args([fmt, "-o", out])
+        .current_dir(d.path())
+        .stdin(Stdio::null())
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let p = d.path().join(out);
+    (d, p)
+}
+
+fn sidecar(out: &Path) -> serde_json::Value {
+    serde_json::from_slice(&std::fs::read(format!("{}.json", out.display())).unwrap()).unwrap()
+}
+
+/// u (or v) of physical x from a sidecar `inverse_mapping` entry, in f64, from its stated
+/// formulas (warp name, lo, hi, count, placement) — not from the exporter's f32 constants.
+fn coord(m: &serde_json::Value, x: f64) -> f64 {
+    let lo = m["lo"].as_f64().unwrap();
+    let hi = m["hi"].as_f64().unwrap();
+    let n = m["count"].as_f64().unwrap();
+    let x = x.clamp(lo, hi);
+    let t = match m["warp"].as_str().unwrap() {
+        "linear" => (x - lo) / (hi - lo),
+        "log" => (x / lo).ln() / (hi / lo).ln(),
+        "sqrt" => ((x - lo) / (hi - lo)).sqrt(),
+        "cos" => (lo.cos() - x.cos()) / (lo.cos() - hi.cos()),
+        "sqrt-cos" => {
+            (lo.cos().sqrt() - x.cos().max(0.0).sqrt())
+                / (lo.cos().sqrt() - hi.cos().max(0.0).sqrt())
+        }
+        w => panic!("unknown warp {w}"),
+    }
+    .clamp(0.0, 1.0);
+    match m["placement"].as_str().unwrap() {
+        "endpoint" => (t * (n - 1.0) + 0.5) / n,
+        "texel-centre" => t,
+        p => panic!("unknown placement {p}"),
+    }
+}
+
+/// GL bilinear filtering with clamp-to-edge of a w × h single-channel texture at (u, v),
+/// row 0 at v = 0 (texel centres at (i + ½)/w).
+fn bilinear(tex: &[f32], w: usize, h: usize, u: f64, v: f64) -> f64 {
+    let ax = |c: f64, n: usize| {
+        let p = (c * n as f64 - 0.5).clamp(0.0, (n - 1) as f64);
+        let i = (p.floor() as usize).min(n.saturating_sub(2));
+        (i, p - i as f64)
+    };
+    let (i, fx) = ax(u, w);
+    let (j, fy) = ax(v, h);
+    let at = |a: usize, b: usize| tex[b * w + a] as f64;
+    let r0 = at(i, j) * (1.0 - fx) + at(i + 1, j) * fx;
+    let r1 = at(i, j + 1) * (1.0 - fx) + at(i + 1, j + 1) * fx;
+    r0 * (1.0 - fy) + r1 * fy
+}
+
+/// Sampling the exported f32 texture bilinearly at the sidecar's uv reproduces brdf-lut's
+/// own linear interpolation of the table at random points.
+#[test]
+fn sidecar_mapping_reproduces_the_tables_lookup() {
+    let asset = "g_modified_sigma0.3_linear.blut";
+    let lut = brdf_lut::Lut::from_path(assets().join(asset)).unwrap();
+    let view = lut.view().unwrap();
+    assert_eq!(view.dims(), 2);
+    assert_eq!(view.header().interpolation, brdf_lut::Interpolation::Linear);
+    let (_d, out) = export(asset, "--raw-f32", "g.f32.bin");
+    let side = sidecar(&out);
+    let m = side["inverse_mapping"].as_array().unwrap();
+    let (w, h) = (
+        m[0]["count"].as_u64().unwrap() as usize,
+        m[1]["count"].as_u64().unwrap() as usize,
+    );
+    let tex: Vec<f32> = std::fs::read(&out)
+        .unwrap()
+        .chunks_exact(4)
+        .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+        .collect();
+    assert_eq!(tex.len(), w * h);
+    let (lo0, hi0) = (m[0]["lo"].as_f64().unwrap(), m[0]["hi"].as_f64().unwrap());
+    let (lo1, hi1) = (m[1]["lo"].as_f64().unwrap(), m[1]["hi"].as_f64().unwrap());
+    // Deterministic LCG points, a margin beyond both ends to exercise the clamps.
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut rnd = || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut worst = 0.0f64;
+    for _ in 0..20_000 {
+        let x = lo0 - 0.02 + rnd() * (hi0 - lo0 + 0.04);
+        let y = lo1 - 0.02 + rnd() * (hi1 - lo1 + 0.04);
+        let got = bilinear(&tex, w, h, coord(&m[0], x), coord(&m[1], y));
+        let want = view.sample2(x as f32, y as f32)[0] as f64;
+        worst = worst.max((got - want).abs());
+    }
+    // Same node values (f32 export of the decoded nodes), same linear weights: the only
+    // difference is brdf-lut's f32 coordinate arithmetic vs this f64 one, a few f32 ulps
+    // (~1e-7 relative) in t, times at most N = 56 texels of node steps < 1 each of F: ~1e-5
+    // (measured 2.6e-7). A half-texel placement error shifts values by about half a node step
+    // (> 1e-2 on this table), far above this bound.
+    assert!(worst < 1e-5, "max |bilinear(uv) - lookup| = {worst:e}");
+}
+
+/// The emitted WGSL validates with naga and the GLSL has the documented signature; a 3-D
+/// table gets no shader and says so.
+#[test]
+fn shaders_validate_and_non_2d_says_so() {
+    for (asset, fmt, out, ret) in [
+        ("dfg_ts_smith.blut", "--png16", "dfg.png", "vec2"),
+        (
+            "g_modified_sigma0.3_linear.blut",
+            "--raw-f16",
+            "g.f16.bin",
+            "float",
+        ),
+        ("dfg_ggx.blut", "--raw-f32", "ggx.f32.bin", "vec2"),
+    ] {
+        let (_d, p) = export(asset, fmt, out);
+        let side = sidecar(&p);
+        let name = side["shaders"]["function"].as_str().unwrap().to_string();
+        let wgsl = std::fs::read_to_string(format!("{}.wgsl", p.display())).unwrap();
+        let module = naga::front::wgsl::parse_str(&wgsl)
+            .unwrap_or_else(|e| panic!("{asset}: {}", e.emit_to_string(&wgsl)));
+        naga::valid::Validator::new(
+            naga::valid::ValidationFlags::all(),
+            naga::valid::Capabilities::all(),
+        )
+        .validate(&module)
+        .unwrap_or_else(|e| panic!("{asset}: {e:?}"));
+        assert!(module
+            .functions
+            .iter()
+            .any(|(_, f)| f.name.as_deref() == Some(name.as_str())));
+        let glsl = std::fs::read_to_string(format!("{}.glsl", p.display())).unwrap();
+        assert!(glsl.contains(&format!("{ret} {name}(sampler2D lut, float p0, float p1)")));
+        assert!(side["values"].as_str().unwrap().starts_with("linear"));
+    }
+    let ggx = sidecar(&export("dfg_ggx.blut", "--raw-f32", "x.bin").1);
+    assert!(ggx["roughness"].as_str().unwrap().contains("alpha = r^2"));
+    let (d, p) = export("g_modified.blut", "--raw-f32", "g3.bin");
+    let side = sidecar(&p);
+    assert!(side["shaders"]["function"].is_null());
+    assert!(side["shaders"]["note"].as_str().unwrap().contains("2-D"));
+    assert!(!d.path().join("g3.bin.wgsl").exists());
+    assert!(side["roughness"].as_str().unwrap().starts_with("sigma"));
+}
+
+/// `--png16` of a 2-channel table also writes one 16-bit greyscale PNG per channel, whose
+/// decoded values are the table's node values within the 16-bit quantisation.
+#[test]
+fn png16_writes_single_channel_pngs() {
+    let asset = "dfg_ts_smith.blut";
+    let lut = brdf_lut::Lut::from_path(assets().join(asset)).unwrap();
+    let view = lut.view().unwrap();
+    let (d, p) = export(asset, "--png16", "dfg.png");
+    let side = sidecar(&p);
+    let dec = side["channel_decode"].as_array().unwrap();
+    for (c, ch) in ["A", "B"].iter().enumerate() {
+        let path = d.path().join(format!("dfg_{ch}.png"));
+        let mut r = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(&path).unwrap()))
+            .read_info()
+            .unwrap();
+        let mut buf = vec![0; r.output_buffer_size()];
+        let info = r.next_frame(&mut buf).unwrap();
+        assert_eq!(info.color_type, png::ColorType::Grayscale);
+        assert_eq!(info.bit_depth, png::BitDepth::Sixteen);
+        let (off, sc) = (
+            dec[c]["offset"].as_f64().unwrap(),
+            dec[c]["scale"].as_f64().unwrap(),
+        );
+        for (k, b) in buf[..info.buffer_size()].chunks_exact(2).enumerate() {
+            let q = u16::from_be_bytes([b[0], b[1]]) as f64 / 65535.0;
+            let want = view.node_value(k, c) as f64;
+            // Re-quantising to 16 bits: half a step of the channel's range.
+            assert!((off + sc * q - want).abs() <= 0.5 / 65535.0 * sc + 1e-7);
+        }
+        assert!(side["single_channel_pngs"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|n| n.as_str() == Some(&format!("dfg_{ch}.png"))));
+    }
+}
