@@ -17,7 +17,7 @@
 //!    program.
 
 use crate::firmware::runner::{ensure_qemu, run_qemu, target_base};
-use crate::firmware::size::llvm_tool;
+use crate::firmware::size::{llvm_tool, with_commas as thousands};
 use anyhow::{bail, Context, Result};
 use brdf_ffi::*;
 use std::collections::BTreeMap;
@@ -1082,19 +1082,6 @@ fn readme_rows(s: &Sizes, stack: Option<u64>) -> Vec<(&'static str, String, Opti
     ]
 }
 
-/// 132510 → "132,510".
-fn thousands(v: u64) -> String {
-    let d = v.to_string();
-    let mut out = String::new();
-    for (i, c) in d.chars().enumerate() {
-        if i > 0 && (d.len() - i).is_multiple_of(3) {
-            out.push(',');
-        }
-        out.push(c);
-    }
-    out
-}
-
 /// Checks (or with `update`, rewrites) the README's C-build size table against the
 /// measurement, so that no size in the README is a figure copied by hand.
 fn readme_sizes(path: &Path, s: &Sizes, stack: Option<u64>, update: bool) -> Result<()> {
@@ -1154,15 +1141,6 @@ fn readme_sizes(path: &Path, s: &Sizes, stack: Option<u64>, update: bool) -> Res
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn thousands_groups_digits() {
-        assert_eq!(thousands(0), "0");
-        assert_eq!(thousands(999), "999");
-        assert_eq!(thousands(1000), "1,000");
-        assert_eq!(thousands(132_510), "132,510");
-        assert_eq!(thousands(1_234_567), "1,234,567");
-    }
 
     #[test]
     fn fnv1a_matches_the_published_test_vectors() {

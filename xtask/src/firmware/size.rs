@@ -356,6 +356,15 @@ mod tests {
     use super::*;
 
     #[test]
+    fn with_commas_groups_digits_in_threes() {
+        assert_eq!(with_commas(0), "0");
+        assert_eq!(with_commas(999), "999");
+        assert_eq!(with_commas(1000), "1,000");
+        assert_eq!(with_commas(132_510), "132,510");
+        assert_eq!(with_commas(1_234_567), "1,234,567");
+    }
+
+    #[test]
     fn classify_separates_kernels_from_formatting() {
         assert_eq!(
             classify("brdf_core::masking::modified::ModifiedG<T,R>::passing_cs"),
@@ -403,7 +412,7 @@ fn number_before(text: &str, marker: &str) -> Option<(u64, std::ops::Range<usize
 }
 
 /// `1234567` → `1,234,567` (the README's style).
-fn with_commas(v: u64) -> String {
+pub(crate) fn with_commas(v: u64) -> String {
     let d = v.to_string();
     let mut out = String::new();
     for (i, c) in d.chars().enumerate() {
