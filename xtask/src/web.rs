@@ -4,7 +4,9 @@
 //! headless-browser test `node --test examples/web/test/`, which writes
 //! `examples/web/screenshot.png`. Before it, the khronos engine LUT (64²), its GLSL function
 //! and the test points are written to target/lut-engine-web/ for
-//! `examples/web/test/lut_engine.test.mjs` (a WebGL2 fragment shader samples the table).
+//! `examples/web/test/lut_engine.test.mjs` (a WebGL2 fragment shader samples the table), and
+//! `lut export --raw-f16` of assets/dfg_ggx.blut with its GLSL function and test points to
+//! target/lut-engine-web/native/ for the same file's native-export test.
 
 use crate::wasm::WasmArgs;
 use anyhow::{bail, Result};
@@ -34,6 +36,7 @@ pub fn run_cmd(a: WebArgs) -> Result<()> {
         bail!("/usr/bin/chromium missing: install Debian's chromium (bash .ci/install-web.sh)");
     }
     crate::engine::web::prepare(&root.join("target/lut-engine-web"))?;
+    crate::engine::web::prepare_native(&root.join("target/lut-engine-web/native"))?;
     let t = Instant::now();
     crate::wasm::run(
         &root,

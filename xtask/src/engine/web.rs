@@ -3,7 +3,7 @@
 //! the error bound the GPU sample must meet.
 
 use super::{centre, compute_grid, integral, report, write_set, OutFile};
-use anyhow::Result;
+use anyhow::{bail, Context, Result};
 use rand::{Rng, SeedableRng};
 use rayon::prelude::*;
 use std::path::Path;
@@ -76,4 +76,385 @@ fn spread(t: &report::Table, mu: f64, r: f64) -> (f64, f64) {
         mx - mn
     };
     (f(&t.a), f(&t.b))
+}
+
+/// The committed asset whose native export the browser test samples.
+pub const NATIVE_ASSET: &str = "dfg_ggx.blut";
+/// The exported file (raw little-endian binary16, uploaded as RG16F: half floats are
+/// filterable in core WebGL2, unlike R32F/RG32F or 16-bit unorm).
+pub const NATIVE_EXPORT: &str = "dfg_ggx.f16.bin";
+
+/// GPU texture-coordinate error of the emitted GLSL's f32 arithmetic, in texels per axis.
+/// GLSL ES 3.00 (Range and Precision, highp) allows `log` 3 ulp outside [0.5, 2] (≤ 3 × 2⁻²¹ for |ln μ| < 4.1 on
+/// μ ≥ cos 89°) and 2⁻²¹ absolute inside; with the subtraction of the base and the product
+/// with 1/span (≈ 0.25) t errs by < 2e-6, times N − 1 = 63 and the placement's two roundings:
+/// < 1.5e-4 texels. 2e-4 covers it.
+const COORD_TEXELS: f64 = 2e-4;
+
+/// Writes, into `dir`, `lut export --raw-f16` of [`NATIVE_ASSET`] (data file, sidecar, GLSL
+/// and WGSL functions, via the `lut export` command run in this process) and
+/// `native_points.json`: random (μ, r), 5 % of them outside the axis ranges to exercise the
+/// clamps, each as `[μ, r, A, B, bound A, bound B, A_lin, B_lin]`: the f64 integral at the
+/// sidecar-clamped point, the bound the GPU value of the emitted GLSL function must meet,
+/// and the bilinear value of the exact grid (for the report of the non-interpolation part).
+///
+/// The bound at a point is the sum of
+/// - the interpolation error of the function's own scheme with exact texels: bilinear in the
+///   sidecar's warped coordinate (log μ, r) between the nodes of its `inverse_mapping`, each
+///   texel the f64 integral at its node, minus the integral at the point;
+/// - the texel encoding: half a unit of the asset's encoding (unorm16 in the .blut) plus half
+///   an f16 ulp at the texel's magnitude (the export), the largest of the four texels the
+///   filter reads — every exported texel is checked against this before it is used;
+/// - the GPU's filter weights, 8 fractional bits (error ≤ 2⁻⁹ per axis), and the f32
+///   coordinate error [`COORD_TEXELS`], both times the spread of the four texels;
+/// - 1e-6 for the f32 blend and decode of values ≤ 1.
+pub fn prepare_native(dir: &Path) -> Result<()> {
+    let asset = crate::lut::assets_dir().join(NATIVE_ASSET);
+    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    let out = dir.join(NATIVE_EXPORT);
+    export_in_process(&asset, &out)?;
+    let side: serde_json::Value = serde_json::from_slice(
+        &std::fs::read(format!("{}.json", out.display())).context("reading the sidecar")?,
+    )?;
+    let maps = side["inverse_mapping"]
+        .as_array()
+        .filter(|m| m.len() == 2)
+        .context("sidecar: inverse_mapping of 2 axes")?;
+    let axes = [Mapping::from_json(&maps[0])?, Mapping::from_json(&maps[1])?];
+    let decode: Vec<(f64, f64)> = side["channel_decode"]
+        .as_array()
+        .context("sidecar: channel_decode")?
+        .iter()
+        .map(|c| (c["offset"].as_f64(), c["scale"].as_f64()))
+        .map(|(o, s)| o.zip(s).context("sidecar: channel_decode offset/scale"))
+        .collect::<Result<_>>()?;
+    if decode.len() != 2 || side["format"] != "raw-f16" {
+        bail!("sidecar: expected a 2-channel raw-f16 export");
+    }
+    let (w, h) = (axes[0].count, axes[1].count);
+    let raw = std::fs::read(&out)?;
+    if raw.len() != w * h * 2 * 2 {
+        bail!(
+            "{}: {} bytes, expected {w}×{h}×2 f16",
+            out.display(),
+            raw.len()
+        );
+    }
+    // Decoded texels, channel-planar, with the `half` crate (not the exporter's converter).
+    let mut tex = [vec![0.0f64; w * h], vec![0.0f64; w * h]];
+    for (k, b) in raw.chunks_exact(2).enumerate() {
+        let x = half::f16::from_le_bytes([b[0], b[1]]).to_f64();
+        let c = k % 2;
+        tex[c][k / 2] = decode[c].0 + decode[c].1 * x;
+    }
+    // The exact grid: the integral at the sidecar's nodes (axis 0 = columns, fastest).
+    let nodes: Vec<(f64, f64)> = (0..w * h)
+        .into_par_iter()
+        .map(|k| integral(axes[0].node(k % w), axes[1].node(k / w)))
+        .collect();
+    if w != h {
+        bail!("the native export test expects a square table, got {w}×{h}");
+    }
+    let exact = report::Table {
+        n: w,
+        a: nodes.iter().map(|v| v.0).collect(),
+        b: nodes.iter().map(|v| v.1).collect(),
+    };
+    let lut = crate::fsio::load_lut(&asset)?;
+    let node_half_unit = match lut.view()?.header().encoding {
+        brdf_lut::Encoding::Unorm16 => 0.5 / 65535.0,
+        brdf_lut::Encoding::F16 => 2f64.powi(-12),
+        brdf_lut::Encoding::F32 => 2f64.powi(-24),
+    };
+    // Half an f16 ulp at |v| (normal range; 2⁻²⁵ in the subnormals), plus 1e-7 for the f32
+    // node values the exporter rounds.
+    let enc = |v: f64| node_half_unit + half_ulp_f16(v) + 1e-7;
+    let mut worst_texel = 0.0f64;
+    for k in 0..w * h {
+        for (c, ex) in [&exact.a, &exact.b].into_iter().enumerate() {
+            let e = (tex[c][k] - ex[k]).abs();
+            if e > enc(ex[k]) {
+                bail!(
+                    "{}: texel ({}, {}) channel {c} is {}, the integral at its node {} \
+                     (error {e:e} > encoding bound {:e}): wrong value or placement",
+                    out.display(),
+                    k % w,
+                    k / w,
+                    tex[c][k],
+                    ex[k],
+                    enc(ex[k])
+                );
+            }
+            worst_texel = worst_texel.max(e);
+        }
+    }
+    let mut rng = rand_pcg::Pcg64::seed_from_u64(0x0EB6_1012);
+    let (m0, m1) = (&axes[0], &axes[1]);
+    let pts: Vec<(f64, f64)> = (0..POINTS)
+        .map(|k| {
+            let (x, y) = if k % 20 == 19 {
+                // Outside the table: the function clamps to the axis ranges.
+                let x = if rng.random_bool(0.5) {
+                    rng.random_range(0.0..m0.lo)
+                } else {
+                    rng.random_range(m0.hi..m0.hi + 0.05)
+                };
+                (x, rng.random_range(m1.lo - 0.05..m1.hi + 0.05))
+            } else if k % 2 == 0 {
+                // Uniform in the warped coordinate (dense at grazing μ) ...
+                (
+                    m0.node_at(rng.random_range(0.0..1.0)),
+                    rng.random_range(m1.lo..m1.hi),
+                )
+            } else {
+                // ... and uniform in μ.
+                (
+                    rng.random_range(m0.lo..m0.hi),
+                    rng.random_range(m1.lo..m1.hi),
+                )
+            };
+            // The shader receives f32 values: compute everything at those.
+            (x as f32 as f64, y as f32 as f64)
+        })
+        .collect();
+    let spread = |u: f64, v: f64| {
+        let ix = |c: f64| {
+            let p = (c * w as f64 - 0.5).clamp(0.0, (w - 1) as f64);
+            let i0 = p.floor() as usize;
+            (i0, (i0 + 1).min(w - 1))
+        };
+        let ((x0, x1), (y0, y1)) = (ix(u), ix(v));
+        let idx = [y0 * w + x0, y0 * w + x1, y1 * w + x0, y1 * w + x1];
+        let f = |t: &[f64]| {
+            let s = idx.map(|i| t[i]);
+            let mx = s.iter().cloned().fold(f64::MIN, f64::max);
+            let mn = s.iter().cloned().fold(f64::MAX, f64::min);
+            mx - mn
+        };
+        let g = |t: &[f64]| idx.iter().map(|&i| enc(t[i])).fold(0.0, f64::max);
+        ((f(&tex[0]), f(&tex[1])), (g(&exact.a), g(&exact.b)))
+    };
+    let rows: Vec<(serde_json::Value, f64, f64)> = pts
+        .par_iter()
+        .map(|&(x, y)| {
+            let (xc, yc) = (m0.clamp(x), m1.clamp(y));
+            let (a, b) = integral(xc, yc);
+            let (u, v) = (m0.coord(xc), m1.coord(yc));
+            let (xa, xb) = exact.sample(u, v);
+            let ((sa, sb), (ea, eb)) = spread(u, v);
+            let k = 2.0 * 2f64.powi(-9) + 2.0 * COORD_TEXELS;
+            let bound_a = (xa - a).abs() + ea + sa * k + 1e-6;
+            let bound_b = (xb - b).abs() + eb + sb * k + 1e-6;
+            (
+                serde_json::json!([x, y, a, b, bound_a, bound_b, xa, xb]),
+                bound_a.max(bound_b),
+                (xa - a).abs().max((xb - b).abs()),
+            )
+        })
+        .collect();
+    let max_bound = rows.iter().map(|r| r.1).fold(0.0, f64::max);
+    let max_interp = rows.iter().map(|r| r.2).fold(0.0, f64::max);
+    let doc = serde_json::json!({
+        "source": NATIVE_ASSET,
+        "export": NATIVE_EXPORT,
+        "max_texel_error": worst_texel,
+        "max_bound": max_bound,
+        "max_interpolation_error": max_interp,
+        "points": rows.into_iter().map(|r| r.0).collect::<Vec<_>>(),
+    });
+    println!(
+        "web: {NATIVE_EXPORT}: max |texel - integral at node| {worst_texel:.2e}, \
+         max bilinear error of exact texels {max_interp:.2e}, max bound {max_bound:.2e} \
+         over {POINTS} points"
+    );
+    write_set(
+        dir,
+        &[OutFile {
+            name: "native_points.json".into(),
+            bytes: serde_json::to_vec(&doc)?,
+        }],
+        true,
+    )
+}
+
+/// Runs `cargo xtask lut export ASSET --raw-f16 -o OUT --force` in this process.
+fn export_in_process(asset: &Path, out: &Path) -> Result<()> {
+    use clap::{Args as _, FromArgMatches as _};
+    let cmd = crate::lut::Args::augment_args(clap::Command::new("lut"));
+    let m = cmd.try_get_matches_from([
+        "lut".as_ref(),
+        "export".as_ref(),
+        asset.as_os_str(),
+        "--raw-f16".as_ref(),
+        "-o".as_ref(),
+        out.as_os_str(),
+        "--force".as_ref(),
+    ])?;
+    crate::lut::run(crate::lut::Args::from_arg_matches(&m)?)
+}
+
+/// Half an IEEE binary16 ulp at |v|: 2^(e − 11) for 2^e ≤ |v| < 2^(e+1) (normal range,
+/// e ≥ −14), 2⁻²⁵ below; taken at |v|·(1 + 2⁻¹⁰) so a value just under a power of two that
+/// rounds up to it is covered.
+fn half_ulp_f16(v: f64) -> f64 {
+    let a = v.abs() * (1.0 + 2f64.powi(-10));
+    if a < 2f64.powi(-14) {
+        2f64.powi(-25)
+    } else {
+        2f64.powi(a.log2().floor() as i32 - 11)
+    }
+}
+
+/// One axis of the sidecar's `inverse_mapping`, read from its stated fields (warp, lo, hi,
+/// count, placement) and evaluated in f64 — not from the exporter's f32 constants.
+struct Mapping {
+    lo: f64,
+    hi: f64,
+    count: usize,
+    warp: String,
+    endpoint: bool,
+}
+
+impl Mapping {
+    fn from_json(m: &serde_json::Value) -> Result<Self> {
+        let f = |k: &str| m[k].as_f64().with_context(|| format!("sidecar: {k}"));
+        let count = m["count"].as_u64().context("sidecar: count")? as usize;
+        if !(2..=4096).contains(&count) {
+            bail!("sidecar: axis count {count} outside 2..=4096");
+        }
+        let endpoint = match m["placement"].as_str() {
+            Some("endpoint") => true,
+            Some("texel-centre") => false,
+            p => bail!("sidecar: unknown placement {p:?}"),
+        };
+        Ok(Self {
+            lo: f("lo")?,
+            hi: f("hi")?,
+            count,
+            warp: match m["warp"].as_str() {
+                Some(w @ ("linear" | "log" | "sqrt" | "cos" | "sqrt-cos")) => w.to_string(),
+                w => bail!("sidecar: unknown warp {w:?}"),
+            },
+            endpoint,
+        })
+    }
+    /// Step 1: x clamped to [lo, hi].
+    fn clamp(&self, x: f64) -> f64 {
+        x.clamp(self.lo, self.hi)
+    }
+    /// Steps 2–3: the warped unit coordinate t of x.
+    fn t(&self, x: f64) -> f64 {
+        let (lo, hi) = (self.lo, self.hi);
+        let x = self.clamp(x);
+        let sc = |c: f64| c.max(0.0).sqrt();
+        match self.warp.as_str() {
+            "log" => (x / lo).ln() / (hi / lo).ln(),
+            "sqrt" => ((x - lo) / (hi - lo)).sqrt(),
+            "cos" => (lo.cos() - x.cos()) / (lo.cos() - hi.cos()),
+            "sqrt-cos" => (sc(lo.cos()) - sc(x.cos())) / (sc(lo.cos()) - sc(hi.cos())),
+            _ => (x - lo) / (hi - lo), // linear
+        }
+        .clamp(0.0, 1.0)
+    }
+    /// Step 4: the texture coordinate of x.
+    fn coord(&self, x: f64) -> f64 {
+        let (t, n) = (self.t(x), self.count as f64);
+        if self.endpoint {
+            (t * (n - 1.0) + 0.5) / n
+        } else {
+            t
+        }
+    }
+    /// The physical value at warped coordinate t (inverse of [`Mapping::t`]).
+    fn node_at(&self, t: f64) -> f64 {
+        let (lo, hi) = (self.lo, self.hi);
+        let sc = |c: f64| c.max(0.0).sqrt();
+        match self.warp.as_str() {
+            "log" => lo * (hi / lo).powf(t),
+            "sqrt" => lo + t * t * (hi - lo),
+            "cos" => (lo.cos() - t * (lo.cos() - hi.cos())).acos(),
+            "sqrt-cos" => {
+                let s = sc(lo.cos()) - t * (sc(lo.cos()) - sc(hi.cos()));
+                (s * s).acos()
+            }
+            _ => lo + t * (hi - lo), // linear
+        }
+    }
+    /// Node i: t = i/(N − 1) (endpoint) or (i + ½)/N (texel centre).
+    fn node(&self, i: usize) -> f64 {
+        let n = self.count as f64;
+        let t = if self.endpoint {
+            i as f64 / (n - 1.0)
+        } else {
+            (i as f64 + 0.5) / n
+        };
+        self.node_at(t)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Against the `half` crate's round-to-nearest f32 → f16 conversion: the error of every
+    /// value tried is within the half ulp stated, and the half ulp is at most twice that
+    /// error's largest possible value (2⁻¹¹ relative), so the bound is not loose.
+    #[test]
+    fn half_ulp_f16_covers_the_rounding_error() {
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(7);
+        for k in 0..100_000 {
+            let v: f64 = if k < 10 {
+                [
+                    0.0,
+                    1.0,
+                    0.5,
+                    1.0 - 1e-9,
+                    0.999_8,
+                    6.1e-5,
+                    6.0e-5,
+                    2.0,
+                    1e-8,
+                    0.25,
+                ][k]
+            } else {
+                rng.random_range(-20.0f64..1.0).exp2()
+            };
+            // From f32, as the exporter converts (f64 → f16 in `half` may round twice).
+            let v = v as f32 as f64;
+            let r = half::f16::from_f32(v as f32).to_f64();
+            let h = half_ulp_f16(v);
+            assert!((r - v).abs() <= h, "{v}: {r} {h}");
+            assert!(h <= v.abs() * 2f64.powi(-10) + 2f64.powi(-25), "{v}: {h}");
+        }
+    }
+
+    /// The sidecar mapping of a log-warped endpoint axis (as in dfg_ggx.blut): node i lands on
+    /// texel centre (i + ½)/N, the ends clamp, and t is ln(x/lo)/ln(hi/lo) by the closed form.
+    #[test]
+    fn mapping_puts_nodes_on_texel_centres() {
+        let m = Mapping::from_json(&serde_json::json!({
+            "lo": 0.0174524064372835, "hi": 1.0, "count": 64,
+            "warp": "log", "placement": "endpoint"
+        }))
+        .unwrap();
+        for i in 0..64 {
+            let u = m.coord(m.node(i));
+            assert!((u - (i as f64 + 0.5) / 64.0).abs() < 1e-12, "{i}: {u}");
+        }
+        assert_eq!(m.coord(0.0), 0.5 / 64.0);
+        assert_eq!(m.coord(1.5), 63.5 / 64.0);
+        let x = 0.1;
+        let t = (x / 0.0174524064372835f64).ln() / (1.0 / 0.0174524064372835f64).ln();
+        assert!((m.t(x) - t).abs() < 1e-15);
+        let c = Mapping::from_json(&serde_json::json!({
+            "lo": 0.0, "hi": 2.0, "count": 8, "warp": "linear", "placement": "texel-centre"
+        }))
+        .unwrap();
+        assert!((c.node(3) - 2.0 * 3.5 / 8.0).abs() < 1e-15);
+        assert!((c.coord(c.node(3)) - 3.5 / 8.0).abs() < 1e-15);
+        assert!(Mapping::from_json(&serde_json::json!({
+            "lo": 0.0, "hi": 1.0, "count": 8, "warp": "cubic", "placement": "endpoint"
+        }))
+        .is_err());
+    }
 }
