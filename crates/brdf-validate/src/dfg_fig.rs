@@ -1,5 +1,6 @@
-//! Difference images: each engine's published split-sum (DFG) table in `../shared/anchors/`
-//! (layouts from its MANIFEST.txt) minus the project's converged table, i.e.
+//! Difference images: each engine's published split-sum (DFG) table, read from the first of
+//! the anchor folders that holds it (`.cache/anchors/` from `cargo xtask anchors`, then
+//! `../shared/anchors/`; layouts in docs/engines.md) minus the project's converged table, i.e.
 //! `brdf_core::split_sum::dfg_ggx` (GGX, height-correlated Smith, α = r², F90 = 1,
 //! docs/conventions.md §8) with 32 × 32-point Gauss–Legendre rules, at the table's own (μ, r).
 
@@ -12,7 +13,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 use rayon::prelude::*;
 use std::fmt::Write as _;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// One published table, decoded to (μ, r, A, B) texels (possibly subsampled).
 pub struct Table {
@@ -46,10 +47,23 @@ fn read_png(bytes: &[u8]) -> Result<(usize, usize, usize, Vec<u8>)> {
     ))
 }
 
-/// Decodes the anchors found under `anchors` (missing files are skipped).
-pub fn load(anchors: &Path) -> Result<Vec<Table>> {
+/// `rel` from the first folder of `dirs` that has it.
+fn read_first(dirs: &[PathBuf], rel: &str) -> std::io::Result<Vec<u8>> {
+    let mut last = std::io::Error::from(std::io::ErrorKind::NotFound);
+    for d in dirs {
+        match std::fs::read(d.join(rel)) {
+            Ok(b) => return Ok(b),
+            Err(e) => last = e,
+        }
+    }
+    Err(last)
+}
+
+/// Decodes the anchors found in `dirs` (each file from the first folder that has it; missing
+/// files are skipped).
+pub fn load(dirs: &[PathBuf]) -> Result<Vec<Table>> {
     let mut v = Vec::new();
-    if let Ok(f) = std::fs::read(anchors.join("khronos/lut_ggx.png")) {
+    if let Ok(f) = read_first(dirs, "khronos/lut_ggx.png") {
         let (w, h, spp, px) = read_png(&f)?;
         let step = 32;
         let mut t = Vec::new();
@@ -71,7 +85,7 @@ pub fn load(anchors: &Path) -> Result<Vec<Table>> {
             pitch: (step as f64 / w as f64, step as f64 / h as f64),
         });
     }
-    if let Ok(f) = std::fs::read(anchors.join("threejs/three_dfg_lut_16x16_rg16f.bin")) {
+    if let Ok(f) = read_first(dirs, "threejs/three_dfg_lut_16x16_rg16f.bin") {
         let mut t = Vec::new();
         for mi in 0..16 {
             for rj in 0..16 {
@@ -91,7 +105,7 @@ pub fn load(anchors: &Path) -> Result<Vec<Table>> {
             pitch: (1.0 / 16.0, 1.0 / 16.0),
         });
     }
-    if let Ok(f) = std::fs::read(anchors.join("bevy/dfg.ktx2")) {
+    if let Ok(f) = read_first(dirs, "bevy/dfg.ktx2") {
         if f.len() < 96 || &f[1..7] != b"KTX 20" {
             bail!("bevy/dfg.ktx2: not KTX2");
         }
@@ -122,7 +136,7 @@ pub fn load(anchors: &Path) -> Result<Vec<Table>> {
             pitch: (1.0 / w as f64, 1.0 / h as f64),
         });
     }
-    if let Ok(f) = std::fs::read(anchors.join("filament/filament_dfg_multiscatter_64_rgba16f.dds"))
+    if let Ok(f) = read_first(dirs, "filament/filament_dfg_multiscatter_64_rgba16f.dds")
     {
         let px = &f[148..];
         let mut t = Vec::new();
@@ -144,7 +158,7 @@ pub fn load(anchors: &Path) -> Result<Vec<Table>> {
             pitch: (1.0 / 64.0, 1.0 / 64.0),
         });
     }
-    if let Ok(f) = std::fs::read(anchors.join("karis_legacy/brdfLUT_256_rgb8.png")) {
+    if let Ok(f) = read_first(dirs, "karis_legacy/brdfLUT_256_rgb8.png") {
         let (w, h, spp, px) = read_png(&f)?;
         let step = 8;
         let mut t = Vec::new();
@@ -232,13 +246,12 @@ impl figures::Figure for DiffFig<'_> {
 
 /// Writes `dfg_difference.svg|png` and returns the markdown section (or a note when no
 /// anchor is found).
-pub fn write(dir: &Path, anchors: &Path) -> Result<String> {
+pub fn write(dir: &Path, anchors: &[PathBuf]) -> Result<String> {
     let tables = load(anchors)?;
     if tables.is_empty() {
-        return Ok(format!(
-            "No published DFG table found under {}; the difference images were skipped.",
-            anchors.display()
-        ));
+        return Ok("No published DFG table found in `.cache/anchors/` or `../shared/anchors/` \
+                   (fetch them with `cargo xtask anchors`); the difference images were skipped."
+            .to_string());
     }
     let mut md = String::from(
         "Published split-sum (DFG) tables minus the project's converged table (`brdf_core::split_sum::dfg_ggx`, GGX with \

@@ -85,7 +85,10 @@ pub fn run(root: &Path, s: &Settings) -> Result<Outcome> {
         },
     )?;
     let albedo_note = crate::albedo_fig::write(&fig_dir)?;
-    let anchors = root.join("..").join("shared").join("anchors");
+    let anchors = [
+        root.join(".cache").join("anchors"),
+        root.join("..").join("shared").join("anchors"),
+    ];
     let dfg_note = crate::dfg_fig::write(&fig_dir, &anchors)?;
     let elapsed = t0.elapsed().as_secs_f64();
 

@@ -62,8 +62,8 @@ pub struct Args {
     /// Replace existing output files.
     #[arg(long)]
     force: bool,
-    /// `report` only: folder of the engines' shipped tables (default: ../shared/anchors
-    /// beside the workspace).
+    /// `report` only: folder of the engines' shipped tables (default: each table from
+    /// .cache/anchors, as fetched by `cargo xtask anchors`, else ../shared/anchors).
     #[arg(long)]
     anchors: Option<PathBuf>,
     /// `report` only: the Markdown file to write (default: docs/engines.md).

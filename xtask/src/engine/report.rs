@@ -282,7 +282,11 @@ const SEED: u64 = 0x0E16_11E5;
 
 pub fn run(out: PathBuf, anchors: Option<PathBuf>, doc: Option<PathBuf>) -> Result<()> {
     let root = crate::lut::workspace_root();
-    let anchors = anchors.unwrap_or_else(|| root.join("../shared/anchors"));
+    // Each engine's table from `--anchors`, else from the first default folder that has it.
+    let anchor_dirs = match anchors {
+        Some(a) => vec![a],
+        None => vec![root.join(".cache/anchors"), root.join("../shared/anchors")],
+    };
     let doc = doc.unwrap_or_else(|| root.join("docs/engines.md"));
     let mut rows = String::new();
     let mut khr16 = String::new();
@@ -307,7 +311,11 @@ pub fn run(out: PathBuf, anchors: Option<PathBuf>, doc: Option<PathBuf>) -> Resu
         let eo = errors(&ours, &pts);
         let step = (ours.n / 64).max(1);
         let to = texel_errors(&ours, step);
-        let theirs_path = anchors.join(e.theirs);
+        let theirs_path = anchor_dirs
+            .iter()
+            .map(|d| d.join(e.theirs))
+            .find(|p| p.exists())
+            .unwrap_or_else(|| anchor_dirs[0].join(e.theirs));
         let (theirs, theirs_t) = if theirs_path.exists() {
             let t = read_table(&theirs_path, e.decode)?;
             (Some(errors(&t, &pts)), Some(texel_errors(&t, step)))
