@@ -46,6 +46,7 @@ pub use header::{
     Placement, TableKind, Warp, FORMAT_VERSION, MAGIC, MAX_AXES, MAX_AXIS_COUNT, MAX_CHANNELS,
     MAX_GENERATOR_NODES, MAX_VALUES, MAX_VALUE_MAGNITUDE,
 };
+pub use tables::layout::TableLayout;
 pub use tables::{AlbedoTable, AverageAlbedoTable, DfgTable, GTable, GTable3};
 pub use view::{encode_into, header_len, LutView, Values};
 

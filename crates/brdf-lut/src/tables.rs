@@ -9,6 +9,8 @@ use crate::view::{Grid, LutView};
 use crate::LutError;
 use core::f32::consts::FRAC_PI_2;
 
+pub(crate) mod layout;
+
 /// What every query of a table needs, computed once from its header.
 #[derive(Clone, Copy, Debug)]
 #[cfg_attr(not(feature = "std"), allow(dead_code))]

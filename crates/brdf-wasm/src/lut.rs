@@ -13,23 +13,54 @@
 //! `brdf_lut_load(slot, len)`, which validates everything (magic, version, header, sizes,
 //! CRC-32, table kind) and returns 0, or a negative status with the reason in
 //! `brdf_lut_error()`. Queries on a slot without a valid table return NaN ([`NO_LUT`] for
-//! the status-returning ones). Later queries re-read the header without the CRC (the bytes
-//! were checked at load), so nothing borrowed outlives a call.
+//! the status-returning ones). The load keeps the table's [`TableLayout`] (its prepared
+//! lookup constants, length and CRC-32 field), not the table: a table borrowing the slot
+//! across calls would be unsound, as the host may rewrite the slot between calls. Each query
+//! rebuilds the table from the slot's bytes and the layout in O(1), with no header decode
+//! (`with_layout` checks the length and the CRC-32 field only). A host that rewrites a slot
+//! must load it again: until then the payload it wrote is read as it is (wrong values or NaN,
+//! never a panic or an out-of-bounds read), and a table of another length or checksum gives
+//! NaN ([`NO_LUT`]).
 
 use crate::g::MAX_BATCH;
 use crate::memory::{usable, StaticBuf};
 use crate::status::{BAD_BUFFER, BAD_LUT, NO_LUT, OK};
-use brdf_lut::{DfgTable, GTable, GTable3, LutError, LutView};
+use brdf_lut::{DfgTable, GTable, GTable3, LutError, LutView, TableLayout};
+use core::cell::UnsafeCell;
 use core::sync::atomic::{AtomicU32, Ordering};
 
 static SLOT0: StaticBuf<{ 256 * 1024 }> = StaticBuf::new();
 static SLOT1: StaticBuf<{ 64 * 1024 }> = StaticBuf::new();
 static SLOT2: StaticBuf<{ 64 * 1024 }> = StaticBuf::new();
 
-/// Validated length per slot; 0 = no table.
-static LOADED: [AtomicU32; 3] = [AtomicU32::new(0), AtomicU32::new(0), AtomicU32::new(0)];
+/// The layout of a slot's validated table; `None` = no table.
+static LAYOUT0: LayoutCell<GTable3> = LayoutCell::new();
+static LAYOUT1: LayoutCell<GTable> = LayoutCell::new();
+static LAYOUT2: LayoutCell<DfgTable> = LayoutCell::new();
 /// Reason of the last failed load (see [`brdf_lut_error`]).
 static LAST_ERROR: AtomicU32 = AtomicU32::new(0);
+
+/// A slot's table layout, read and written by value only (no reference to the contents
+/// ever leaves a method).
+struct LayoutCell<T>(UnsafeCell<Option<TableLayout<T>>>);
+
+// The module is single-threaded; on the host, callers (tests) serialise access themselves,
+// as for the slots' buffers.
+unsafe impl<T> Sync for LayoutCell<T> {}
+
+impl<T> LayoutCell<T> {
+    const fn new() -> Self {
+        Self(UnsafeCell::new(None))
+    }
+    fn get(&self) -> Option<TableLayout<T>> {
+        // SAFETY: a copy out; no other access is in progress (single-threaded).
+        unsafe { *self.0.get() }
+    }
+    fn set(&self, layout: Option<TableLayout<T>>) {
+        // SAFETY: as above.
+        unsafe { *self.0.get() = layout }
+    }
+}
 
 fn slot(slot: u32) -> Option<(*mut u8, usize)> {
     match slot {
@@ -40,32 +71,13 @@ fn slot(slot: u32) -> Option<(*mut u8, usize)> {
     }
 }
 
-/// The loaded bytes of a slot, if any.
+/// The first `len` bytes of a slot (at most its capacity).
 ///
 /// # Safety
 /// The host must not write the slot while the returned slice is in use (the module is
 /// single-threaded, so this holds within one export call).
-unsafe fn loaded<'a>(s: u32) -> Option<&'a [u8]> {
-    let (p, _) = slot(s)?;
-    let n = LOADED.get(s as usize)?.load(Ordering::Relaxed) as usize;
-    if n == 0 {
-        return None;
-    }
-    Some(core::slice::from_raw_parts(p, n))
-}
-
-/// Checks `bytes` as the table kind of slot `s`.
-fn validate(s: u32, bytes: &[u8], crc: bool) -> Result<(), LutError> {
-    let view = if crc {
-        LutView::parse(bytes)?
-    } else {
-        LutView::parse_skip_checksum(bytes)?
-    };
-    match s {
-        0 => GTable3::from_view(view).map(|_| ()),
-        1 => GTable::from_view(view).map(|_| ()),
-        _ => DfgTable::from_view(view).map(|_| ()),
-    }
+unsafe fn bytes<'a, const N: usize>(buf: &StaticBuf<N>, len: usize) -> &'a [u8] {
+    core::slice::from_raw_parts(buf.ptr(), len.min(N))
 }
 
 fn error_code(e: LutError) -> u32 {
@@ -94,24 +106,23 @@ pub extern "C" fn brdf_lut_capacity(slot_id: u32) -> u32 {
     slot(slot_id).map_or(0, |(_, n)| n as u32)
 }
 
-/// Validates the first `len` bytes of slot `slot` as that slot's table kind and makes it the
-/// slot's table. Returns 0; [`BAD_BUFFER`] for an unknown slot or `len` beyond the capacity;
-/// [`BAD_LUT`] when the view rejects the bytes (reason in [`brdf_lut_error`]). On failure the
-/// slot has no table.
-#[no_mangle]
-pub extern "C" fn brdf_lut_load(slot_id: u32, len: u32) -> i32 {
-    let Some((p, cap)) = slot(slot_id) else {
-        return BAD_BUFFER;
-    };
-    LOADED[slot_id as usize].store(0, Ordering::Relaxed);
-    if len as usize > cap {
+/// Validates the first `len` bytes of a slot's buffer (every check of [`LutView::parse`],
+/// CRC included), checks the table kind with `typed` and keeps the table's layout in `cell`
+/// (none on failure).
+fn load<T, const N: usize>(
+    buf: &StaticBuf<N>,
+    cell: &LayoutCell<T>,
+    len: u32,
+    typed: impl FnOnce(LutView<'_>) -> Result<TableLayout<T>, LutError>,
+) -> i32 {
+    cell.set(None);
+    if len as usize > N {
         return BAD_BUFFER;
     }
-    // SAFETY: `len` ≤ capacity of a static buffer; single-threaded module.
-    let bytes = unsafe { core::slice::from_raw_parts(p, len as usize) };
-    match validate(slot_id, bytes, true) {
-        Ok(()) => {
-            LOADED[slot_id as usize].store(len, Ordering::Relaxed);
+    // SAFETY: used within this call only.
+    match LutView::parse(unsafe { bytes(buf, len as usize) }).and_then(typed) {
+        Ok(layout) => {
+            cell.set(Some(layout));
             LAST_ERROR.store(0, Ordering::Relaxed);
             OK
         }
@@ -119,6 +130,26 @@ pub extern "C" fn brdf_lut_load(slot_id: u32, len: u32) -> i32 {
             LAST_ERROR.store(error_code(e), Ordering::Relaxed);
             BAD_LUT
         }
+    }
+}
+
+/// Validates the first `len` bytes of slot `slot` as that slot's table kind and makes it the
+/// slot's table. Returns 0; [`BAD_BUFFER`] for an unknown slot or `len` beyond the capacity;
+/// [`BAD_LUT`] when the view rejects the bytes (reason in [`brdf_lut_error`]). On failure the
+/// slot has no table.
+#[no_mangle]
+pub extern "C" fn brdf_lut_load(slot_id: u32, len: u32) -> i32 {
+    match slot_id {
+        0 => load(&SLOT0, &LAYOUT0, len, |v| {
+            GTable3::from_view(v).map(|t| t.layout())
+        }),
+        1 => load(&SLOT1, &LAYOUT1, len, |v| {
+            GTable::from_view(v).map(|t| t.layout())
+        }),
+        2 => load(&SLOT2, &LAYOUT2, len, |v| {
+            DfgTable::from_view(v).map(|t| t.layout())
+        }),
+        _ => BAD_BUFFER,
     }
 }
 
@@ -131,24 +162,24 @@ pub extern "C" fn brdf_lut_error() -> u32 {
 }
 
 fn with_g3<R>(f: impl FnOnce(&GTable3<&[u8]>) -> R) -> Option<R> {
+    let layout = LAYOUT0.get()?;
     // SAFETY: used within this call only.
-    let bytes = unsafe { loaded(0)? };
-    let t = GTable3::from_view(LutView::parse_skip_checksum(bytes).ok()?).ok()?;
-    Some(f(&t))
+    let bytes = unsafe { bytes(&SLOT0, layout.byte_len()) };
+    Some(f(&GTable3::with_layout(bytes, layout).ok()?))
 }
 
 fn with_g2<R>(f: impl FnOnce(&GTable<&[u8]>) -> R) -> Option<R> {
+    let layout = LAYOUT1.get()?;
     // SAFETY: as above.
-    let bytes = unsafe { loaded(1)? };
-    let t = GTable::from_view(LutView::parse_skip_checksum(bytes).ok()?).ok()?;
-    Some(f(&t))
+    let bytes = unsafe { bytes(&SLOT1, layout.byte_len()) };
+    Some(f(&GTable::with_layout(bytes, layout).ok()?))
 }
 
 fn with_dfg<R>(f: impl FnOnce(&DfgTable<&[u8]>) -> R) -> Option<R> {
+    let layout = LAYOUT2.get()?;
     // SAFETY: as above.
-    let bytes = unsafe { loaded(2)? };
-    let t = DfgTable::from_view(LutView::parse_skip_checksum(bytes).ok()?).ok()?;
-    Some(f(&t))
+    let bytes = unsafe { bytes(&SLOT2, layout.byte_len()) };
+    Some(f(&DfgTable::with_layout(bytes, layout).ok()?))
 }
 
 /// The modified G from the table over σ (slot 0) at in-plane angles θi, θr (radians) and
@@ -317,5 +348,34 @@ mod tests {
         assert_eq!(ab, [a, b]);
         // Directional albedo with F = 1 is A + B ∈ (0, 1] (docs/conventions.md §8).
         assert!(a + b > 0.5 && a + b <= 1.0, "{a} + {b}");
+
+        // The host rewrites slot 1 without loading: the queries do not trust the bytes.
+        let s3 = asset("g_modified_sigma0.3.blut");
+        let s5 = asset("g_modified_sigma0.5.blut");
+        assert_eq!(s3.len(), s5.len(), "two tables of one length");
+        let (t3, t5) = (GTable::parse(&s3).unwrap(), GTable::parse(&s5).unwrap());
+        assert_eq!(put(1, &s3), OK);
+        assert_eq!(brdf_g_lut_fixed(0.4, -1.1), t3.g(0.4, -1.1));
+        let write = |bytes: &[u8]| unsafe {
+            core::ptr::copy_nonoverlapping(bytes.as_ptr(), brdf_lut_ptr(1), bytes.len())
+        };
+        // Another table of the same length: its CRC-32 field differs, so no table.
+        write(&s5);
+        assert!(brdf_g_lut_fixed(0.4, -1.1).is_nan());
+        assert!(brdf_g_lut_fixed_sigma().is_nan());
+        // A changed payload under the loaded header is read as it is (no panic): in a
+        // payload of zeros every node is the channel's offset, so G = min(GM, GS) is that
+        // offset clamped into [0, 1] (whatever the interpolation weights: w · 0 = 0).
+        let view = t3.view().unwrap();
+        let offset = view.header().channels[0].offset.clamp(0.0, 1.0);
+        let mut zero = s3.clone();
+        zero[view.header_len()..].fill(0);
+        write(&zero);
+        assert_eq!(brdf_g_lut_fixed(0.4, -1.1), offset);
+        // Loading makes the new table the slot's.
+        assert_eq!(put(1, &s5), OK);
+        assert_eq!(brdf_g_lut_fixed_sigma(), 0.5);
+        assert_eq!(brdf_g_lut_fixed(0.4, -1.1), t5.g(0.4, -1.1));
+        assert_ne!(t3.g(0.4, -1.1), t5.g(0.4, -1.1));
     }
 }

@@ -230,3 +230,22 @@ test('summary', () => {
   console.log(`${'group'.padEnd(34)}  rows  exact max_ulp\n${rows.join('\n')}\nall: ${exact}/${total} bit-exact, max ulp ${Math.max(...summary.map((s) => s.maxUlp))}`);
   assert.equal(summary.length, expected.groups.length);
 });
+
+test('a slot rewritten without a load is not trusted: another table of the same length gives NaN', async () => {
+  // The module keeps a loaded table's layout (length and CRC-32 field), not the table, and
+  // rebuilds the table from the slot per query: bytes written later are checked for both.
+  const s3 = lutBytes[LUT.G_FIXED_SIGMA];
+  const s5 = await readFile(new URL('assets/g_modified_sigma0.5.blut', repo));
+  assert.equal(s5.length, s3.length, 'two tables of one length');
+  const slot = new Uint8Array(e.memory.buffer, e.brdf_lut_ptr(LUT.G_FIXED_SIGMA), s3.length);
+  const before = brdf.gLutFixed(0.4, -1.1);
+  slot.set(s5);
+  assert.ok(Number.isNaN(brdf.gLutFixed(0.4, -1.1)), 'CRC-32 field differs from the loaded one');
+  assert.ok(Number.isNaN(brdf.gLutFixedSigma()));
+  brdf.loadLut(LUT.G_FIXED_SIGMA, s5);
+  assert.ok(Math.abs(brdf.gLutFixedSigma() - 0.5) < 1e-6);
+  // Against the direct kernel at the new σ, within the asset's stated 1e-3.
+  assert.ok(Math.abs(brdf.gLutFixed(0.4, -1.1) - brdf.g(G.MODIFIED, 0.5, 0.4, -1.1)) <= 1e-3);
+  brdf.loadLut(LUT.G_FIXED_SIGMA, s3);
+  assert.equal(brdf.gLutFixed(0.4, -1.1), before);
+});
