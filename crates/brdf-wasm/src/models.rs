@@ -1,7 +1,7 @@
 //! Every reflection model of brdf-core behind one C-ABI entry point.
 //!
 //! A model is picked by its id (its index in [`MODELS`]) and configured by an array of f32
-//! parameters in the order of its [`ParamSpec`]s. The host discovers names, ranges and
+//! parameters in the order of its [`ParamSpec`](brdf_core::catalogue::ParamSpec)s. The host discovers names, ranges and
 //! defaults at run time through `brdf_model_count`, `brdf_model_str_ptr/len` and
 //! `brdf_model_param`, so the JavaScript side carries no copy of this table.
 //!
