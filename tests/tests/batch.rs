@@ -126,11 +126,7 @@ fn check_modified<T: Real, R: Rule>(conv: Convention) {
     };
     batch::g_modified_dots(&g, d, &mut out).unwrap();
     assert_same("g_modified_dots", &out, |k| {
-        g.g_dots(Dots {
-            n_i: p.n_i[k],
-            n_o: p.n_o[k],
-            i_o: p.i_o[k],
-        })
+        g.g_dots(Dots::new(p.n_i[k], p.n_o[k], p.i_o[k]))
     });
 }
 
@@ -152,11 +148,7 @@ fn check_closed_forms<T: Real + BatchReal>() {
         n_o: &p.n_o,
         i_o: &p.i_o,
     };
-    let dk = |k: usize| Dots {
-        n_i: p.n_i[k],
-        n_o: p.n_o[k],
-        i_o: p.i_o[k],
-    };
+    let dk = |k: usize| Dots::new(p.n_i[k], p.n_o[k], p.i_o[k]);
     let mut out = vec![T::ZERO; n];
 
     batch::g_blinn_dots(d, &mut out).unwrap();

@@ -312,14 +312,7 @@ fn documented_results_for_bad_input() {
             < 1e-12
     );
     // Below the horizon: G = 0 and the BRDF is 0.
-    assert_eq!(
-        k.g_dots(Dots {
-            n_i: -0.2,
-            n_o: 0.5,
-            i_o: 0.0
-        }),
-        0.0
-    );
+    assert_eq!(k.g_dots(Dots::new(-0.2, 0.5, 0.0)), 0.0);
     let ts =
         TorranceSparrow::<f64>::new(0.3, GeometricTerm::Modified, Fresnel::One, 1.0, 0.5).unwrap();
     assert_eq!(ts.eval(Vec3::new(0.0, 0.6, -0.8), up), 0.0);
@@ -371,10 +364,10 @@ proptest! {
     #[test]
     fn any_dots_give_documented_result(a in -2.0f32..2.0, b in -2.0f32..2.0, c in -2.0f32..2.0) {
         let k = ModifiedG::<f32>::new(0.3).unwrap();
-        let g = k.g_dots(Dots { n_i: a, n_o: b, i_o: c });
+        let g = k.g_dots(Dots::new(a, b, c));
         prop_assert!((0.0..=1.0).contains(&g));
         let ts = TorranceSparrow::<f32>::specular(0.3, GeometricTerm::Modified).unwrap();
-        let f = ts.eval_dots(Dots { n_i: a, n_o: b, i_o: c });
+        let f = ts.eval_dots(Dots::new(a, b, c));
         prop_assert!(f >= 0.0 && !f.is_nan());
     }
 }

@@ -9,7 +9,9 @@
 //! rounding; the rest of each formula (exp, erfc, square roots of non-cancelling arguments,
 //! each a few ulp) is evaluated in f64 from those, written out here independently of the
 //! kernels. Its relative error is below 1e-13 for every pair used, far under the 1e-9 the
-//! kernels are held to.
+//! kernels are held to. The dot-product (shader) entry points are held to the same bounds
+//! when their [`Dots`] come from the vectors, and to their documented bounds when they come
+//! from the three dots alone or with a shader's n·h.
 
 use brdf_core::distribution::{d_ggx, SlopeDistribution};
 use brdf_core::masking::g1_smith_ggx;
@@ -18,7 +20,8 @@ use brdf_core::models::*;
 use brdf_core::quadrature::DefaultRule;
 use brdf_core::sampling;
 use brdf_core::split_sum::dfg_ggx;
-use brdf_core::{Frame, Real, Vec3};
+use brdf_core::{Dots, Frame, Real, Vec3};
+use proptest::prelude::*;
 use rand::Rng;
 use rand::SeedableRng;
 use rand_pcg::Pcg64;
@@ -169,6 +172,25 @@ fn cases<T: Real>() -> Vec<Case<T>> {
                 g,
                 r0: 1.0,
             });
+            // The shader form, with the dots taken from the vectors (local frame, and a
+            // general frame whose normal happens to be +z).
+            v.push(Case {
+                name: format!("torrance-sparrow dots alpha {alpha} {gt:?}"),
+                eval: Box::new(move |wi, wo| ts.eval_dots(Dots::from_local(wi, wo))),
+                alpha: f(alpha).to_f64(),
+                d: RefD::Beckmann,
+                g,
+                r0: 1.0,
+            });
+            let n = Vec3::new(T::ZERO, T::ZERO, T::ONE);
+            v.push(Case {
+                name: format!("torrance-sparrow from_vectors alpha {alpha} {gt:?}"),
+                eval: Box::new(move |wi, wo| ts.eval_dots(Dots::from_vectors(wi, wo, n))),
+                alpha: f(alpha).to_f64(),
+                d: RefD::Beckmann,
+                g,
+                r0: 1.0,
+            });
         }
         for (gt, g) in [
             (GeometricTerm::Blinn, RefG::Blinn),
@@ -266,10 +288,66 @@ fn published_horizon_pairs_are_exact() {
             ((r - published) / published).abs() < 1e-11,
             "reference {r} vs {published}"
         );
-        let got = ts.eval(v3(wi), v3(wo));
+        let (vi, vo) = (v3::<f64>(wi), v3::<f64>(wo));
+        let n = Vec3::new(0.0, 0.0, 1.0);
+        // Cook–Torrance with ks = 1, kd = 0, Schlick r0 = 1 (F = 1) is the same lobe.
+        let ct = CookTorrance::<f64>::new(
+            Rgb::splat(0.0),
+            Rgb::splat(1.0),
+            alpha,
+            1.0,
+            GeometricTerm::SmithSeparable,
+        )
+        .unwrap();
+        let forms = [
+            ("vectors", ts.eval(vi, vo)),
+            ("dots from_local", ts.eval_dots(Dots::from_local(vi, vo))),
+            (
+                "dots from_vectors",
+                ts.eval_dots(Dots::from_vectors(vi, vo, n)),
+            ),
+            ("cook-torrance vectors", ct.eval(vi, vo).r),
+        ];
+        for (form, got) in forms {
+            let rel = ((got - r) / r).abs();
+            println!("pair, {form}: kernel {got:.6} reference {r:.6} rel {rel:.1e}");
+            assert!(
+                rel < 1e-12,
+                "{form}: kernel {got} vs reference {r}: {rel:e}"
+            );
+        }
+        // The shader form with n·h from normalize(wi + wo) in f64: bounded by n·h's own
+        // rounding (see `shader_n_h_form_within_its_bound`), 1.8e-13 relative here.
+        let d = Dots::from_local(vi, vo);
+        let nh = vi.add(vo).normalize().unwrap().z;
+        let got = ts.eval_dots(Dots::with_n_h(d.n_i, d.n_o, d.i_o, nh));
         let rel = ((got - r) / r).abs();
-        println!("pair: kernel {got:.6} reference {r:.6} rel {rel:.1e}");
-        assert!(rel < 1e-12, "kernel {got} vs reference {r}: {rel:e}");
+        println!("pair, dots with_n_h: kernel {got:.6} rel {rel:.1e}");
+        assert!(
+            rel < 1e-11,
+            "with_n_h: kernel {got} vs reference {r}: {rel:e}"
+        );
+    }
+}
+
+/// In-plane mirror pairs θi = θr = θ: H is exactly along n (tan θh = 0), so the reference is
+/// the closed form D(0) G/(4 cos²θ) = G/(π α² 4 cos²θ) with the separable Smith G; the
+/// angle form must reach it down to cos θ = 1e-6 (2 + 2 cos 2θ cancels there: the old
+/// in-plane dots were 4e-2 off at cos θ = 1e-6).
+#[test]
+fn in_plane_mirror_pairs_at_the_horizon() {
+    let alpha = 0.05;
+    let ts = TorranceSparrow::<f64>::specular(alpha / 2f64.sqrt(), GeometricTerm::SmithSeparable)
+        .unwrap();
+    for c in [1e-2, 1e-3, 1e-4, 1e-5, 1e-6] {
+        let theta = c.acos();
+        let c = theta.cos();
+        let l = lambda_beckmann_ref(c, alpha);
+        let r = 1.0 / ((1.0 + l) * (1.0 + l)) / (PI * alpha * alpha * 4.0 * c * c);
+        let got = ts.eval_in_plane(theta, theta);
+        let rel = ((got - r) / r).abs();
+        // A few ε from D, Λ (exp, erfc) and the products.
+        assert!(rel < 1e-13, "cos θ {c:e}: kernel {got} vs {r}: {rel:e}");
     }
 }
 
@@ -280,27 +358,14 @@ fn horizon_property<T: Real>(min_cos_checked: f64, tol: f64) -> f64 {
         let mut case_worst: f64 = 0.0;
         for _ in 0..2000 {
             let (wi, wo) = near_mirror_pair(&mut rng, case.alpha);
-            // The kernel's input, and the reference evaluated at exactly that input.
-            let (wi_t, wo_t) = (v3::<T>(wi), v3::<T>(wo));
-            let (wi, wo) = (widen(wi_t), widen(wo_t));
-            let got = (case.eval)(wi_t, wo_t).to_f64();
-            assert!(got.is_finite() && got >= 0.0, "{}: {got}", case.name);
-            if wi[2].min(wo[2]) < min_cos_checked {
-                continue;
+            if let Some(rel) = pair_error(&case, wi, wo, min_cos_checked) {
+                assert!(
+                    rel <= tol,
+                    "{}: wi {wi:?} wo {wo:?}: rel {rel:e}",
+                    case.name
+                );
+                case_worst = case_worst.max(rel);
             }
-            let r = brdf_ref(wi, wo, case.alpha, case.d, case.g, case.r0);
-            assert!(
-                r > 0.0,
-                "{}: the pair must lie in the lobe: {wi:?} {wo:?}",
-                case.name
-            );
-            let rel = ((got - r) / r).abs();
-            assert!(
-                rel <= tol,
-                "{}: wi {wi:?} wo {wo:?}: kernel {got:e} reference {r:e} rel {rel:e}",
-                case.name
-            );
-            case_worst = case_worst.max(rel);
         }
         println!("{}: worst rel {case_worst:.2e}", case.name);
         worst = worst.max(case_worst);
@@ -320,24 +385,207 @@ fn near_horizon_mirror_pairs_f32_within_1e4() {
     println!("f32 worst relative error (cos θ ≥ 1e-3): {w:.2e}");
 }
 
-/// The dot-product (shader) form is limited by its input wi·wo: n·h from the three dots
-/// alone has a relative error of about ε/(1 + wi·wo). At cos θ = 1e-3 (1 + wi·wo ≈ 2e-6)
-/// that is ≈ 1e-10 on n·h, which the exponent tan²θh/α² amplifies to ≈ 1e-7 at α = 0.05.
+/// Relative error of the kernel against the reference evaluated at exactly the kernel's
+/// input (the pair rounded to T), or `None` below `min_cos_checked` (the kernel is then only
+/// required to be finite and ≥ 0).
+fn pair_error<T: Real>(
+    case: &Case<T>,
+    wi: [f64; 3],
+    wo: [f64; 3],
+    min_cos_checked: f64,
+) -> Option<f64> {
+    let (wi_t, wo_t) = (v3::<T>(wi), v3::<T>(wo));
+    let (wi, wo) = (widen(wi_t), widen(wo_t));
+    let got = (case.eval)(wi_t, wo_t).to_f64();
+    assert!(got.is_finite() && got >= 0.0, "{}: {got}", case.name);
+    if wi[2].min(wo[2]) < min_cos_checked {
+        return None;
+    }
+    let r = brdf_ref(wi, wo, case.alpha, case.d, case.g, case.r0);
+    assert!(
+        r > 0.0,
+        "{}: the pair must lie in the lobe: {wi:?} {wo:?}",
+        case.name
+    );
+    let rel = ((got - r) / r).abs();
+    if rel > 1e-3 {
+        println!(
+            "{}: {wi:?} {wo:?}: kernel {got:e} reference {r:e}",
+            case.name
+        );
+    }
+    Some(rel)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
+
+    /// Near-horizon, near-mirror pairs (cos θo from 1e-7 to 1e-2, cos θi within a factor 2
+    /// either side, any azimuth, azimuth mismatch within ±α(cos θi + cos θo)): every
+    /// microfacet model, in its vector and its dot-product form, within 1e-9 (f64, both
+    /// cosines ≥ 1e-6) and 1e-4 (f32, ≥ 1e-3) of the double-double reference. The f64 bound
+    /// is far above the measured 2e-15; the f32 one covers the f32 rounding of the inputs'
+    /// exponent tan²θh/α² (a few ε_f32 ≈ 1e-6 relative) with margin.
+    #[test]
+    fn near_horizon_pairs_every_model(
+        lc in -7.0f64..-2.0, ratio in -1.0f64..1.0, po in 0.0..2.0 * PI, mis in -1.0f64..1.0,
+    ) {
+        let co = 10f64.powf(lc);
+        let ci = co * 2f64.powf(ratio);
+        let dir = |c: f64, p: f64| {
+            let s = (1.0 - c * c).sqrt();
+            [s * p.cos(), s * p.sin(), c]
+        };
+        for case in cases::<f64>() {
+            let pi = po + PI + mis * case.alpha * (ci + co);
+            if let Some(rel) = pair_error(&case, dir(ci, pi), dir(co, po), 1e-6) {
+                prop_assert!(rel <= 1e-9, "{}: co {:e} ci {:e}: rel {:e}", case.name, co, ci, rel);
+            }
+        }
+        for case in cases::<f32>() {
+            let pi = po + PI + mis * case.alpha * (ci + co);
+            if let Some(rel) = pair_error(&case, dir(ci, pi), dir(co, po), 1e-3) {
+                prop_assert!(rel <= 1e-4, "{}: co {:e} ci {:e}: rel {:e}", case.name, co, ci, rel);
+            }
+        }
+    }
+}
+
+/// The three-dots form ([`Dots::new`]) is limited by its input wi·wo, whose absolute
+/// rounding error (≈ 2ε for a sum of three products near −1) becomes an absolute error of
+/// ≈ 4ε on |H_t|² = 2 + 2 wi·wo − s² (s = cos θi + cos θo), so on the exponent
+/// |H_t|²/(α² s²) of D ≈ 4ε/(α² s²): the documented loss, bounded here by 8ε/(α² s²).
+/// At cos θ = 1e-3 and α = 0.05 that is ≈ 1e-7; the vector-built dots are at 1e-15.
 #[test]
-fn dot_product_form_agrees_where_its_input_allows() {
+fn three_dots_form_within_its_bound() {
     let mut rng = Pcg64::seed_from_u64(7);
-    let ts = TorranceSparrow::<f64>::specular(0.05 / 2f64.sqrt(), GeometricTerm::SmithSeparable)
+    let alpha = 0.05;
+    let ts = TorranceSparrow::<f64>::specular(alpha / 2f64.sqrt(), GeometricTerm::SmithSeparable)
         .unwrap();
-    for _ in 0..500 {
-        let (wi, wo) = near_mirror_pair(&mut rng, 0.05);
-        if wi[2].min(wo[2]) < 1e-3 {
+    let mut worst_ratio: f64 = 0.0;
+    for _ in 0..2000 {
+        let (wi, wo) = near_mirror_pair(&mut rng, alpha);
+        if wi[2].min(wo[2]) < 1e-4 {
             continue;
         }
-        let d = brdf_core::Dots::from_local(v3::<f64>(wi), v3::<f64>(wo));
-        let r = brdf_ref(wi, wo, 0.05, RefD::Beckmann, RefG::BeckmannSeparable, 1.0);
-        let got = ts.eval_dots(d);
-        let bound = 1e-16 / (1.0 + d.i_o).max(1e-300) * 1e3;
-        assert!(((got - r) / r).abs() <= bound.max(1e-12), "{got} {r}");
+        let l = Dots::from_local(v3::<f64>(wi), v3::<f64>(wo));
+        let d = Dots::new(l.n_i, l.n_o, l.i_o);
+        let r = brdf_ref(wi, wo, alpha, RefD::Beckmann, RefG::BeckmannSeparable, 1.0);
+        let rel = ((ts.eval_dots(d) - r) / r).abs();
+        let s = wi[2] + wo[2];
+        let bound = 8.0 * f64::EPSILON / (alpha * alpha * s * s) + 1e-13;
+        assert!(rel <= bound, "{wi:?} {wo:?}: rel {rel:e} > {bound:e}");
+        worst_ratio = worst_ratio.max(rel / bound);
+    }
+    println!("three-dots form: worst error / bound {worst_ratio:.2}");
+}
+
+/// The shader form with n·h ([`Dots::with_n_h`]), n·h = n·normalize(wi + wo) computed in the
+/// kernel's precision: n·h carries a relative error of a few ε (sum, squares, square root,
+/// division; ≤ 4ε), so 1 − n·h ≈ tan²θh/2 an absolute one of 4ε, and the exponent
+/// tan²θh/α² of D an absolute error of ≈ 8ε/α²; bounded here by 16ε/α² (f64 at α = 0.05:
+/// 1.4e-12; f32: 7.6e-4), whatever the cosines.
+fn shader_n_h_form<T: Real>(min_cos: f64) {
+    let mut rng = Pcg64::seed_from_u64(9);
+    let eps = T::EPSILON.to_f64();
+    for alpha in [0.05, 0.2] {
+        let ts = TorranceSparrow::<T>::specular(
+            T::from_f64(alpha / 2f64.sqrt()),
+            GeometricTerm::SmithSeparable,
+        )
+        .unwrap();
+        let a = T::from_f64(alpha).to_f64();
+        let mut worst: f64 = 0.0;
+        for _ in 0..1000 {
+            let (wi, wo) = near_mirror_pair(&mut rng, alpha);
+            let (wi_t, wo_t) = (v3::<T>(wi), v3::<T>(wo));
+            let (wi, wo) = (widen(wi_t), widen(wo_t));
+            if wi[2].min(wo[2]) < min_cos {
+                continue;
+            }
+            let nh = wi_t.add(wo_t).normalize().unwrap().z;
+            let l = Dots::from_local(wi_t, wo_t);
+            let got = ts
+                .eval_dots(Dots::with_n_h(l.n_i, l.n_o, l.i_o, nh))
+                .to_f64();
+            let r = brdf_ref(wi, wo, a, RefD::Beckmann, RefG::BeckmannSeparable, 1.0);
+            let rel = ((got - r) / r).abs();
+            let bound = 16.0 * eps / (a * a);
+            assert!(
+                rel <= bound,
+                "α {alpha}: {wi:?} {wo:?}: rel {rel:e} > {bound:e}"
+            );
+            worst = worst.max(rel);
+        }
+        println!("with_n_h, α {alpha}: worst rel {worst:.2e}");
+    }
+}
+
+#[test]
+fn shader_n_h_form_within_its_bound() {
+    shader_n_h_form::<f64>(1e-7);
+    shader_n_h_form::<f32>(1e-5);
+}
+
+/// Every [`Dots`] constructor against the double-double half vector on generic pairs
+/// (random directions in the upper hemisphere, 1 + wi·wo ≥ 1e-2, where none of them
+/// cancels): n·h and wi·h within 1e-13 (a few ε, times at most 1/(1 + wi·wo) = 100 for the
+/// three-dots form). The vector form is also taken in a random rotated frame, and the
+/// angle form for in-plane pairs.
+#[test]
+fn dots_constructors_agree_on_generic_pairs() {
+    let mut rng = Pcg64::seed_from_u64(11);
+    let dir = |rng: &mut Pcg64| {
+        let c: f64 = rng.random_range(0.05..1.0);
+        let p: f64 = rng.random_range(0.0..2.0 * PI);
+        let s = (1.0 - c * c).sqrt();
+        [s * p.cos(), s * p.sin(), c]
+    };
+    let close = |name: &str, d: Dots<f64>, cos_h: f64, i_h: f64| {
+        assert!(
+            (d.n_h() - cos_h).abs() <= 1e-13,
+            "{name}: n·h {} vs {cos_h}",
+            d.n_h()
+        );
+        assert!(
+            (d.i_h() - i_h).abs() <= 1e-13,
+            "{name}: wi·h {} vs {i_h}",
+            d.i_h()
+        );
+    };
+    for _ in 0..2000 {
+        let (wi, wo) = (dir(&mut rng), dir(&mut rng));
+        let (vi, vo) = (v3::<f64>(wi), v3::<f64>(wo));
+        if 1.0 + vi.dot(vo) < 1e-2 {
+            continue;
+        }
+        let (_, cos_h, i_h) = half_ref(wi, wo);
+        let l = Dots::from_local(vi, vo);
+        close("from_local", l, cos_h, i_h);
+        close("new", Dots::new(l.n_i, l.n_o, l.i_o), cos_h, i_h);
+        let nh = vi.add(vo).normalize().unwrap().z;
+        close(
+            "with_n_h",
+            Dots::with_n_h(l.n_i, l.n_o, l.i_o, nh),
+            cos_h,
+            i_h,
+        );
+        let axis = Vec3::new(
+            rng.random_range(-1.0..1.0),
+            rng.random_range(-1.0..1.0),
+            rng.random_range(-1.0..1.0),
+        );
+        let f = Frame::from_normal(axis.normalize().unwrap());
+        let d = Dots::from_vectors(f.to_world(vi), f.to_world(vo), f.n);
+        close("from_vectors", d, cos_h, i_h);
+        // In-plane pairs: θi ∈ [0, π/2), θr signed.
+        let ti: f64 = rng.random_range(0.0..1.5);
+        let tr: f64 = rng.random_range(-1.5..1.5);
+        let (pi, po) = brdf_core::geometry::in_plane_directions(ti, tr);
+        let (_, cos_h, i_h) = half_ref(widen(pi), widen(po));
+        if 1.0 + pi.dot(po) >= 1e-2 {
+            close("in_plane", Dots::in_plane(ti, tr), cos_h, i_h);
+        }
     }
 }
 

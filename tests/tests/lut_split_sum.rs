@@ -30,11 +30,8 @@ fn reference(mu: f64, f: &dyn Fn(f64, f64, Dots<f64>) -> f64) -> (f64, f64) {
                         let vh = v.dot(h);
                         let fc = (1.0 - vh).max(0.0).powi(5);
                         let w = if fc_weight { fc } else { 1.0 - fc };
-                        let d = Dots {
-                            n_i: l.z,
-                            n_o: mu,
-                            i_o: l.dot(v),
-                        };
+                        // v.z = μ exactly.
+                        let d = Dots::from_local(l, v);
                         w * f(h.z, l.z, d) * tl.sin()
                     },
                     0.0,

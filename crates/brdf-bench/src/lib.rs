@@ -50,11 +50,7 @@ pub fn dots_pairs<T: Real>(n: usize) -> Vec<Dots<T>> {
         .zip(&tr)
         .map(|(&a, &b)| {
             let d = Dots::<f64>::in_plane(a, b);
-            Dots {
-                n_i: T::from_f64(d.n_i),
-                n_o: T::from_f64(d.n_o),
-                i_o: T::from_f64(d.i_o),
-            }
+            Dots::new(T::from_f64(d.n_i), T::from_f64(d.n_o), T::from_f64(d.i_o))
         })
         .collect()
 }

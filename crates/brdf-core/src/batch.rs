@@ -164,7 +164,9 @@ fn same_len(lens: &[usize]) -> Result<usize, BatchError> {
 }
 
 /// Pairs of directions given by their dot products, as structure of arrays:
-/// `n_i[k]` = n·wi, `n_o[k]` = n·wo, `i_o[k]` = wi·wo (the shader form of [`Dots`]).
+/// `n_i[k]` = n·wi, `n_o[k]` = n·wo, `i_o[k]` = wi·wo (the shader form of [`Dots`], built
+/// with [`Dots::new`]: near-mirror pairs near the horizon lose accuracy in n·h, as documented
+/// there).
 #[derive(Clone, Copy, Debug)]
 pub struct DotsSoa<'a, T> {
     /// cos θi = n·wi.
@@ -187,7 +189,7 @@ impl<T: Real> DotsSoa<'_, T> {
             .iter()
             .zip(self.n_o)
             .zip(self.i_o)
-            .map(|((&n_i, &n_o), &i_o)| Dots { n_i, n_o, i_o })
+            .map(|((&n_i, &n_o), &i_o)| Dots::new(n_i, n_o, i_o))
     }
 }
 

@@ -163,10 +163,15 @@ fn kernel<T: Real>(mu: T, sv: T, (ch, sh): (T, T), phi: T, g: &impl Fn(Dots<T>) 
     if !(nl > T::ZERO) || !(vh > T::ZERO) || !(ch > T::ZERO) {
         return (T::ZERO, T::ZERO);
     }
+    // l = 2(v·h)h − v, so l·v = 2(v·h)² − 1 and l + v = 2(v·h)h, whose tangential length
+    // is 2(v·h) sin θh (without the cancellation of 2 + 2 l·v − (n·l + n·v)²).
+    let two_vh = T::TWO * vh;
+    let t = two_vh * sh;
     let gg = g(Dots {
         n_i: nl.min(T::ONE),
         n_o: mu,
-        i_o: (T::TWO * vh * vh - T::ONE).clamp(-T::ONE, T::ONE),
+        i_o: (two_vh * vh - T::ONE).clamp(-T::ONE, T::ONE),
+        ht2: t * t,
     });
     let w = gg * vh / (mu * ch);
     let fc = (T::ONE - vh).max(T::ZERO).powi(5);

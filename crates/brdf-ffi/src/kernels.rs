@@ -6,7 +6,11 @@
 //! pointing away from the surface, `wi` toward the light and `wo` toward the viewer; the
 //! in-plane angles of the 2015 Acta Physica Sinica paper on the modified G: θi ∈ [0, π/2],
 //! θr ∈ [−π/2, π/2] signed (θr > 0 on the far side of the normal from the light, θr = θi the
-//! mirror direction). Dot-product forms take n·wi, n·wo and wi·wo of unit vectors.
+//! mirror direction). Dot-product forms take n·wi, n·wo and wi·wo of unit vectors; n·h and
+//! wi·h are computed from those three (`brdf_core::Dots::new`), which for a near-mirror
+//! pair near the horizon (wi ≈ −wo) carries wi·wo's rounding error ε as a relative error of
+//! about ε/(1 + wi·wo). The C interface keeps the three dots; a caller that has the vectors
+//! of such pairs should evaluate in higher precision or avoid the dot-product form there.
 
 use crate::{
     handle, rd, wr, BrdfStatus, BRDF_STATUS_INVALID_ARGUMENT, BRDF_STATUS_NOT_INITIALISED,
@@ -381,7 +385,7 @@ pub unsafe extern "C" fn brdf_modified_g_terms_dots_f32(
     i_o: f32,
 ) -> BrdfGTermsF32 {
     match BrdfModifiedGF32::get(g) {
-        Some(m) if finite3(n_i, n_o, i_o) => terms_f32(m.terms_dots(Dots { n_i, n_o, i_o })),
+        Some(m) if finite3(n_i, n_o, i_o) => terms_f32(m.terms_dots(Dots::new(n_i, n_o, i_o))),
         _ => NAN_TERMS_F32,
     }
 }
@@ -424,11 +428,7 @@ pub unsafe extern "C" fn brdf_modified_g_dots_batch_f32(
     for k in 0..n {
         let (a, b, c) = (rd(n_i, k), rd(n_o, k), rd(i_o, k));
         let v = if finite3(a, b, c) {
-            m.g_dots(Dots {
-                n_i: a,
-                n_o: b,
-                i_o: c,
-            })
+            m.g_dots(Dots::new(a, b, c))
         } else {
             f32::NAN
         };
@@ -451,7 +451,7 @@ pub extern "C" fn brdf_g_blinn_dots_f32(n_i: f32, n_o: f32, i_o: f32) -> f32 {
     if !finite3(n_i, n_o, i_o) {
         return f32::NAN;
     }
-    masking::g_blinn_dots(Dots { n_i, n_o, i_o })
+    masking::g_blinn_dots(Dots::new(n_i, n_o, i_o))
 }
 
 /// One-sided Smith masking G1 = 1/(1 + Λ) ∈ [0, 1] at cos θ = n·w (≤ 0 gives 0), for
@@ -522,7 +522,7 @@ pub unsafe extern "C" fn brdf_torrance_sparrow_eval_f32(
     i_o: f32,
 ) -> f32 {
     match BrdfTorranceSparrowF32::get(ts) {
-        Some(t) if finite3(n_i, n_o, i_o) => t.eval_dots(Dots { n_i, n_o, i_o }),
+        Some(t) if finite3(n_i, n_o, i_o) => t.eval_dots(Dots::new(n_i, n_o, i_o)),
         _ => f32::NAN,
     }
 }
@@ -537,7 +537,7 @@ pub unsafe extern "C" fn brdf_torrance_sparrow_specular_f32(
     i_o: f32,
 ) -> f32 {
     match BrdfTorranceSparrowF32::get(ts) {
-        Some(t) if finite3(n_i, n_o, i_o) => t.eval_specular(Dots { n_i, n_o, i_o }),
+        Some(t) if finite3(n_i, n_o, i_o) => t.eval_specular(Dots::new(n_i, n_o, i_o)),
         _ => f32::NAN,
     }
 }
@@ -796,7 +796,7 @@ pub unsafe extern "C" fn brdf_modified_g_terms_dots_f64(
     i_o: f64,
 ) -> BrdfGTermsF64 {
     match BrdfModifiedGF64::get(g) {
-        Some(m) if finite3(n_i, n_o, i_o) => terms_f64(m.terms_dots(Dots { n_i, n_o, i_o })),
+        Some(m) if finite3(n_i, n_o, i_o) => terms_f64(m.terms_dots(Dots::new(n_i, n_o, i_o))),
         _ => NAN_TERMS_F64,
     }
 }
@@ -839,11 +839,7 @@ pub unsafe extern "C" fn brdf_modified_g_dots_batch_f64(
     for k in 0..n {
         let (a, b, c) = (rd(n_i, k), rd(n_o, k), rd(i_o, k));
         let v = if finite3(a, b, c) {
-            m.g_dots(Dots {
-                n_i: a,
-                n_o: b,
-                i_o: c,
-            })
+            m.g_dots(Dots::new(a, b, c))
         } else {
             f64::NAN
         };
@@ -866,7 +862,7 @@ pub extern "C" fn brdf_g_blinn_dots_f64(n_i: f64, n_o: f64, i_o: f64) -> f64 {
     if !finite3(n_i, n_o, i_o) {
         return f64::NAN;
     }
-    masking::g_blinn_dots(Dots { n_i, n_o, i_o })
+    masking::g_blinn_dots(Dots::new(n_i, n_o, i_o))
 }
 
 /// One-sided Smith masking G1 = 1/(1 + Λ) ∈ [0, 1] at cos θ = n·w (≤ 0 gives 0), for
@@ -937,7 +933,7 @@ pub unsafe extern "C" fn brdf_torrance_sparrow_eval_f64(
     i_o: f64,
 ) -> f64 {
     match BrdfTorranceSparrowF64::get(ts) {
-        Some(t) if finite3(n_i, n_o, i_o) => t.eval_dots(Dots { n_i, n_o, i_o }),
+        Some(t) if finite3(n_i, n_o, i_o) => t.eval_dots(Dots::new(n_i, n_o, i_o)),
         _ => f64::NAN,
     }
 }
@@ -952,7 +948,7 @@ pub unsafe extern "C" fn brdf_torrance_sparrow_specular_f64(
     i_o: f64,
 ) -> f64 {
     match BrdfTorranceSparrowF64::get(ts) {
-        Some(t) if finite3(n_i, n_o, i_o) => t.eval_specular(Dots { n_i, n_o, i_o }),
+        Some(t) if finite3(n_i, n_o, i_o) => t.eval_specular(Dots::new(n_i, n_o, i_o)),
         _ => f64::NAN,
     }
 }

@@ -61,13 +61,7 @@ pub fn g_lut(table: &GTable<&[u8]>, theta_i: f32, theta_r: f32) -> f32 {
 #[inline(never)]
 pub fn g_dots(sigma: f32, n_i: f32, n_o: f32, i_o: f32) -> f32 {
     match ModifiedG::<F>::new(f(sigma)) {
-        Ok(g) => g
-            .g_dots(Dots {
-                n_i: f(n_i),
-                n_o: f(n_o),
-                i_o: f(i_o),
-            })
-            .into(),
+        Ok(g) => g.g_dots(Dots::new(f(n_i), f(n_o), f(i_o))).into(),
         Err(_) => f32::NAN,
     }
 }
@@ -87,13 +81,7 @@ pub fn torrance_sparrow(sigma: f32, r0: f32, albedo: f32, n_i: f32, n_o: f32, i_
         f(1.0),
         f(albedo),
     ) {
-        Ok(ts) => ts
-            .eval_dots(Dots {
-                n_i: f(n_i),
-                n_o: f(n_o),
-                i_o: f(i_o),
-            })
-            .into(),
+        Ok(ts) => ts.eval_dots(Dots::new(f(n_i), f(n_o), f(i_o))).into(),
         Err(_) => f32::NAN,
     }
 }

@@ -113,6 +113,13 @@ fn native_g(kind: u32, sigma: f32, ti: f32, tr: f32) -> f32 {
     }
 }
 
+/// The dots as the exports receive them: n·wi, n·wo, wi·wo, with |wi + wo|² rebuilt from
+/// wi·wo ([`Dots::new`]), as the exports do.
+fn shader_dots(wi: Vec3<f32>, wo: Vec3<f32>) -> Dots<f32> {
+    let d = Dots::from_local(wi, wo);
+    Dots::new(d.n_i, d.n_o, d.i_o)
+}
+
 /// G from dot products, from brdf-core directly (NaN in, NaN out, also for G = 1).
 fn native_g_dots(kind: u32, sigma: f32, d: Dots<f32>) -> f32 {
     let Some(&t) = GeometricTerm::ALL.get(kind as usize) else {
@@ -203,7 +210,7 @@ fn main() {
         for k in 0..N + 2 {
             let s = if k == 0 { 0.0 } else { rng.f(0.05, 1.0) };
             let (wi, wo) = (rng.dir(), rng.dir());
-            let mut d = Dots::from_local(wi, wo);
+            let mut d = shader_dots(wi, wo);
             if k == 1 {
                 d.n_i = f32::NAN;
             }
@@ -222,7 +229,7 @@ fn main() {
         };
         let s = rng.f(0.05, 1.0);
         for _ in 0..N {
-            let d = Dots::from_local(rng.dir(), rng.dir());
+            let d = shader_dots(rng.dir(), rng.dir());
             g.rows
                 .push(vec![kind, bits(s), bits(d.n_i), bits(d.n_o), bits(d.i_o)]);
             g.out.push(vec![bits(native_g_dots(kind, s, d))]);
@@ -242,7 +249,7 @@ fn main() {
         let s = rng.f(0.05, 1.0);
         let kind = (rng.next() % 6) as u32;
         let (r0, ks, albedo) = (rng.f(0.0, 1.0), rng.f(0.0, 2.0), rng.f(0.0, 1.0));
-        let d = Dots::from_local(rng.dir(), rng.dir());
+        let d = shader_dots(rng.dir(), rng.dir());
         let v = TorranceSparrow::<f32>::new(
             s,
             GeometricTerm::ALL[kind as usize],

@@ -129,7 +129,7 @@ pub extern "C" fn brdf_g(kind: u32, sigma: f32, theta_i: f32, theta_r: f32) -> f
 #[no_mangle]
 pub extern "C" fn brdf_g_dots(kind: u32, sigma: f32, n_i: f32, n_o: f32, i_o: f32) -> f32 {
     match PreparedG::new(kind, sigma) {
-        Some(g) => g.dots(Dots { n_i, n_o, i_o }),
+        Some(g) => g.dots(Dots::new(n_i, n_o, i_o)),
         None => f32::NAN,
     }
 }
@@ -183,11 +183,7 @@ pub unsafe extern "C" fn brdf_g_dots_batch(
     };
     for k in 0..n as usize {
         let p = dots.add(3 * k);
-        let v = g.dots(Dots {
-            n_i: *p,
-            n_o: *p.add(1),
-            i_o: *p.add(2),
-        });
+        let v = g.dots(Dots::new(*p, *p.add(1), *p.add(2)));
         *out.add(k) = v;
     }
     n as i32

@@ -201,7 +201,7 @@ pub extern "C" fn brdf_torrance_sparrow(
         return f32::NAN;
     };
     match TorranceSparrow::<f32>::new(sigma, g, f, ks, albedo) {
-        Ok(m) => m.eval_dots(Dots { n_i, n_o, i_o }),
+        Ok(m) => m.eval_dots(Dots::new(n_i, n_o, i_o)),
         Err(_) => f32::NAN,
     }
 }

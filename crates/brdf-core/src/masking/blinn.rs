@@ -14,8 +14,9 @@ pub fn g_blinn<T: Real>(theta_i: T, theta_r: T) -> T {
     g_blinn_cos(ca, ti.cos(), tr.cos(), cb)
 }
 
-/// Eq 4 from dot products (shader form): n·h = cos α, wo·h = cos β. Returns 0 for a pair with
-/// either direction at or below the horizon.
+/// Eq 4 from dot products (shader form): n·h = cos α, wo·h = cos β, both from
+/// [`Dots::n_h`]/[`Dots::i_h`] (accurate near the horizon when the dots were built from the
+/// vectors or with n·h). Returns 0 for a pair with either direction at or below the horizon.
 pub fn g_blinn_dots<T: Real>(d: Dots<T>) -> T {
     g_blinn_cos(d.n_h(), d.n_i, d.n_o, d.i_h())
 }
