@@ -338,7 +338,8 @@ fn gauss_tail_moment<T: Real>(a: T, d: T) -> T {
         })
     } else {
         let b = a + d;
-        ((-(a * a)).exp() - (-(b * b)).exp()) * T::HALF
+        // −a², −b² ∈ [−V_CUT², 0]: the bounded exponential's range.
+        ((-(a * a)).exp_bounded() - (-(b * b)).exp_bounded()) * T::HALF
             - a * T::from_f64(SQRT_PI_2) * (a.erfc() - b.erfc())
     }
 }

@@ -8,6 +8,10 @@
 //! that keeps the kernels within 2e-2 of libm); it never changes what `f32` computes, so
 //! enabling it in one crate leaves every other crate's f32 results alone.
 
+mod fast64;
+
+pub use fast64::{exp_bounded_f64, sin_cos_f64};
+
 use core::fmt::Debug;
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
 
@@ -198,6 +202,10 @@ impl Real for f64 {
         libm::exp(self)
     }
     #[inline]
+    fn exp_bounded(self) -> Self {
+        exp_bounded_f64(self)
+    }
+    #[inline]
     fn ln(self) -> Self {
         libm::log(self)
     }
@@ -211,7 +219,7 @@ impl Real for f64 {
     }
     #[inline]
     fn sin_cos(self) -> (Self, Self) {
-        libm::sincos(self)
+        sin_cos_f64(self)
     }
     #[inline]
     fn tan(self) -> Self {
