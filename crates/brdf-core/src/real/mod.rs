@@ -10,7 +10,7 @@
 
 mod fast64;
 
-pub use fast64::{exp_bounded_f64, sin_cos_f64};
+pub use fast64::{erfc_bounded_f64, exp_bounded_f64, sin_cos_f64};
 
 use core::fmt::Debug;
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
@@ -97,6 +97,13 @@ pub trait Real:
     fn erf(self) -> Self;
     /// The complementary error function 1 − erf (`f64`: libm; `f32`: [`erfc_f32`]).
     fn erfc(self) -> Self;
+    /// erfc x for x ∈ [0, 4.6] (the working variable's range, up to the cut at 4.5, in the
+    /// kernels' Gaussian tail integrals), without range checks; x outside is taken as the
+    /// nearer end (`f64`: [`erfc_bounded_f64`]; otherwise [`Real::erfc`] itself).
+    #[inline]
+    fn erfc_bounded(self) -> Self {
+        self.erfc()
+    }
 
     /// `true` for NaN.
     #[inline]
@@ -256,6 +263,10 @@ impl Real for f64 {
     #[inline]
     fn erfc(self) -> Self {
         libm::erfc(self)
+    }
+    #[inline]
+    fn erfc_bounded(self) -> Self {
+        erfc_bounded_f64(self)
     }
 }
 
