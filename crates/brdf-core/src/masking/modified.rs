@@ -341,8 +341,6 @@ fn gauss_tail_moment<T: Real>(a: T, d: T) -> T {
     } else {
         T::from_f64(TAIL_SHORT)
     };
-    let b = a + d;
-    let c = a * T::from_f64(SQRT_PI_2);
     if d < short {
         TailRule::integrate(T::ZERO, d, |t| {
             let v = a + t;
@@ -350,12 +348,15 @@ fn gauss_tail_moment<T: Real>(a: T, d: T) -> T {
         })
     } else if wide {
         // I = F(a) − F(b) with F(x) = e^{−x²}/2 − a (√π/2) erfc x: the two ends as two
-        // identical computations (one SIMD register in f64; a, b ∈ [0, V_CUT]).
+        // identical computations (one SIMD register in f64). a, b ∈ [0, V_CUT]: the
+        // bounded exp and erfc apply.
+        let b = a + d;
+        let c = a * T::from_f64(SQRT_PI_2);
         let f = |x: T| (-(x * x)).exp_bounded() * T::HALF - c * x.erfc_bounded();
         f(a) - f(b)
     } else {
-        // −a², −b² ∈ [−V_CUT², 0]: the bounded exponential's range.
-        ((-(a * a)).exp_bounded() - (-(b * b)).exp_bounded()) * T::HALF
-            - c * (a.erfc_bounded() - b.erfc_bounded())
+        let b = a + d;
+        ((-(a * a)).exp() - (-(b * b)).exp()) * T::HALF
+            - a * T::from_f64(SQRT_PI_2) * (a.erfc() - b.erfc())
     }
 }

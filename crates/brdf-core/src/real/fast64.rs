@@ -177,7 +177,7 @@ pub fn erfc_bounded_f64(x: f64) -> f64 {
 /// sin x and cos x in f64; for |x| ≤ π/2 (the clamped angles of the kernels) by a short
 /// branch-free evaluation, beyond that by libm's `sincos`. NaN gives NaN.
 ///
-/// For |x| ≤ 1.6 (a little beyond π/2): k = round(2x/π) ∈ {−1, 0, 1} and
+/// For |x| ≤ 1.6 (a little beyond π/2): k = round(2x/π) ∈ {−1, 0, 1} (ties to even) and
 /// r = (x − k·P1) − k·P2 with π/2 = P1 + P2 (P1 = π/2 rounded to f64, P2 the rounding error
 /// rounded to f64; x − k·P1 is exact by Sterbenz's lemma when k ≠ 0, and the split's
 /// residual 1.5e-33 is far below an ulp of r), so |r| ≤ π/4. Then the Taylor series
@@ -191,7 +191,8 @@ pub fn sin_cos_f64(x: f64) -> (f64, f64) {
     const FRAC_2_PI: f64 = core::f64::consts::FRAC_2_PI;
     const P1: f64 = core::f64::consts::FRAC_PI_2;
     const P2: f64 = 6.123_233_995_736_766e-17; // π/2 − P1
-                                               // 1/(2j+1)! for sin (j = 1…8) and 1/(2j)! for cos (j = 1…8), alternating in sign.
+    const MAGIC: f64 = 6_755_399_441_055_744.0; // 1.5·2⁵²
+                                                // 1/(2j+1)! for sin (j = 1…8) and 1/(2j)! for cos (j = 1…8), alternating in sign.
     const S: [f64; 8] = [
         -1.0 / 6.0,
         1.0 / 120.0,
@@ -215,14 +216,8 @@ pub fn sin_cos_f64(x: f64) -> (f64, f64) {
     if !(x.abs() <= 1.6) {
         return libm::sincos(x);
     }
-    let t = x * FRAC_2_PI;
-    let k = if t > 0.5 {
-        1.0
-    } else if t < -0.5 {
-        -1.0
-    } else {
-        0.0
-    };
+    // k = round(2x/π) by adding and subtracting 1.5·2⁵² (|2x/π| < 1.02 here).
+    let k = (x * FRAC_2_PI + MAGIC) - MAGIC;
     let r = (x - k * P1) - k * P2;
     let r2 = r * r;
     let (mut ps, mut pc) = (S[7], K[7]);
@@ -232,11 +227,10 @@ pub fn sin_cos_f64(x: f64) -> (f64, f64) {
     }
     let s = r + r * (r2 * ps);
     let c = 1.0 + r2 * pc;
-    if k == 0.0 {
-        (s, c)
-    } else {
-        (k * c, -k * s)
-    }
+    // The quadrant swap as a bit mask rather than a branch (the angles are not predictable).
+    let m = if k == 0.0 { 0 } else { u64::MAX };
+    let pick = |odd: f64, even: f64| f64::from_bits((odd.to_bits() & m) | (even.to_bits() & !m));
+    (pick(k * c, s), pick(-k * s, c))
 }
 
 #[cfg(test)]
