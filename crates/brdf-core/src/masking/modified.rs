@@ -158,18 +158,24 @@ impl<T: Real, R: Rule> ModifiedG<T, R> {
         // Fully passing bound (eqs 6–7): tan lo = cot θ.
         let vlo = self.dist.v_of_tan(cos_t, sin_t);
         let (vhi, corr) = self.semi_correction(cos_t, sin_t, cos_a, sin_a, vlo, vc, s2);
-        let sqrt_term = |v: T| {
-            let u = s2 * v;
-            (T::ONE + u * u).sqrt()
-        };
-        let exp_term = |v: T| (-(v * v)).exp_bounded();
         // √(1 + u²)·e^{−v²}. In f64 the exponential runs for all nodes first, two per SIMD
         // register (same result bits as the one-pass rule); the one-pass rule is smaller
         // and faster in f32.
         let q = if T::EPSILON < T::from_f64(1e-10) {
-            R::integrate_product(T::ZERO, vhi, exp_term, sqrt_term)
+            R::integrate_product(
+                T::ZERO,
+                vhi,
+                |v| (-(v * v)).exp_bounded(),
+                |v| {
+                    let u = s2 * v;
+                    (T::ONE + u * u).sqrt()
+                },
+            )
         } else {
-            R::integrate(T::ZERO, vhi, |v| sqrt_term(v) * exp_term(v))
+            R::integrate(T::ZERO, vhi, |v| {
+                let u = s2 * v;
+                (T::ONE + u * u).sqrt() * (-(v * v)).exp_bounded()
+            })
         };
         (T::HALF + (q - corr) * self.dist.inv_2z()).clamp(T::ZERO, T::ONE)
     }
@@ -335,8 +341,7 @@ const SQRT_PI_2: f64 = 0.886_226_925_452_758;
 #[inline]
 fn gauss_tail_moment<T: Real>(a: T, d: T) -> T {
     // f64: the closed form's cancellation costs ε·e^{−a²}/d, negligible above d = 1e-3.
-    let wide = T::EPSILON < T::from_f64(1e-10);
-    let short = if wide {
+    let short = if T::EPSILON < T::from_f64(1e-10) {
         T::from_f64(1e-3)
     } else {
         T::from_f64(TAIL_SHORT)
@@ -346,7 +351,7 @@ fn gauss_tail_moment<T: Real>(a: T, d: T) -> T {
             let v = a + t;
             t * (-(v * v)).exp_bounded()
         })
-    } else if wide {
+    } else if T::EPSILON < T::from_f64(1e-10) {
         // I = F(a) − F(b) with F(x) = e^{−x²}/2 − a (√π/2) erfc x: the two ends as two
         // identical computations (one SIMD register in f64). a, b ∈ [0, V_CUT]: the
         // bounded exp and erfc apply.
