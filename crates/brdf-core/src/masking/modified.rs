@@ -357,8 +357,12 @@ fn gauss_tail_moment<T: Real>(a: T, d: T) -> T {
         // bounded exp and erfc apply.
         let b = a + d;
         let c = a * T::from_f64(SQRT_PI_2);
-        let f = |x: T| (-(x * x)).exp_bounded() * T::HALF - c * x.erfc_bounded();
-        f(a) - f(b)
+        // Inlined, so that the two calls can share SIMD registers.
+        #[inline(always)]
+        fn f<T: Real>(x: T, c: T) -> T {
+            (-(x * x)).exp_bounded() * T::HALF - c * x.erfc_bounded()
+        }
+        f(a, c) - f(b, c)
     } else {
         let b = a + d;
         ((-(a * a)).exp() - (-(b * b)).exp()) * T::HALF
