@@ -41,6 +41,51 @@ pub trait Rule: Copy + Default {
         }
         acc * h
     }
+
+    /// ∫ₐᵇ f(x)·g(x) dx, with the same nodes, products and order of summation as
+    /// [`Rule::integrate`] applied to the integrand `g(x) * f(x)` (so the same result, bit
+    /// for bit), but evaluated in passes over the nodes: the abscissae first, then f at all
+    /// of them, then g. A branch-free f then runs on several nodes at once (SIMD lanes),
+    /// while g may use operations the compiler cannot vectorise (such as libm's square
+    /// root, an inline `sqrtsd`). f and g are each called once per node, in an unspecified
+    /// order.
+    #[inline]
+    fn integrate_product<T: Real, F: FnMut(T) -> T, G: FnMut(T) -> T>(
+        a: T,
+        b: T,
+        mut f: F,
+        mut g: G,
+    ) -> T {
+        // Half nodes per pass: every rule here fits in one.
+        const CHUNK: usize = 16;
+        let h = (b - a) * T::HALF;
+        let m = (a + b) * T::HALF;
+        let mut acc = T::ZERO;
+        for (xs, ws) in Self::half_nodes()
+            .chunks(CHUNK)
+            .zip(Self::half_weights().chunks(CHUNK))
+        {
+            let n = 2 * xs.len().min(ws.len());
+            // The abscissae m − dx, m + dx of each half node, side by side.
+            let mut t = [T::ZERO; 2 * CHUNK];
+            for (p, x) in t.chunks_exact_mut(2).zip(xs) {
+                let dx = h * T::from_f64(*x);
+                p[0] = m - dx;
+                p[1] = m + dx;
+            }
+            let mut y = [T::ZERO; 2 * CHUNK];
+            for (y, t) in y[..n].iter_mut().zip(&t[..n]) {
+                *y = f(*t);
+            }
+            for (y, t) in y[..n].iter_mut().zip(&t[..n]) {
+                *y = g(*t) * *y;
+            }
+            for (p, w) in y[..n].chunks_exact(2).zip(ws) {
+                acc += T::from_f64(*w) * (p[0] + p[1]);
+            }
+        }
+        acc * h
+    }
 }
 
 macro_rules! rule {
@@ -157,6 +202,28 @@ mod tests {
         check::<GaussLegendre<20>>();
         check::<GaussLegendre<24>>();
         check::<GaussLegendre<32>>();
+    }
+
+    /// The split-pass product rule: against the closed form ∫₀¹ x eˣ dx = 1, and bit for bit
+    /// against the one-pass rule on the product integrand (its documented promise), in f64
+    /// and f32, for a rule of one pass (10 nodes) and one of two passes (32 nodes).
+    #[test]
+    fn integrate_product_matches_closed_form_and_one_pass_rule() {
+        // tol: the rule's own error on x eˣ over [0, 1] (4 nodes: 7.9e-9 measured; ≥ 10
+        // nodes: below rounding).
+        fn both<R: Rule>(tol: f64) {
+            let split: f64 = R::integrate_product(0.0, 1.0, |x: f64| x.exp(), |x: f64| x);
+            let one: f64 = R::integrate(0.0, 1.0, |x: f64| x * x.exp());
+            assert_eq!(split.to_bits(), one.to_bits(), "N={}", R::N);
+            assert!((split - 1.0).abs() < tol, "N={}: {split}", R::N);
+            let split32: f32 =
+                R::integrate_product(0.25f32, 2.0, |x: f32| (-x * x).exp(), |x: f32| x.sqrt());
+            let one32: f32 = R::integrate(0.25f32, 2.0, |x: f32| x.sqrt() * (-x * x).exp());
+            assert_eq!(split32.to_bits(), one32.to_bits(), "N={}", R::N);
+        }
+        both::<GaussLegendre<10>>(1e-14);
+        both::<GaussLegendre<32>>(1e-14);
+        both::<GaussLegendre<4>>(1e-8);
     }
 
     #[test]
