@@ -136,8 +136,7 @@ pub fn load(dirs: &[PathBuf]) -> Result<Vec<Table>> {
             pitch: (1.0 / w as f64, 1.0 / h as f64),
         });
     }
-    if let Ok(f) = read_first(dirs, "filament/filament_dfg_multiscatter_64_rgba16f.dds")
-    {
+    if let Ok(f) = read_first(dirs, "filament/filament_dfg_multiscatter_64_rgba16f.dds") {
         let px = &f[148..];
         let mut t = Vec::new();
         for y in 0..64 {
@@ -249,9 +248,11 @@ impl figures::Figure for DiffFig<'_> {
 pub fn write(dir: &Path, anchors: &[PathBuf]) -> Result<String> {
     let tables = load(anchors)?;
     if tables.is_empty() {
-        return Ok("No published DFG table found in `.cache/anchors/` or `../shared/anchors/` \
+        return Ok(
+            "No published DFG table found in `.cache/anchors/` or `../shared/anchors/` \
                    (fetch them with `cargo xtask anchors`); the difference images were skipped."
-            .to_string());
+                .to_string(),
+        );
     }
     let mut md = String::from(
         "Published split-sum (DFG) tables minus the project's converged table (`brdf_core::split_sum::dfg_ggx`, GGX with \
