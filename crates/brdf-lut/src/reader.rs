@@ -386,12 +386,10 @@ impl Reader {
         z: f32,
     ) -> (f32, f32) {
         #[cfg(not(any(target_os = "none", target_family = "wasm")))]
-        if self.mode == Mode::Linear && self.encoding == Encoding::Unorm16 {
-            let (va, vb) = self.pair3_linear::<U16>(data, a, b, z);
-            return (
-                self.offset[0] + self.scale[0] * va,
-                self.offset[0] + self.scale[0] * vb,
-            );
+        if self.chunked() {
+            // Both sides side by side (the same arithmetic as `pair3_linear`).
+            let [va, vb] = self.chunk3::<2>(data, &[[a[0], b[0]], [a[1], b[1]]], z);
+            return (va, vb);
         }
         self.pair3_any(grid, data, a, b, z)
     }
@@ -716,8 +714,8 @@ impl Reader {
             ([0; N], [0.0; N])
         };
         // Stored numbers of the taps: [channel][tap][query], tap = 2 × row + node.
-        let mut q = [[[0u16; N]; 4]; C];
-        let mut ok = [true; N];
+        let mut q = [[[0u32; N]; 4]; C];
+        let mut bad = [0.0f32; N];
         let s = l[1].stride * 2;
         for k in 0..N {
             let at = (i0[k] as usize * C + i1[k] as usize * l[1].stride) * 2;
@@ -732,13 +730,14 @@ impl Reader {
             match rows {
                 Some((r0, r1)) => {
                     for (c, qc) in q.iter_mut().enumerate() {
-                        qc[0][k] = u16_at(r0, c);
-                        qc[1][k] = u16_at(r0, C + c);
-                        qc[2][k] = u16_at(r1, c);
-                        qc[3][k] = u16_at(r1, C + c);
+                        qc[0][k] = u16_at(r0, c) as u32;
+                        qc[1][k] = u16_at(r0, C + c) as u32;
+                        qc[2][k] = u16_at(r1, c) as u32;
+                        qc[3][k] = u16_at(r1, C + c) as u32;
                     }
                 }
-                None => ok[k] = false,
+                // A short payload (impossible for a parsed table) gives NaN, like `plane`.
+                None => bad[k] = f32::NAN,
             }
         }
         let mut out = [[0.0f32; N]; C];
@@ -746,7 +745,7 @@ impl Reader {
             let (sc, of) = (self.scale[c], self.offset[c]);
             let [q0, q1, q2, q3] = &q[c];
             for k in 0..N {
-                let (a0, a1) = (q0[k] as f32, q1[k] as f32);
+                let (a0, a1) = (q0[k] as f32 + bad[k], q1[k] as f32);
                 let r0 = a0 + f0[k] * (a1 - a0);
                 let v = if D > 1 {
                     let (b0, b1) = (q2[k] as f32, q3[k] as f32);
@@ -756,13 +755,6 @@ impl Reader {
                     r0
                 };
                 out[c][k] = of + sc * v;
-            }
-        }
-        for k in 0..N {
-            if !ok[k] {
-                for o in &mut out {
-                    o[k] = f32::NAN;
-                }
             }
         }
         out
@@ -779,11 +771,10 @@ impl Reader {
     ) -> [f32; N] {
         let l = &self.lanes;
         let (k2, f2) = l[2].cell(z);
-        let (i0, f0) = l[0].cells(&x[0]);
+        let (i0, mut f0) = l[0].cells(&x[0]);
         let (i1, f1) = l[1].cells(&x[1]);
         let (s1, s2) = (l[1].stride * 2, l[2].stride * 2);
-        let mut q = [[0u16; N]; 8];
-        let mut ok = [true; N];
+        let mut q = [[0u32; N]; 8];
         for k in 0..N {
             let at = (i0[k] as usize + i1[k] as usize * l[1].stride + k2 * l[2].stride) * 2;
             let planes = data.get(at..at + s2 + s1 + 4).and_then(|b| {
@@ -797,11 +788,11 @@ impl Reader {
             match planes {
                 Some((r0, r1, r2, r3)) => {
                     for (j, r) in [r0, r1, r2, r3].into_iter().enumerate() {
-                        q[2 * j][k] = u16_at(r, 0);
-                        q[2 * j + 1][k] = u16_at(r, 1);
+                        q[2 * j][k] = u16_at(r, 0) as u32;
+                        q[2 * j + 1][k] = u16_at(r, 1) as u32;
                     }
                 }
-                None => ok[k] = false,
+                None => f0[k] = f32::NAN,
             }
         }
         let mut out = [0.0f32; N];
@@ -814,11 +805,6 @@ impl Reader {
             };
             let (p0, p1) = (plane(0), plane(4));
             out[k] = self.offset[0] + self.scale[0] * (p0 + f2 * (p1 - p0));
-        }
-        for k in 0..N {
-            if !ok[k] {
-                out[k] = f32::NAN;
-            }
         }
         out
     }

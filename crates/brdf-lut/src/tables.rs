@@ -68,20 +68,39 @@ impl Prepared {
     }
 
     /// (GM, GS, G) of a 2-D passing-factor table.
-    #[inline]
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     pub(crate) fn g2(&self, payload: &[u8], theta_i: f32, theta_r: f32) -> (f32, f32, f32) {
         if theta_i.is_nan() || theta_r.is_nan() {
             return (f32::NAN, f32::NAN, f32::NAN);
         }
         let (m, s) = g_args(theta_i, theta_r);
+        let (gm, gs) = self.pair2(payload, m, s);
+        let (gm, gs) = (unit01(gm), unit01(gs));
+        (gm, gs, min_g(gm, gs))
+    }
+
+    /// The GM and GS lookups of a 2-D table. On hosted targets a linear u16 table reads
+    /// both side by side through the chunk path (two lanes of the same arithmetic, so the
+    /// same values as two [`Reader::sample`] calls).
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    fn pair2(&self, payload: &[u8], m: [f32; 2], s: [f32; 2]) -> (f32, f32) {
         let r = &self.reader;
-        let gm = unit01(r.sample::<2, 1>(&self.grid, payload, m)[0]);
-        let gs = unit01(r.sample::<2, 1>(&self.grid, payload, s)[0]);
-        (gm, gs, gm.min(gs))
+        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        if r.chunked() {
+            let [[gm, gs]] = r.chunk::<2, 1, 2>(payload, &[[m[0], s[0]], [m[1], s[1]]]);
+            return (gm, gs);
+        }
+        (
+            r.sample::<2, 1>(&self.grid, payload, m)[0],
+            r.sample::<2, 1>(&self.grid, payload, s)[0],
+        )
     }
 
     /// (GM, GS, G) of a 3-D passing-factor table.
-    #[inline]
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     pub(crate) fn g3(
         &self,
         payload: &[u8],
@@ -95,7 +114,7 @@ impl Prepared {
         let (m, s) = g_args(theta_i, theta_r);
         let (gm, gs) = self.reader.pair3(&self.grid, payload, m, s, sigma);
         let (gm, gs) = (unit01(gm), unit01(gs));
-        (gm, gs, gm.min(gs))
+        (gm, gs, min_g(gm, gs))
     }
 
     /// (GM, GS, G) of a 2-D or 3-D passing-factor table from the table arguments of the two
@@ -112,13 +131,10 @@ impl Prepared {
         let (gm, gs) = if self.grid.dims == 3 {
             r.pair3(&self.grid, payload, m, s, sigma)
         } else {
-            (
-                r.sample::<2, 1>(&self.grid, payload, m)[0],
-                r.sample::<2, 1>(&self.grid, payload, s)[0],
-            )
+            self.pair2(payload, m, s)
         };
         let (gm, gs) = (unit01(gm), unit01(gs));
-        (gm, gs, gm.min(gs))
+        (gm, gs, min_g(gm, gs))
     }
 
     /// G from dot products (see [`dots_args`]).
@@ -155,7 +171,7 @@ impl Prepared {
 
 /// Queries per chunk of the batch entry points (hosted targets; see `Reader::chunk`).
 #[cfg(not(any(target_os = "none", target_family = "wasm")))]
-const CHUNK: usize = 8;
+const CHUNK: usize = 16;
 
 #[cfg(not(any(target_os = "none", target_family = "wasm")))]
 impl Prepared {
@@ -186,7 +202,7 @@ impl Prepared {
         };
         let mut out = [0.0f32; N];
         for k in 0..N {
-            let g = unit01(gm[k]).min(unit01(gs[k]));
+            let g = min_g(unit01(gm[k]), unit01(gs[k]));
             out[k] = if nan[k] { f32::NAN } else { g };
         }
         out
@@ -299,6 +315,17 @@ fn dots_args(n_l: f32, n_v: f32, l_v: f32) -> Option<([f32; 2], [f32; 2])> {
     Some((side(co, so), side(ci, si)))
 }
 
+/// G = min(GM, GS) (paper eq 13) as one select (the factors are not NaN: NaN queries
+/// return before the lookup).
+#[inline(always)]
+fn min_g(gm: f32, gs: f32) -> f32 {
+    if gs < gm {
+        gs
+    } else {
+        gm
+    }
+}
+
 #[inline]
 fn unit01(x: f32) -> f32 {
     crate::axis::clamp(x, 0.0, 1.0)
@@ -392,12 +419,14 @@ impl<B: AsRef<[u8]>> GTable<B> {
     }
     /// (GM, GS, G) at in-plane angles in radians, θi ∈ [0, π/2], θr ∈ [−π/2, π/2] signed
     /// (clamped; NaN gives NaN). G = min(GM, GS), each clamped to [0, 1] (paper eq 13).
-    #[inline]
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     pub fn terms(&self, theta_i: f32, theta_r: f32) -> (f32, f32, f32) {
         self.p.g2(self.payload(), theta_i, theta_r)
     }
     /// G = min(GM, GS); see [`GTable::terms`].
-    #[inline]
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     pub fn g(&self, theta_i: f32, theta_r: f32) -> f32 {
         self.terms(theta_i, theta_r).2
     }
@@ -434,12 +463,14 @@ impl<B: AsRef<[u8]>> GTable3<B> {
     }
     /// (GM, GS, G) at in-plane angles in radians and RMS slope σ (all clamped to the table's
     /// ranges; NaN gives NaN). G = min(GM, GS) (paper eq 13).
-    #[inline]
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     pub fn terms(&self, theta_i: f32, theta_r: f32, sigma: f32) -> (f32, f32, f32) {
         self.p.g3(self.payload(), theta_i, theta_r, sigma)
     }
     /// G = min(GM, GS); see [`GTable3::terms`].
-    #[inline]
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     pub fn g(&self, theta_i: f32, theta_r: f32, sigma: f32) -> f32 {
         self.terms(theta_i, theta_r, sigma).2
     }
@@ -473,7 +504,8 @@ impl<B: AsRef<[u8]>> GTable3<B> {
 impl<B: AsRef<[u8]>> DfgTable<B> {
     /// (A, B) at μ = n·v and roughness (perceptual r for GGX, σ for Torrance–Sparrow tables;
     /// see the header), clamped to the table's ranges; NaN gives NaN.
-    #[inline]
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     pub fn ab(&self, mu: f32, roughness: f32) -> (f32, f32) {
         self.p.two(self.payload(), mu, roughness)
     }
