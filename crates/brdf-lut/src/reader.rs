@@ -678,6 +678,13 @@ impl Lane {
         let (mut i, mut f) = ([0u32; N], [0.0f32; N]);
         for k in 0..N {
             let t = clamp(self.a * w[k] + self.b, 0.0, self.last);
+            if N <= 2 {
+                // Too few queries to vectorise: `cell`'s conversion.
+                let ik = (t as u16 as i32).min(self.last_cell);
+                i[k] = ik as u32;
+                f[k] = t - ik as f32;
+                continue;
+            }
             let tc = if t > 0.0 { t } else { 0.0 };
             let r = (tc + MAGIC) - MAGIC;
             let fl = if r > tc { r - 1.0 } else { r };
