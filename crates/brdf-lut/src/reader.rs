@@ -314,8 +314,9 @@ impl Reader {
     /// Interpolated channels at x (D = the table's axes, C = its channels; x not NaN).
     /// Out-of-range payload reads (impossible for a validated table) give NaN.
     ///
-    /// Hosted targets inline only the speed tiers' case (linear, u16) into the caller; the
-    /// other cases are one out-of-line function per shape (same arithmetic either way).
+    /// Hosted targets test for the speed tiers' case (linear, u16) first and always inline
+    /// it; the other cases follow, inlined or not as the optimiser decides (the same
+    /// arithmetic either way).
     #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
     #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     pub(crate) fn sample<const D: usize, const C: usize>(
@@ -343,8 +344,7 @@ impl Reader {
     }
 
     /// [`Reader::sample`] for every layout.
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(never))]
+    #[inline]
     fn sample_any<const D: usize, const C: usize>(
         &self,
         grid: &Grid,
@@ -395,8 +395,7 @@ impl Reader {
     }
 
     /// [`Reader::pair3`] for every layout.
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(never))]
+    #[inline]
     fn pair3_any(&self, grid: &Grid, data: &[u8], a: [f32; 2], b: [f32; 2], z: f32) -> (f32, f32) {
         let (va, vb) = match (self.mode, self.encoding) {
             (Mode::Linear, Encoding::Unorm16) => self.pair3_linear::<U16>(data, a, b, z),

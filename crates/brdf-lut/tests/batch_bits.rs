@@ -118,3 +118,18 @@ fn dfg_and_albedo_batches_equal_scalar_lookups() {
         assert!((0..n).all(|k| same(out[k], ea.e_avg(r[k]))));
     }
 }
+
+/// "NaN gives NaN" (the typed tables' contract) on a table whose axes are √-warped: the
+/// warp must not turn a NaN coordinate into the axis' lower end.
+#[test]
+fn nan_coordinates_give_nan_on_sqrt_warped_axes() {
+    let b = asset("dfg_ggx_linear.blut");
+    let t = DfgTable::parse(&b[..]).unwrap();
+    for (m, r) in [(f32::NAN, 0.5), (0.5, f32::NAN), (f32::NAN, f32::NAN)] {
+        let (a, bb) = t.ab(m, r);
+        assert!(a.is_nan() && bb.is_nan(), "({m}, {r}) -> ({a}, {bb})");
+    }
+    // And a real query stays finite: A + B ≤ 1 is the directional albedo with F = 1.
+    let (a, bb) = t.ab(0.5, 0.5);
+    assert!(a > 0.0 && bb > 0.0 && a + bb <= 1.0, "{a} {bb}");
+}
