@@ -240,6 +240,16 @@ fn dfg(c: &mut Criterion) {
             })
         });
     }
+    if let Some(bytes) = read_asset(DFG_LINEAR_ASSET) {
+        let t = DfgTable::parse(&bytes).unwrap();
+        grp.bench_function("lut_linear_f32", |b| {
+            b.iter(|| {
+                for &(m, r) in &pts32 {
+                    black_box(t.ab(black_box(m), black_box(r)));
+                }
+            })
+        });
+    }
     grp.bench_function("karis_approx_f32", |b| {
         b.iter(|| {
             for &(m, r) in &pts32 {
@@ -421,7 +431,7 @@ fn lut_targets(c: &mut Criterion) {
             }
         })
     });
-    if let Some(bytes) = read_asset(DFG_ASSET) {
+    if let Some(bytes) = read_asset(DFG_LINEAR_ASSET) {
         let t = DfgTable::parse(&bytes).unwrap();
         grp.bench_function("dfg_lut", |b| {
             b.iter(|| {
@@ -430,7 +440,7 @@ fn lut_targets(c: &mut Criterion) {
                 }
             })
         });
-        let t = brdf_lut::Lut::from_path(assets_dir().join(DFG_ASSET)).unwrap();
+        let t = brdf_lut::Lut::from_path(assets_dir().join(DFG_LINEAR_ASSET)).unwrap();
         grp.bench_function("dfg_lut_std", |b| {
             b.iter(|| {
                 for &(m, r) in &pts {
@@ -491,7 +501,7 @@ fn lut_targets(c: &mut Criterion) {
             b.iter(|| black_box(t.g_batch(black_box(&ti), black_box(&tr), s, &mut o1)))
         });
     }
-    if let Some(bytes) = read_asset(DFG_ASSET) {
+    if let Some(bytes) = read_asset(DFG_LINEAR_ASSET) {
         let t = DfgTable::parse(&bytes[..]).unwrap();
         grp.bench_function("dfg_lut_batch", |b| {
             b.iter(|| black_box(t.ab_batch(black_box(&mu), black_box(&rr), &mut o1, &mut o2)))

@@ -134,8 +134,11 @@ pub const G2_ASSET: &str = "g_modified_sigma0.3.blut";
 pub const G3_LINEAR_ASSET: &str = "g_modified_linear.blut";
 /// The speed tier of [`G2_ASSET`]: bilinear on a denser grid.
 pub const G2_LINEAR_ASSET: &str = "g_modified_sigma0.3_linear.blut";
-/// The GGX split-sum table.
+/// The GGX split-sum table, accuracy tier (bicubic, 64², log μ axis).
 pub const DFG_ASSET: &str = "dfg_ggx.blut";
+/// The speed tier of [`DFG_ASSET`]: bilinear on a 256² grid with √-warped axes, the table
+/// the `dfg_lut*` kernel targets time.
+pub const DFG_LINEAR_ASSET: &str = "dfg_ggx_linear.blut";
 /// The GGX directional-albedo table E(μ, r).
 pub const E_ASSET: &str = "kc_e_ggx.blut";
 /// The GGX average-albedo table E_avg(r).

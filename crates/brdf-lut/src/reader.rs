@@ -53,10 +53,33 @@ fn warp_w(warp: Warp, lo: f32, x: f32) -> f32 {
         // The axis lies within [0, π/2] (checked when the header was parsed).
         Warp::SqrtCos => libm::sqrtf(cos_quadrant(x).max(0.0)),
         Warp::Log => libm::logf(x),
-        Warp::Sqrt => libm::sqrtf((x - lo).max(0.0)),
+        // x ≥ lo, so x − lo ≥ 0 (and NaN stays NaN).
+        Warp::Sqrt => libm::sqrtf(x - lo),
         Warp::Cos => crate::axis::cos(x),
     }
 }
+
+/// [`warp_w`] for queries on hosted targets: the warps of the speed tiers (linear, √, √cos:
+/// a few instructions) inline, `ln` and `cos` out of line, so that every lookup variant does
+/// not carry copies of them.
+#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[inline(always)]
+fn warp_q(warp: Warp, lo: f32, x: f32) -> f32 {
+    match warp {
+        Warp::Linear => x,
+        Warp::Sqrt => libm::sqrtf(x - lo),
+        Warp::SqrtCos => libm::sqrtf(cos_quadrant(x).max(0.0)),
+        _ => warp_far(warp, lo, x),
+    }
+}
+#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[inline(never)]
+fn warp_far(warp: Warp, lo: f32, x: f32) -> f32 {
+    warp_w(warp, lo, x)
+}
+// Devices: one copy of the warp (code size has a budget there).
+#[cfg(any(target_os = "none", target_family = "wasm"))]
+use warp_w as warp_q;
 
 /// One axis: physical coordinate → fractional node index.
 #[derive(Clone, Copy, Debug)]
@@ -138,7 +161,7 @@ impl Lane {
     pub(crate) fn index(&self, x: f32) -> f32 {
         let x = clamp(x, self.lo, self.hi);
         clamp(
-            self.a * warp_w(self.warp, self.lo, x) + self.b,
+            self.a * warp_q(self.warp, self.lo, x) + self.b,
             0.0,
             self.last,
         )
@@ -149,7 +172,12 @@ impl Lane {
     #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     fn cell(&self, x: f32) -> (usize, f32) {
         let t = self.index(x);
-        // t ∈ [0, n − 1] with n ≤ 65536: the i32 conversion is exact and in range.
+        // t ∈ [0, n − 1] with n ≤ 65536 (or NaN, which converts to 0): the u16 conversion
+        // is exact and in range (and cheaper than an i32 one, whose saturation needs checks).
+        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        let i = (t as u16 as i32).min(self.last_cell);
+        // Devices: the form whose code size the firmware budget was measured with.
+        #[cfg(any(target_os = "none", target_family = "wasm"))]
         let i = (t as i32).min(self.last_cell).max(0);
         (i as usize, t - i as f32)
     }
@@ -285,9 +313,39 @@ impl Reader {
 
     /// Interpolated channels at x (D = the table's axes, C = its channels; x not NaN).
     /// Out-of-range payload reads (impossible for a validated table) give NaN.
+    ///
+    /// Hosted targets test for the speed tiers' case (linear, u16) first and always inline
+    /// it; the other cases follow, inlined or not as the optimiser decides (the same
+    /// arithmetic either way).
     #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
     #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     pub(crate) fn sample<const D: usize, const C: usize>(
+        &self,
+        grid: &Grid,
+        data: &[u8],
+        x: [f32; D],
+    ) -> [f32; C] {
+        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        if self.mode == Mode::Linear && self.encoding == Encoding::Unorm16 {
+            return self.finish(self.linear::<U16, D, C>(data, x));
+        }
+        self.sample_any(grid, data, x)
+    }
+
+    /// Channel scale and offset applied to values in stored units.
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    fn finish<const C: usize>(&self, raw: [f32; C]) -> [f32; C] {
+        let mut out = [0.0; C];
+        for c in 0..C {
+            out[c] = self.offset[c] + self.scale[c] * raw[c];
+        }
+        out
+    }
+
+    /// [`Reader::sample`] for every layout.
+    #[inline]
+    fn sample_any<const D: usize, const C: usize>(
         &self,
         grid: &Grid,
         data: &[u8],
@@ -312,11 +370,7 @@ impl Reader {
                 return out;
             }
         };
-        let mut out = [0.0; C];
-        for c in 0..C {
-            out[c] = self.offset[c] + self.scale[c] * raw[c];
-        }
-        out
+        self.finish(raw)
     }
 
     /// Two one-channel 3-D lookups that share the last coordinate (the two one-sided factors
@@ -331,6 +385,18 @@ impl Reader {
         b: [f32; 2],
         z: f32,
     ) -> (f32, f32) {
+        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        if self.chunked() {
+            // Both sides side by side (the same arithmetic as `pair3_linear`).
+            let [va, vb] = self.chunk3::<2>(data, &[[a[0], b[0]], [a[1], b[1]]], z);
+            return (va, vb);
+        }
+        self.pair3_any(grid, data, a, b, z)
+    }
+
+    /// [`Reader::pair3`] for every layout.
+    #[inline]
+    fn pair3_any(&self, grid: &Grid, data: &[u8], a: [f32; 2], b: [f32; 2], z: f32) -> (f32, f32) {
         let (va, vb) = match (self.mode, self.encoding) {
             (Mode::Linear, Encoding::Unorm16) => self.pair3_linear::<U16>(data, a, b, z),
             (Mode::Cubic, Encoding::Unorm16) => self.pair3_cubic::<U16>(data, a, b, z),
@@ -364,6 +430,9 @@ impl Reader {
             let (i0, f0) = l[0].cell(x[0]);
             let (i1, f1) = l[1].cell(x[1]);
             let at = i0 + i1 * l[1].stride + k * l[2].stride;
+            #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+            let plane = |at: usize| Self::plane::<S, 1>(data, at, l[1].stride, f0, f1)[0];
+            #[cfg(any(target_os = "none", target_family = "wasm"))]
             let plane = |at: usize| {
                 let lo = Self::row::<S, 1>(data, at, f0);
                 let hi = Self::row::<S, 1>(data, at + l[1].stride, f0);
@@ -436,6 +505,35 @@ impl Reader {
         }
     }
 
+    /// Bilinear in the plane of the 2 × 2 nodes starting at value index `at`, rows `s` values
+    /// apart: one bounds-checked block of the payload for both rows.
+    #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+    #[inline(always)]
+    fn plane<S: Store, const C: usize>(
+        data: &[u8],
+        at: usize,
+        s: usize,
+        f0: f32,
+        f1: f32,
+    ) -> [f32; C] {
+        let (s, w) = (s * S::BYTES, 2 * C * S::BYTES);
+        let Some(blk) = data.get(at * S::BYTES..at * S::BYTES + s + w) else {
+            return [f32::NAN; C];
+        };
+        let (lo, hi) = (blk.get(..w), blk.get(s..s + w));
+        let mut v = [f32::NAN; C];
+        if let (Some(lo), Some(hi)) = (lo, hi) {
+            for (c, vc) in v.iter_mut().enumerate() {
+                let (a0, a1) = (S::at(lo, c), S::at(lo, C + c));
+                let (b0, b1) = (S::at(hi, c), S::at(hi, C + c));
+                let r0 = a0 + f0 * (a1 - a0);
+                let r1 = b0 + f0 * (b1 - b0);
+                *vc = r0 + f1 * (r1 - r0);
+            }
+        }
+        v
+    }
+
     #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
     #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     fn lerp<const C: usize>(a: [f32; C], b: [f32; C], f: f32) -> [f32; C] {
@@ -461,6 +559,11 @@ impl Reader {
         }
         let (i1, f1) = l[1].cell(x[1]);
         let at = i0 * C + i1 * l[1].stride;
+        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        let plane = |at: usize| Self::plane::<S, C>(data, at, l[1].stride, f0, f1);
+        // Devices: one bounds check per row (the form the firmware budget was measured
+        // with; the same values).
+        #[cfg(any(target_os = "none", target_family = "wasm"))]
         let plane = |at: usize| {
             let lo = Self::row::<S, C>(data, at, f0);
             let hi = Self::row::<S, C>(data, at + l[1].stride, f0);
@@ -525,5 +628,227 @@ impl Reader {
             }
         }
         acc
+    }
+}
+
+/// Chunked lookups for the batch entry points (hosted targets): `N` queries at once, in
+/// stages that are each a loop over the chunk (coordinate maps, then the payload reads, then
+/// the blend), so that the compiler turns the arithmetic stages into packed SSE
+/// instructions. Every query goes through exactly the scalar path's operations
+/// ([`Lane::cell`], [`Reader::plane`], the channel scale and offset), so the results are
+/// the scalar lookups' bit for bit.
+#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+impl Lane {
+    /// [`Lane::cell`] of `N` coordinates.
+    #[inline(always)]
+    fn cells<const N: usize>(&self, x: &[f32; N]) -> ([u32; N], [f32; N]) {
+        let (lo, hi) = (self.lo, self.hi);
+        let mut w = [0.0f32; N];
+        for (w, &x) in w.iter_mut().zip(x) {
+            *w = clamp(x, lo, hi);
+        }
+        match self.warp {
+            Warp::Linear => {}
+            Warp::Sqrt => {
+                for w in &mut w {
+                    *w = sqrt_v(*w - lo);
+                }
+            }
+            Warp::SqrtCos => {
+                for w in &mut w {
+                    *w = cos_quadrant(*w).max(0.0);
+                }
+                for w in &mut w {
+                    *w = sqrt_v(*w);
+                }
+            }
+            _ => {
+                for w in &mut w {
+                    *w = warp_far(self.warp, lo, *w);
+                }
+            }
+        }
+        // The node ⌊t⌋ (at most n − 2) without a float → int conversion per query (those
+        // do not vectorise): t + 2²³ − 2²³ is t rounded to an integer (t < 2¹⁶), one less
+        // when that rounded up; the integer is read from the bits of ⌊t⌋ + 2²³. Equal to
+        // `cell`'s conversion (both are the exact ⌊t⌋ capped at n − 2), NaN going to node 0.
+        const MAGIC: f32 = 8_388_608.0;
+        let last_cell = self.last_cell as f32;
+        let (mut i, mut f) = ([0u32; N], [0.0f32; N]);
+        for k in 0..N {
+            let t = clamp(self.a * w[k] + self.b, 0.0, self.last);
+            if N <= 2 {
+                // Too few queries to vectorise: `cell`'s conversion.
+                let ik = (t as u16 as i32).min(self.last_cell);
+                i[k] = ik as u32;
+                f[k] = t - ik as f32;
+                continue;
+            }
+            let tc = if t > 0.0 { t } else { 0.0 };
+            let r = (tc + MAGIC) - MAGIC;
+            let fl = if r > tc { r - 1.0 } else { r };
+            let ik = if fl > last_cell { last_cell } else { fl };
+            i[k] = (ik + MAGIC).to_bits().wrapping_sub(MAGIC.to_bits());
+            f[k] = t - ik;
+        }
+        (i, f)
+    }
+}
+
+#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+impl Reader {
+    /// Whether [`Reader::chunk`] applies (linear u16 tables); otherwise callers loop over
+    /// the scalar lookup.
+    #[inline(always)]
+    pub(crate) fn chunked(&self) -> bool {
+        self.mode == Mode::Linear && self.encoding == Encoding::Unorm16
+    }
+
+    /// `N` lookups of a 1-D or 2-D linear u16 table (`chunked()` must hold): channel c of
+    /// query k in `out[c][k]`, equal to [`Reader::sample`] bit for bit.
+    #[inline(always)]
+    pub(crate) fn chunk<const D: usize, const C: usize, const N: usize>(
+        &self,
+        data: &[u8],
+        x: &[[f32; N]; D],
+    ) -> [[f32; N]; C] {
+        let l = &self.lanes;
+        let (i0, f0) = l[0].cells(&x[0]);
+        let (i1, f1) = if D > 1 {
+            l[1].cells(&x[1])
+        } else {
+            ([0; N], [0.0; N])
+        };
+        // Stored numbers of the taps: [channel][tap][query], tap = 2 × row + node.
+        let mut q = [[[0u32; N]; 4]; C];
+        let mut bad = [0.0f32; N];
+        let s = l[1].stride * 2;
+        for k in 0..N {
+            let at = (i0[k] as usize * C + i1[k] as usize * l[1].stride) * 2;
+            let (span, w) = if D > 1 {
+                (s + 4 * C, 4 * C)
+            } else {
+                (4 * C, 4 * C)
+            };
+            let rows = data
+                .get(at..at + span)
+                .and_then(|b| Some((b.get(..w)?, b.get(span - w..)?)));
+            match rows {
+                Some((r0, r1)) => {
+                    for (c, qc) in q.iter_mut().enumerate() {
+                        qc[0][k] = u16_at(r0, c) as u32;
+                        qc[1][k] = u16_at(r0, C + c) as u32;
+                        qc[2][k] = u16_at(r1, c) as u32;
+                        qc[3][k] = u16_at(r1, C + c) as u32;
+                    }
+                }
+                // A short payload (impossible for a parsed table) gives NaN, like `plane`.
+                None => bad[k] = f32::NAN,
+            }
+        }
+        let mut out = [[0.0f32; N]; C];
+        for c in 0..C {
+            let (sc, of) = (self.scale[c], self.offset[c]);
+            let [q0, q1, q2, q3] = &q[c];
+            for k in 0..N {
+                let (a0, a1) = (q0[k] as f32 + bad[k], q1[k] as f32);
+                let r0 = a0 + f0[k] * (a1 - a0);
+                let v = if D > 1 {
+                    let (b0, b1) = (q2[k] as f32, q3[k] as f32);
+                    let r1 = b0 + f0[k] * (b1 - b0);
+                    r0 + f1[k] * (r1 - r0)
+                } else {
+                    r0
+                };
+                out[c][k] = of + sc * v;
+            }
+        }
+        out
+    }
+
+    /// `N` pairs of one-channel 3-D lookups at one last coordinate z (the σ of a batch of
+    /// G queries): [`Reader::pair3`] bit for bit, with the z lane computed once.
+    #[inline(always)]
+    pub(crate) fn chunk3<const N: usize>(
+        &self,
+        data: &[u8],
+        x: &[[f32; N]; 2],
+        z: f32,
+    ) -> [f32; N] {
+        let l = &self.lanes;
+        let (k2, f2) = l[2].cell(z);
+        let (i0, mut f0) = l[0].cells(&x[0]);
+        let (i1, f1) = l[1].cells(&x[1]);
+        let (s1, s2) = (l[1].stride * 2, l[2].stride * 2);
+        let mut q = [[0u32; N]; 8];
+        for k in 0..N {
+            let at = (i0[k] as usize + i1[k] as usize * l[1].stride + k2 * l[2].stride) * 2;
+            let planes = data.get(at..at + s2 + s1 + 4).and_then(|b| {
+                Some((
+                    b.get(..4)?,
+                    b.get(s1..s1 + 4)?,
+                    b.get(s2..s2 + 4)?,
+                    b.get(s2 + s1..s2 + s1 + 4)?,
+                ))
+            });
+            match planes {
+                Some((r0, r1, r2, r3)) => {
+                    for (j, r) in [r0, r1, r2, r3].into_iter().enumerate() {
+                        q[2 * j][k] = u16_at(r, 0) as u32;
+                        q[2 * j + 1][k] = u16_at(r, 1) as u32;
+                    }
+                }
+                None => f0[k] = f32::NAN,
+            }
+        }
+        let mut out = [0.0f32; N];
+        for k in 0..N {
+            let v = |j: usize| q[j][k] as f32;
+            let plane = |j: usize| {
+                let r0 = v(j) + f0[k] * (v(j + 1) - v(j));
+                let r1 = v(j + 2) + f0[k] * (v(j + 3) - v(j + 2));
+                r0 + f1[k] * (r1 - r0)
+            };
+            let (p0, p1) = (plane(0), plane(4));
+            out[k] = self.offset[0] + self.scale[0] * (p0 + f2 * (p1 - p0));
+        }
+        out
+    }
+}
+
+/// √x, correctly rounded like `libm::sqrtf` (IEEE 754 square root, so the same bits), but
+/// in a form the compiler can turn into packed `sqrtps` in the chunk loops (libm's is
+/// inline assembly, which it cannot).
+#[cfg(all(
+    target_arch = "x86_64",
+    not(any(target_os = "none", target_family = "wasm"))
+))]
+#[inline(always)]
+fn sqrt_v(x: f32) -> f32 {
+    use core::arch::x86_64::{_mm_cvtss_f32, _mm_set_ss, _mm_sqrt_ss};
+    // SAFETY: SSE is part of the x86_64 baseline, and these intrinsics only compute on
+    // registers (no memory access). They are safe functions from Rust 1.87 on; the block
+    // is for the crate's minimum Rust, 1.84.
+    #[allow(unused_unsafe)]
+    unsafe {
+        _mm_cvtss_f32(_mm_sqrt_ss(_mm_set_ss(x)))
+    }
+}
+#[cfg(all(
+    not(target_arch = "x86_64"),
+    not(any(target_os = "none", target_family = "wasm"))
+))]
+#[inline(always)]
+fn sqrt_v(x: f32) -> f32 {
+    libm::sqrtf(x)
+}
+
+/// Stored u16 number `k` of `b` (0 past the end; callers pass rows that hold it).
+#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[inline(always)]
+fn u16_at(b: &[u8], k: usize) -> u16 {
+    match b.get(2 * k..2 * k + 2) {
+        Some(&[b0, b1]) => u16::from_le_bytes([b0, b1]),
+        _ => 0,
     }
 }

@@ -70,20 +70,39 @@ impl Prepared {
     }
 
     /// (GM, GS, G) of a 2-D passing-factor table.
-    #[inline]
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     pub(crate) fn g2(&self, payload: &[u8], theta_i: f32, theta_r: f32) -> (f32, f32, f32) {
         if theta_i.is_nan() || theta_r.is_nan() {
             return (f32::NAN, f32::NAN, f32::NAN);
         }
         let (m, s) = g_args(theta_i, theta_r);
+        let (gm, gs) = self.pair2(payload, m, s);
+        let (gm, gs) = (unit01(gm), unit01(gs));
+        (gm, gs, min_g(gm, gs))
+    }
+
+    /// The GM and GS lookups of a 2-D table. On hosted targets a linear u16 table reads
+    /// both side by side through the chunk path (two lanes of the same arithmetic, so the
+    /// same values as two [`Reader::sample`] calls).
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    fn pair2(&self, payload: &[u8], m: [f32; 2], s: [f32; 2]) -> (f32, f32) {
         let r = &self.reader;
-        let gm = unit01(r.sample::<2, 1>(&self.grid, payload, m)[0]);
-        let gs = unit01(r.sample::<2, 1>(&self.grid, payload, s)[0]);
-        (gm, gs, gm.min(gs))
+        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        if r.chunked() {
+            let [[gm, gs]] = r.chunk::<2, 1, 2>(payload, &[[m[0], s[0]], [m[1], s[1]]]);
+            return (gm, gs);
+        }
+        (
+            r.sample::<2, 1>(&self.grid, payload, m)[0],
+            r.sample::<2, 1>(&self.grid, payload, s)[0],
+        )
     }
 
     /// (GM, GS, G) of a 3-D passing-factor table.
-    #[inline]
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     pub(crate) fn g3(
         &self,
         payload: &[u8],
@@ -97,7 +116,7 @@ impl Prepared {
         let (m, s) = g_args(theta_i, theta_r);
         let (gm, gs) = self.reader.pair3(&self.grid, payload, m, s, sigma);
         let (gm, gs) = (unit01(gm), unit01(gs));
-        (gm, gs, gm.min(gs))
+        (gm, gs, min_g(gm, gs))
     }
 
     /// (GM, GS, G) of a 2-D or 3-D passing-factor table from the table arguments of the two
@@ -114,13 +133,10 @@ impl Prepared {
         let (gm, gs) = if self.grid.dims == 3 {
             r.pair3(&self.grid, payload, m, s, sigma)
         } else {
-            (
-                r.sample::<2, 1>(&self.grid, payload, m)[0],
-                r.sample::<2, 1>(&self.grid, payload, s)[0],
-            )
+            self.pair2(payload, m, s)
         };
         let (gm, gs) = (unit01(gm), unit01(gs));
-        (gm, gs, gm.min(gs))
+        (gm, gs, min_g(gm, gs))
     }
 
     /// G from dot products (see [`dots_args`]).
@@ -152,6 +168,110 @@ impl Prepared {
     #[inline]
     pub(crate) fn one(&self, payload: &[u8], x: f32) -> f32 {
         self.reader.sample::<1, 1>(&self.grid, payload, [x])[0]
+    }
+}
+
+/// Queries per chunk of the batch entry points (hosted targets; see `Reader::chunk`).
+#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+const CHUNK: usize = 16;
+
+#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+impl Prepared {
+    /// G of `N` in-plane pairs of a 2-D (`z` = None) or 3-D table at one σ: [`Prepared::g2`]
+    /// / [`Prepared::g3`] (`.2`) bit for bit. The table must be `chunked()`.
+    #[inline(always)]
+    fn g_chunk<const N: usize>(
+        &self,
+        payload: &[u8],
+        ti: &[f32; N],
+        tr: &[f32; N],
+        z: Option<f32>,
+    ) -> [f32; N] {
+        let (mut m, mut s) = ([[0.0f32; N]; 2], [[0.0f32; N]; 2]);
+        let mut nan = [false; N];
+        for k in 0..N {
+            nan[k] = ti[k].is_nan() || tr[k].is_nan();
+            let (mk, sk) = g_args(ti[k], tr[k]);
+            (m[0][k], m[1][k], s[0][k], s[1][k]) = (mk[0], mk[1], sk[0], sk[1]);
+        }
+        let r = &self.reader;
+        let (gm, gs) = match z {
+            Some(z) => (r.chunk3::<N>(payload, &m, z), r.chunk3::<N>(payload, &s, z)),
+            None => (
+                r.chunk::<2, 1, N>(payload, &m)[0],
+                r.chunk::<2, 1, N>(payload, &s)[0],
+            ),
+        };
+        let mut out = [0.0f32; N];
+        for k in 0..N {
+            let g = min_g(unit01(gm[k]), unit01(gs[k]));
+            out[k] = if nan[k] { f32::NAN } else { g };
+        }
+        out
+    }
+
+    /// `out[k] = G(theta_i[k], theta_r[k])` for k < n (chunks, then the scalar tail).
+    #[inline(always)]
+    fn g_batch(&self, payload: &[u8], ti: &[f32], tr: &[f32], z: Option<f32>, out: &mut [f32]) {
+        let mut done = 0;
+        for ((o, a), b) in out
+            .chunks_exact_mut(CHUNK)
+            .zip(ti.chunks_exact(CHUNK))
+            .zip(tr.chunks_exact(CHUNK))
+        {
+            if let (Some(a), Some(b)) = (a.first_chunk(), b.first_chunk()) {
+                o.copy_from_slice(&self.g_chunk::<CHUNK>(payload, a, b, z));
+                done += CHUNK;
+            }
+        }
+        for ((o, &a), &b) in out.iter_mut().zip(ti).zip(tr).skip(done) {
+            *o = match z {
+                Some(z) => self.g3(payload, a, b, z).2,
+                None => self.g2(payload, a, b).2,
+            };
+        }
+    }
+
+    /// Channels of `D`-axis lookups over slices (chunks, then the scalar tail):
+    /// `out[c][k]` = channel c at (x[0][k], …); every slice has the same length.
+    #[inline(always)]
+    fn sample_batch<const D: usize, const C: usize>(
+        &self,
+        payload: &[u8],
+        x: [&[f32]; D],
+        out: [&mut [f32]; C],
+    ) {
+        let n = out[0].len();
+        let r = &self.reader;
+        let mut k = 0;
+        while k + CHUNK <= n {
+            let mut xs = [[0.0f32; CHUNK]; D];
+            for (d, xd) in xs.iter_mut().enumerate() {
+                if let Some(c) = x[d].get(k..).and_then(|s| s.first_chunk::<CHUNK>()) {
+                    *xd = *c;
+                }
+            }
+            let v = r.chunk::<D, C, CHUNK>(payload, &xs);
+            for c in 0..C {
+                if let Some(o) = out[c].get_mut(k..k + CHUNK) {
+                    o.copy_from_slice(&v[c]);
+                }
+            }
+            k += CHUNK;
+        }
+        while k < n {
+            let mut xk = [0.0f32; D];
+            for d in 0..D {
+                xk[d] = x[d].get(k).copied().unwrap_or(f32::NAN);
+            }
+            let v = r.sample::<D, C>(&self.grid, payload, xk);
+            for c in 0..C {
+                if let Some(o) = out[c].get_mut(k) {
+                    *o = v[c];
+                }
+            }
+            k += 1;
+        }
     }
 }
 
@@ -195,6 +315,17 @@ fn dots_args(n_l: f32, n_v: f32, l_v: f32) -> Option<([f32; 2], [f32; 2])> {
         [theta, theta - 2.0 * a]
     };
     Some((side(co, so), side(ci, si)))
+}
+
+/// G = min(GM, GS) (paper eq 13) as one select (the factors are not NaN: NaN queries
+/// return before the lookup).
+#[inline(always)]
+fn min_g(gm: f32, gs: f32) -> f32 {
+    if gs < gm {
+        gs
+    } else {
+        gm
+    }
 }
 
 #[inline]
@@ -290,12 +421,14 @@ impl<B: AsRef<[u8]>> GTable<B> {
     }
     /// (GM, GS, G) at in-plane angles in radians, θi ∈ [0, π/2], θr ∈ [−π/2, π/2] signed
     /// (clamped; NaN gives NaN). G = min(GM, GS), each clamped to [0, 1] (paper eq 13).
-    #[inline]
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     pub fn terms(&self, theta_i: f32, theta_r: f32) -> (f32, f32, f32) {
         self.p.g2(self.payload(), theta_i, theta_r)
     }
     /// G = min(GM, GS); see [`GTable::terms`].
-    #[inline]
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     pub fn g(&self, theta_i: f32, theta_r: f32) -> f32 {
         self.terms(theta_i, theta_r).2
     }
@@ -313,6 +446,11 @@ impl<B: AsRef<[u8]>> GTable<B> {
     pub fn g_batch(&self, theta_i: &[f32], theta_r: &[f32], out: &mut [f32]) -> usize {
         let p = self.payload();
         let n = theta_i.len().min(theta_r.len()).min(out.len());
+        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        if self.p.reader.chunked() {
+            self.p.g_batch(p, theta_i, theta_r, None, &mut out[..n]);
+            return n;
+        }
         for ((o, &a), &b) in out[..n].iter_mut().zip(theta_i).zip(theta_r) {
             *o = self.p.g2(p, a, b).2;
         }
@@ -327,12 +465,14 @@ impl<B: AsRef<[u8]>> GTable3<B> {
     }
     /// (GM, GS, G) at in-plane angles in radians and RMS slope σ (all clamped to the table's
     /// ranges; NaN gives NaN). G = min(GM, GS) (paper eq 13).
-    #[inline]
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     pub fn terms(&self, theta_i: f32, theta_r: f32, sigma: f32) -> (f32, f32, f32) {
         self.p.g3(self.payload(), theta_i, theta_r, sigma)
     }
     /// G = min(GM, GS); see [`GTable3::terms`].
-    #[inline]
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     pub fn g(&self, theta_i: f32, theta_r: f32, sigma: f32) -> f32 {
         self.terms(theta_i, theta_r, sigma).2
     }
@@ -346,6 +486,16 @@ impl<B: AsRef<[u8]>> GTable3<B> {
     pub fn g_batch(&self, theta_i: &[f32], theta_r: &[f32], sigma: f32, out: &mut [f32]) -> usize {
         let p = self.payload();
         let n = theta_i.len().min(theta_r.len()).min(out.len());
+        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        if self.p.reader.chunked() {
+            if sigma.is_nan() {
+                out[..n].fill(f32::NAN);
+            } else {
+                self.p
+                    .g_batch(p, theta_i, theta_r, Some(sigma), &mut out[..n]);
+            }
+            return n;
+        }
         for ((o, &a), &b) in out[..n].iter_mut().zip(theta_i).zip(theta_r) {
             *o = self.p.g3(p, a, b, sigma).2;
         }
@@ -356,7 +506,8 @@ impl<B: AsRef<[u8]>> GTable3<B> {
 impl<B: AsRef<[u8]>> DfgTable<B> {
     /// (A, B) at μ = n·v and roughness (perceptual r for GGX, σ for Torrance–Sparrow tables;
     /// see the header), clamped to the table's ranges; NaN gives NaN.
-    #[inline]
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     pub fn ab(&self, mu: f32, roughness: f32) -> (f32, f32) {
         self.p.two(self.payload(), mu, roughness)
     }
@@ -365,6 +516,12 @@ impl<B: AsRef<[u8]>> DfgTable<B> {
     pub fn ab_batch(&self, mu: &[f32], roughness: &[f32], a: &mut [f32], b: &mut [f32]) -> usize {
         let p = self.payload();
         let n = mu.len().min(roughness.len()).min(a.len()).min(b.len());
+        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        if self.p.reader.chunked() {
+            self.p
+                .sample_batch::<2, 2>(p, [&mu[..n], &roughness[..n]], [&mut a[..n], &mut b[..n]]);
+            return n;
+        }
         for k in 0..n {
             (a[k], b[k]) = self.p.two(p, mu[k], roughness[k]);
         }
@@ -383,6 +540,12 @@ impl<B: AsRef<[u8]>> AlbedoTable<B> {
     pub fn e_batch(&self, mu: &[f32], roughness: &[f32], out: &mut [f32]) -> usize {
         let p = self.payload();
         let n = mu.len().min(roughness.len()).min(out.len());
+        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        if self.p.reader.chunked() {
+            self.p
+                .sample_batch::<2, 1>(p, [&mu[..n], &roughness[..n]], [&mut out[..n]]);
+            return n;
+        }
         for ((o, &m), &r) in out[..n].iter_mut().zip(mu).zip(roughness) {
             *o = self.p.two1(p, m, r);
         }
@@ -401,6 +564,12 @@ impl<B: AsRef<[u8]>> AverageAlbedoTable<B> {
     pub fn e_avg_batch(&self, roughness: &[f32], out: &mut [f32]) -> usize {
         let p = self.payload();
         let n = roughness.len().min(out.len());
+        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        if self.p.reader.chunked() {
+            self.p
+                .sample_batch::<1, 1>(p, [&roughness[..n]], [&mut out[..n]]);
+            return n;
+        }
         for (o, &r) in out[..n].iter_mut().zip(roughness) {
             *o = self.p.one(p, r);
         }

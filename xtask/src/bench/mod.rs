@@ -454,6 +454,8 @@ struct Accuracy {
     g_lut2_linear: Option<f64>,
     /// max |ΔA|, |ΔB| against the split-sum integral (f64).
     dfg_lut: Option<(f64, f64)>,
+    /// The same for the speed tier (bilinear) table.
+    dfg_lut_linear: Option<(f64, f64)>,
     dfg_karis: (f64, f64),
     g_points: usize,
     dfg_points: usize,
@@ -524,13 +526,17 @@ fn accuracy() -> Accuracy {
                 (acc.0.max((a - ea).abs()), acc.1.max((b - eb).abs()))
             })
     };
-    let dfg_lut = read_asset(brdf_bench::DFG_ASSET).and_then(|b| {
-        let t = DfgTable::parse(&b).ok()?;
-        Some(dfg_err(&|m, r| {
-            let (a, b) = t.ab(m as f32, r as f32);
-            (a as f64, b as f64)
-        }))
-    });
+    let dfg_table = |asset: &str| {
+        read_asset(asset).and_then(|b| {
+            let t = DfgTable::parse(&b).ok()?;
+            Some(dfg_err(&|m, r| {
+                let (a, b) = t.ab(m as f32, r as f32);
+                (a as f64, b as f64)
+            }))
+        })
+    };
+    let dfg_lut = dfg_table(brdf_bench::DFG_ASSET);
+    let dfg_lut_linear = dfg_table(brdf_bench::DFG_LINEAR_ASSET);
     let dfg_karis = dfg_err(&|m, r| {
         let (a, b) = env_brdf_approx(m as f32, r as f32);
         (a as f64, b as f64)
@@ -542,6 +548,7 @@ fn accuracy() -> Accuracy {
         g_lut3_linear,
         g_lut2_linear,
         dfg_lut,
+        dfg_lut_linear,
         dfg_karis,
         g_points: n,
         dfg_points: pts.len(),

@@ -171,9 +171,11 @@ pub(super) fn render(r: &Report<'_>) -> Result<String> {
         })
     };
     let (la, lb) = fe(a.dfg_lut);
+    let (fa, fb) = fe(a.dfg_lut_linear);
     let (ka, kb) = fe(Some(a.dfg_karis));
     let dfg = context! {
         lut_ns => ns(dfg_lut), lut_a => la, lut_b => lb,
+        linear_ns => ns(per("dfg/lut_linear_f32")), linear_a => fa, linear_b => fb,
         karis_ns => ns(per("dfg/karis_approx_f32")), karis_a => ka, karis_b => kb,
         direct_ns => ns(dfg_direct),
         direct32_ns => ns(per("dfg_direct/split_sum_f32")),
@@ -294,7 +296,9 @@ pub(super) fn render(r: &Report<'_>) -> Result<String> {
         v_dfg_albedo => verdict(ratio(dfg_alb, dfg_lut), 50.0),
         direct32 => ns(direct32),
         direct64 => ns(direct64),
-        kernel_target_rows => kernel_target_rows(r, dfg_lut, per("dfg/karis_approx_f32"), peer_ns, direct64),
+        dfg_linear_asset => brdf_bench::DFG_LINEAR_ASSET,
+        dfg_asset => brdf_bench::DFG_ASSET,
+        kernel_target_rows => kernel_target_rows(r, per("dfg/lut_linear_f32"), per("dfg/karis_approx_f32"), peer_ns, direct64),
         g_points => a.g_points,
         dfg_points => a.dfg_points,
         node_rows, table_rows, limits => Value::from_serialize(&limits), closed_rows, peer, dfg,
@@ -369,9 +373,40 @@ fn kernel_target_rows(
             1.2,
         );
     }
+    // Batch entry points against their scalar twins: throughput ratio from criterion (the
+    // verdict), instructions per lookup from callgrind (a `_batch` call covers BATCH inputs).
+    let per = |id: &str| r.est.get(id).map(Est::per_call);
+    for k in [
+        "g_lut2d_linear",
+        "g_lut3d_linear",
+        "dfg_lut",
+        "e_lut",
+        "eavg_lut",
+    ] {
+        let (ts, tb) = (per(&format!("lut/{k}")), per(&format!("lut/{k}_batch")));
+        let x = ratio(ts, tb);
+        let ins = match (ir(k), ir(&format!("{k}_batch"))) {
+            (Some(s), Some(b)) => {
+                let b = b / brdf_bench::BATCH as f64;
+                format!("; instructions {s:.0} / {b:.0} = {:.2}×", s / b)
+            }
+            _ => String::new(),
+        };
+        rows.push_str(&row(&[
+            format!("`{k}_batch` throughput vs scalar `{k}` (criterion)"),
+            match (ts, tb) {
+                (Some(a), Some(b)) => {
+                    format!("{} / {} = {:.2}×{ins}", fmt_ns(a), fmt_ns(b), a / b)
+                }
+                _ => "–".into(),
+            },
+            "≥ 3×".into(),
+            judge(x, 3.0, false).into(),
+        ]));
+    }
     let t = ratio(dfg_lut_ns, karis_ns);
     rows.push_str(&row(&[
-        "`dfg_lut` time vs Karis's analytic fit `dfg_karis` (criterion)".to_string(),
+        "`dfg_lut` time (speed tier, `dfg/lut_linear_f32`) vs Karis's analytic fit (`dfg/karis_approx_f32`, criterion)".to_string(),
         match (dfg_lut_ns, karis_ns) {
             (Some(a), Some(b)) => format!("{} / {} = {:.2}×", fmt_ns(a), fmt_ns(b), a / b),
             _ => "–".into(),

@@ -145,6 +145,24 @@ pub fn default_set() -> Vec<Spec> {
         interpolation: Interpolation::CatmullRom,
         samples: 20_000,
     });
+    // The speed tier of the split-sum table: bilinear on √-warped axes (denser toward
+    // grazing μ and small roughness, where A and B bend most), so that a lookup is two
+    // square roots and four two-channel taps, with max |ΔA|, |ΔB| still ~1000× below
+    // Karis's analytic fit (docs/benchmarks.md).
+    v.push(Spec {
+        file: "dfg_ggx_linear.blut".into(),
+        kind: TableKind::SplitSum,
+        model: Model::GgxSmithCorrelated,
+        sigma: None,
+        axes: vec![
+            axis("mu", 256, MU_MIN, 1.0, Warp::Sqrt, Placement::Endpoint),
+            axis("roughness", 256, 0.0, 1.0, Warp::Sqrt, Placement::Endpoint),
+        ],
+        channels: vec!["A", "B"],
+        encoding: Encoding::Unorm16,
+        interpolation: Interpolation::Linear,
+        samples: 20_000,
+    });
     let ts_axes = || {
         vec![
             axis("mu", 48, MU_MIN, 1.0, Warp::Log, Placement::Endpoint),

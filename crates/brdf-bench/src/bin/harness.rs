@@ -113,7 +113,7 @@ fn main() {
         }
         "blinn_f32" => run!(|k: usize| masking::g_blinn_dots(black_box(d32[k]))),
         "dfg_lut" => {
-            let b = asset(DFG_ASSET);
+            let b = asset(DFG_LINEAR_ASSET);
             let t = DfgTable::parse(&b).unwrap();
             run!(|k: usize| {
                 let (a, b) = t.ab(black_box(mr[k].0 as f32), black_box(mr[k].1 as f32));
@@ -137,7 +137,7 @@ fn main() {
             })
         }
         "dfg_lut_std" => {
-            let t = brdf_lut::Lut::from_path(assets_dir().join(DFG_ASSET)).unwrap();
+            let t = brdf_lut::Lut::from_path(assets_dir().join(DFG_LINEAR_ASSET)).unwrap();
             run!(|k: usize| {
                 let (a, b) = t
                     .dfg(black_box(mr[k].0 as f32), black_box(mr[k].1 as f32))
@@ -175,7 +175,7 @@ fn main() {
             let (mut a, mut bb) = (vec![0f32; BATCH], vec![0f32; BATCH]);
             match name {
                 "dfg_lut_batch" => {
-                    let b = asset(DFG_ASSET);
+                    let b = asset(DFG_LINEAR_ASSET);
                     let t = DfgTable::parse(&b[..]).unwrap();
                     run!(|_k: usize| {
                         t.ab_batch(black_box(&mu), black_box(&r), &mut a, &mut bb);
