@@ -172,9 +172,11 @@ pub fn erfc_bounded_f64(x: f64) -> f64 {
     let s2 = s * s;
     let s4 = s2 * s2;
     let mut h = [Q[20], 0.0, 0.0, 0.0];
-    for i in (0..5).rev() {
-        for (j, hj) in h.iter_mut().enumerate() {
-            *hj = *hj * s4 + Q[4 * i + j];
+    // Chunks i = 4, 3, …, 0 of Q[0..20] (no indexing: no bounds check left in size-optimised
+    // builds).
+    for c in Q[..20].chunks_exact(4).rev() {
+        for (hj, &qj) in h.iter_mut().zip(c) {
+            *hj = *hj * s4 + qj;
         }
     }
     let q = (h[0] + s * h[1]) + s2 * (h[2] + s * h[3]);
