@@ -222,7 +222,7 @@ pub fn sin_cos_f64(x: f64) -> (f64, f64) {
         -1.0 / 87_178_291_200.0,
         1.0 / 20_922_789_888_000.0,
     ];
-    if !(x.abs() <= 1.6) {
+    if !(-1.6..=1.6).contains(&x) {
         return libm::sincos(x);
     }
     // k = round(2x/π) by adding and subtracting 1.5·2⁵² (|2x/π| < 1.02 here).
