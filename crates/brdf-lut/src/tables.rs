@@ -522,6 +522,12 @@ impl<B: AsRef<[u8]>> DfgTable<B> {
                 .sample_batch::<2, 2>(p, [&mu[..n], &roughness[..n]], [&mut a[..n], &mut b[..n]]);
             return n;
         }
+        #[cfg(not(any(feature = "compact", target_os = "none", target_family = "wasm")))]
+        if self.p.reader.cubic_chunked() {
+            self.p
+                .cubic_batch::<2, 2>(p, [&mu[..n], &roughness[..n]], [&mut a[..n], &mut b[..n]]);
+            return n;
+        }
         for k in 0..n {
             (a[k], b[k]) = self.p.two(p, mu[k], roughness[k]);
         }
@@ -546,6 +552,12 @@ impl<B: AsRef<[u8]>> AlbedoTable<B> {
                 .sample_batch::<2, 1>(p, [&mu[..n], &roughness[..n]], [&mut out[..n]]);
             return n;
         }
+        #[cfg(not(any(feature = "compact", target_os = "none", target_family = "wasm")))]
+        if self.p.reader.cubic_chunked() {
+            self.p
+                .cubic_batch::<2, 1>(p, [&mu[..n], &roughness[..n]], [&mut out[..n]]);
+            return n;
+        }
         for ((o, &m), &r) in out[..n].iter_mut().zip(mu).zip(roughness) {
             *o = self.p.two1(p, m, r);
         }
@@ -568,6 +580,12 @@ impl<B: AsRef<[u8]>> AverageAlbedoTable<B> {
         if self.p.reader.chunked() {
             self.p
                 .sample_batch::<1, 1>(p, [&roughness[..n]], [&mut out[..n]]);
+            return n;
+        }
+        #[cfg(not(any(feature = "compact", target_os = "none", target_family = "wasm")))]
+        if self.p.reader.cubic_chunked() {
+            self.p
+                .cubic_batch::<1, 1>(p, [&roughness[..n]], [&mut out[..n]]);
             return n;
         }
         for (o, &r) in out[..n].iter_mut().zip(roughness) {

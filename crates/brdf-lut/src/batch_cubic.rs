@@ -1,0 +1,197 @@
+//! Chunked Catmull–Rom lookups for the batch entry points of u16 tables (hosted targets,
+//! not feature `compact`).
+//!
+//! `N` queries at once, in stages that are each a loop over the chunk, so that the compiler
+//! turns the arithmetic stages into packed SSE instructions: the axis maps
+//! ([`Lane::cells`]), the four Catmull–Rom weights and the first node of every axis (the
+//! cubic polynomials of docs/lut-format.md §7 with the end extrapolation folded in, chosen
+//! by selects instead of branches), the payload reads into arrays of stored numbers, and the
+//! weighted sums. Every query goes through exactly the operations of the scalar lookup
+//! (`Lane::cubic`, `Reader::cubic`: the same products and sums in the same order, the
+//! channel scale and offset last), so the results are the scalar lookups' bit for bit.
+
+use crate::header::Encoding;
+use crate::reader::{Lane, Mode, Reader};
+use crate::tables::Prepared;
+
+/// Queries per chunk.
+const CHUNK: usize = 16;
+
+/// First node and the four weights of `N` coordinates on a Catmull–Rom axis of n ≥ 4 nodes:
+/// `Lane::cubic` per query (weights `[tap][query]`).
+#[inline(always)]
+fn cubics<const N: usize>(l: &Lane, x: &[f32; N]) -> ([u32; N], [[f32; N]; 4]) {
+    let (i, f) = l.cells(x);
+    // n − 2, the last cell; n − 4, the first node of the far end's window.
+    let (end, far) = ((l.n - 2) as u32, (l.n - 4) as u32);
+    let mut b = [0u32; N];
+    let mut w = [[0.0f32; N]; 4];
+    for k in 0..N {
+        let f = f[k];
+        let (f2, f3) = (f * f, f * f * f);
+        let wm = 0.5 * (-f3 + 2.0 * f2 - f);
+        let w0 = 0.5 * (3.0 * f3 - 5.0 * f2 + 2.0);
+        let w1 = 0.5 * (-3.0 * f3 + 4.0 * f2 + f);
+        let w2 = 0.5 * (f3 - f2);
+        // The three cases of `Lane::cubic`, each with its own arithmetic, then one select.
+        let lo = [w0 + 3.0 * wm, w1 - 3.0 * wm, w2 + wm, 0.0];
+        let hi = [0.0, wm + w2, w0 - 3.0 * w2, w1 + 3.0 * w2];
+        let mid = [wm, w0, w1, w2];
+        let (first, last) = (i[k] == 0, i[k] == end);
+        for t in 0..4 {
+            w[t][k] = if first {
+                lo[t]
+            } else if last {
+                hi[t]
+            } else {
+                mid[t]
+            };
+        }
+        b[k] = if first {
+            0
+        } else if last {
+            far
+        } else {
+            i[k].wrapping_sub(1)
+        };
+    }
+    (b, w)
+}
+
+impl Reader {
+    /// Whether [`Reader::chunk_cubic`] applies (Catmull–Rom u16 tables, every axis ≥ 4
+    /// nodes).
+    #[inline(always)]
+    pub(crate) fn cubic_chunked(&self) -> bool {
+        self.mode == Mode::Cubic && self.encoding == Encoding::Unorm16
+    }
+
+    /// `N` lookups of a 1-D or 2-D Catmull–Rom u16 table (`cubic_chunked()` must hold):
+    /// channel c of query k in `out[c][k]`, equal to [`Reader::sample`] bit for bit.
+    #[inline(always)]
+    pub(crate) fn chunk_cubic<const D: usize, const C: usize, const N: usize>(
+        &self,
+        data: &[u8],
+        x: &[[f32; N]; D],
+    ) -> [[f32; N]; C] {
+        let l = &self.lanes;
+        let (b0, w0) = cubics(&l[0], &x[0]);
+        let (b1, w1) = if D > 1 {
+            cubics(&l[1], &x[1])
+        } else {
+            ([0; N], [[0.0; N]; 4])
+        };
+        let rows = if D > 1 { 4 } else { 1 };
+        // Stored numbers of the taps: [channel][4 × row + node][query].
+        let mut q = [[[0u16; N]; 16]; C];
+        let mut bad = [0.0f32; N];
+        // Bytes between rows, bytes of a row of 4 nodes × C channels.
+        let (s, w) = (l[1].stride * 2, 8 * C);
+        let span = (rows - 1) * s + w;
+        for k in 0..N {
+            let at = (b0[k] as usize * C + b1[k] as usize * l[1].stride) * 2;
+            let Some(blk) = data.get(at..at + span) else {
+                // A short payload (impossible for a parsed table) gives NaN, like the
+                // scalar path's row read.
+                bad[k] = f32::NAN;
+                continue;
+            };
+            for j in 0..rows {
+                let Some(r) = blk.get(j * s..j * s + w) else {
+                    bad[k] = f32::NAN;
+                    continue;
+                };
+                for (c, qc) in q.iter_mut().enumerate() {
+                    for i in 0..4 {
+                        qc[4 * j + i][k] = u16_at(r, i * C + c);
+                    }
+                }
+            }
+        }
+        let mut out = [[0.0f32; N]; C];
+        for c in 0..C {
+            let qc = &q[c];
+            let mut acc = [0.0f32; N];
+            for j in 0..rows {
+                // Σ_i w0_i v_ij, from 0 like the scalar row.
+                let mut r = [0.0f32; N];
+                for i in 0..4 {
+                    let v = &qc[4 * j + i];
+                    for k in 0..N {
+                        let vk = if i == 0 && j == 0 {
+                            v[k] as f32 + bad[k]
+                        } else {
+                            v[k] as f32
+                        };
+                        r[k] += w0[i][k] * vk;
+                    }
+                }
+                if D > 1 {
+                    for k in 0..N {
+                        acc[k] += w1[j][k] * r[k];
+                    }
+                } else {
+                    acc = r;
+                }
+            }
+            let (sc, of) = (self.scale[c], self.offset[c]);
+            for k in 0..N {
+                out[c][k] = of + sc * acc[k];
+            }
+        }
+        out
+    }
+}
+
+impl Prepared {
+    /// Channels of `D`-axis Catmull–Rom lookups over slices (chunks, then the scalar tail):
+    /// `out[c][k]` = channel c at (x[0][k], …); every slice has the same length. The table
+    /// must be `cubic_chunked()`.
+    pub(crate) fn cubic_batch<const D: usize, const C: usize>(
+        &self,
+        payload: &[u8],
+        x: [&[f32]; D],
+        out: [&mut [f32]; C],
+    ) {
+        let n = out[0].len();
+        let r = &self.reader;
+        let mut k = 0;
+        while k + CHUNK <= n {
+            let mut xs = [[0.0f32; CHUNK]; D];
+            for (d, xd) in xs.iter_mut().enumerate() {
+                if let Some(c) = x[d].get(k..).and_then(|s| s.first_chunk::<CHUNK>()) {
+                    *xd = *c;
+                }
+            }
+            let v = r.chunk_cubic::<D, C, CHUNK>(payload, &xs);
+            for c in 0..C {
+                if let Some(o) = out[c].get_mut(k..k + CHUNK) {
+                    o.copy_from_slice(&v[c]);
+                }
+            }
+            k += CHUNK;
+        }
+        while k < n {
+            let mut xk = [0.0f32; D];
+            for d in 0..D {
+                xk[d] = x[d].get(k).copied().unwrap_or(f32::NAN);
+            }
+            let v = r.sample::<D, C>(&self.grid, payload, xk);
+            for c in 0..C {
+                if let Some(o) = out[c].get_mut(k) {
+                    *o = v[c];
+                }
+            }
+            k += 1;
+        }
+    }
+}
+
+/// Stored u16 number `k` of `b` (0 past the end; callers pass rows that hold it).
+#[inline(always)]
+fn u16_at(b: &[u8], k: usize) -> u16 {
+    match b.get(2 * k..2 * k + 2) {
+        Some(&[b0, b1]) => u16::from_le_bytes([b0, b1]),
+        _ => 0,
+    }
+}
