@@ -24,36 +24,31 @@ fn cubics<const N: usize>(l: &Lane, x: &[f32; N]) -> ([u32; N], [[f32; N]; 4]) {
     let (i, f) = l.cells(x);
     // n − 2, the last cell; n − 4, the first node of the far end's window.
     let (end, far) = ((l.n - 2) as u32, (l.n - 4) as u32);
-    let mut b = [0u32; N];
-    let mut w = [[0.0f32; N]; 4];
+    // The cubic polynomials, then the three cases of `Lane::cubic` (each with its own
+    // arithmetic) chosen by selects: separate loops, each of which vectorises.
+    let mut p = [[0.0f32; N]; 4];
     for k in 0..N {
         let f = f[k];
         let (f2, f3) = (f * f, f * f * f);
-        let wm = 0.5 * (-f3 + 2.0 * f2 - f);
-        let w0 = 0.5 * (3.0 * f3 - 5.0 * f2 + 2.0);
-        let w1 = 0.5 * (-3.0 * f3 + 4.0 * f2 + f);
-        let w2 = 0.5 * (f3 - f2);
-        // The three cases of `Lane::cubic`, each with its own arithmetic, then one select.
+        p[0][k] = 0.5 * (-f3 + 2.0 * f2 - f);
+        p[1][k] = 0.5 * (3.0 * f3 - 5.0 * f2 + 2.0);
+        p[2][k] = 0.5 * (-3.0 * f3 + 4.0 * f2 + f);
+        p[3][k] = 0.5 * (f3 - f2);
+    }
+    let mut b = [0u32; N];
+    let mut w = [[0.0f32; N]; 4];
+    for k in 0..N {
+        let [wm, w0, w1, w2] = [p[0][k], p[1][k], p[2][k], p[3][k]];
+        let (first, last) = (i[k] == 0, i[k] == end);
         let lo = [w0 + 3.0 * wm, w1 - 3.0 * wm, w2 + wm, 0.0];
         let hi = [0.0, wm + w2, w0 - 3.0 * w2, w1 + 3.0 * w2];
         let mid = [wm, w0, w1, w2];
-        let (first, last) = (i[k] == 0, i[k] == end);
         for t in 0..4 {
-            w[t][k] = if first {
-                lo[t]
-            } else if last {
-                hi[t]
-            } else {
-                mid[t]
-            };
+            let e = if last { hi[t] } else { mid[t] };
+            w[t][k] = if first { lo[t] } else { e };
         }
-        b[k] = if first {
-            0
-        } else if last {
-            far
-        } else {
-            i[k].wrapping_sub(1)
-        };
+        let e = if last { far } else { i[k].wrapping_sub(1) };
+        b[k] = if first { 0 } else { e };
     }
     (b, w)
 }
@@ -84,46 +79,41 @@ impl Reader {
         let rows = if D > 1 { 4 } else { 1 };
         // Stored numbers of the taps: [channel][4 × row + node][query].
         let mut q = [[[0u16; N]; 16]; C];
-        let mut bad = [0.0f32; N];
-        // Bytes between rows, bytes of a row of 4 nodes × C channels.
-        let (s, w) = (l[1].stride * 2, 8 * C);
-        let span = (rows - 1) * s + w;
+        let mut bad = [false; N];
+        let s = l[1].stride * 2;
         for k in 0..N {
             let at = (b0[k] as usize * C + b1[k] as usize * l[1].stride) * 2;
-            let Some(blk) = data.get(at..at + span) else {
-                // A short payload (impossible for a parsed table) gives NaN, like the
-                // scalar path's row read.
-                bad[k] = f32::NAN;
-                continue;
-            };
             for j in 0..rows {
-                let Some(r) = blk.get(j * s..j * s + w) else {
-                    bad[k] = f32::NAN;
-                    continue;
-                };
-                for (c, qc) in q.iter_mut().enumerate() {
-                    for i in 0..4 {
-                        qc[4 * j + i][k] = u16_at(r, i * C + c);
+                for part in 0..C {
+                    match data
+                        .get(at + j * s + 8 * part..)
+                        .and_then(|r| r.first_chunk())
+                    {
+                        Some(&r) => {
+                            let r = u64::from_le_bytes(r);
+                            for m in 0..4 {
+                                // Number 4·part + m of the row: node i, channel c.
+                                let u = 4 * part + m;
+                                q[u % C][4 * j + u / C][k] = (r >> (16 * m)) as u16;
+                            }
+                        }
+                        // A short payload (impossible for a parsed table) gives NaN, like
+                        // the scalar path's row read.
+                        None => bad[k] = true,
                     }
                 }
             }
         }
         let mut out = [[0.0f32; N]; C];
         for c in 0..C {
-            let qc = &q[c];
             let mut acc = [0.0f32; N];
             for j in 0..rows {
                 // Σ_i w0_i v_ij, from 0 like the scalar row.
                 let mut r = [0.0f32; N];
                 for i in 0..4 {
-                    let v = &qc[4 * j + i];
+                    let v = &q[c][4 * j + i];
                     for k in 0..N {
-                        let vk = if i == 0 && j == 0 {
-                            v[k] as f32 + bad[k]
-                        } else {
-                            v[k] as f32
-                        };
-                        r[k] += w0[i][k] * vk;
+                        r[k] += w0[i][k] * v[k] as f32;
                     }
                 }
                 if D > 1 {
@@ -136,7 +126,8 @@ impl Reader {
             }
             let (sc, of) = (self.scale[c], self.offset[c]);
             for k in 0..N {
-                out[c][k] = of + sc * acc[k];
+                let v = of + sc * acc[k];
+                out[c][k] = if bad[k] { f32::NAN } else { v };
             }
         }
         out
@@ -184,14 +175,5 @@ impl Prepared {
             }
             k += 1;
         }
-    }
-}
-
-/// Stored u16 number `k` of `b` (0 past the end; callers pass rows that hold it).
-#[inline(always)]
-fn u16_at(b: &[u8], k: usize) -> u16 {
-    match b.get(2 * k..2 * k + 2) {
-        Some(&[b0, b1]) => u16::from_le_bytes([b0, b1]),
-        _ => 0,
     }
 }
