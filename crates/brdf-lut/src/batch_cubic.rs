@@ -15,7 +15,7 @@ use crate::reader::{Lane, Mode, Reader};
 use crate::tables::Prepared;
 
 /// Queries per chunk.
-const CHUNK: usize = 16;
+const CHUNK: usize = 8;
 
 /// First node and the four weights of `N` coordinates on a Catmull–Rom axis of n ≥ 4 nodes:
 /// `Lane::cubic` per query (weights `[tap][query]`).
