@@ -12,7 +12,7 @@
 
 use crate::header::Encoding;
 use crate::reader::{Lane, Mode, Reader};
-use crate::tables::Prepared;
+use crate::tables::{g_args, min_g, unit01, Prepared};
 
 /// Queries per chunk.
 const CHUNK: usize = 8;
@@ -174,6 +174,52 @@ impl Prepared {
                 }
             }
             k += 1;
+        }
+    }
+
+    /// G of `N` in-plane pairs of a 2-D Catmull–Rom table: [`Prepared::g2`] (`.2`) bit for
+    /// bit (a NaN angle gives NaN before any lookup, as there).
+    #[inline(always)]
+    fn g_chunk_cubic<const N: usize>(
+        &self,
+        payload: &[u8],
+        ti: &[f32; N],
+        tr: &[f32; N],
+    ) -> [f32; N] {
+        let (mut m, mut s) = ([[0.0f32; N]; 2], [[0.0f32; N]; 2]);
+        let mut nan = [false; N];
+        for k in 0..N {
+            nan[k] = ti[k].is_nan() || tr[k].is_nan();
+            let (mk, sk) = g_args(ti[k], tr[k]);
+            (m[0][k], m[1][k], s[0][k], s[1][k]) = (mk[0], mk[1], sk[0], sk[1]);
+        }
+        let r = &self.reader;
+        let [gm] = r.chunk_cubic::<2, 1, N>(payload, &m);
+        let [gs] = r.chunk_cubic::<2, 1, N>(payload, &s);
+        let mut out = [0.0f32; N];
+        for k in 0..N {
+            let g = min_g(unit01(gm[k]), unit01(gs[k]));
+            out[k] = if nan[k] { f32::NAN } else { g };
+        }
+        out
+    }
+
+    /// `out[k] = G(theta_i[k], theta_r[k])` of a 2-D Catmull–Rom table for k < `out.len()`
+    /// (chunks, then the scalar tail); the table must be `cubic_chunked()`.
+    pub(crate) fn g_batch_cubic(&self, payload: &[u8], ti: &[f32], tr: &[f32], out: &mut [f32]) {
+        let mut done = 0;
+        for ((o, a), b) in out
+            .chunks_exact_mut(CHUNK)
+            .zip(ti.chunks_exact(CHUNK))
+            .zip(tr.chunks_exact(CHUNK))
+        {
+            if let (Some(a), Some(b)) = (a.first_chunk(), b.first_chunk()) {
+                o.copy_from_slice(&self.g_chunk_cubic::<CHUNK>(payload, a, b));
+                done += CHUNK;
+            }
+        }
+        for ((o, &a), &b) in out.iter_mut().zip(ti).zip(tr).skip(done) {
+            *o = self.g2(payload, a, b).2;
         }
     }
 }
