@@ -157,31 +157,39 @@ impl Reader {
             ([0; N], [[0.0; N]; 4])
         };
         let rows = if D > 1 { 4 } else { 1 };
-        // Stored numbers of the taps: [channel][4 × row + node][query].
-        let mut q = [[[0u16; N]; 16]; C];
+        // The rows of taps as read, 4 stored numbers per part: [row][part][query] (node i,
+        // channel c is number i·C + c of the row).
+        let mut q = [[[0u64; N]; C]; 4];
         let mut bad = [false; N];
         let s = l[1].stride * 2;
         for k in 0..N {
             let at = (b0[k] as usize * C + b1[k] as usize * l[1].stride) * 2;
-            for j in 0..rows {
-                for part in 0..C {
+            for (j, qj) in q.iter_mut().enumerate().take(rows) {
+                for (part, qp) in qj.iter_mut().enumerate() {
                     match data
                         .get(at + j * s + 8 * part..)
                         .and_then(|r| r.first_chunk())
                     {
-                        Some(&r) => {
-                            let r = u64::from_le_bytes(r);
-                            for m in 0..4 {
-                                // Number 4·part + m of the row: node i, channel c.
-                                let u = 4 * part + m;
-                                q[u % C][4 * j + u / C][k] = (r >> (16 * m)) as u16;
-                            }
-                        }
+                        Some(&r) => qp[k] = u64::from_le_bytes(r),
                         // A short payload (impossible for a parsed table) gives NaN, like
                         // the scalar path's row read.
                         None => bad[k] = true,
                     }
                 }
+            }
+        }
+        // The stored numbers as f32: [channel][4 × row + node][query].
+        let mut v = [[[0.0f32; N]; 16]; C];
+        for (j, qj) in q.iter().enumerate().take(rows) {
+            for (part, qp) in qj.iter().enumerate() {
+                let mut put = |m: usize, x: [f32; N]| {
+                    let u = 4 * part + m;
+                    v[u % C][4 * j + u / C] = x;
+                };
+                put(0, unpack::<0, N>(qp));
+                put(1, unpack::<16, N>(qp));
+                put(2, unpack::<32, N>(qp));
+                put(3, unpack::<48, N>(qp));
             }
         }
         let mut out = [[0.0f32; N]; C];
@@ -191,9 +199,9 @@ impl Reader {
                 // Σ_i w0_i v_ij, from 0 like the scalar row.
                 let mut r = [0.0f32; N];
                 for i in 0..4 {
-                    let v = &q[c][4 * j + i];
+                    let v = &v[c][4 * j + i];
                     for k in 0..N {
-                        r[k] += w0[i][k] * v[k] as f32;
+                        r[k] += w0[i][k] * v[k];
                     }
                 }
                 if D > 1 {
@@ -212,6 +220,16 @@ impl Reader {
         }
         out
     }
+}
+
+/// The stored number at bit `SH` of each packed part, as f32 (exact: < 2¹⁶).
+#[inline(always)]
+fn unpack<const SH: u32, const N: usize>(q: &[u64; N]) -> [f32; N] {
+    let mut x = [0.0f32; N];
+    for k in 0..N {
+        x[k] = ((q[k] >> SH) as u16) as f32;
+    }
+    x
 }
 
 impl Prepared {
