@@ -162,17 +162,21 @@ impl Reader {
         let mut q = [[[0u64; N]; C]; 4];
         let mut bad = [false; N];
         let s = l[1].stride * 2;
+        // Bytes of the block of rows a query reads.
+        let span = (rows - 1) * s + 8 * C;
         for k in 0..N {
             let at = (b0[k] as usize * C + b1[k] as usize * l[1].stride) * 2;
+            // A short payload (impossible for a parsed table) gives NaN, like the scalar
+            // path's row read.
+            let Some(blk) = data.get(at..at + span) else {
+                bad[k] = true;
+                continue;
+            };
             for (j, qj) in q.iter_mut().enumerate().take(rows) {
                 for (part, qp) in qj.iter_mut().enumerate() {
-                    match data
-                        .get(at + j * s + 8 * part..)
-                        .and_then(|r| r.first_chunk())
-                    {
+                    let o = j * s + 8 * part;
+                    match blk.get(o..o + 8).and_then(|r| r.first_chunk()) {
                         Some(&r) => qp[k] = u64::from_le_bytes(r),
-                        // A short payload (impossible for a parsed table) gives NaN, like
-                        // the scalar path's row read.
                         None => bad[k] = true,
                     }
                 }
