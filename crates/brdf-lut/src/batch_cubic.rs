@@ -41,6 +41,15 @@ fn cubics<const N: usize>(l: &Lane, x: &[f32; N]) -> ([u32; N], [[f32; N]; 4]) {
         p[3][k] = 0.5 * (f3 - f2);
     }
     let mut b = [0u32; N];
+    let mut ends = false;
+    for k in 0..N {
+        ends |= (i[k] == 0) | (i[k] == end);
+        b[k] = i[k].wrapping_sub(1);
+    }
+    if !ends {
+        // No query in an end cell (the common case): the interior weights as they are.
+        return (b, p);
+    }
     let mut w = [[0.0f32; N]; 4];
     for k in 0..N {
         let [wm, w0, w1, w2] = [p[0][k], p[1][k], p[2][k], p[3][k]];
@@ -160,7 +169,7 @@ impl Reader {
         // The rows of taps as read, 4 stored numbers per part: [row][part][query] (node i,
         // channel c is number i·C + c of the row).
         let mut q = [[[0u64; N]; C]; 4];
-        let mut bad = [false; N];
+        let (mut bad, mut any_bad) = ([false; N], false);
         let s = l[1].stride * 2;
         // Bytes of the block of rows a query reads.
         let span = (rows - 1) * s + 8 * C;
@@ -169,7 +178,7 @@ impl Reader {
             // A short payload (impossible for a parsed table) gives NaN, like the scalar
             // path's row read.
             let Some(blk) = data.get(at..at + span) else {
-                bad[k] = true;
+                (bad[k], any_bad) = (true, true);
                 continue;
             };
             for (j, qj) in q.iter_mut().enumerate().take(rows) {
@@ -177,7 +186,7 @@ impl Reader {
                     let o = j * s + 8 * part;
                     match blk.get(o..o + 8).and_then(|r| r.first_chunk()) {
                         Some(&r) => qp[k] = u64::from_le_bytes(r),
-                        None => bad[k] = true,
+                        None => (bad[k], any_bad) = (true, true),
                     }
                 }
             }
@@ -218,8 +227,14 @@ impl Reader {
             }
             let (sc, of) = (self.scale[c], self.offset[c]);
             for k in 0..N {
-                let v = of + sc * acc[k];
-                out[c][k] = if bad[k] { f32::NAN } else { v };
+                out[c][k] = of + sc * acc[k];
+            }
+            if any_bad {
+                for (o, &bad) in out[c].iter_mut().zip(&bad) {
+                    if bad {
+                        *o = f32::NAN;
+                    }
+                }
             }
         }
         out
