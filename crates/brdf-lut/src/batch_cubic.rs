@@ -159,12 +159,45 @@ impl Reader {
         x: &[[f32; N]; D],
     ) -> [[f32; N]; C] {
         let l = &self.lanes;
-        let (b0, w0) = cubics(&l[0], &x[0]);
-        let (b1, w1) = if D > 1 {
+        let a0 = cubics(&l[0], &x[0]);
+        let a1 = if D > 1 {
             cubics(&l[1], &x[1])
         } else {
             ([0; N], [[0.0; N]; 4])
         };
+        let (acc, bad) = self.sums::<D, C, N>(data, &a0, &a1, 0);
+        let mut out = [[0.0f32; N]; C];
+        for c in 0..C {
+            let (sc, of) = (self.scale[c], self.offset[c]);
+            for k in 0..N {
+                out[c][k] = of + sc * acc[c][k];
+            }
+            if let Some(bad) = &bad {
+                for (o, &bad) in out[c].iter_mut().zip(bad) {
+                    if bad {
+                        *o = f32::NAN;
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// Σ_j w1_j Σ_i w0_i v_ij in stored units (`Reader::cubic`'s plane sum, from 0, in its
+    /// order) of `N` queries whose first nodes and weights on axes 0 and 1 are `a0`, `a1`,
+    /// in the plane starting at value index `base`; with the queries whose taps lie past
+    /// the payload (impossible for a parsed table; NaN on the scalar path) if any.
+    #[inline(always)]
+    #[allow(clippy::type_complexity)]
+    fn sums<const D: usize, const C: usize, const N: usize>(
+        &self,
+        data: &[u8],
+        a0: &([u32; N], [[f32; N]; 4]),
+        a1: &([u32; N], [[f32; N]; 4]),
+        base: usize,
+    ) -> ([[f32; N]; C], Option<[bool; N]>) {
+        let l = &self.lanes;
+        let ((b0, w0), (b1, w1)) = (a0, a1);
         let rows = if D > 1 { 4 } else { 1 };
         // The rows of taps as read, 4 stored numbers per part: [row][part][query] (node i,
         // channel c is number i·C + c of the row).
@@ -174,7 +207,7 @@ impl Reader {
         // Bytes of the block of rows a query reads.
         let span = (rows - 1) * s + 8 * C;
         for k in 0..N {
-            let at = (b0[k] as usize * C + b1[k] as usize * l[1].stride) * 2;
+            let at = (base + b0[k] as usize * C + b1[k] as usize * l[1].stride) * 2;
             // A short payload (impossible for a parsed table) gives NaN, like the scalar
             // path's row read.
             let Some(blk) = data.get(at..at + span) else {
@@ -205,9 +238,8 @@ impl Reader {
                 put(3, unpack::<48, N>(qp));
             }
         }
-        let mut out = [[0.0f32; N]; C];
-        for c in 0..C {
-            let mut acc = [0.0f32; N];
+        let mut acc = [[0.0f32; N]; C];
+        for (c, acc) in acc.iter_mut().enumerate() {
             for j in 0..rows {
                 // Σ_i w0_i v_ij, from 0 like the scalar row.
                 let mut r = [0.0f32; N];
@@ -222,20 +254,47 @@ impl Reader {
                         acc[k] += w1[j][k] * r[k];
                     }
                 } else {
-                    acc = r;
+                    *acc = r;
                 }
             }
-            let (sc, of) = (self.scale[c], self.offset[c]);
-            for k in 0..N {
-                out[c][k] = of + sc * acc[k];
-            }
-            if any_bad {
-                for (o, &bad) in out[c].iter_mut().zip(&bad) {
-                    if bad {
-                        *o = f32::NAN;
+        }
+        (acc, any_bad.then_some(bad))
+    }
+
+    /// `N` pairs of one-channel 3-D Catmull–Rom lookups at one last coordinate z (the σ of
+    /// a batch of G queries): [`Reader::pair3`] bit for bit (`pair3_cubic`: the σ weights
+    /// once, planes with a zero σ weight skipped, Σ_k w2_k · plane_k from 0, then the
+    /// channel scale and offset).
+    #[inline(always)]
+    pub(crate) fn chunk3_cubic<const N: usize>(
+        &self,
+        data: &[u8],
+        x: &[[f32; N]; 2],
+        w2: &(usize, [f32; 4]),
+    ) -> [f32; N] {
+        let l = &self.lanes;
+        let a0 = cubics(&l[0], &x[0]);
+        let a1 = cubics(&l[1], &x[1]);
+        let (b2, w2) = w2;
+        let mut acc = [0.0f32; N];
+        let mut bad = [false; N];
+        for (k, &wk) in w2.iter().enumerate() {
+            if wk != 0.0 {
+                let ([p], b) = self.sums::<2, 1, N>(data, &a0, &a1, (b2 + k) * l[2].stride);
+                for q in 0..N {
+                    acc[q] += wk * p[q];
+                }
+                if let Some(b) = b {
+                    for (bad, b) in bad.iter_mut().zip(b) {
+                        *bad |= b;
                     }
                 }
             }
+        }
+        let mut out = [0.0f32; N];
+        for q in 0..N {
+            let v = self.offset[0] + self.scale[0] * acc[q];
+            out[q] = if bad[q] { f32::NAN } else { v };
         }
         out
     }
@@ -294,14 +353,16 @@ impl Prepared {
         }
     }
 
-    /// G of `N` in-plane pairs of a 2-D Catmull–Rom table: [`Prepared::g2`] (`.2`) bit for
-    /// bit (a NaN angle gives NaN before any lookup, as there).
+    /// G of `N` in-plane pairs of a 2-D (`z` = None) or 3-D Catmull–Rom table (`z`: the
+    /// first node and weights of σ): [`Prepared::g2`] / [`Prepared::g3`] (`.2`) bit for bit
+    /// (a NaN angle gives NaN before any lookup, as there).
     #[inline(always)]
     fn g_chunk_cubic<const N: usize>(
         &self,
         payload: &[u8],
         ti: &[f32; N],
         tr: &[f32; N],
+        z: Option<&(usize, [f32; 4])>,
     ) -> [f32; N] {
         let (mut m, mut s) = ([[0.0f32; N]; 2], [[0.0f32; N]; 2]);
         let mut nan = [false; N];
@@ -311,8 +372,16 @@ impl Prepared {
             (m[0][k], m[1][k], s[0][k], s[1][k]) = (mk[0], mk[1], sk[0], sk[1]);
         }
         let r = &self.reader;
-        let [gm] = r.chunk_cubic::<2, 1, N>(payload, &m);
-        let [gs] = r.chunk_cubic::<2, 1, N>(payload, &s);
+        let (gm, gs) = match z {
+            Some(z) => (
+                r.chunk3_cubic::<N>(payload, &m, z),
+                r.chunk3_cubic::<N>(payload, &s, z),
+            ),
+            None => (
+                r.chunk_cubic::<2, 1, N>(payload, &m)[0],
+                r.chunk_cubic::<2, 1, N>(payload, &s)[0],
+            ),
+        };
         let mut out = [0.0f32; N];
         for k in 0..N {
             let g = min_g(unit01(gm[k]), unit01(gs[k]));
@@ -321,9 +390,18 @@ impl Prepared {
         out
     }
 
-    /// `out[k] = G(theta_i[k], theta_r[k])` of a 2-D Catmull–Rom table for k < `out.len()`
-    /// (chunks, then the scalar tail); the table must be `cubic_chunked()`.
-    pub(crate) fn g_batch_cubic(&self, payload: &[u8], ti: &[f32], tr: &[f32], out: &mut [f32]) {
+    /// `out[k] = G(theta_i[k], theta_r[k])` (at σ = `sigma` for a 3-D table, which must
+    /// not be NaN) of a Catmull–Rom table for k < `out.len()` (chunks, then the scalar
+    /// tail); the table must be `cubic_chunked()`.
+    pub(crate) fn g_batch_cubic(
+        &self,
+        payload: &[u8],
+        ti: &[f32],
+        tr: &[f32],
+        sigma: Option<f32>,
+        out: &mut [f32],
+    ) {
+        let z = sigma.map(|z| self.reader.lanes[2].cubic(z));
         let mut done = 0;
         for ((o, a), b) in out
             .chunks_exact_mut(CHUNK)
@@ -331,12 +409,15 @@ impl Prepared {
             .zip(tr.chunks_exact(CHUNK))
         {
             if let (Some(a), Some(b)) = (a.first_chunk(), b.first_chunk()) {
-                o.copy_from_slice(&self.g_chunk_cubic::<CHUNK>(payload, a, b));
+                o.copy_from_slice(&self.g_chunk_cubic::<CHUNK>(payload, a, b, z.as_ref()));
                 done += CHUNK;
             }
         }
         for ((o, &a), &b) in out.iter_mut().zip(ti).zip(tr).skip(done) {
-            *o = self.g2(payload, a, b).2;
+            *o = match sigma {
+                Some(z) => self.g3(payload, a, b, z).2,
+                None => self.g2(payload, a, b).2,
+            };
         }
     }
 }

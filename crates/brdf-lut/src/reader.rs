@@ -186,7 +186,7 @@ impl Lane {
     /// of n ≥ 4 nodes, the end extrapolation folded in.
     #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
     #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
-    fn cubic(&self, x: f32) -> (usize, [f32; 4]) {
+    pub(crate) fn cubic(&self, x: f32) -> (usize, [f32; 4]) {
         let n = self.n;
         let (i, f) = self.cell(x);
         let (f2, f3) = (f * f, f * f * f);

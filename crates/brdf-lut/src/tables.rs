@@ -453,7 +453,8 @@ impl<B: AsRef<[u8]>> GTable<B> {
         }
         #[cfg(not(any(feature = "compact", target_os = "none", target_family = "wasm")))]
         if self.p.reader.cubic_chunked() {
-            self.p.g_batch_cubic(p, theta_i, theta_r, &mut out[..n]);
+            self.p
+                .g_batch_cubic(p, theta_i, theta_r, None, &mut out[..n]);
             return n;
         }
         for ((o, &a), &b) in out[..n].iter_mut().zip(theta_i).zip(theta_r) {
@@ -498,6 +499,16 @@ impl<B: AsRef<[u8]>> GTable3<B> {
             } else {
                 self.p
                     .g_batch(p, theta_i, theta_r, Some(sigma), &mut out[..n]);
+            }
+            return n;
+        }
+        #[cfg(not(any(feature = "compact", target_os = "none", target_family = "wasm")))]
+        if self.p.reader.cubic_chunked() {
+            if sigma.is_nan() {
+                out[..n].fill(f32::NAN);
+            } else {
+                self.p
+                    .g_batch_cubic(p, theta_i, theta_r, Some(sigma), &mut out[..n]);
             }
             return n;
         }
