@@ -34,9 +34,6 @@ const KERNELS: &[&str] = &[
     "eavg_lut_batch",
     "e_lut",
     "eavg_lut",
-    "g_lut2d_batch",
-    "dfg_cubic_lut",
-    "dfg_cubic_lut_batch",
 ];
 
 fn main() {
@@ -202,34 +199,6 @@ fn main() {
                     })
                 }
             }
-        }
-        "g_lut2d_batch" => {
-            let b = asset(G2_ASSET);
-            let t = GTable::parse(&b[..]).unwrap();
-            let mut out = vec![0f32; BATCH];
-            run!(|_k: usize| {
-                t.g_batch(black_box(&ti32), black_box(&tr32), &mut out);
-                out[0]
-            })
-        }
-        "dfg_cubic_lut" => {
-            let b = asset(DFG_ASSET);
-            let t = DfgTable::parse(&b).unwrap();
-            run!(|k: usize| {
-                let (a, b) = t.ab(black_box(mr[k].0 as f32), black_box(mr[k].1 as f32));
-                a + b
-            })
-        }
-        "dfg_cubic_lut_batch" => {
-            let mu: Vec<f32> = mr.iter().map(|p| p.0 as f32).collect();
-            let r: Vec<f32> = mr.iter().map(|p| p.1 as f32).collect();
-            let (mut a, mut bb) = (vec![0f32; BATCH], vec![0f32; BATCH]);
-            let b = asset(DFG_ASSET);
-            let t = DfgTable::parse(&b[..]).unwrap();
-            run!(|_k: usize| {
-                t.ab_batch(black_box(&mu), black_box(&r), &mut a, &mut bb);
-                a[0] + bb[0]
-            })
         }
         "e_lut" => {
             let b = asset(E_ASSET);
