@@ -10,8 +10,7 @@
 //! (`Lane::cubic`, `Reader::cubic`: the same products and sums in the same order, the
 //! channel scale and offset last), so the results are the scalar lookups' bit for bit.
 
-use crate::axis::clamp;
-use crate::header::{Encoding, Warp};
+use crate::header::Encoding;
 use crate::reader::{Lane, Mode, Reader};
 use crate::tables::{g_args, min_g, unit01, Prepared};
 
@@ -22,11 +21,7 @@ const CHUNK: usize = 8;
 /// `Lane::cubic` per query (weights `[tap][query]`).
 #[inline(always)]
 fn cubics<const N: usize>(l: &Lane, x: &[f32; N]) -> ([u32; N], [[f32; N]; 4]) {
-    let (i, f) = if l.warp == Warp::Log {
-        log_cells(l, x)
-    } else {
-        l.cells(x)
-    };
+    let (i, f) = l.cells(x);
     // n − 2, the last cell; n − 4, the first node of the far end's window.
     let (end, far) = ((l.n - 2) as u32, (l.n - 4) as u32);
     // The cubic polynomials, then the three cases of `Lane::cubic` (each with its own
@@ -65,81 +60,6 @@ fn cubics<const N: usize>(l: &Lane, x: &[f32; N]) -> ([u32; N], [[f32; N]; 4]) {
         b[k] = if first { 0 } else { e };
     }
     (b, w)
-}
-
-/// `libm::logf` of `N` numbers, bit for bit, in a form that vectorises: the same
-/// evaluation (x = 2^k·m with m ∈ [√2/2, √2), f = m − 1, s = f/(2 + f),
-/// ln x = k·ln 2 + f − f²/2 + s(f²/2 + R(s²)) with R the degree-4 minimax polynomial in s² of
-/// the FreeBSD/Sun `e_logf`, ln 2 split in a high and a low part) for positive normal
-/// finite numbers, with the same constants and operations in the same order; zero,
-/// subnormal, negative, infinite and NaN lanes (a log axis clamps queries to its range,
-/// which starts above 0, so only NaN queries and a subnormal range end get here) take
-/// `libm::logf` itself.
-#[inline(always)]
-fn logf_n<const N: usize>(x: &mut [f32; N]) {
-    const LN2_HI: f32 = f32::from_bits(0x3f31_7180);
-    const LN2_LO: f32 = f32::from_bits(0x3717_f7d1);
-    const LG1: f32 = f32::from_bits(0x3f2a_aaaa);
-    const LG2: f32 = f32::from_bits(0x3ecc_ce13);
-    const LG3: f32 = f32::from_bits(0x3e91_e9ee);
-    const LG4: f32 = f32::from_bits(0x3e78_9e26);
-    // Bits of √2/2 (the lower end of the reduced range) and of 1.
-    const LO_M: u32 = 0x3f35_04f3;
-    const ONE: u32 = 0x3f80_0000;
-    let mut special = false;
-    let mut y = [0.0f32; N];
-    for k in 0..N {
-        let ix = x[k].to_bits();
-        special |= !(0x0080_0000..0x7f80_0000).contains(&ix);
-        let iy = ix.wrapping_add(ONE - LO_M);
-        let e = (iy >> 23) as i32 - 0x7f;
-        let m = f32::from_bits((iy & 0x007f_ffff) + LO_M);
-        let f = m - 1.0;
-        let s = f / (2.0 + f);
-        let z = s * s;
-        let w = z * z;
-        let t1 = w * (LG2 + w * LG4);
-        let t2 = z * (LG1 + w * LG3);
-        let r = t2 + t1;
-        let hfsq = 0.5 * f * f;
-        let dk = e as f32;
-        y[k] = s * (hfsq + r) + dk * LN2_LO - hfsq + f + dk * LN2_HI;
-    }
-    if special {
-        for (yk, &xk) in y.iter_mut().zip(x.iter()) {
-            if !(0x0080_0000..0x7f80_0000).contains(&xk.to_bits()) {
-                *yk = libm::logf(xk);
-            }
-        }
-    }
-    *x = y;
-}
-
-/// [`Lane::cells`] of `N` coordinates on a log-warped axis (the same clamps, the same ln
-/// bit for bit through [`logf_n`], the same node and fraction).
-#[inline(always)]
-fn log_cells<const N: usize>(l: &Lane, x: &[f32; N]) -> ([u32; N], [f32; N]) {
-    let mut w = [0.0f32; N];
-    for (w, &x) in w.iter_mut().zip(x) {
-        *w = clamp(x, l.lo, l.hi);
-    }
-    logf_n(&mut w);
-    // ⌊t⌋ capped at n − 2 as in `Lane::cells`: t + 2²³ − 2²³ is t rounded to an integer
-    // (t < 2¹⁶), one less when that rounded up; the integer is read from the bits of
-    // ⌊t⌋ + 2²³; NaN goes to node 0.
-    const MAGIC: f32 = 8_388_608.0;
-    let last_cell = l.last_cell as f32;
-    let (mut i, mut f) = ([0u32; N], [0.0f32; N]);
-    for k in 0..N {
-        let t = clamp(l.a * w[k] + l.b, 0.0, l.last);
-        let tc = if t > 0.0 { t } else { 0.0 };
-        let r = (tc + MAGIC) - MAGIC;
-        let fl = if r > tc { r - 1.0 } else { r };
-        let ik = if fl > last_cell { last_cell } else { fl };
-        i[k] = (ik + MAGIC).to_bits().wrapping_sub(MAGIC.to_bits());
-        f[k] = t - ik;
-    }
-    (i, f)
 }
 
 impl Reader {
@@ -418,40 +338,6 @@ impl Prepared {
                 Some(z) => self.g3(payload, a, b, z).2,
                 None => self.g2(payload, a, b).2,
             };
-        }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::logf_n;
-
-    /// The chunked ln is `libm::logf` bit for bit: over every 97th f32 bit pattern (all
-    /// signs, zeros, subnormals, normals, infinities, NaNs with their payloads), in chunks
-    /// of 8.
-    #[test]
-    fn logf_n_is_libm_logf() {
-        let mut bits = (0..=u32::MAX).step_by(97).chain([0x3f80_0000, 0x3f35_04f3]);
-        loop {
-            let mut x = [0.0f32; 8];
-            let mut got = 0;
-            for (xk, b) in x.iter_mut().zip(&mut bits) {
-                *xk = f32::from_bits(b);
-                got += 1;
-            }
-            if got == 0 {
-                break;
-            }
-            let mut y = x;
-            logf_n(&mut y);
-            for (&xk, &yk) in x.iter().zip(&y).take(got) {
-                let r = libm::logf(xk);
-                assert!(
-                    yk.to_bits() == r.to_bits(),
-                    "ln {xk:e} ({:#x}): {yk:e} vs libm {r:e}",
-                    xk.to_bits()
-                );
-            }
         }
     }
 }

@@ -84,15 +84,15 @@ use warp_w as warp_q;
 /// One axis: physical coordinate → fractional node index.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Lane {
-    pub(crate) warp: Warp,
-    pub(crate) lo: f32,
-    pub(crate) hi: f32,
-    pub(crate) a: f32,
-    pub(crate) b: f32,
+    warp: Warp,
+    lo: f32,
+    hi: f32,
+    a: f32,
+    b: f32,
     /// n − 1.
-    pub(crate) last: f32,
+    last: f32,
     /// n − 2, the last cell.
-    pub(crate) last_cell: i32,
+    last_cell: i32,
     /// Values (nodes × channels) between neighbouring nodes of this axis.
     pub(crate) stride: usize,
     pub(crate) n: usize,
