@@ -20,6 +20,8 @@ extern crate alloc;
 extern crate std;
 
 mod axis;
+#[cfg(not(any(feature = "compact", target_os = "none", target_family = "wasm")))]
+mod batch_cubic;
 mod codec;
 mod crc;
 mod error;

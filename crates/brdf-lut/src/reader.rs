@@ -186,7 +186,7 @@ impl Lane {
     /// of n ≥ 4 nodes, the end extrapolation folded in.
     #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
     #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
-    fn cubic(&self, x: f32) -> (usize, [f32; 4]) {
+    pub(crate) fn cubic(&self, x: f32) -> (usize, [f32; 4]) {
         let n = self.n;
         let (i, f) = self.cell(x);
         let (f2, f3) = (f * f, f * f * f);
@@ -253,7 +253,7 @@ impl Store for F32 {
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Mode {
+pub(crate) enum Mode {
     Linear,
     Cubic,
     /// A Catmull–Rom axis of 2 or 3 nodes: the per-tap general path.
@@ -263,12 +263,12 @@ enum Mode {
 /// The per-table constants of a lookup.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Reader {
-    lanes: [Lane; 3],
-    encoding: Encoding,
-    mode: Mode,
+    pub(crate) lanes: [Lane; 3],
+    pub(crate) encoding: Encoding,
+    pub(crate) mode: Mode,
     /// Per channel: value = offset + scale × stored (u16: scale already divided by 65535).
-    scale: [f32; MAX_CHANNELS],
-    offset: [f32; MAX_CHANNELS],
+    pub(crate) scale: [f32; MAX_CHANNELS],
+    pub(crate) offset: [f32; MAX_CHANNELS],
 }
 
 impl Reader {
@@ -641,7 +641,7 @@ impl Reader {
 impl Lane {
     /// [`Lane::cell`] of `N` coordinates.
     #[inline(always)]
-    fn cells<const N: usize>(&self, x: &[f32; N]) -> ([u32; N], [f32; N]) {
+    pub(crate) fn cells<const N: usize>(&self, x: &[f32; N]) -> ([u32; N], [f32; N]) {
         let (lo, hi) = (self.lo, self.hi);
         let mut w = [0.0f32; N];
         for (w, &x) in w.iter_mut().zip(x) {

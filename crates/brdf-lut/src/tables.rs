@@ -278,7 +278,7 @@ impl Prepared {
 /// (GM, GS) arguments of the passing-factor table F(θ, φ) = M(θ, (θ − φ)/2) (reciprocal
 /// convention, docs/conventions.md §4): GM = F(|θr|, sgn θr · θi), GS = F(θi, θr).
 #[inline]
-fn g_args(theta_i: f32, theta_r: f32) -> ([f32; 2], [f32; 2]) {
+pub(crate) fn g_args(theta_i: f32, theta_r: f32) -> ([f32; 2], [f32; 2]) {
     let ti = crate::axis::clamp(theta_i, 0.0, FRAC_PI_2);
     let tr = crate::axis::clamp(theta_r, -FRAC_PI_2, FRAC_PI_2);
     let s = if tr < 0.0 { -ti } else { ti };
@@ -320,7 +320,7 @@ fn dots_args(n_l: f32, n_v: f32, l_v: f32) -> Option<([f32; 2], [f32; 2])> {
 /// G = min(GM, GS) (paper eq 13) as one select (the factors are not NaN: NaN queries
 /// return before the lookup).
 #[inline(always)]
-fn min_g(gm: f32, gs: f32) -> f32 {
+pub(crate) fn min_g(gm: f32, gs: f32) -> f32 {
     if gs < gm {
         gs
     } else {
@@ -329,7 +329,7 @@ fn min_g(gm: f32, gs: f32) -> f32 {
 }
 
 #[inline]
-fn unit01(x: f32) -> f32 {
+pub(crate) fn unit01(x: f32) -> f32 {
     crate::axis::clamp(x, 0.0, 1.0)
 }
 
@@ -451,6 +451,12 @@ impl<B: AsRef<[u8]>> GTable<B> {
             self.p.g_batch(p, theta_i, theta_r, None, &mut out[..n]);
             return n;
         }
+        #[cfg(not(any(feature = "compact", target_os = "none", target_family = "wasm")))]
+        if self.p.reader.cubic_chunked() {
+            self.p
+                .g_batch_cubic(p, theta_i, theta_r, None, &mut out[..n]);
+            return n;
+        }
         for ((o, &a), &b) in out[..n].iter_mut().zip(theta_i).zip(theta_r) {
             *o = self.p.g2(p, a, b).2;
         }
@@ -496,6 +502,16 @@ impl<B: AsRef<[u8]>> GTable3<B> {
             }
             return n;
         }
+        #[cfg(not(any(feature = "compact", target_os = "none", target_family = "wasm")))]
+        if self.p.reader.cubic_chunked() {
+            if sigma.is_nan() {
+                out[..n].fill(f32::NAN);
+            } else {
+                self.p
+                    .g_batch_cubic(p, theta_i, theta_r, Some(sigma), &mut out[..n]);
+            }
+            return n;
+        }
         for ((o, &a), &b) in out[..n].iter_mut().zip(theta_i).zip(theta_r) {
             *o = self.p.g3(p, a, b, sigma).2;
         }
@@ -522,6 +538,12 @@ impl<B: AsRef<[u8]>> DfgTable<B> {
                 .sample_batch::<2, 2>(p, [&mu[..n], &roughness[..n]], [&mut a[..n], &mut b[..n]]);
             return n;
         }
+        #[cfg(not(any(feature = "compact", target_os = "none", target_family = "wasm")))]
+        if self.p.reader.cubic_chunked() {
+            self.p
+                .cubic_batch::<2, 2>(p, [&mu[..n], &roughness[..n]], [&mut a[..n], &mut b[..n]]);
+            return n;
+        }
         for k in 0..n {
             (a[k], b[k]) = self.p.two(p, mu[k], roughness[k]);
         }
@@ -546,6 +568,12 @@ impl<B: AsRef<[u8]>> AlbedoTable<B> {
                 .sample_batch::<2, 1>(p, [&mu[..n], &roughness[..n]], [&mut out[..n]]);
             return n;
         }
+        #[cfg(not(any(feature = "compact", target_os = "none", target_family = "wasm")))]
+        if self.p.reader.cubic_chunked() {
+            self.p
+                .cubic_batch::<2, 1>(p, [&mu[..n], &roughness[..n]], [&mut out[..n]]);
+            return n;
+        }
         for ((o, &m), &r) in out[..n].iter_mut().zip(mu).zip(roughness) {
             *o = self.p.two1(p, m, r);
         }
@@ -568,6 +596,12 @@ impl<B: AsRef<[u8]>> AverageAlbedoTable<B> {
         if self.p.reader.chunked() {
             self.p
                 .sample_batch::<1, 1>(p, [&roughness[..n]], [&mut out[..n]]);
+            return n;
+        }
+        #[cfg(not(any(feature = "compact", target_os = "none", target_family = "wasm")))]
+        if self.p.reader.cubic_chunked() {
+            self.p
+                .cubic_batch::<1, 1>(p, [&roughness[..n]], [&mut out[..n]]);
             return n;
         }
         for (o, &r) in out[..n].iter_mut().zip(roughness) {

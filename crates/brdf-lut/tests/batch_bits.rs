@@ -41,7 +41,7 @@ fn inputs(n: usize, lo: f32, hi: f32, seed: f64) -> Vec<f32> {
         .collect()
 }
 
-const LENGTHS: [usize; 9] = [0, 1, 7, 8, 9, 15, 17, 64, 1001];
+const LENGTHS: [usize; 13] = [0, 1, 3, 5, 7, 8, 9, 15, 17, 24, 33, 64, 1001];
 
 fn same(a: f32, b: f32) -> bool {
     a.to_bits() == b.to_bits()
@@ -92,7 +92,12 @@ fn g_batches_equal_scalar_lookups() {
 
 #[test]
 fn dfg_and_albedo_batches_equal_scalar_lookups() {
-    for name in ["dfg_ggx_linear.blut", "dfg_ggx.blut", "dfg_ts_smith.blut"] {
+    for name in [
+        "dfg_ggx_linear.blut",
+        "dfg_ggx.blut",
+        "dfg_ts_smith.blut",
+        "dfg_ts_modified.blut",
+    ] {
         let b = asset(name);
         let t = DfgTable::parse(&b[..]).unwrap();
         for n in LENGTHS {
@@ -105,18 +110,40 @@ fn dfg_and_albedo_batches_equal_scalar_lookups() {
             }
         }
     }
+    // Catmull–Rom (the chunked cubic path) over a log-warped μ axis and linear roughness.
+    for (e_name, eavg_name) in [
+        ("kc_e_ggx.blut", "kc_eavg_ggx.blut"),
+        ("kc_e_beckmann.blut", "kc_eavg_beckmann.blut"),
+    ] {
+        let b = asset(e_name);
+        let e = AlbedoTable::parse(&b[..]).unwrap();
+        let b = asset(eavg_name);
+        let ea = AverageAlbedoTable::parse(&b[..]).unwrap();
+        for n in LENGTHS {
+            let (mu, r) = (inputs(n, -0.1, 1.1, 0.4), inputs(n, -0.1, 1.1, 0.6));
+            let mut out = vec![-1.0; n + 3];
+            assert_eq!(e.e_batch(&mu, &r, &mut out), n);
+            for k in 0..n {
+                let v = e.e(mu[k], r[k]);
+                assert!(same(out[k], v), "{e_name} {k}: {} vs {v}", out[k]);
+            }
+            assert!(out[n..].iter().all(|&x| x == -1.0), "wrote past n");
+            assert_eq!(ea.e_avg_batch(&r, &mut out[..n]), n);
+            for k in 0..n {
+                let v = ea.e_avg(r[k]);
+                assert!(same(out[k], v), "{eavg_name} {k}: {} vs {v}", out[k]);
+            }
+        }
+    }
+    // A NaN coordinate gives NaN on every path (the typed tables' contract).
     let b = asset("kc_e_ggx.blut");
     let e = AlbedoTable::parse(&b[..]).unwrap();
-    let b = asset("kc_eavg_ggx.blut");
-    let ea = AverageAlbedoTable::parse(&b[..]).unwrap();
-    for n in LENGTHS {
-        let (mu, r) = (inputs(n, -0.1, 1.1, 0.4), inputs(n, -0.1, 1.1, 0.6));
-        let mut out = vec![0.0; n];
-        assert_eq!(e.e_batch(&mu, &r, &mut out), n);
-        assert!((0..n).all(|k| same(out[k], e.e(mu[k], r[k]))));
-        assert_eq!(ea.e_avg_batch(&r, &mut out), n);
-        assert!((0..n).all(|k| same(out[k], ea.e_avg(r[k]))));
-    }
+    let mu = [f32::NAN, 0.5, f32::NAN, 0.2, 0.7, 0.9, 0.1, 0.3, 0.4];
+    let r = [0.5, f32::NAN, f32::NAN, 0.2, 0.7, 0.9, 0.1, 0.3, 0.4];
+    let mut out = [0.0; 9];
+    e.e_batch(&mu, &r, &mut out);
+    assert!(out[..3].iter().all(|v| v.is_nan()), "{out:?}");
+    assert!(out[3..].iter().all(|v| (0.0..=1.0).contains(v)), "{out:?}");
 }
 
 /// "NaN gives NaN" (the typed tables' contract) on a table whose axes are √-warped: the
