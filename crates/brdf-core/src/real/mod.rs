@@ -13,7 +13,7 @@
 
 mod fast64;
 
-pub use fast64::{erfc_bounded_f64, exp_bounded_f64, sin_cos_f64};
+pub use fast64::{erfc_bounded_f64, exp_bounded_f64, sin_cos2_f64, sin_cos_f64};
 
 use core::fmt::Debug;
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
@@ -83,6 +83,14 @@ pub trait Real:
     #[inline]
     fn sin_cos(self) -> (Self, Self) {
         (self.sin(), self.cos())
+    }
+    /// [`Real::sin_cos`] of two arguments: ([sin x₀, sin x₁], [cos x₀, cos x₁]), lane by
+    /// lane the same values (`f64`: [`sin_cos2_f64`], the two side by side).
+    #[inline]
+    fn sin_cos2(x: [Self; 2]) -> ([Self; 2], [Self; 2]) {
+        let (s0, c0) = x[0].sin_cos();
+        let (s1, c1) = x[1].sin_cos();
+        ([s0, s1], [c0, c1])
     }
     /// tan x (x in radians).
     fn tan(self) -> Self;
@@ -233,6 +241,10 @@ impl Real for f64 {
     #[inline]
     fn sin_cos(self) -> (Self, Self) {
         sin_cos_f64(self)
+    }
+    #[inline]
+    fn sin_cos2(x: [Self; 2]) -> ([Self; 2], [Self; 2]) {
+        sin_cos2_f64(x)
     }
     #[inline]
     fn tan(self) -> Self {
