@@ -166,9 +166,9 @@ impl<T: Real, R: Rule> ModifiedG<T, R> {
                 T::ZERO,
                 vhi,
                 |v| (-(v * v)).exp_bounded(),
-                |v| {
-                    let u = s2 * v;
-                    (T::ONE + u * u).sqrt()
+                |v: [T; 2]| {
+                    let u = [s2 * v[0], s2 * v[1]];
+                    T::sqrt2([T::ONE + u[0] * u[0], T::ONE + u[1] * u[1]])
                 },
             )
         } else {

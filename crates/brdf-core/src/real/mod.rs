@@ -62,6 +62,12 @@ pub trait Real:
     fn abs(self) -> Self;
     /// √x (NaN for x < 0).
     fn sqrt(self) -> Self;
+    /// [√x₀, √x₁], lane by lane the same values as [`Real::sqrt`] (`f64` on x86-64: both in
+    /// one SSE2 `sqrtpd`, correctly rounded like `sqrtsd`).
+    #[inline]
+    fn sqrt2(x: [Self; 2]) -> [Self; 2] {
+        [x[0].sqrt(), x[1].sqrt()]
+    }
     /// eˣ.
     fn exp(self) -> Self;
     /// eˣ for x ∈ [−87, 0] (the range of e^{−v²} in the kernels' integrands), without the
@@ -217,6 +223,11 @@ impl Real for f64 {
     #[inline]
     fn sqrt(self) -> Self {
         libm::sqrt(self)
+    }
+    #[cfg(target_arch = "x86_64")]
+    #[inline]
+    fn sqrt2(x: [Self; 2]) -> [Self; 2] {
+        wide::f64x2::from(x).sqrt().to_array()
     }
     #[inline]
     fn exp(self) -> Self {
