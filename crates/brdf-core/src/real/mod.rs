@@ -91,7 +91,7 @@ pub trait Real:
         (self.sin(), self.cos())
     }
     /// [`Real::sin_cos`] of two arguments: ([sin x₀, sin x₁], [cos x₀, cos x₁]), lane by
-    /// lane the same values (`f64`: [`sin_cos2_f64`], the two side by side).
+    /// lane the same values (`f64` on x86-64: [`sin_cos2_f64`], the two side by side).
     #[inline]
     fn sin_cos2(x: [Self; 2]) -> ([Self; 2], [Self; 2]) {
         let (s0, c0) = x[0].sin_cos();
@@ -253,6 +253,9 @@ impl Real for f64 {
     fn sin_cos(self) -> (Self, Self) {
         sin_cos_f64(self)
     }
+    // Side by side where SSE2 gives two f64 lanes; elsewhere (soft-f64 devices) the default
+    // two calls keep one copy of the code.
+    #[cfg(target_arch = "x86_64")]
     #[inline]
     fn sin_cos2(x: [Self; 2]) -> ([Self; 2], [Self; 2]) {
         sin_cos2_f64(x)
