@@ -195,7 +195,8 @@ pub fn erfc_bounded_f64(x: f64) -> f64 {
 /// 2 ulp (absolute 2.3e-16) of the exact values (measured against libm in the tests).
 #[inline]
 pub fn sin_cos_f64(x: f64) -> (f64, f64) {
-    if !(x.abs() <= 1.6) {
+    // (−1.6..=1.6).contains rather than f64::abs, which `core` has only since Rust 1.84.
+    if !(-1.6..=1.6).contains(&x) {
         return libm::sincos(x);
     }
     sin_cos_short(x)
@@ -206,7 +207,7 @@ pub fn sin_cos_f64(x: f64) -> (f64, f64) {
 /// both lanes). Returns ([sin x₀, sin x₁], [cos x₀, cos x₁]).
 #[inline]
 pub fn sin_cos2_f64(x: [f64; 2]) -> ([f64; 2], [f64; 2]) {
-    if !(x[0].abs() <= 1.6 && x[1].abs() <= 1.6) {
+    if !((-1.6..=1.6).contains(&x[0]) && (-1.6..=1.6).contains(&x[1])) {
         let (s0, c0) = sin_cos_f64(x[0]);
         let (s1, c1) = sin_cos_f64(x[1]);
         return ([s0, s1], [c0, c1]);
