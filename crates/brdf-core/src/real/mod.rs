@@ -6,7 +6,9 @@
 //! ([`sin_cos_f32`], [`exp_f32`], [`erfc_f32`]) and the f64 functions of the modified G's
 //! inner loops ([`exp_bounded_f64`], [`erfc_bounded_f64`], and [`sin_cos_f64`] for
 //! |x| ≤ 1.6), written branch-free so that two evaluations share one SIMD register
-//! (all within a few ulp of libm). The `micromath` feature adds a third
+//! (all within a few ulp of libm); on x86-64 the f64 pair functions [`Real::sqrt2`] (the
+//! `wide` crate's two-lane square root, correctly rounded like libm's) and
+//! [`Real::sin_cos2`] evaluate two arguments at once. The `micromath` feature adds a third
 //! scalar, `Micro` (an `f32` whose transcendental functions come from micromath where
 //! that keeps the kernels within 2e-2 of libm); it never changes what `f32` computes, so
 //! enabling it in one crate leaves every other crate's f32 results alone.
