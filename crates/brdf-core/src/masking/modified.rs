@@ -166,9 +166,9 @@ impl<T: Real, R: Rule> ModifiedG<T, R> {
                 T::ZERO,
                 vhi,
                 |v| (-(v * v)).exp_bounded(),
-                |v| {
-                    let u = s2 * v;
-                    (T::ONE + u * u).sqrt()
+                |v: [T; 2]| {
+                    let u = [s2 * v[0], s2 * v[1]];
+                    T::sqrt2([T::ONE + u[0] * u[0], T::ONE + u[1] * u[1]])
                 },
             )
         } else {
@@ -232,8 +232,15 @@ impl<T: Real, R: Rule> ModifiedG<T, R> {
         }
         let ti = clamp_theta_i(theta_i);
         let tr = clamp_theta_r(theta_r);
-        let (si, ci) = ti.sin_cos();
-        let (so, co) = tr.abs().sin_cos();
+        let (si, ci, so, co) = if T::EPSILON < T::from_f64(1e-10) {
+            // f64: the two angles side by side (same values).
+            let ([si, so], [ci, co]) = T::sin_cos2([ti, tr.abs()]);
+            (si, ci, so, co)
+        } else {
+            let (si, ci) = ti.sin_cos();
+            let (so, co) = tr.abs().sin_cos();
+            (si, ci, so, co)
+        };
         // α = (θr − θi)/2 ∈ [−π/2, π/4] by the half-angle formulas from 2α = θr − θi,
         // each on the side where it does not cancel: |α| ≤ π/4 → cos α = √((1 + cos 2α)/2),
         // sin α = sin 2α/(2 cos α); α < −π/4 → sin α = −√((1 − cos 2α)/2),
@@ -241,7 +248,16 @@ impl<T: Real, R: Rule> ModifiedG<T, R> {
         let sr = if tr < T::ZERO { -so } else { so };
         let c2a = co * ci + sr * si;
         let s2a = sr * ci - co * si;
-        let (sa, ca) = if c2a >= T::ZERO {
+        let (sa, ca) = if T::EPSILON < T::from_f64(1e-10) {
+            // f64: the same values without a branch on the (unpredictable) side: one square
+            // root r and one quotient q = sin 2α/(2r), then (q, r) or (−r, max(−q, 0))
+            // (x/(−r) = −(x/r) exactly).
+            let pos = c2a >= T::ZERO;
+            let r = (if pos { T::ONE + c2a } else { T::ONE - c2a } * T::HALF).sqrt();
+            let q = s2a * T::HALF / r;
+            let nq = (-q).max(T::ZERO);
+            (if pos { q } else { -r }, if pos { r } else { nq })
+        } else if c2a >= T::ZERO {
             let ca = ((T::ONE + c2a) * T::HALF).sqrt();
             (s2a * T::HALF / ca, ca)
         } else {
@@ -367,5 +383,66 @@ fn gauss_tail_moment<T: Real>(a: T, d: T) -> T {
         let b = a + d;
         ((-(a * a)).exp() - (-(b * b)).exp()) * T::HALF
             - a * T::from_f64(SQRT_PI_2) * (a.erfc() - b.erfc())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+
+    /// GM and GS of [`ModifiedG::terms`] the straightforward way: one sin/cos per angle, α
+    /// from the half-angle formulas of 2α = θr − θi with a branch per side (|α| ≤ π/4 or
+    /// not), the one-sided factor [`ModifiedG::passing_cs`] called twice.
+    fn sequential<R: Rule>(g: &ModifiedG<f64, R>, ti: f64, tr: f64) -> (f64, f64) {
+        let ti = clamp_theta_i(ti);
+        let tr = clamp_theta_r(tr);
+        let (si, ci) = Real::sin_cos(ti);
+        let (so, co) = Real::sin_cos(tr.abs());
+        let sr = if tr < 0.0 { -so } else { so };
+        let c2a = co * ci + sr * si;
+        let s2a = sr * ci - co * si;
+        let (sa, ca) = if c2a >= 0.0 {
+            let ca = libm::sqrt((1.0 + c2a) * 0.5);
+            (s2a * 0.5 / ca, ca)
+        } else {
+            let sa = -libm::sqrt((1.0 - c2a) * 0.5);
+            (sa, (s2a * 0.5 / sa).max(0.0))
+        };
+        let sign = if tr < 0.0 { -1.0 } else { 1.0 };
+        (
+            g.passing_cs(co, so, ca, sign * sa),
+            g.passing_cs(ci, si, ca, -sa),
+        )
+    }
+
+    /// [`ModifiedG::terms`] in f64 (both angles' sin and cos side by side, the half angle
+    /// without a branch) bit for bit against the straightforward evaluation (see
+    /// `sequential`) on a dense grid of (θi, θr) including θ = 0,
+    /// π/2, θr = ±θi (the kinks where GM = GS) and angles beyond the range (clamped); NaN.
+    #[test]
+    fn terms_match_sequential_one_sided_factors() {
+        let h = core::f64::consts::FRAC_PI_2;
+        let mut ti: std::vec::Vec<f64> = (0..=180).map(|j| h * j as f64 / 180.0).collect();
+        ti.extend([1e-9, h - 1e-9, -0.1, h + 0.1]);
+        for sigma in [0.02, 0.05, 0.2, 0.5, 1.0, 10.0] {
+            let g = ModifiedG::<f64>::new(sigma).unwrap();
+            for &a in &ti {
+                let mut tr: std::vec::Vec<f64> =
+                    (-180..=180).map(|j| h * j as f64 / 180.0).collect();
+                tr.extend([a, -a, a + 1e-9, -a - 1e-9, a - 1e-9, -h - 0.1, h + 0.1]);
+                for &r in &tr {
+                    let t = g.terms(a, r);
+                    let (gm, gs) = sequential(&g, a, r);
+                    assert!(
+                        t.gm.to_bits() == gm.to_bits() && t.gs.to_bits() == gs.to_bits(),
+                        "σ={sigma} θi={a} θr={r}: {t:?} vs {gm}, {gs}"
+                    );
+                    assert_eq!(t.g.to_bits(), gm.min(gs).to_bits());
+                }
+            }
+        }
+        let t = ModifiedG::<f64>::new(0.3).unwrap().terms(f64::NAN, 0.2);
+        assert!(t.gm.is_nan() && t.gs.is_nan() && t.g.is_nan());
     }
 }

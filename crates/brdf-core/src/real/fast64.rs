@@ -197,11 +197,38 @@ pub fn erfc_bounded_f64(x: f64) -> f64 {
 /// 2 ulp (absolute 2.3e-16) of the exact values (measured against libm in the tests).
 #[inline]
 pub fn sin_cos_f64(x: f64) -> (f64, f64) {
+    // (−1.6..=1.6).contains rather than f64::abs, which `core` has only since Rust 1.84.
+    if !(-1.6..=1.6).contains(&x) {
+        return libm::sincos(x);
+    }
+    sin_cos_short(x)
+}
+
+/// [`sin_cos_f64`] of two arguments, lane by lane the same values; when both lie in
+/// [−1.6, 1.6] the two evaluations run side by side (each step of the polynomials serves
+/// both lanes). Returns ([sin x₀, sin x₁], [cos x₀, cos x₁]).
+#[inline]
+pub fn sin_cos2_f64(x: [f64; 2]) -> ([f64; 2], [f64; 2]) {
+    if !((-1.6..=1.6).contains(&x[0]) && (-1.6..=1.6).contains(&x[1])) {
+        let (s0, c0) = sin_cos_f64(x[0]);
+        let (s1, c1) = sin_cos_f64(x[1]);
+        return ([s0, s1], [c0, c1]);
+    }
+    let (s0, c0) = sin_cos_short(x[0]);
+    let (s1, c1) = sin_cos_short(x[1]);
+    ([s0, s1], [c0, c1])
+}
+
+/// The body of [`sin_cos_f64`] for |x| ≤ 1.6 (always inlined, so that two calls can share
+/// SIMD registers).
+#[inline(always)]
+fn sin_cos_short(x: f64) -> (f64, f64) {
     const FRAC_2_PI: f64 = core::f64::consts::FRAC_2_PI;
     const P1: f64 = core::f64::consts::FRAC_PI_2;
     const P2: f64 = 6.123_233_995_736_766e-17; // π/2 − P1
     const MAGIC: f64 = 6_755_399_441_055_744.0; // 1.5·2⁵²
-                                                // 1/(2j+1)! for sin (j = 1…8) and 1/(2j)! for cos (j = 1…8), alternating in sign.
+
+    // 1/(2j+1)! for sin (j = 1…8) and 1/(2j)! for cos (j = 1…8), alternating in sign.
     const S: [f64; 8] = [
         -1.0 / 6.0,
         1.0 / 120.0,
@@ -222,9 +249,6 @@ pub fn sin_cos_f64(x: f64) -> (f64, f64) {
         -1.0 / 87_178_291_200.0,
         1.0 / 20_922_789_888_000.0,
     ];
-    if !(-1.6..=1.6).contains(&x) {
-        return libm::sincos(x);
-    }
     // k = round(2x/π) by adding and subtracting 1.5·2⁵² (|2x/π| < 1.02 here).
     let k = (x * FRAC_2_PI + MAGIC) - MAGIC;
     let r = (x - k * P1) - k * P2;
@@ -245,7 +269,7 @@ pub fn sin_cos_f64(x: f64) -> (f64, f64) {
 #[cfg(test)]
 mod tests {
     extern crate std;
-    use super::{erfc_bounded_f64, exp_bounded_f64, sin_cos_f64};
+    use super::{erfc_bounded_f64, exp_bounded_f64, sin_cos2_f64, sin_cos_f64};
 
     /// The distance of `got` from `want` in units of the ulp of `want` (2^(e−52) for
     /// |want| ∈ [2^e, 2^(e+1))).
@@ -374,6 +398,34 @@ mod tests {
         // Beyond π/2: libm's values.
         for x in [1.61, 3.0, -100.0, 1e10] {
             assert_eq!(sin_cos_f64(x), (libm::sin(x), libm::cos(x)));
+        }
+    }
+
+    /// The pair version, lane by lane bit for bit equal to [`sin_cos_f64`] (which is
+    /// checked against libm above): both lanes on the short path, one or both beyond it,
+    /// NaN, on a grid where the two lanes run at different paces.
+    #[test]
+    fn sin_cos2_f64_is_two_sin_cos_f64() {
+        let mut xs: std::vec::Vec<f64> = (-2000..=2000).map(|i| i as f64 * 1.7e-3).collect();
+        xs.extend([0.0, -0.0, 1.6, -1.6, 3.0, f64::NAN, 1e300]);
+        xs.extend([
+            core::f64::consts::FRAC_PI_2,
+            f64::from_bits(1.6f64.to_bits() + 1),
+            -f64::from_bits(1.6f64.to_bits() + 1),
+        ]);
+        let n = xs.len();
+        for (j, &a) in xs.iter().enumerate() {
+            for b in [xs[(j * 7 + 11) % n], xs[n - 1 - j], a] {
+                let (s, c) = sin_cos2_f64([a, b]);
+                for (k, x) in [a, b].into_iter().enumerate() {
+                    let (s1, c1) = sin_cos_f64(x);
+                    assert!(
+                        (s[k].to_bits() == s1.to_bits() || (s[k].is_nan() && s1.is_nan()))
+                            && (c[k].to_bits() == c1.to_bits() || (c[k].is_nan() && c1.is_nan())),
+                        "lane {k} of ({a}, {b})"
+                    );
+                }
+            }
         }
     }
 

@@ -6,14 +6,16 @@
 //! ([`sin_cos_f32`], [`exp_f32`], [`erfc_f32`]) and the f64 functions of the modified G's
 //! inner loops ([`exp_bounded_f64`], [`erfc_bounded_f64`], and [`sin_cos_f64`] for
 //! |x| ≤ 1.6), written branch-free so that two evaluations share one SIMD register
-//! (all within a few ulp of libm). The `micromath` feature adds a third
+//! (all within a few ulp of libm); on x86-64 the f64 pair functions [`Real::sqrt2`] (the
+//! `wide` crate's two-lane square root, correctly rounded like libm's) and
+//! [`Real::sin_cos2`] evaluate two arguments at once. The `micromath` feature adds a third
 //! scalar, `Micro` (an `f32` whose transcendental functions come from micromath where
 //! that keeps the kernels within 2e-2 of libm); it never changes what `f32` computes, so
 //! enabling it in one crate leaves every other crate's f32 results alone.
 
 mod fast64;
 
-pub use fast64::{erfc_bounded_f64, exp_bounded_f64, sin_cos_f64};
+pub use fast64::{erfc_bounded_f64, exp_bounded_f64, sin_cos2_f64, sin_cos_f64};
 
 use core::fmt::Debug;
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
@@ -62,6 +64,12 @@ pub trait Real:
     fn abs(self) -> Self;
     /// √x (NaN for x < 0).
     fn sqrt(self) -> Self;
+    /// [√x₀, √x₁], lane by lane the same values as [`Real::sqrt`] (`f64` on x86-64: both in
+    /// one SSE2 `sqrtpd`, correctly rounded like `sqrtsd`).
+    #[inline]
+    fn sqrt2(x: [Self; 2]) -> [Self; 2] {
+        [x[0].sqrt(), x[1].sqrt()]
+    }
     /// eˣ.
     fn exp(self) -> Self;
     /// eˣ for x ∈ [−87, 0] (the range of e^{−v²} in the kernels' integrands), without the
@@ -83,6 +91,14 @@ pub trait Real:
     #[inline]
     fn sin_cos(self) -> (Self, Self) {
         (self.sin(), self.cos())
+    }
+    /// [`Real::sin_cos`] of two arguments: ([sin x₀, sin x₁], [cos x₀, cos x₁]), lane by
+    /// lane the same values (`f64` on x86-64: [`sin_cos2_f64`], the two side by side).
+    #[inline]
+    fn sin_cos2(x: [Self; 2]) -> ([Self; 2], [Self; 2]) {
+        let (s0, c0) = x[0].sin_cos();
+        let (s1, c1) = x[1].sin_cos();
+        ([s0, s1], [c0, c1])
     }
     /// tan x (x in radians).
     fn tan(self) -> Self;
@@ -210,6 +226,11 @@ impl Real for f64 {
     fn sqrt(self) -> Self {
         libm::sqrt(self)
     }
+    #[cfg(target_arch = "x86_64")]
+    #[inline]
+    fn sqrt2(x: [Self; 2]) -> [Self; 2] {
+        wide::f64x2::from(x).sqrt().to_array()
+    }
     #[inline]
     fn exp(self) -> Self {
         libm::exp(self)
@@ -233,6 +254,13 @@ impl Real for f64 {
     #[inline]
     fn sin_cos(self) -> (Self, Self) {
         sin_cos_f64(self)
+    }
+    // Side by side where SSE2 gives two f64 lanes; elsewhere (soft-f64 devices) the default
+    // two calls keep one copy of the code.
+    #[cfg(target_arch = "x86_64")]
+    #[inline]
+    fn sin_cos2(x: [Self; 2]) -> ([Self; 2], [Self; 2]) {
+        sin_cos2_f64(x)
     }
     #[inline]
     fn tan(self) -> Self {
@@ -501,6 +529,42 @@ pub use micro::Micro;
 
 #[cfg(test)]
 mod tests {
+    extern crate std;
+
+    /// The f64 pair square root, lane by lane bit for bit libm's (correctly rounded) `sqrt`:
+    /// a dense grid over [0, 1e6] (the kernels take it of 1 + u², below 10 for σ ≤ 0.5), zeros,
+    /// subnormals, ∞, negative numbers and NaN (both NaN).
+    #[test]
+    fn f64_sqrt2_is_libm_sqrt_per_lane() {
+        use super::Real;
+        let mut xs: std::vec::Vec<f64> = (0..200_000).map(|i| i as f64 * 5.000_1).collect();
+        xs.extend([
+            0.0,
+            -0.0,
+            5e-324,
+            2.2e-308,
+            1.0,
+            2.0,
+            f64::MAX,
+            f64::INFINITY,
+            -1.0,
+        ]);
+        xs.push(f64::NAN);
+        let n = xs.len();
+        for (j, &a) in xs.iter().enumerate() {
+            let b = xs[(j * 7 + 3) % n];
+            let r = <f64 as Real>::sqrt2([a, b]);
+            for (k, x) in [a, b].into_iter().enumerate() {
+                let want = libm::sqrt(x);
+                assert!(
+                    r[k].to_bits() == want.to_bits() || (r[k].is_nan() && want.is_nan()),
+                    "lane {k}: √{x} = {} vs {want}",
+                    r[k]
+                );
+            }
+        }
+    }
+
     /// The f32 complementary error function against f64 libm.
     #[test]
     fn erfc_f32_against_f64() {
