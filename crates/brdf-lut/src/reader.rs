@@ -92,7 +92,11 @@ pub(crate) struct Lane {
     /// n − 1.
     last: f32,
     /// n − 2, the last cell.
+    #[cfg(any(target_os = "none", target_family = "wasm"))]
     last_cell: i32,
+    /// n − 2 as f32 (hosted targets: the node is found in f32, see [`Lane::cell`]).
+    #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+    last_cell_f: f32,
     /// Values (nodes × channels) between neighbouring nodes of this axis.
     pub(crate) stride: usize,
     pub(crate) n: usize,
@@ -136,7 +140,10 @@ impl Lane {
             a,
             b,
             last: nf - 1.0,
+            #[cfg(any(target_os = "none", target_family = "wasm"))]
             last_cell: axis.count as i32 - 2,
+            #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+            last_cell_f: (axis.count as i32 - 2) as f32,
             stride,
             n: axis.count as usize,
         })
@@ -150,7 +157,10 @@ impl Lane {
         a: 0.0,
         b: 0.0,
         last: 0.0,
+        #[cfg(any(target_os = "none", target_family = "wasm"))]
         last_cell: 0,
+        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        last_cell_f: 0.0,
         stride: 0,
         n: 1,
     };
@@ -172,10 +182,15 @@ impl Lane {
     #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     fn cell(&self, x: f32) -> (usize, f32) {
         let t = self.index(x);
-        // t ∈ [0, n − 1] with n ≤ 65536 (or NaN, which converts to 0): the u16 conversion
-        // is exact and in range (and cheaper than an i32 one, whose saturation needs checks).
+        // t ∈ [0, n − 1] with n ≤ 65536: ⌊min(t, n − 2)⌋ = min(⌊t⌋, n − 2) (n − 2 is an
+        // integer) by the truncating conversion (t ≥ 0), without saturation checks. NaN
+        // takes node n − 2 (and f = NaN).
         #[cfg(not(any(target_os = "none", target_family = "wasm")))]
-        let i = (t as u16 as i32).min(self.last_cell);
+        let i = trunc_small(if t < self.last_cell_f {
+            t
+        } else {
+            self.last_cell_f
+        });
         // Devices: the form whose code size the firmware budget was measured with.
         #[cfg(any(target_os = "none", target_family = "wasm"))]
         let i = (t as i32).min(self.last_cell).max(0);
@@ -673,13 +688,15 @@ impl Lane {
         // when that rounded up; the integer is read from the bits of ⌊t⌋ + 2²³. Equal to
         // `cell`'s conversion (both are the exact ⌊t⌋ capped at n − 2), NaN going to node 0.
         const MAGIC: f32 = 8_388_608.0;
-        let last_cell = self.last_cell as f32;
+        let last_cell = self.last_cell_f;
         let (mut i, mut f) = ([0u32; N], [0.0f32; N]);
         for k in 0..N {
             let t = clamp(self.a * w[k] + self.b, 0.0, self.last);
             if N <= 2 {
-                // Too few queries to vectorise: `cell`'s conversion.
-                let ik = (t as u16 as i32).min(self.last_cell);
+                // Too few queries for the stages below to pay: ⌊min(t, n − 2)⌋ (t ≥ 0, so the
+                // truncating conversion is the floor, and n − 2 is an integer, so this is
+                // `cell`'s min(⌊t⌋, n − 2); NaN: node n − 2 and f = NaN).
+                let ik = trunc_small(if t < last_cell { t } else { last_cell });
                 i[k] = ik as u32;
                 f[k] = t - ik as f32;
                 continue;
@@ -841,6 +858,31 @@ fn sqrt_v(x: f32) -> f32 {
 #[inline(always)]
 fn sqrt_v(x: f32) -> f32 {
     libm::sqrtf(x)
+}
+
+/// ⌊x⌋ of x ∈ [0, 2¹⁶) as the processor's truncating conversion, without the saturation
+/// checks of `as`. Callers pass no NaN.
+#[cfg(all(
+    target_arch = "x86_64",
+    not(any(target_os = "none", target_family = "wasm"))
+))]
+#[inline(always)]
+fn trunc_small(x: f32) -> i32 {
+    use core::arch::x86_64::{_mm_cvttss_si32, _mm_set_ss};
+    // SAFETY: SSE is part of the x86_64 baseline; register-only intrinsics (safe functions
+    // from Rust 1.87 on; the block is for the crate's minimum Rust, 1.84).
+    #[allow(unused_unsafe)]
+    unsafe {
+        _mm_cvttss_si32(_mm_set_ss(x))
+    }
+}
+#[cfg(all(
+    not(target_arch = "x86_64"),
+    not(any(target_os = "none", target_family = "wasm"))
+))]
+#[inline(always)]
+fn trunc_small(x: f32) -> i32 {
+    x as i32
 }
 
 /// Stored u16 number `k` of `b` (0 past the end; callers pass rows that hold it).
