@@ -44,6 +44,17 @@ fn cos_quadrant(x: f32) -> f32 {
                 + r2 * (-1.0 / 5040.0 + r2 * (1.0 / 362_880.0 + r2 * (-1.0 / 39_916_800.0))))))
 }
 
+/// max(c, 0) with NaN staying NaN (one instruction; `f32::max` would turn NaN into 0 and
+/// the lookup of a NaN coordinate into a number).
+#[inline(always)]
+fn nonneg(c: f32) -> f32 {
+    if c < 0.0 {
+        0.0
+    } else {
+        c
+    }
+}
+
 /// The warp's monotone part w(x) (x already clamped to the axis range).
 #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
 #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
@@ -51,7 +62,7 @@ fn warp_w(warp: Warp, lo: f32, x: f32) -> f32 {
     match warp {
         Warp::Linear => x,
         // The axis lies within [0, π/2] (checked when the header was parsed).
-        Warp::SqrtCos => libm::sqrtf(cos_quadrant(x).max(0.0)),
+        Warp::SqrtCos => libm::sqrtf(nonneg(cos_quadrant(x))),
         Warp::Log => libm::logf(x),
         // x ≥ lo, so x − lo ≥ 0 (and NaN stays NaN).
         Warp::Sqrt => libm::sqrtf(x - lo),
@@ -68,7 +79,7 @@ fn warp_q(warp: Warp, lo: f32, x: f32) -> f32 {
     match warp {
         Warp::Linear => x,
         Warp::Sqrt => libm::sqrtf(x - lo),
-        Warp::SqrtCos => libm::sqrtf(cos_quadrant(x).max(0.0)),
+        Warp::SqrtCos => libm::sqrtf(nonneg(cos_quadrant(x))),
         _ => warp_far(warp, lo, x),
     }
 }
@@ -708,7 +719,7 @@ impl Lane {
             }
             Warp::SqrtCos => {
                 for w in &mut w {
-                    *w = cos_quadrant(*w).max(0.0);
+                    *w = nonneg(cos_quadrant(*w));
                 }
                 for w in &mut w {
                     *w = sqrt_v(*w);
@@ -1071,6 +1082,26 @@ mod tests {
             check(0.01 + 10.0 * k as f32 / 200_000.0);
         }
         assert!(worst > 0.0);
+    }
+
+    /// A NaN coordinate on a √cos-warped axis gives a NaN fraction (so a NaN value), on
+    /// both the scalar and the chunk path.
+    #[test]
+    fn nan_stays_nan_through_the_sqrt_cos_warp() {
+        let axis = Axis {
+            name: "theta",
+            count: 9,
+            lo: 0.0,
+            hi: core::f64::consts::FRAC_PI_2,
+            warp: Warp::SqrtCos,
+            placement: Placement::Endpoint,
+        };
+        let lane = Lane::new(&axis, 1).unwrap();
+        assert!(lane.cell(f32::NAN).1.is_nan());
+        let (_, f) = lane.cells::<2, false, false>(&[f32::NAN, 0.5]);
+        assert!(f[0].is_nan() && !f[1].is_nan());
+        let (_, f) = lane.cells::<16, false, false>(&[f32::NAN; 16]);
+        assert!(f.iter().all(|f| f.is_nan()));
     }
 
     /// The σ lane of a 3-D G table (28 nodes over [0.05, 1], log warp) through `ln_fast`
