@@ -46,6 +46,7 @@ fn cos_quadrant(x: f32) -> f32 {
 
 /// max(c, 0) with NaN staying NaN (one instruction; `f32::max` would turn NaN into 0 and
 /// the lookup of a NaN coordinate into a number).
+#[cfg(not(any(target_os = "none", target_family = "wasm")))]
 #[inline(always)]
 fn nonneg(c: f32) -> f32 {
     if c < 0.0 {
@@ -62,7 +63,12 @@ fn warp_w(warp: Warp, lo: f32, x: f32) -> f32 {
     match warp {
         Warp::Linear => x,
         // The axis lies within [0, π/2] (checked when the header was parsed).
+        // Hosted: NaN stays NaN. Devices: the form the firmware budget was measured with
+        // (NaN becomes 0 here; the device G entry points check NaN before the lookup).
+        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
         Warp::SqrtCos => libm::sqrtf(nonneg(cos_quadrant(x))),
+        #[cfg(any(target_os = "none", target_family = "wasm"))]
+        Warp::SqrtCos => libm::sqrtf(cos_quadrant(x).max(0.0)),
         Warp::Log => libm::logf(x),
         // x ≥ lo, so x − lo ≥ 0 (and NaN stays NaN).
         Warp::Sqrt => libm::sqrtf(x - lo),
@@ -157,6 +163,26 @@ impl Lane {
             last_cell_f: (axis.count as i32 - 2) as f32,
             stride,
             n: axis.count as usize,
+        })
+    }
+
+    /// For a √cos-warped axis: the same lane taking the warped value w = √cos x instead of
+    /// x (a linear lane w ↦ a·w + b over [√cos hi, √cos lo]); `None` for other warps.
+    /// The node index equals this lane's up to the rounding of the caller's √cos x.
+    #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+    fn prewarped(&self) -> Option<Lane> {
+        if self.warp != Warp::SqrtCos {
+            return None;
+        }
+        let (w_lo, w_hi) = (
+            warp_w(self.warp, self.lo, self.lo),
+            warp_w(self.warp, self.lo, self.hi),
+        );
+        Some(Lane {
+            warp: Warp::Linear,
+            lo: w_hi,
+            hi: w_lo,
+            ..*self
         })
     }
 
@@ -772,6 +798,20 @@ impl Reader {
     #[inline(always)]
     pub(crate) fn chunked(&self) -> bool {
         self.mode == Mode::Linear && self.encoding == Encoding::Unorm16
+    }
+
+    /// This reader with axis 0 taking √cos θ instead of θ (see [`Lane::prewarped`]), for
+    /// callers that have the cosine; `None` unless axis 0 is √cos-warped and every lookup
+    /// goes through the lanes (not the per-tap general path, which takes θ).
+    pub(crate) fn prewarped(&self) -> Option<Reader> {
+        let direct = self.mode != Mode::General
+            && (self.encoding == Encoding::Unorm16 || cfg!(not(feature = "compact")));
+        if !direct {
+            return None;
+        }
+        let mut r = *self;
+        r.lanes[0] = self.lanes[0].prewarped()?;
+        Some(r)
     }
 
     /// Whether axes 0 and 1 span exactly θ ∈ [0, π/2] and φ ∈ [−π/2, π/2] in f32 (the

@@ -29,6 +29,9 @@ pub(crate) struct Prepared {
     /// to: the lanes skip their own clamp of those arguments (hosted targets).
     #[cfg(not(any(target_os = "none", target_family = "wasm")))]
     pub(crate) g_in_range: bool,
+    /// The reader with the θ axis taking √cos θ (hosted targets; see [`Prepared::g_dots`]).
+    #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+    pub(crate) dots: Option<Reader>,
 }
 
 impl Prepared {
@@ -50,6 +53,12 @@ impl Prepared {
             reciprocal: h.generator.convention == Convention::Reciprocal,
             #[cfg(not(any(target_os = "none", target_family = "wasm")))]
             g_in_range: h.kind == TableKind::PassingFactor && view.reader().g_ranges(),
+            #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+            dots: if h.kind == TableKind::PassingFactor {
+                view.reader().prewarped()
+            } else {
+                None
+            },
         }
     }
 
@@ -96,16 +105,7 @@ impl Prepared {
     #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
     #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     fn pair2(&self, payload: &[u8], m: [f32; 2], s: [f32; 2]) -> (f32, f32) {
-        let r = &self.reader;
-        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
-        if r.chunked() {
-            let [[gm, gs]] = r.chunk::<2, 1, 2>(payload, &[[m[0], s[0]], [m[1], s[1]]]);
-            return (gm, gs);
-        }
-        (
-            r.sample::<2, 1>(&self.grid, payload, m)[0],
-            r.sample::<2, 1>(&self.grid, payload, s)[0],
-        )
+        pair2_with(&self.reader, &self.grid, payload, m, s)
     }
 
     /// (GM, GS, G) of a 3-D passing-factor table.
@@ -145,24 +145,50 @@ impl Prepared {
         s: [f32; 2],
         sigma: f32,
     ) -> (f32, f32, f32) {
-        let r = &self.reader;
+        self.g_with(&self.reader, payload, m, s, sigma)
+    }
+
+    /// [`Prepared::g_from_args`] through reader `r` (this table's, or its
+    /// [`Reader::prewarped`] form).
+    #[inline]
+    fn g_with(
+        &self,
+        r: &Reader,
+        payload: &[u8],
+        m: [f32; 2],
+        s: [f32; 2],
+        sigma: f32,
+    ) -> (f32, f32, f32) {
         let (gm, gs) = if self.grid.dims == 3 {
             r.pair3(&self.grid, payload, m, s, sigma)
         } else {
-            self.pair2(payload, m, s)
+            pair2_with(r, &self.grid, payload, m, s)
         };
         let (gm, gs) = (unit01(gm), unit01(gs));
         (gm, gs, min_g(gm, gs))
     }
 
-    /// G from dot products (see [`dots_args`]).
+    /// G from dot products (see [`dots_args`]). On hosted targets a table whose θ axis is
+    /// √cos-warped reads that axis at √cos θ from the cosine itself (n·v, n·l) instead of
+    /// at θ = atan2(sin θ, cos θ), whose cosine the lane would compute again by a
+    /// polynomial: the node index differs from the θ route by f32 rounding only (a few
+    /// 1e-7 of a cell; φ still comes from θ).
     #[inline]
     pub(crate) fn g_dots(&self, payload: &[u8], n_l: f32, n_v: f32, l_v: f32, sigma: f32) -> f32 {
         if n_l.is_nan() || n_v.is_nan() || l_v.is_nan() || sigma.is_nan() {
             return f32::NAN;
         }
         match dots_args(n_l, n_v, l_v) {
-            Some((m, s)) => self.g_from_args(payload, m, s, sigma).2,
+            Some((m, s, (co, ci))) => {
+                #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+                if let Some(r) = &self.dots {
+                    let (m, s) = ([libm::sqrtf(co), m[1]], [libm::sqrtf(ci), s[1]]);
+                    return self.g_with(r, payload, m, s, sigma).2;
+                }
+                #[cfg(any(target_os = "none", target_family = "wasm"))]
+                let _ = (co, ci);
+                self.g_from_args(payload, m, s, sigma).2
+            }
             None => 0.0,
         }
     }
@@ -310,10 +336,11 @@ fn g_args(theta_i: f32, theta_r: f32) -> ([f32; 2], [f32; 2]) {
 /// `ModifiedG::terms_dots`): each side w ∈ {v (GM), l (GS)} is M(θ_w, a_w) with
 /// tan a_w = (t + sin²θ_w) / (sin θ_w (cos θ_l + cos θ_v)), t = l·v − cos θ_l cos θ_v the
 /// tangential dot product; the table stores F(θ, φ) = M(θ, (θ − φ)/2), so φ_w = θ_w − 2 a_w.
+/// Also gives the two cosines (cos θ_v, cos θ_l) ∈ (0, 1].
 /// `None` when a direction is at or below the horizon (G = 0 there); NaN is handled by the
 /// caller. In the plane of incidence this gives the in-plane arguments.
 #[inline]
-fn dots_args(n_l: f32, n_v: f32, l_v: f32) -> Option<([f32; 2], [f32; 2])> {
+fn dots_args(n_l: f32, n_v: f32, l_v: f32) -> Option<([f32; 2], [f32; 2], (f32, f32))> {
     if !(n_l > 0.0 && n_v > 0.0) {
         return None;
     }
@@ -334,7 +361,22 @@ fn dots_args(n_l: f32, n_v: f32, l_v: f32) -> Option<([f32; 2], [f32; 2])> {
         };
         [theta, theta - 2.0 * a]
     };
-    Some((side(co, so), side(ci, si)))
+    Some((side(co, so), side(ci, si), (co, ci)))
+}
+
+/// [`Prepared::pair2`] through reader `r`.
+#[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+#[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+fn pair2_with(r: &Reader, grid: &Grid, payload: &[u8], m: [f32; 2], s: [f32; 2]) -> (f32, f32) {
+    #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+    if r.chunked() {
+        let [[gm, gs]] = r.chunk::<2, 1, 2>(payload, &[[m[0], s[0]], [m[1], s[1]]]);
+        return (gm, gs);
+    }
+    (
+        r.sample::<2, 1>(grid, payload, m)[0],
+        r.sample::<2, 1>(grid, payload, s)[0],
+    )
 }
 
 /// G = min(GM, GS) (paper eq 13) as one select (the factors are not NaN: NaN queries
@@ -594,5 +636,75 @@ impl<B: AsRef<[u8]>> AverageAlbedoTable<B> {
             *o = self.p.one(p, r);
         }
         n
+    }
+}
+
+#[cfg(all(
+    test,
+    feature = "std",
+    not(any(target_os = "none", target_family = "wasm"))
+))]
+mod tests {
+    use super::*;
+    use brdf_core::geometry::Dots;
+    use brdf_core::masking::ModifiedG;
+
+    fn asset(name: &str) -> std::vec::Vec<u8> {
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/");
+        std::fs::read(std::format!("{dir}{name}")).unwrap()
+    }
+
+    /// G from dot products through the cosine route (√cos θ straight from n·v, n·l) against
+    /// (a) the θ route (θ = atan2, the lane's √cos polynomial) of the same table: the node
+    /// indices differ by f32 rounding, ≲ 2e-5 of a cell at cos θ = 0.035 (a θ rounding of
+    /// 1e-7 moves √cos θ by 1e-7/(2·0.19), times ~55 cells per unit of √cos θ), so the
+    /// values by < 1e-4; (b) the direct kernel's shader form within the table's recorded
+    /// max error plus 1e-4 for the f32 angle arithmetic.
+    #[test]
+    fn g_dots_from_cosines_matches_the_angle_route_and_the_kernel() {
+        let direct = ModifiedG::<f64>::new(0.3).unwrap();
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for name in [
+            "g_modified_sigma0.3_linear.blut",
+            "g_modified_sigma0.3.blut",
+            "g_modified_linear.blut",
+            "g_modified.blut",
+        ] {
+            let b = asset(name);
+            let v = LutView::parse(&b).unwrap();
+            let p = Prepared::new(&v);
+            assert!(p.dots.is_some(), "{name}");
+            let payload = &b[p.header_len..];
+            let bound = v.header().error.max_abs as f64 + 1e-4;
+            let (mut worst_route, mut worst_kernel) = (0f64, 0f64);
+            for _ in 0..4000 {
+                let mut dir = || {
+                    let z = 0.035 + 0.965 * next();
+                    let s = (1.0 - z * z).sqrt();
+                    let a = 2.0 * core::f64::consts::PI * next();
+                    [s * a.cos(), s * a.sin(), z]
+                };
+                let (l, w) = (dir(), dir());
+                let lv = l[0] * w[0] + l[1] * w[1] + l[2] * w[2];
+                let (nl, nv, lv32) = (l[2] as f32, w[2] as f32, lv as f32);
+                let got = p.g_dots(payload, nl, nv, lv32, 0.3) as f64;
+                let (m, s, _) = dots_args(nl, nv, lv32).unwrap();
+                let theta_route = p.g_from_args(payload, m, s, 0.3).2 as f64;
+                let want = direct.g_dots(Dots::new(l[2], w[2], lv));
+                worst_route = worst_route.max((got - theta_route).abs());
+                worst_kernel = worst_kernel.max((got - want).abs());
+            }
+            std::println!(
+                "{name}: |cos − θ route| {worst_route:.1e}, |table − kernel| {worst_kernel:.1e}"
+            );
+            assert!(worst_route < 1e-4, "{name}: {worst_route}");
+            assert!(worst_kernel <= bound, "{name}: {worst_kernel} > {bound}");
+        }
     }
 }
