@@ -455,7 +455,12 @@ impl Reader {
         #[cfg(not(any(target_os = "none", target_family = "wasm")))]
         if self.chunked() {
             // Both sides side by side (the same arithmetic as `pair3_linear`).
-            let [va, vb] = self.chunk3_in::<2, IN_RANGE>(data, &[[a[0], b[0]], [a[1], b[1]]], z);
+            let [va, vb] = self.chunk3_in::<2, IN_RANGE>(
+                &self.lanes[0],
+                data,
+                &[[a[0], b[0]], [a[1], b[1]]],
+                z,
+            );
             return (va, vb);
         }
         self.pair3_any(grid, data, a, b, z)
@@ -800,18 +805,33 @@ impl Reader {
         self.mode == Mode::Linear && self.encoding == Encoding::Unorm16
     }
 
-    /// This reader with axis 0 taking √cos θ instead of θ (see [`Lane::prewarped`]), for
-    /// callers that have the cosine; `None` unless axis 0 is √cos-warped and every lookup
-    /// goes through the lanes (not the per-tap general path, which takes θ).
-    pub(crate) fn prewarped(&self) -> Option<Reader> {
-        let direct = self.mode != Mode::General
-            && (self.encoding == Encoding::Unorm16 || cfg!(not(feature = "compact")));
-        if !direct {
+    /// Axis 0's lane taking √cos θ instead of θ (see [`Lane::prewarped`]) for
+    /// [`Reader::pair_with`]; `None` unless axis 0 is √cos-warped and the table
+    /// `chunked()`.
+    pub(crate) fn prewarped(&self) -> Option<Lane> {
+        if !self.chunked() {
             return None;
         }
-        let mut r = *self;
-        r.lanes[0] = self.lanes[0].prewarped()?;
-        Some(r)
+        self.lanes[0].prewarped()
+    }
+
+    /// Two one-channel lookups (GM and GS sides) of a `chunked()` 2-D (`z` = None) or 3-D
+    /// table with `l0` in place of axis 0's lane: [`Reader::chunk`] / [`Reader::pair3`].
+    #[inline(always)]
+    pub(crate) fn pair_with(
+        &self,
+        l0: &Lane,
+        data: &[u8],
+        a: [f32; 2],
+        b: [f32; 2],
+        z: Option<f32>,
+    ) -> (f32, f32) {
+        let x = [[a[0], b[0]], [a[1], b[1]]];
+        let [va, vb] = match z {
+            Some(z) => self.chunk3_in::<2, false>(l0, data, &x, z),
+            None => self.chunk_in::<2, 1, 2, false, false>(l0, data, &x)[0],
+        };
+        (va, vb)
     }
 
     /// Whether axes 0 and 1 span exactly θ ∈ [0, π/2] and φ ∈ [−π/2, π/2] in f32 (the
@@ -831,12 +851,12 @@ impl Reader {
         data: &[u8],
         x: &[[f32; N]; D],
     ) -> [[f32; N]; C] {
-        self.chunk_in::<D, C, N, false, false>(data, x)
+        self.chunk_in::<D, C, N, false, false>(&self.lanes[0], data, x)
     }
 
     /// [`Reader::chunk`]; `IN_RANGE`: every coordinate lies in its axis' range already.
     #[inline(always)]
-    pub(crate) fn chunk_in<
+    fn chunk_in<
         const D: usize,
         const C: usize,
         const N: usize,
@@ -844,11 +864,12 @@ impl Reader {
         const MINMAX: bool,
     >(
         &self,
+        l0: &Lane,
         data: &[u8],
         x: &[[f32; N]; D],
     ) -> [[f32; N]; C] {
         let l = &self.lanes;
-        let (i0, f0) = l[0].cells::<N, IN_RANGE, MINMAX>(&x[0]);
+        let (i0, f0) = l0.cells::<N, IN_RANGE, MINMAX>(&x[0]);
         let (i1, f1) = if D > 1 {
             l[1].cells::<N, IN_RANGE, MINMAX>(&x[1])
         } else {
@@ -910,20 +931,21 @@ impl Reader {
         x: &[[f32; N]; 2],
         z: f32,
     ) -> [f32; N] {
-        self.chunk3_in::<N, false>(data, x, z)
+        self.chunk3_in::<N, false>(&self.lanes[0], data, x, z)
     }
 
     /// [`Reader::chunk3`]; `IN_RANGE`: every x lies in its axis' range already.
     #[inline(always)]
     pub(crate) fn chunk3_in<const N: usize, const IN_RANGE: bool>(
         &self,
+        l0: &Lane,
         data: &[u8],
         x: &[[f32; N]; 2],
         z: f32,
     ) -> [f32; N] {
         let l = &self.lanes;
         let (k2, f2) = l[2].cell_ln(z);
-        let (i0, mut f0) = l[0].cells::<N, IN_RANGE, true>(&x[0]);
+        let (i0, mut f0) = l0.cells::<N, IN_RANGE, true>(&x[0]);
         let (i1, f1) = l[1].cells::<N, IN_RANGE, true>(&x[1]);
         let (s1, s2) = (l[1].stride * 2, l[2].stride * 2);
         let mut q = [[0u32; N]; 8];

@@ -29,9 +29,10 @@ pub(crate) struct Prepared {
     /// to: the lanes skip their own clamp of those arguments (hosted targets).
     #[cfg(not(any(target_os = "none", target_family = "wasm")))]
     pub(crate) g_in_range: bool,
-    /// The reader with the θ axis taking √cos θ (hosted targets; see [`Prepared::g_dots`]).
+    /// The θ lane taking √cos θ (hosted targets; see [`Prepared::g_dots`]). Only the lane:
+    /// a second reader would not fit the C interface's fixed table handles.
     #[cfg(not(any(target_os = "none", target_family = "wasm")))]
-    pub(crate) dots: Option<Reader>,
+    pub(crate) dots: Option<crate::reader::Lane>,
 }
 
 impl Prepared {
@@ -105,7 +106,16 @@ impl Prepared {
     #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
     #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     fn pair2(&self, payload: &[u8], m: [f32; 2], s: [f32; 2]) -> (f32, f32) {
-        pair2_with(&self.reader, &self.grid, payload, m, s)
+        let r = &self.reader;
+        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        if r.chunked() {
+            let [[gm, gs]] = r.chunk::<2, 1, 2>(payload, &[[m[0], s[0]], [m[1], s[1]]]);
+            return (gm, gs);
+        }
+        (
+            r.sample::<2, 1>(&self.grid, payload, m)[0],
+            r.sample::<2, 1>(&self.grid, payload, s)[0],
+        )
     }
 
     /// (GM, GS, G) of a 3-D passing-factor table.
@@ -145,34 +155,21 @@ impl Prepared {
         s: [f32; 2],
         sigma: f32,
     ) -> (f32, f32, f32) {
-        self.g_with(&self.reader, payload, m, s, sigma)
-    }
-
-    /// [`Prepared::g_from_args`] through reader `r` (this table's, or its
-    /// [`Reader::prewarped`] form).
-    #[inline]
-    fn g_with(
-        &self,
-        r: &Reader,
-        payload: &[u8],
-        m: [f32; 2],
-        s: [f32; 2],
-        sigma: f32,
-    ) -> (f32, f32, f32) {
+        let r = &self.reader;
         let (gm, gs) = if self.grid.dims == 3 {
             r.pair3(&self.grid, payload, m, s, sigma)
         } else {
-            pair2_with(r, &self.grid, payload, m, s)
+            self.pair2(payload, m, s)
         };
         let (gm, gs) = (unit01(gm), unit01(gs));
         (gm, gs, min_g(gm, gs))
     }
 
-    /// G from dot products (see [`dots_args`]). On hosted targets a table whose θ axis is
-    /// √cos-warped reads that axis at √cos θ from the cosine itself (n·v, n·l) instead of
-    /// at θ = atan2(sin θ, cos θ), whose cosine the lane would compute again by a
-    /// polynomial: the node index differs from the θ route by f32 rounding only (a few
-    /// 1e-7 of a cell; φ still comes from θ).
+    /// G from dot products (see [`dots_args`]). On hosted targets a linear u16 table
+    /// (speed tier) whose θ axis is √cos-warped reads that axis at √cos θ from the cosine
+    /// itself (n·v, n·l) instead of at θ = atan2(sin θ, cos θ), whose cosine the lane would
+    /// compute again by a polynomial: the node index differs from the θ route by f32
+    /// rounding only (values within 2e-7 in the test below; φ still comes from θ).
     #[inline]
     pub(crate) fn g_dots(&self, payload: &[u8], n_l: f32, n_v: f32, l_v: f32, sigma: f32) -> f32 {
         if n_l.is_nan() || n_v.is_nan() || l_v.is_nan() || sigma.is_nan() {
@@ -181,9 +178,11 @@ impl Prepared {
         match dots_args(n_l, n_v, l_v) {
             Some((m, s, (co, ci))) => {
                 #[cfg(not(any(target_os = "none", target_family = "wasm")))]
-                if let Some(r) = &self.dots {
+                if let Some(lane) = &self.dots {
                     let (m, s) = ([libm::sqrtf(co), m[1]], [libm::sqrtf(ci), s[1]]);
-                    return self.g_with(r, payload, m, s, sigma).2;
+                    let z = (self.grid.dims == 3).then_some(sigma);
+                    let (gm, gs) = self.reader.pair_with(lane, payload, m, s, z);
+                    return min_g(unit01(gm), unit01(gs));
                 }
                 #[cfg(any(target_os = "none", target_family = "wasm"))]
                 let _ = (co, ci);
@@ -362,21 +361,6 @@ fn dots_args(n_l: f32, n_v: f32, l_v: f32) -> Option<([f32; 2], [f32; 2], (f32, 
         [theta, theta - 2.0 * a]
     };
     Some((side(co, so), side(ci, si), (co, ci)))
-}
-
-/// [`Prepared::pair2`] through reader `r`.
-#[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-#[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
-fn pair2_with(r: &Reader, grid: &Grid, payload: &[u8], m: [f32; 2], s: [f32; 2]) -> (f32, f32) {
-    #[cfg(not(any(target_os = "none", target_family = "wasm")))]
-    if r.chunked() {
-        let [[gm, gs]] = r.chunk::<2, 1, 2>(payload, &[[m[0], s[0]], [m[1], s[1]]]);
-        return (gm, gs);
-    }
-    (
-        r.sample::<2, 1>(grid, payload, m)[0],
-        r.sample::<2, 1>(grid, payload, s)[0],
-    )
 }
 
 /// G = min(GM, GS) (paper eq 13) as one select (the factors are not NaN: NaN queries
@@ -679,7 +663,7 @@ mod tests {
             let b = asset(name);
             let v = LutView::parse(&b).unwrap();
             let p = Prepared::new(&v);
-            assert!(p.dots.is_some(), "{name}");
+            assert_eq!(p.dots.is_some(), name.contains("linear"), "{name}");
             let payload = &b[p.header_len..];
             let bound = v.header().error.max_abs as f64 + 1e-4;
             let (mut worst_route, mut worst_kernel) = (0f64, 0f64);
