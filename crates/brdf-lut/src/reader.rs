@@ -222,12 +222,13 @@ impl Lane {
         // t ∈ [0, n − 1] with n ≤ 65536: ⌊min(t, n − 2)⌋ = min(⌊t⌋, n − 2) (n − 2 is an
         // integer) by the truncating conversion (t ≥ 0), without saturation checks. NaN
         // takes node n − 2 (and f = NaN).
+        // (As u32: the node's zero extension to usize is free.)
         #[cfg(not(any(target_os = "none", target_family = "wasm")))]
         let i = trunc_small(if t < self.last_cell_f {
             t
         } else {
             self.last_cell_f
-        });
+        }) as u32;
         // Devices: the form whose code size the firmware budget was measured with.
         #[cfg(any(target_os = "none", target_family = "wasm"))]
         let i = (t as i32).min(self.last_cell).max(0);
