@@ -727,9 +727,9 @@ impl Lane {
     }
 
     /// [`Lane::cell`] of `N` coordinates; `IN_RANGE`: the caller guarantees x ∈ [lo, hi]
-    /// (the clamp would change nothing and is skipped); `MINMAX`: the index clamp as
-    /// scalar max/min instructions (the same values; which form the compiler turns into
-    /// less code depends on the caller).
+    /// (the clamp would change nothing and is skipped); `MINMAX`: for N ≤ 2, the index
+    /// clamp as scalar max/min instructions (the same values; which form the compiler turns
+    /// into less code depends on the caller; longer chunks keep the vectorising form).
     #[inline(always)]
     fn cells<const N: usize, const IN_RANGE: bool, const MINMAX: bool>(
         &self,
@@ -772,7 +772,7 @@ impl Lane {
         let (mut i, mut f) = ([0u32; N], [0.0f32; N]);
         for k in 0..N {
             let t = self.a * w[k] + self.b;
-            let t = if MINMAX {
+            let t = if MINMAX && N <= 2 {
                 clamp_s(t, 0.0, self.last)
             } else {
                 clamp(t, 0.0, self.last)

@@ -92,7 +92,7 @@ impl Prepared {
         if theta_i.is_nan() || theta_r.is_nan() {
             return (f32::NAN, f32::NAN, f32::NAN);
         }
-        let (m, s) = g_args(theta_i, theta_r);
+        let (m, s) = g_args1(theta_i, theta_r);
         // (Skipping the lanes' clamp here, as `g3` does, measured more instructions: the
         // compiler then splits the two lanes.)
         let (gm, gs) = self.pair2(payload, m, s);
@@ -131,7 +131,7 @@ impl Prepared {
         if theta_i.is_nan() || theta_r.is_nan() || sigma.is_nan() {
             return (f32::NAN, f32::NAN, f32::NAN);
         }
-        let (m, s) = g_args(theta_i, theta_r);
+        let (m, s) = g_args1(theta_i, theta_r);
         #[cfg(not(any(target_os = "none", target_family = "wasm")))]
         let (gm, gs) = if self.g_in_range {
             self.reader
@@ -320,6 +320,17 @@ impl Prepared {
 /// convention, docs/conventions.md §4): GM = F(|θr|, sgn θr · θi), GS = F(θi, θr).
 #[inline]
 fn g_args(theta_i: f32, theta_r: f32) -> ([f32; 2], [f32; 2]) {
+    let ti = crate::axis::clamp(theta_i, 0.0, FRAC_PI_2);
+    let tr = crate::axis::clamp(theta_r, -FRAC_PI_2, FRAC_PI_2);
+    let s = if tr < 0.0 { -ti } else { ti };
+    ([tr.abs(), s], [ti, tr])
+}
+
+/// [`g_args`] for one query (the same values): on hosted targets the clamps as scalar
+/// max/min instructions, which the compiler otherwise turns into a two-lane compare and
+/// branches (the chunk loops keep [`g_args`], which vectorises).
+#[inline(always)]
+fn g_args1(theta_i: f32, theta_r: f32) -> ([f32; 2], [f32; 2]) {
     #[cfg(any(target_os = "none", target_family = "wasm"))]
     use crate::axis::clamp;
     #[cfg(not(any(target_os = "none", target_family = "wasm")))]
