@@ -341,6 +341,9 @@ fn g_args1(theta_i: f32, theta_r: f32) -> ([f32; 2], [f32; 2]) {
     ([tr.abs(), s], [ti, tr])
 }
 
+/// (GM arguments, GS arguments, (cos θ_v, cos θ_l)) of [`dots_args`].
+type DotsArgs = ([f32; 2], [f32; 2], (f32, f32));
+
 /// The table arguments (θ, φ) of both sides of G from the dot products of unit vectors
 /// n·l, n·v, l·v, through the reciprocal 3-D extension of the modified G (the kernel's
 /// `ModifiedG::terms_dots`): each side w ∈ {v (GM), l (GS)} is M(θ_w, a_w) with
@@ -350,7 +353,7 @@ fn g_args1(theta_i: f32, theta_r: f32) -> ([f32; 2], [f32; 2]) {
 /// `None` when a direction is at or below the horizon (G = 0 there); NaN is handled by the
 /// caller. In the plane of incidence this gives the in-plane arguments.
 #[inline]
-fn dots_args(n_l: f32, n_v: f32, l_v: f32) -> Option<([f32; 2], [f32; 2], (f32, f32))> {
+fn dots_args(n_l: f32, n_v: f32, l_v: f32) -> Option<DotsArgs> {
     if !(n_l > 0.0 && n_v > 0.0) {
         return None;
     }
