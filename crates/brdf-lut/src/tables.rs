@@ -332,13 +332,15 @@ fn g_args(theta_i: f32, theta_r: f32) -> ([f32; 2], [f32; 2]) {
 #[inline(always)]
 fn g_args1(theta_i: f32, theta_r: f32) -> ([f32; 2], [f32; 2]) {
     #[cfg(any(target_os = "none", target_family = "wasm"))]
-    use crate::axis::clamp;
+    return g_args(theta_i, theta_r);
     #[cfg(not(any(target_os = "none", target_family = "wasm")))]
-    use crate::reader::clamp_s as clamp;
-    let ti = clamp(theta_i, 0.0, FRAC_PI_2);
-    let tr = clamp(theta_r, -FRAC_PI_2, FRAC_PI_2);
-    let s = if tr < 0.0 { -ti } else { ti };
-    ([tr.abs(), s], [ti, tr])
+    {
+        use crate::reader::clamp_s as clamp;
+        let ti = clamp(theta_i, 0.0, FRAC_PI_2);
+        let tr = clamp(theta_r, -FRAC_PI_2, FRAC_PI_2);
+        let s = if tr < 0.0 { -ti } else { ti };
+        ([tr.abs(), s], [ti, tr])
+    }
 }
 
 /// (GM arguments, GS arguments, (cos θ_v, cos θ_l)) of [`dots_args`].
