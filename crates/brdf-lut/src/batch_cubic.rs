@@ -21,7 +21,7 @@ const CHUNK: usize = 8;
 /// `Lane::cubic` per query (weights `[tap][query]`).
 #[inline(always)]
 fn cubics<const N: usize>(l: &Lane, x: &[f32; N]) -> ([u32; N], [[f32; N]; 4]) {
-    let (i, f) = l.cells(x);
+    let (i, f) = l.cells::<N, false, false>(x);
     // n − 2, the last cell; n − 4, the first node of the far end's window.
     let (end, far) = ((l.n - 2) as u32, (l.n - 4) as u32);
     // The cubic polynomials, then the three cases of `Lane::cubic` (each with its own

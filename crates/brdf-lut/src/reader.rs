@@ -44,6 +44,18 @@ fn cos_quadrant(x: f32) -> f32 {
                 + r2 * (-1.0 / 5040.0 + r2 * (1.0 / 362_880.0 + r2 * (-1.0 / 39_916_800.0))))))
 }
 
+/// max(c, 0) with NaN staying NaN (one instruction; `f32::max` would turn NaN into 0 and
+/// the lookup of a NaN coordinate into a number).
+#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[inline(always)]
+fn nonneg(c: f32) -> f32 {
+    if c < 0.0 {
+        0.0
+    } else {
+        c
+    }
+}
+
 /// The warp's monotone part w(x) (x already clamped to the axis range).
 #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
 #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
@@ -51,6 +63,11 @@ fn warp_w(warp: Warp, lo: f32, x: f32) -> f32 {
     match warp {
         Warp::Linear => x,
         // The axis lies within [0, π/2] (checked when the header was parsed).
+        // Hosted: NaN stays NaN. Devices: the form the firmware budget was measured with
+        // (NaN becomes 0 here; the device G entry points check NaN before the lookup).
+        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        Warp::SqrtCos => libm::sqrtf(nonneg(cos_quadrant(x))),
+        #[cfg(any(target_os = "none", target_family = "wasm"))]
         Warp::SqrtCos => libm::sqrtf(cos_quadrant(x).max(0.0)),
         Warp::Log => libm::logf(x),
         // x ≥ lo, so x − lo ≥ 0 (and NaN stays NaN).
@@ -68,7 +85,7 @@ fn warp_q(warp: Warp, lo: f32, x: f32) -> f32 {
     match warp {
         Warp::Linear => x,
         Warp::Sqrt => libm::sqrtf(x - lo),
-        Warp::SqrtCos => libm::sqrtf(cos_quadrant(x).max(0.0)),
+        Warp::SqrtCos => libm::sqrtf(nonneg(cos_quadrant(x))),
         _ => warp_far(warp, lo, x),
     }
 }
@@ -92,7 +109,11 @@ pub(crate) struct Lane {
     /// n − 1.
     last: f32,
     /// n − 2, the last cell.
+    #[cfg(any(target_os = "none", target_family = "wasm"))]
     last_cell: i32,
+    /// n − 2 as f32 (hosted targets: the node is found in f32, see [`Lane::cell`]).
+    #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+    last_cell_f: f32,
     /// Values (nodes × channels) between neighbouring nodes of this axis.
     pub(crate) stride: usize,
     pub(crate) n: usize,
@@ -136,9 +157,32 @@ impl Lane {
             a,
             b,
             last: nf - 1.0,
+            #[cfg(any(target_os = "none", target_family = "wasm"))]
             last_cell: axis.count as i32 - 2,
+            #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+            last_cell_f: (axis.count as i32 - 2) as f32,
             stride,
             n: axis.count as usize,
+        })
+    }
+
+    /// For a √cos-warped axis: the same lane taking the warped value w = √cos x instead of
+    /// x (a linear lane w ↦ a·w + b over [√cos hi, √cos lo]); `None` for other warps.
+    /// The node index equals this lane's up to the rounding of the caller's √cos x.
+    #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+    fn prewarped(&self) -> Option<Lane> {
+        if self.warp != Warp::SqrtCos {
+            return None;
+        }
+        let (w_lo, w_hi) = (
+            warp_w(self.warp, self.lo, self.lo),
+            warp_w(self.warp, self.lo, self.hi),
+        );
+        Some(Lane {
+            warp: Warp::Linear,
+            lo: w_hi,
+            hi: w_lo,
+            ..*self
         })
     }
 
@@ -150,7 +194,10 @@ impl Lane {
         a: 0.0,
         b: 0.0,
         last: 0.0,
+        #[cfg(any(target_os = "none", target_family = "wasm"))]
         last_cell: 0,
+        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        last_cell_f: 0.0,
         stride: 0,
         n: 1,
     };
@@ -172,10 +219,16 @@ impl Lane {
     #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     fn cell(&self, x: f32) -> (usize, f32) {
         let t = self.index(x);
-        // t ∈ [0, n − 1] with n ≤ 65536 (or NaN, which converts to 0): the u16 conversion
-        // is exact and in range (and cheaper than an i32 one, whose saturation needs checks).
+        // t ∈ [0, n − 1] with n ≤ 65536: ⌊min(t, n − 2)⌋ = min(⌊t⌋, n − 2) (n − 2 is an
+        // integer) by the truncating conversion (t ≥ 0), without saturation checks. NaN
+        // takes node n − 2 (and f = NaN).
+        // (As u32: the node's zero extension to usize is free.)
         #[cfg(not(any(target_os = "none", target_family = "wasm")))]
-        let i = (t as u16 as i32).min(self.last_cell);
+        let i = trunc_small(if t < self.last_cell_f {
+            t
+        } else {
+            self.last_cell_f
+        }) as u32;
         // Devices: the form whose code size the firmware budget was measured with.
         #[cfg(any(target_os = "none", target_family = "wasm"))]
         let i = (t as i32).min(self.last_cell).max(0);
@@ -385,10 +438,30 @@ impl Reader {
         b: [f32; 2],
         z: f32,
     ) -> (f32, f32) {
+        self.pair3_in::<false>(grid, data, a, b, z)
+    }
+
+    /// [`Reader::pair3`]; `IN_RANGE`: a and b lie in the ranges of axes 0 and 1 already
+    /// (hosted targets skip their clamp; the same values).
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    pub(crate) fn pair3_in<const IN_RANGE: bool>(
+        &self,
+        grid: &Grid,
+        data: &[u8],
+        a: [f32; 2],
+        b: [f32; 2],
+        z: f32,
+    ) -> (f32, f32) {
         #[cfg(not(any(target_os = "none", target_family = "wasm")))]
         if self.chunked() {
             // Both sides side by side (the same arithmetic as `pair3_linear`).
-            let [va, vb] = self.chunk3::<2>(data, &[[a[0], b[0]], [a[1], b[1]]], z);
+            let [va, vb] = self.chunk3_in::<2, IN_RANGE>(
+                &self.lanes[0],
+                data,
+                &[[a[0], b[0]], [a[1], b[1]]],
+                z,
+            );
             return (va, vb);
         }
         self.pair3_any(grid, data, a, b, z)
@@ -639,13 +712,35 @@ impl Reader {
 /// the scalar lookups' bit for bit.
 #[cfg(not(any(target_os = "none", target_family = "wasm")))]
 impl Lane {
-    /// [`Lane::cell`] of `N` coordinates.
+    /// [`Lane::cell`], with ln x of a log axis by [`ln_fast`] (inline, a few 1e-8 from
+    /// libm's: the node index moves by far less than 1e-4 of a cell). For the σ lane of
+    /// the 3-D G tables, computed once per query.
     #[inline(always)]
-    pub(crate) fn cells<const N: usize>(&self, x: &[f32; N]) -> ([u32; N], [f32; N]) {
+    fn cell_ln(&self, x: f32) -> (usize, f32) {
+        if self.warp != Warp::Log || self.lo < f32::MIN_POSITIVE {
+            return self.cell(x);
+        }
+        let x = clamp_s(x, self.lo, self.hi);
+        let t = clamp_s(self.a * ln_fast(x) + self.b, 0.0, self.last);
+        let i = trunc_small(min_s(t, self.last_cell_f));
+        (i as usize, t - i as f32)
+    }
+
+    /// [`Lane::cell`] of `N` coordinates; `IN_RANGE`: the caller guarantees x ∈ [lo, hi]
+    /// (the clamp would change nothing and is skipped); `MINMAX`: for N ≤ 2, the index
+    /// clamp as scalar max/min instructions (the same values; which form the compiler turns
+    /// into less code depends on the caller; longer chunks keep the vectorising form).
+    #[inline(always)]
+    pub(crate) fn cells<const N: usize, const IN_RANGE: bool, const MINMAX: bool>(
+        &self,
+        x: &[f32; N],
+    ) -> ([u32; N], [f32; N]) {
         let (lo, hi) = (self.lo, self.hi);
-        let mut w = [0.0f32; N];
-        for (w, &x) in w.iter_mut().zip(x) {
-            *w = clamp(x, lo, hi);
+        let mut w = *x;
+        if !IN_RANGE {
+            for w in &mut w {
+                *w = clamp(*w, lo, hi);
+            }
         }
         match self.warp {
             Warp::Linear => {}
@@ -656,7 +751,7 @@ impl Lane {
             }
             Warp::SqrtCos => {
                 for w in &mut w {
-                    *w = cos_quadrant(*w).max(0.0);
+                    *w = nonneg(cos_quadrant(*w));
                 }
                 for w in &mut w {
                     *w = sqrt_v(*w);
@@ -673,13 +768,20 @@ impl Lane {
         // when that rounded up; the integer is read from the bits of ⌊t⌋ + 2²³. Equal to
         // `cell`'s conversion (both are the exact ⌊t⌋ capped at n − 2), NaN going to node 0.
         const MAGIC: f32 = 8_388_608.0;
-        let last_cell = self.last_cell as f32;
+        let last_cell = self.last_cell_f;
         let (mut i, mut f) = ([0u32; N], [0.0f32; N]);
         for k in 0..N {
-            let t = clamp(self.a * w[k] + self.b, 0.0, self.last);
+            let t = self.a * w[k] + self.b;
+            let t = if MINMAX && N <= 2 {
+                clamp_s(t, 0.0, self.last)
+            } else {
+                clamp(t, 0.0, self.last)
+            };
             if N <= 2 {
-                // Too few queries to vectorise: `cell`'s conversion.
-                let ik = (t as u16 as i32).min(self.last_cell);
+                // Too few queries for the stages below to pay: ⌊min(t, n − 2)⌋ (t ≥ 0, so the
+                // truncating conversion is the floor, and n − 2 is an integer, so this is
+                // `cell`'s min(⌊t⌋, n − 2); NaN: node n − 2 and f = NaN).
+                let ik = trunc_small(min_s(t, last_cell));
                 i[k] = ik as u32;
                 f[k] = t - ik as f32;
                 continue;
@@ -704,6 +806,44 @@ impl Reader {
         self.mode == Mode::Linear && self.encoding == Encoding::Unorm16
     }
 
+    /// Axis 0's lane taking √cos θ instead of θ (see [`Lane::prewarped`]) for
+    /// [`Reader::pair_with`]; `None` unless axis 0 is √cos-warped and the table
+    /// `chunked()`.
+    pub(crate) fn prewarped(&self) -> Option<Lane> {
+        if !self.chunked() {
+            return None;
+        }
+        self.lanes[0].prewarped()
+    }
+
+    /// Two one-channel lookups (GM and GS sides) of a `chunked()` 2-D (`z` = None) or 3-D
+    /// table with `l0` in place of axis 0's lane: [`Reader::chunk`] / [`Reader::pair3`].
+    #[inline(always)]
+    pub(crate) fn pair_with(
+        &self,
+        l0: &Lane,
+        data: &[u8],
+        a: [f32; 2],
+        b: [f32; 2],
+        z: Option<f32>,
+    ) -> (f32, f32) {
+        let x = [[a[0], b[0]], [a[1], b[1]]];
+        let [va, vb] = match z {
+            Some(z) => self.chunk3_in::<2, false>(l0, data, &x, z),
+            None => self.chunk_in::<2, 1, 2, false, false>(l0, data, &x)[0],
+        };
+        (va, vb)
+    }
+
+    /// Whether axes 0 and 1 span exactly θ ∈ [0, π/2] and φ ∈ [−π/2, π/2] in f32 (the
+    /// passing-factor convention), so that the in-plane G arguments, already clamped to
+    /// those ranges, need no second clamp ([`Reader::chunk_in`], [`Reader::chunk3_in`]).
+    pub(crate) fn g_ranges(&self) -> bool {
+        use core::f32::consts::FRAC_PI_2;
+        let [t, p, _] = &self.lanes;
+        (t.lo, t.hi, p.lo, p.hi) == (0.0, FRAC_PI_2, -FRAC_PI_2, FRAC_PI_2)
+    }
+
     /// `N` lookups of a 1-D or 2-D linear u16 table (`chunked()` must hold): channel c of
     /// query k in `out[c][k]`, equal to [`Reader::sample`] bit for bit.
     #[inline(always)]
@@ -712,10 +852,27 @@ impl Reader {
         data: &[u8],
         x: &[[f32; N]; D],
     ) -> [[f32; N]; C] {
+        self.chunk_in::<D, C, N, false, false>(&self.lanes[0], data, x)
+    }
+
+    /// [`Reader::chunk`]; `IN_RANGE`: every coordinate lies in its axis' range already.
+    #[inline(always)]
+    fn chunk_in<
+        const D: usize,
+        const C: usize,
+        const N: usize,
+        const IN_RANGE: bool,
+        const MINMAX: bool,
+    >(
+        &self,
+        l0: &Lane,
+        data: &[u8],
+        x: &[[f32; N]; D],
+    ) -> [[f32; N]; C] {
         let l = &self.lanes;
-        let (i0, f0) = l[0].cells(&x[0]);
+        let (i0, f0) = l0.cells::<N, IN_RANGE, MINMAX>(&x[0]);
         let (i1, f1) = if D > 1 {
-            l[1].cells(&x[1])
+            l[1].cells::<N, IN_RANGE, MINMAX>(&x[1])
         } else {
             ([0; N], [0.0; N])
         };
@@ -775,10 +932,22 @@ impl Reader {
         x: &[[f32; N]; 2],
         z: f32,
     ) -> [f32; N] {
+        self.chunk3_in::<N, false>(&self.lanes[0], data, x, z)
+    }
+
+    /// [`Reader::chunk3`]; `IN_RANGE`: every x lies in its axis' range already.
+    #[inline(always)]
+    pub(crate) fn chunk3_in<const N: usize, const IN_RANGE: bool>(
+        &self,
+        l0: &Lane,
+        data: &[u8],
+        x: &[[f32; N]; 2],
+        z: f32,
+    ) -> [f32; N] {
         let l = &self.lanes;
-        let (k2, f2) = l[2].cell(z);
-        let (i0, mut f0) = l[0].cells(&x[0]);
-        let (i1, f1) = l[1].cells(&x[1]);
+        let (k2, f2) = l[2].cell_ln(z);
+        let (i0, mut f0) = l0.cells::<N, IN_RANGE, true>(&x[0]);
+        let (i1, f1) = l[1].cells::<N, IN_RANGE, true>(&x[1]);
         let (s1, s2) = (l[1].stride * 2, l[2].stride * 2);
         let mut q = [[0u32; N]; 8];
         for k in 0..N {
@@ -843,6 +1012,103 @@ fn sqrt_v(x: f32) -> f32 {
     libm::sqrtf(x)
 }
 
+/// [`clamp`] as one max and one min instruction per value (NaN stays NaN). The plain
+/// comparisons let the compiler turn a two-lane clamp into a vector compare, a mask
+/// extraction and branches.
+#[cfg(all(
+    target_arch = "x86_64",
+    not(any(target_os = "none", target_family = "wasm"))
+))]
+#[inline(always)]
+pub(crate) fn clamp_s(x: f32, lo: f32, hi: f32) -> f32 {
+    use core::arch::x86_64::{_mm_cvtss_f32, _mm_max_ss, _mm_min_ss, _mm_set_ss};
+    // SAFETY: SSE is part of the x86_64 baseline; register-only intrinsics (safe functions
+    // from Rust 1.87 on; the block is for the crate's minimum Rust, 1.84). maxss/minss
+    // return their second operand when either is NaN: (lo > x ? lo : x), (hi < y ? hi : y).
+    #[allow(unused_unsafe)]
+    unsafe {
+        let y = _mm_max_ss(_mm_set_ss(lo), _mm_set_ss(x));
+        _mm_cvtss_f32(_mm_min_ss(_mm_set_ss(hi), y))
+    }
+}
+/// min(t, m) as one instruction (t < m ? t : m).
+#[cfg(all(
+    target_arch = "x86_64",
+    not(any(target_os = "none", target_family = "wasm"))
+))]
+#[inline(always)]
+fn min_s(t: f32, m: f32) -> f32 {
+    use core::arch::x86_64::{_mm_cvtss_f32, _mm_min_ss, _mm_set_ss};
+    // SAFETY: as in `clamp_s`.
+    #[allow(unused_unsafe)]
+    unsafe {
+        _mm_cvtss_f32(_mm_min_ss(_mm_set_ss(t), _mm_set_ss(m)))
+    }
+}
+#[cfg(all(
+    not(target_arch = "x86_64"),
+    not(any(target_os = "none", target_family = "wasm"))
+))]
+pub(crate) use clamp as clamp_s;
+#[cfg(all(
+    not(target_arch = "x86_64"),
+    not(any(target_os = "none", target_family = "wasm"))
+))]
+#[inline(always)]
+fn min_s(t: f32, m: f32) -> f32 {
+    if t < m {
+        t
+    } else {
+        m
+    }
+}
+
+/// ln x for a normal positive finite f32 x: x = 2ᵏ m with m ∈ [√½, √2), then
+/// ln m = 2 atanh s = 2s (1 + s²/3 + s⁴/5 + s⁶/7 + …) with s = (m − 1)/(m + 1), |s| ≤ 0.1716
+/// (series truncation < 2.9e-8; with the f32 rounding the error stays below
+/// 1.5e-7 + 6e-8 |ln x|). Not correctly rounded like libm's `logf`, but inline and about
+/// a third of its instructions.
+#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[inline(always)]
+pub(crate) fn ln_fast(x: f32) -> f32 {
+    // The bits of √½: adding 1.0's bits minus these carries into the exponent exactly when
+    // the significand is ≥ √2.
+    const SQRT_HALF: u32 = 0x3f35_04f3;
+    let ix = x.to_bits().wrapping_add(0x3f80_0000 - SQRT_HALF);
+    let k = (ix >> 23) as i32 - 127;
+    let m = f32::from_bits((ix & 0x007f_ffff) + SQRT_HALF);
+    let f = m - 1.0;
+    let s = f / (2.0 + f);
+    let z = s * s;
+    let p = 2.0 + z * (2.0 / 3.0 + z * (2.0 / 5.0 + z * (2.0 / 7.0)));
+    k as f32 * core::f32::consts::LN_2 + s * p
+}
+
+/// ⌊x⌋ of x ∈ [0, 2¹⁶) as the processor's truncating conversion, without the saturation
+/// checks of `as`. Callers pass no NaN.
+#[cfg(all(
+    target_arch = "x86_64",
+    not(any(target_os = "none", target_family = "wasm"))
+))]
+#[inline(always)]
+fn trunc_small(x: f32) -> i32 {
+    use core::arch::x86_64::{_mm_cvttss_si32, _mm_set_ss};
+    // SAFETY: SSE is part of the x86_64 baseline; register-only intrinsics (safe functions
+    // from Rust 1.87 on; the block is for the crate's minimum Rust, 1.84).
+    #[allow(unused_unsafe)]
+    unsafe {
+        _mm_cvttss_si32(_mm_set_ss(x))
+    }
+}
+#[cfg(all(
+    not(target_arch = "x86_64"),
+    not(any(target_os = "none", target_family = "wasm"))
+))]
+#[inline(always)]
+fn trunc_small(x: f32) -> i32 {
+    x as i32
+}
+
 /// Stored u16 number `k` of `b` (0 past the end; callers pass rows that hold it).
 #[cfg(not(any(target_os = "none", target_family = "wasm")))]
 #[inline(always)]
@@ -850,5 +1116,77 @@ fn u16_at(b: &[u8], k: usize) -> u16 {
     match b.get(2 * k..2 * k + 2) {
         Some(&[b0, b1]) => u16::from_le_bytes([b0, b1]),
         _ => 0,
+    }
+}
+
+#[cfg(all(test, not(any(target_os = "none", target_family = "wasm"))))]
+mod tests {
+    use super::*;
+
+    /// `ln_fast` against the f64 logarithm over the normal f32 range (every 2⁻¹²th step of
+    /// the exponent) and densely over σ-like values. Bound: series truncation 2.9e-8, plus
+    /// f32 rounding of s, the polynomial and k·ln 2 (a few ulp of ln m ≤ 0.35 and of
+    /// |k ln 2|), i.e. ≤ 1.5e-7 + 2.5e-7·|ln x|.
+    #[test]
+    fn ln_fast_matches_the_logarithm() {
+        let mut worst = 0f64;
+        let mut check = |x: f32| {
+            let exact = (x as f64).ln();
+            let err = (ln_fast(x) as f64 - exact).abs();
+            assert!(err <= 1.5e-7 + 2.5e-7 * exact.abs(), "{x}: {err:e}");
+            worst = worst.max(err / (1.0 + exact.abs()));
+        };
+        let mut e = -126.0f64;
+        while e < 127.0 {
+            check(libm::exp2(e) as f32);
+            e += 1.0 / 4096.0;
+        }
+        for k in 0..=200_000 {
+            check(0.01 + 10.0 * k as f32 / 200_000.0);
+        }
+        assert!(worst > 0.0);
+    }
+
+    /// A NaN coordinate on a √cos-warped axis gives a NaN fraction (so a NaN value), on
+    /// both the scalar and the chunk path.
+    #[test]
+    fn nan_stays_nan_through_the_sqrt_cos_warp() {
+        let axis = Axis {
+            name: "theta",
+            count: 9,
+            lo: 0.0,
+            hi: core::f64::consts::FRAC_PI_2,
+            warp: Warp::SqrtCos,
+            placement: Placement::Endpoint,
+        };
+        let lane = Lane::new(&axis, 1).unwrap();
+        assert!(lane.cell(f32::NAN).1.is_nan());
+        let (_, f) = lane.cells::<2, false, false>(&[f32::NAN, 0.5]);
+        assert!(f[0].is_nan() && !f[1].is_nan());
+        let (_, f) = lane.cells::<16, false, false>(&[f32::NAN; 16]);
+        assert!(f.iter().all(|f| f.is_nan()));
+    }
+
+    /// The σ lane of a 3-D G table (28 nodes over [0.05, 1], log warp) through `ln_fast`
+    /// moves the fractional node index by less than 1e-4 of a cell from libm's `logf`
+    /// (a = 27/ln 20 ≈ 9 cells per unit of ln σ, times the error bound above).
+    #[test]
+    fn fast_log_lane_keeps_the_node_index() {
+        let axis = Axis {
+            name: "sigma",
+            count: 28,
+            lo: 0.05,
+            hi: 1.0,
+            warp: Warp::Log,
+            placement: Placement::Endpoint,
+        };
+        let lane = Lane::new(&axis, 1).unwrap();
+        for k in 0..=100_000 {
+            let x = 0.04 + 1.0 * k as f32 / 100_000.0;
+            let (i, f) = lane.cell(x);
+            let (j, g) = lane.cell_ln(x);
+            let (t, u) = (i as f32 + f, j as f32 + g);
+            assert!((t - u).abs() < 1e-4, "σ = {x}: {t} vs {u}");
+        }
     }
 }

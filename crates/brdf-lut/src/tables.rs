@@ -25,6 +25,14 @@ pub(crate) struct Prepared {
     pub(crate) reciprocal: bool,
     /// Range of the last axis (σ of a 3-D G table, roughness otherwise).
     pub(crate) last_range: (f32, f32),
+    /// A passing-factor table whose θ and φ axes span exactly the ranges [`g_args`] clamps
+    /// to: the lanes skip their own clamp of those arguments (hosted targets).
+    #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+    pub(crate) g_in_range: bool,
+    /// The θ lane taking √cos θ (hosted targets; see [`Prepared::g_dots`]). Only the lane:
+    /// a second reader would not fit the C interface's fixed table handles.
+    #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+    pub(crate) dots: Option<crate::reader::Lane>,
 }
 
 impl Prepared {
@@ -44,6 +52,14 @@ impl Prepared {
             sigma: h.generator.sigma.map_or(f32::NAN, |s| s as f32),
             last_range: last,
             reciprocal: h.generator.convention == Convention::Reciprocal,
+            #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+            g_in_range: h.kind == TableKind::PassingFactor && view.reader().g_ranges(),
+            #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+            dots: if h.kind == TableKind::PassingFactor {
+                view.reader().prewarped()
+            } else {
+                None
+            },
         }
     }
 
@@ -76,7 +92,9 @@ impl Prepared {
         if theta_i.is_nan() || theta_r.is_nan() {
             return (f32::NAN, f32::NAN, f32::NAN);
         }
-        let (m, s) = g_args(theta_i, theta_r);
+        let (m, s) = g_args1(theta_i, theta_r);
+        // (Skipping the lanes' clamp here, as `g3` does, measured more instructions: the
+        // compiler then splits the two lanes.)
         let (gm, gs) = self.pair2(payload, m, s);
         let (gm, gs) = (unit01(gm), unit01(gs));
         (gm, gs, min_g(gm, gs))
@@ -113,7 +131,15 @@ impl Prepared {
         if theta_i.is_nan() || theta_r.is_nan() || sigma.is_nan() {
             return (f32::NAN, f32::NAN, f32::NAN);
         }
-        let (m, s) = g_args(theta_i, theta_r);
+        let (m, s) = g_args1(theta_i, theta_r);
+        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        let (gm, gs) = if self.g_in_range {
+            self.reader
+                .pair3_in::<true>(&self.grid, payload, m, s, sigma)
+        } else {
+            self.reader.pair3(&self.grid, payload, m, s, sigma)
+        };
+        #[cfg(any(target_os = "none", target_family = "wasm"))]
         let (gm, gs) = self.reader.pair3(&self.grid, payload, m, s, sigma);
         let (gm, gs) = (unit01(gm), unit01(gs));
         (gm, gs, min_g(gm, gs))
@@ -139,14 +165,29 @@ impl Prepared {
         (gm, gs, min_g(gm, gs))
     }
 
-    /// G from dot products (see [`dots_args`]).
+    /// G from dot products (see [`dots_args`]). On hosted targets a linear u16 table
+    /// (speed tier) whose θ axis is √cos-warped reads that axis at √cos θ from the cosine
+    /// itself (n·v, n·l) instead of at θ = atan2(sin θ, cos θ), whose cosine the lane would
+    /// compute again by a polynomial: the node index differs from the θ route by f32
+    /// rounding only (values within 2e-7 in the test below; φ still comes from θ).
     #[inline]
     pub(crate) fn g_dots(&self, payload: &[u8], n_l: f32, n_v: f32, l_v: f32, sigma: f32) -> f32 {
         if n_l.is_nan() || n_v.is_nan() || l_v.is_nan() || sigma.is_nan() {
             return f32::NAN;
         }
         match dots_args(n_l, n_v, l_v) {
-            Some((m, s)) => self.g_from_args(payload, m, s, sigma).2,
+            Some((m, s, (co, ci))) => {
+                #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+                if let Some(lane) = &self.dots {
+                    let (m, s) = ([libm::sqrtf(co), m[1]], [libm::sqrtf(ci), s[1]]);
+                    let z = (self.grid.dims == 3).then_some(sigma);
+                    let (gm, gs) = self.reader.pair_with(lane, payload, m, s, z);
+                    return min_g(unit01(gm), unit01(gs));
+                }
+                #[cfg(any(target_os = "none", target_family = "wasm"))]
+                let _ = (co, ci);
+                self.g_from_args(payload, m, s, sigma).2
+            }
             None => 0.0,
         }
     }
@@ -285,15 +326,36 @@ pub(crate) fn g_args(theta_i: f32, theta_r: f32) -> ([f32; 2], [f32; 2]) {
     ([tr.abs(), s], [ti, tr])
 }
 
+/// [`g_args`] for one query (the same values): on hosted targets the clamps as scalar
+/// max/min instructions, which the compiler otherwise turns into a two-lane compare and
+/// branches (the chunk loops keep [`g_args`], which vectorises).
+#[inline(always)]
+fn g_args1(theta_i: f32, theta_r: f32) -> ([f32; 2], [f32; 2]) {
+    #[cfg(any(target_os = "none", target_family = "wasm"))]
+    return g_args(theta_i, theta_r);
+    #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+    {
+        use crate::reader::clamp_s as clamp;
+        let ti = clamp(theta_i, 0.0, FRAC_PI_2);
+        let tr = clamp(theta_r, -FRAC_PI_2, FRAC_PI_2);
+        let s = if tr < 0.0 { -ti } else { ti };
+        ([tr.abs(), s], [ti, tr])
+    }
+}
+
+/// (GM arguments, GS arguments, (cos θ_v, cos θ_l)) of [`dots_args`].
+type DotsArgs = ([f32; 2], [f32; 2], (f32, f32));
+
 /// The table arguments (θ, φ) of both sides of G from the dot products of unit vectors
 /// n·l, n·v, l·v, through the reciprocal 3-D extension of the modified G (the kernel's
 /// `ModifiedG::terms_dots`): each side w ∈ {v (GM), l (GS)} is M(θ_w, a_w) with
 /// tan a_w = (t + sin²θ_w) / (sin θ_w (cos θ_l + cos θ_v)), t = l·v − cos θ_l cos θ_v the
 /// tangential dot product; the table stores F(θ, φ) = M(θ, (θ − φ)/2), so φ_w = θ_w − 2 a_w.
+/// Also gives the two cosines (cos θ_v, cos θ_l) ∈ (0, 1].
 /// `None` when a direction is at or below the horizon (G = 0 there); NaN is handled by the
 /// caller. In the plane of incidence this gives the in-plane arguments.
 #[inline]
-fn dots_args(n_l: f32, n_v: f32, l_v: f32) -> Option<([f32; 2], [f32; 2])> {
+fn dots_args(n_l: f32, n_v: f32, l_v: f32) -> Option<DotsArgs> {
     if !(n_l > 0.0 && n_v > 0.0) {
         return None;
     }
@@ -314,7 +376,7 @@ fn dots_args(n_l: f32, n_v: f32, l_v: f32) -> Option<([f32; 2], [f32; 2])> {
         };
         [theta, theta - 2.0 * a]
     };
-    Some((side(co, so), side(ci, si)))
+    Some((side(co, so), side(ci, si), (co, ci)))
 }
 
 /// G = min(GM, GS) (paper eq 13) as one select (the factors are not NaN: NaN queries
@@ -608,5 +670,75 @@ impl<B: AsRef<[u8]>> AverageAlbedoTable<B> {
             *o = self.p.one(p, r);
         }
         n
+    }
+}
+
+#[cfg(all(
+    test,
+    feature = "std",
+    not(any(target_os = "none", target_family = "wasm"))
+))]
+mod tests {
+    use super::*;
+    use brdf_core::geometry::Dots;
+    use brdf_core::masking::ModifiedG;
+
+    fn asset(name: &str) -> std::vec::Vec<u8> {
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/");
+        std::fs::read(std::format!("{dir}{name}")).unwrap()
+    }
+
+    /// G from dot products through the cosine route (√cos θ straight from n·v, n·l) against
+    /// (a) the θ route (θ = atan2, the lane's √cos polynomial) of the same table: the node
+    /// indices differ by f32 rounding, ≲ 2e-5 of a cell at cos θ = 0.035 (a θ rounding of
+    /// 1e-7 moves √cos θ by 1e-7/(2·0.19), times ~55 cells per unit of √cos θ), so the
+    /// values by < 1e-4; (b) the direct kernel's shader form within the table's recorded
+    /// max error plus 1e-4 for the f32 angle arithmetic.
+    #[test]
+    fn g_dots_from_cosines_matches_the_angle_route_and_the_kernel() {
+        let direct = ModifiedG::<f64>::new(0.3).unwrap();
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for name in [
+            "g_modified_sigma0.3_linear.blut",
+            "g_modified_sigma0.3.blut",
+            "g_modified_linear.blut",
+            "g_modified.blut",
+        ] {
+            let b = asset(name);
+            let v = LutView::parse(&b).unwrap();
+            let p = Prepared::new(&v);
+            assert_eq!(p.dots.is_some(), name.contains("linear"), "{name}");
+            let payload = &b[p.header_len..];
+            let bound = v.header().error.max_abs as f64 + 1e-4;
+            let (mut worst_route, mut worst_kernel) = (0f64, 0f64);
+            for _ in 0..4000 {
+                let mut dir = || {
+                    let z = 0.035 + 0.965 * next();
+                    let s = (1.0 - z * z).sqrt();
+                    let a = 2.0 * core::f64::consts::PI * next();
+                    [s * a.cos(), s * a.sin(), z]
+                };
+                let (l, w) = (dir(), dir());
+                let lv = l[0] * w[0] + l[1] * w[1] + l[2] * w[2];
+                let (nl, nv, lv32) = (l[2] as f32, w[2] as f32, lv as f32);
+                let got = p.g_dots(payload, nl, nv, lv32, 0.3) as f64;
+                let (m, s, _) = dots_args(nl, nv, lv32).unwrap();
+                let theta_route = p.g_from_args(payload, m, s, 0.3).2 as f64;
+                let want = direct.g_dots(Dots::new(l[2], w[2], lv));
+                worst_route = worst_route.max((got - theta_route).abs());
+                worst_kernel = worst_kernel.max((got - want).abs());
+            }
+            std::println!(
+                "{name}: |cos − θ route| {worst_route:.1e}, |table − kernel| {worst_kernel:.1e}"
+            );
+            assert!(worst_route < 1e-4, "{name}: {worst_route}");
+            assert!(worst_kernel <= bound, "{name}: {worst_kernel} > {bound}");
+        }
     }
 }

@@ -34,6 +34,8 @@ const KERNELS: &[&str] = &[
     "eavg_lut_batch",
     "e_lut",
     "eavg_lut",
+    "g_lut2d_linear_dots",
+    "g_lut3d_linear_dots",
 ];
 
 fn main() {
@@ -199,6 +201,25 @@ fn main() {
                     })
                 }
             }
+        }
+        "g_lut2d_linear_dots" => {
+            let b = asset(G2_LINEAR_ASSET);
+            let t = GTable::parse(&b).unwrap();
+            run!(|k: usize| t.g_dots(
+                black_box(d32[k].n_i),
+                black_box(d32[k].n_o),
+                black_box(d32[k].i_o)
+            ))
+        }
+        "g_lut3d_linear_dots" => {
+            let b = asset(G3_LINEAR_ASSET);
+            let t = GTable3::parse(&b).unwrap();
+            run!(|k: usize| t.g_dots(
+                black_box(d32[k].n_i),
+                black_box(d32[k].n_o),
+                black_box(d32[k].i_o),
+                SIGMA as f32
+            ))
         }
         "e_lut" => {
             let b = asset(E_ASSET);
