@@ -240,37 +240,10 @@ impl Prepared {
         x: [&[f32]; D],
         out: [&mut [f32]; C],
     ) {
-        let n = out[0].len();
         let r = &self.reader;
-        let mut k = 0;
-        while k + CHUNK <= n {
-            let mut xs = [[0.0f32; CHUNK]; D];
-            for (d, xd) in xs.iter_mut().enumerate() {
-                if let Some(c) = x[d].get(k..).and_then(|s| s.first_chunk::<CHUNK>()) {
-                    *xd = *c;
-                }
-            }
-            let v = r.chunk_cubic::<D, C, CHUNK>(payload, &xs);
-            for c in 0..C {
-                if let Some(o) = out[c].get_mut(k..k + CHUNK) {
-                    o.copy_from_slice(&v[c]);
-                }
-            }
-            k += CHUNK;
-        }
-        while k < n {
-            let mut xk = [0.0f32; D];
-            for d in 0..D {
-                xk[d] = x[d].get(k).copied().unwrap_or(f32::NAN);
-            }
-            let v = r.sample::<D, C>(&self.grid, payload, xk);
-            for c in 0..C {
-                if let Some(o) = out[c].get_mut(k) {
-                    *o = v[c];
-                }
-            }
-            k += 1;
-        }
+        self.drive_batch::<D, C, CHUNK>(x, out, payload, |xs| {
+            r.chunk_cubic::<D, C, CHUNK>(payload, xs)
+        });
     }
 
     /// G of `N` in-plane pairs of a 2-D (`z` = None) or 3-D Catmull–Rom table (`z`: the

@@ -282,30 +282,45 @@ impl Prepared {
         x: [&[f32]; D],
         out: [&mut [f32]; C],
     ) {
-        let n = out[0].len();
         let r = &self.reader;
+        self.drive_batch::<D, C, CHUNK>(x, out, payload, |xs| r.chunk::<D, C, CHUNK>(payload, xs));
+    }
+
+    /// The batch driver shared by every chunked path: `chunk` computes `N` queries at once
+    /// (bit for bit the scalar lookup), the tail of fewer than `N` goes through
+    /// [`Reader::sample`]. `out[c][k]` = channel c at (x[0][k], …); every slice has the same
+    /// length.
+    #[inline(always)]
+    pub(crate) fn drive_batch<const D: usize, const C: usize, const N: usize>(
+        &self,
+        x: [&[f32]; D],
+        out: [&mut [f32]; C],
+        payload: &[u8],
+        chunk: impl Fn(&[[f32; N]; D]) -> [[f32; N]; C],
+    ) {
+        let n = out[0].len();
         let mut k = 0;
-        while k + CHUNK <= n {
-            let mut xs = [[0.0f32; CHUNK]; D];
+        while k + N <= n {
+            let mut xs = [[0.0f32; N]; D];
             for (d, xd) in xs.iter_mut().enumerate() {
-                if let Some(c) = x[d].get(k..).and_then(|s| s.first_chunk::<CHUNK>()) {
+                if let Some(c) = x[d].get(k..).and_then(|s| s.first_chunk::<N>()) {
                     *xd = *c;
                 }
             }
-            let v = r.chunk::<D, C, CHUNK>(payload, &xs);
+            let v = chunk(&xs);
             for c in 0..C {
-                if let Some(o) = out[c].get_mut(k..k + CHUNK) {
+                if let Some(o) = out[c].get_mut(k..k + N) {
                     o.copy_from_slice(&v[c]);
                 }
             }
-            k += CHUNK;
+            k += N;
         }
         while k < n {
             let mut xk = [0.0f32; D];
             for d in 0..D {
                 xk[d] = x[d].get(k).copied().unwrap_or(f32::NAN);
             }
-            let v = r.sample::<D, C>(&self.grid, payload, xk);
+            let v = self.reader.sample::<D, C>(&self.grid, payload, xk);
             for c in 0..C {
                 if let Some(o) = out[c].get_mut(k) {
                     *o = v[c];
