@@ -13,7 +13,6 @@ use crate::textbook;
 use anyhow::{Context as _, Result};
 use brdf_core::masking::{Convention, ModifiedG};
 use minijinja::{context, AutoEscape, Environment, UndefinedBehavior, Value};
-use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 
@@ -109,20 +108,22 @@ pub fn run(root: &Path, s: &Settings) -> Result<Outcome> {
 
 /// The report's prose, with placeholders for the numbers `markdown` computes.
 const TEMPLATE: &str = include_str!("../templates/validation.md");
+/// §§5–6 (defects of the sources, conclusions), with placeholders for their numbers.
+const FINDINGS: &str = include_str!("../templates/findings.md");
 
 /// Renders a Markdown template: no escaping, undefined names are errors, a block tag's own
 /// line break is dropped (so `{% for %}` lines leave no blank lines).
-fn fill(template: &str, ctx: Value) -> Result<String> {
+fn fill(name: &str, template: &str, ctx: Value) -> Result<String> {
     let mut env = Environment::new();
     env.set_auto_escape_callback(|_| AutoEscape::None);
     env.set_undefined_behavior(UndefinedBehavior::Strict);
     env.set_trim_blocks(true);
     env.set_keep_trailing_newline(true);
-    env.add_template("validation.md", template)
-        .context("parsing the validation report template")?;
-    env.get_template("validation.md")?
+    env.add_template(name, template)
+        .with_context(|| format!("parsing the report template {name}"))?;
+    env.get_template(name)?
         .render(ctx)
-        .context("rendering the validation report template")
+        .with_context(|| format!("rendering the report template {name}"))
 }
 
 /// RMS / max (and over the populated cells) at 3 decimals.
@@ -351,6 +352,7 @@ fn markdown(
         .collect();
 
     let mut m = fill(
+        "validation.md",
         TEMPLATE,
         context! {
             run_flag => if s.name == "quick" { " --quick" } else { "" },
@@ -382,45 +384,47 @@ fn markdown(
         },
     )?;
 
-    // 5. Defects.
-    defects(&mut m, sweeps, fig6, fig7, &brdf_table);
-    // 6. Conclusions.
-    conclusions(&mut m, sweeps, &brdf_table);
+    // 5. Defects and 6. conclusions: the prose is the second template.
+    m.push_str(&fill(
+        "findings.md",
+        FINDINGS,
+        context! {
+            d => defects(sweeps, fig6, fig7, &brdf_table),
+            c => conclusions(sweeps, &brdf_table),
+        },
+    )?);
     Ok(m)
 }
 
-fn defects(m: &mut String, sweeps: &[Sweep], fig6: &Sweep, fig7: &Sweep, brdf_rows: &[BrdfRow]) {
-    let _ = writeln!(m, "## 5. Defects of the sources, with evidence\n");
-    // eq 12.
-    let _ = writeln!(m, "**Eq 12's sign (paper).** As printed, the shadowing term uses the same tilt α as the masking term (GS = M(θi, α)); the geometry of Fig. 5 needs the tilt toward the light, −α (docs/conventions.md §4).\n");
-    let mut asym = Vec::new();
-    for sw in sweeps {
-        let (mut ap, mut ar) = (0.0f64, 0.0f64);
-        let mg = ModifiedG::<f64>::new(sw.sigma).expect("σ > 0");
-        let mp = mg.with_convention(Convention::Printed);
-        for c in &sw.cells {
-            let (a, b) = (c.ti.to_radians(), c.tr.to_radians());
-            let (mi, mr) = if b >= 0.0 { (b, a) } else { (-b, -a) };
-            ap = ap.max((mp.g(a, b) - mp.g(mi, mr)).abs());
-            ar = ar.max((mg.g(a, b) - mg.g(mi, mr)).abs());
-        }
-        let mut gs_gap = 0.0f64;
-        for c in &sw.cells {
-            let (a, b) = (c.ti.to_radians(), c.tr.to_radians());
-            gs_gap = gs_gap.max((mp.terms(a, b).gs - c.sn.gs.mean).abs());
-        }
-        asym.push((sw.sigma, ap, ar, gs_gap));
-    }
-    let _ = writeln!(m, "| σ | printed: max \\|G(θi,θr) − G(θr,θi)\\| | reciprocal: same | printed GS vs P(lit) of the single-neighbour simulation (max \\|diff\\|) |");
-    let _ = writeln!(m, "|---|---|---|---|");
-    for (sg, ap, ar, gg) in &asym {
-        let _ = writeln!(m, "| {sg} | {ap:.3} | {ar:.1e} | {gg:.3} |");
-    }
-    let _ = writeln!(m, "\nThe printed form is not reciprocal, and its GS disagrees with a direct simulation of the paper's own shadowing model; with −α the formula matches that simulation within its statistical error (§2).\n");
-    // Normalisation.
+/// The numbers of §5 (defects of the sources): eq 12's sign, the normalisation C, G ≥ ½ at
+/// grazing, the paper's claim, textbook eqs 24.3 and 24.9.
+fn defects(sweeps: &[Sweep], fig6: &Sweep, fig7: &Sweep, brdf_rows: &[BrdfRow]) -> Value {
+    // eq 12: the printed convention's asymmetry and its GS against the simulation.
+    let asym: Vec<Value> = sweeps
+        .iter()
+        .map(|sw| {
+            let (mut ap, mut ar, mut gs_gap) = (0.0f64, 0.0f64, 0.0f64);
+            let mg = ModifiedG::<f64>::new(sw.sigma).expect("σ > 0");
+            let mp = mg.with_convention(Convention::Printed);
+            for c in &sw.cells {
+                let (a, b) = (c.ti.to_radians(), c.tr.to_radians());
+                let (mi, mr) = if b >= 0.0 { (b, a) } else { (-b, -a) };
+                ap = ap.max((mp.g(a, b) - mp.g(mi, mr)).abs());
+                ar = ar.max((mg.g(a, b) - mg.g(mi, mr)).abs());
+                gs_gap = gs_gap.max((mp.terms(a, b).gs - c.sn.gs.mean).abs());
+            }
+            context! {
+                sigma => sw.sigma.to_string(),
+                printed => format!("{ap:.3}"),
+                reciprocal => format!("{ar:.1e}"),
+                gs_gap => format!("{gs_gap:.3}"),
+            }
+        })
+        .collect();
+    // Normalisation: ∫ p dγ with C = 1. With u = tan γ, p dγ = (1/(2πσ²)) √(1+u²)
+    // e^{−u²/2σ²} du; midpoint rule on u ∈ [−12σ, 12σ].
     let sigma = 0.3;
     let n = 200_000;
-    // ∫ p dγ with C = 1: with u = tan γ, p dγ = (1/(2πσ²)) √(1+u²) e^{−u²/2σ²} du; midpoint rule on u ∈ [−12σ, 12σ].
     let (a, b) = (-12.0 * sigma, 12.0 * sigma);
     let h = (b - a) / n as f64;
     let mass_c1: f64 = (0..n)
@@ -434,7 +438,6 @@ fn defects(m: &mut String, sweeps: &[Sweep], fig6: &Sweep, fig7: &Sweep, brdf_ro
     let c_core = brdf_core::distribution::SlopeDistribution::<f64>::new(sigma)
         .map(|d| d.normalisation_c())
         .unwrap_or(f64::NAN);
-    let _ = writeln!(m, "**The normalisation C (paper eqs 2/5).** The paper says the density integrates to 1 \"over the half space\", which gives C = 1. Integrating p(γ) with C = 1 over γ ∈ [−π/2, π/2] (midpoint rule in u = tan γ, computed here) gives **{mass_c1:.4}** at σ = 0.3, not 1: with C = 1 every M and G is {mass_c1:.3} times too large and can exceed 1 (M = 1 for a ray that nothing blocks becomes {mass_c1:.3}). The project uses the 1-D normalisation C(0.3) = {c_core:.4} (brdf-core), whose reciprocal {:.4} agrees with the integral above.\n", 1.0 / c_core);
     // G ≥ 1/2.
     let mg = ModifiedG::<f64>::new(0.3).expect("σ > 0");
     let mut min_m90 = f64::INFINITY;
@@ -456,22 +459,12 @@ fn defects(m: &mut String, sweeps: &[Sweep], fig6: &Sweep, fig7: &Sweep, brdf_ro
             )
         })
         .collect();
-    let _ = writeln!(m, "**G ≥ ½ at grazing (paper).** In eqs 6–10 the fully-passing mass ∫_{{−π/2}}^{{π/2−θ}} p dγ is ½ at θ = 90° and the semi-passing part is ≥ 0, so M(90°, a) ≥ ½ for every facet tilt: over a ∈ [−89°, 89°] at σ = 0.3 the minimum of M(90°, a) is {min_m90:.4}. On a real surface almost nothing is seen at grazing. At θi = 30°, σ = 0.3: {}.\n", grazing.join("; "));
     let curve: Vec<String> = [80.0f64, 85.0, 88.0, 89.5]
         .iter()
         .map(|&tr| {
-            let fm = crate::study::ts_normalised(
-                0.3,
-                brdf_core::models::GeometricTerm::Modified,
-                10.0,
-                tr,
-            );
-            let fs = crate::study::ts_normalised(
-                0.3,
-                brdf_core::models::GeometricTerm::SmithCorrelated,
-                10.0,
-                tr,
-            );
+            let f = |g| crate::study::ts_normalised(0.3, g, 10.0, tr);
+            let fm = f(brdf_core::models::GeometricTerm::Modified);
+            let fs = f(brdf_core::models::GeometricTerm::SmithCorrelated);
             format!(
                 "θr = {tr}°: modified {fm:.4} (× cos θr = {:.4}), Smith {fs:.4}",
                 fm * tr.to_radians().cos()
@@ -492,30 +485,53 @@ fn defects(m: &mut String, sweeps: &[Sweep], fig6: &Sweep, fig7: &Sweep, brdf_ro
             )
         })
         .unwrap_or_default();
-    let _ = writeln!(m, "Because G stays ≥ ½ while the Torrance–Sparrow denominator has cos θr, the BRDF built on the paper's G grows like 1/cos θr toward grazing (f·cos θr tends to a constant) — f/f(10°) at θi = 10°, σ = 0.3: {}. For comparison {}.\n", curve.join("; "), sim88);
-    // Paper's claim.
-    if let Some((_, errs)) = brdf_rows.iter().find(|(sg, _)| (*sg - 0.3).abs() < 1e-9) {
-        let get = |t: brdf_core::models::GeometricTerm| {
-            errs.iter()
-                .find(|e| e.0 == t)
-                .map(|e| e.1)
-                .unwrap_or(f64::NAN)
-        };
-        use brdf_core::models::GeometricTerm as T;
-        let _ = writeln!(m, "**The paper's claim.** The paper reports that its G cuts the standard error of f/f(10°) against Hyde 2009's data from 0.0636 (Blinn) to 0.0084. Hyde's data is not available here; against the ray-traced truth at σ = 0.3 over θr ∈ [−85°, 85°] the RMS errors are: no G {:.4}, Blinn {:.4}, modified {:.4}, modified (printed) {:.4}, Smith separable {:.4}, Smith height-correlated {:.4}. (Other σ: table in §4.)\n", get(T::None), get(T::Blinn), get(T::Modified), get(T::ModifiedPrinted), get(T::SmithSeparable), get(T::SmithCorrelated));
-    }
+    // The paper's claim, against the ray-traced truth at σ = 0.3.
+    let claim = brdf_rows
+        .iter()
+        .find(|(sg, _)| (*sg - 0.3).abs() < 1e-9)
+        .map(|(_, errs)| {
+            use brdf_core::models::GeometricTerm as T;
+            let get = |t: T| {
+                let e = errs.iter().find(|e| e.0 == t).map_or(f64::NAN, |e| e.1);
+                format!("{e:.4}")
+            };
+            context! {
+                none => get(T::None),
+                blinn => get(T::Blinn),
+                modified => get(T::Modified),
+                printed => get(T::ModifiedPrinted),
+                separable => get(T::SmithSeparable),
+                correlated => get(T::SmithCorrelated),
+            }
+        });
     // Textbook.
     let r0 = 0.04;
-    let ap = textbook::coupled_albedo(0.0, r0, textbook::k_printed(r0));
-    let ac = textbook::coupled_albedo(0.0, r0, textbook::k_conserving(r0));
-    let ap60 = textbook::coupled_albedo(60f64.to_radians(), r0, textbook::k_printed(r0));
-    let _ = writeln!(m, "**Textbook eq 24.3's k (FCG ch. 24).** With k = 21/(20π(1 − R0)) as printed, R_m = 1, R0 = {r0} and an ideal mirror as the specular part, the directional albedo (computed here by quadrature) is **{ap:.4}** at normal incidence and {ap60:.4} at 60°: more energy leaves than arrives. Eq 24.1 with f(θ) = 1 − (1 − cos θ)⁵ and R_f(θ) = R0 + (1 − R0)(1 − cos θ)⁵ needs 2πk·(10/21)·f(θ) = 1 − R_f(θ) = (1 − R0)·f(θ), so k = 21(1 − R0)/(20π): the printed k divides by (1 − R0) where it should multiply. With the corrected k the albedo is {ac:.4}.\n");
+    let albedo = |theta: f64, k: f64| format!("{:.4}", textbook::coupled_albedo(theta, r0, k));
     let (e5, e9p, e9f) = textbook::eq_24_9_forms(100.0, 30f64.to_radians(), 40f64.to_radians());
-    let _ = writeln!(m, "**Textbook eq 24.9's exponent.** Eq 24.9 claims to rewrite eq 24.5 without trigonometry but puts the denominator (h·k)·max(cos θi, cos θo) inside the exponent. For n_u = n_v = 100, θi = 30°, θo = 40° (in plane): eq 24.5 gives {e5:.5e}, eq 24.9 as printed {e9p:.5e}, eq 24.9 with the denominator dividing {e9f:.5e}. Only the corrected form equals eq 24.5.\n");
+    context! {
+        asym => asym,
+        mass_c1_4 => format!("{mass_c1:.4}"),
+        mass_c1_3 => format!("{mass_c1:.3}"),
+        c_core => format!("{c_core:.4}"),
+        inv_c_core => format!("{:.4}", 1.0 / c_core),
+        min_m90 => format!("{min_m90:.4}"),
+        grazing => grazing.join("; "),
+        curve => curve.join("; "),
+        sim88 => sim88,
+        claim => claim,
+        r0 => r0.to_string(),
+        ap => albedo(0.0, textbook::k_printed(r0)),
+        ap60 => albedo(60f64.to_radians(), textbook::k_printed(r0)),
+        ac => albedo(0.0, textbook::k_conserving(r0)),
+        e5 => format!("{e5:.5e}"),
+        e9p => format!("{e9p:.5e}"),
+        e9f => format!("{e9f:.5e}"),
+    }
 }
 
-fn conclusions(m: &mut String, sweeps: &[Sweep], brdf_rows: &[BrdfRow]) {
-    let _ = writeln!(m, "## 6. Conclusions: which G to use\n");
+/// The numbers of §6 (which G to use): the best two G by RMS over the populated cells per
+/// σ, and the best normalised BRDF curves (ties within 5e-5).
+fn conclusions(sweeps: &[Sweep], brdf_rows: &[BrdfRow]) -> Value {
     let mut best = Vec::new();
     for sw in sweeps {
         let mut v: Vec<(f64, Model)> = Model::ALL
@@ -533,11 +549,6 @@ fn conclusions(m: &mut String, sweeps: &[Sweep], brdf_rows: &[BrdfRow]) {
             v[1].0
         ));
     }
-    let _ = writeln!(
-        m,
-        "Most accurate G against the ray-traced truth, by RMS over the populated cells: {}.\n",
-        best.join("; ")
-    );
     let mut bbest = Vec::new();
     for (sg, errs) in brdf_rows {
         let mut v = errs.clone();
@@ -549,31 +560,5 @@ fn conclusions(m: &mut String, sweeps: &[Sweep], brdf_rows: &[BrdfRow]) {
             .collect();
         bbest.push(format!("σ = {sg}: {} ({:.4})", tied.join(" = "), v[0].1));
     }
-    let _ = writeln!(
-        m,
-        "Most accurate normalised BRDF curve (θi = 10°): {}.\n",
-        bbest.join("; ")
-    );
-    let _ = writeln!(m, "{}", CONCLUSION_TEXT);
+    context! { best_g => best.join("; "), best_brdf => bbest.join("; ") }
 }
-
-/// The qualitative conclusions. They restate what the tables above show; the numbers that
-/// support them are generated.
-const CONCLUSION_TEXT: &str = "\
-* **For rendering and for anything energy-related use Smith, height-correlated** (`SmithCorrelated`, or the separable \
-form where a shader needs the product). In the default run it is the closest G to the ray-traced truth for \
-σ ≥ 0.2 and gives the closest normalised BRDF curves at every σ; it goes to 0 at grazing like the real surface; \
-and it is the G the published split-sum tables use. For smooth surfaces (σ ≤ 0.1) every G but Blinn's is within \
-about 0.01 of the truth where facets exist (the modified G is marginally closest there), so the choice does not \
-matter.
-* **The paper's modified G (reciprocal convention)** removes Blinn's kinks and is an exact evaluation of its own \
-single-neighbour model (checked above), but that model lets only one independent neighbour block, so it \
-underestimates masking badly at large angles and rough surfaces, and stays ≥ ½ at grazing; the BRDF built on it \
-then grows like 1/cos θr. Use it to reproduce the paper, not as a physical G. Never use the printed eq 12 except to \
-reproduce the paper's figures: it is not reciprocal.
-* **Blinn's V-groove G** does not depend on σ at all, so it cannot be right for more than one roughness: it masks \
-far too much for smooth surfaces at large angles and too little for very rough ones (heat maps), and has kinks. Keep \
-it for legacy comparisons only.
-* The paper's headline numbers (0.0636 → 0.0084 against Hyde 2009) cannot be checked without Hyde's data; against \
-a surface whose truth is computed, the table in §5 gives the honest comparison.
-";
