@@ -144,6 +144,9 @@ static const float ANGLES[][2] = {{0, 0}, {30, 30}, {30, -60}, {60, 75}, {80, -8
 /* (n.wi, n.wo, wi.wo) of unit-vector pairs above the surface. */
 static const float DOTS[][3] = {{0.9f, 0.7f, 0.5f}, {0.5f, 0.5f, 0.2f},  {0.3f, 0.95f, 0.1f},
                                 {1.0f, 0.6f, 0.6f}, {0.2f, 0.2f, -0.9f}, {0.7f, 0.7f, 0.96f}};
+/* n.h = (n.wi + n.wo)/sqrt(2 + 2 wi.wo) for each row of DOTS (rows as f32), as a shader
+ * would pass it. */
+static const double DOTS_NH[] = {0.9237604100557466, 0.645497223566348, 0.8427498275082367, 0.8944271976639177, 0.8944270977039072, 0.7071067730152197};
 /* Local-frame unit (wi, wo) pairs. */
 static const float DIRS[][2][3] = {
     {{0.5f, 0.0f, 0.8660254f}, {-0.5f, 0.0f, 0.8660254f}},
@@ -259,6 +262,24 @@ static void kernels(void) {
             rec("ts_f64"), ad((double)sigma), au(TS[j].g), au(TS[j].f), ad((double)TS[j].p);
             ad((double)ks), ad((double)albedo), ad((double)a), ad((double)b), ad((double)c);
             eq(), ad(f64), ad(sp64), flush_line();
+            /* With n.h as a shader has it: the same BRDF where the three dots are well
+             * conditioned (f32 within 1e-4, f64 within 1e-9 relative). */
+            {
+                float nh = (float)DOTS_NH[k];
+                float fh = brdf_torrance_sparrow_eval_nh_f32(&ts, a, b, c, nh);
+                rec("ts_nh_f32"), af(sigma), au(TS[j].g), au(TS[j].f), af(TS[j].p), af(ks);
+                af(albedo), af(a), af(b), af(c), af(nh), eq(), af(fh), flush_line();
+                float df = fh - f, af_ = f < 0.0f ? -f : f;
+                ts_ok &= (df < 0.0f ? -df : df) <= 1e-4f * af_;
+                double nh64 = DOTS_NH[k];
+                double fh64 = brdf_torrance_sparrow_eval_nh_f64(&ts64, (double)a, (double)b,
+                                                                (double)c, nh64);
+                rec("ts_nh_f64"), ad((double)sigma), au(TS[j].g), au(TS[j].f);
+                ad((double)TS[j].p), ad((double)ks), ad((double)albedo), ad((double)a);
+                ad((double)b), ad((double)c), ad(nh64), eq(), ad(fh64), flush_line();
+                double dd = fh64 - f64, ad_ = f64 < 0.0 ? -f64 : f64;
+                ts_ok &= (dd < 0.0 ? -dd : dd) <= 1e-9 * ad_;
+            }
         }
     }
     check("torrance_sparrow_init_and_lobe", ts_ok);

@@ -370,6 +370,13 @@ BrdfStatus brdf_torrance_sparrow_init_f32(struct BrdfTorranceSparrowF32 *out, fl
 // or a null or uninitialised handle.
 float brdf_torrance_sparrow_eval_f32(const struct BrdfTorranceSparrowF32 *ts, float n_i, float n_o, float i_o);
 
+// `brdf_torrance_sparrow_eval_f32` with n·h as well, h = normalize(wi + wo) as a shader
+// has it. Exact where the three dot products alone are not: for a near-mirror pair near
+// the horizon 2 + 2 wi·wo cancels, and |wi + wo| (hence h, D and the BRDF) is then
+// recovered from n·h instead (`Dots::with_n_h`). Bad input as for
+// `brdf_torrance_sparrow_eval_f32`; a non-finite n·h gives NaN.
+float brdf_torrance_sparrow_eval_nh_f32(const struct BrdfTorranceSparrowF32 *ts, float n_i, float n_o, float i_o, float n_h);
+
 // The specular lobe k_s D F G / (4 (n·wi)(n·wo)) alone, in 1/sr; bad input as for
 // `brdf_torrance_sparrow_eval_f32`.
 float brdf_torrance_sparrow_specular_f32(const struct BrdfTorranceSparrowF32 *ts, float n_i, float n_o, float i_o);
@@ -463,6 +470,13 @@ BrdfStatus brdf_torrance_sparrow_init_f64(struct BrdfTorranceSparrowF64 *out, do
 // vectors; 0 when a direction is at or below the horizon; NaN for a non-finite dot product
 // or a null or uninitialised handle.
 double brdf_torrance_sparrow_eval_f64(const struct BrdfTorranceSparrowF64 *ts, double n_i, double n_o, double i_o);
+
+// `brdf_torrance_sparrow_eval_f64` with n·h as well, h = normalize(wi + wo) as a shader
+// has it. Exact where the three dot products alone are not: for a near-mirror pair near
+// the horizon 2 + 2 wi·wo cancels, and |wi + wo| (hence h, D and the BRDF) is then
+// recovered from n·h instead (`Dots::with_n_h`). Bad input as for
+// `brdf_torrance_sparrow_eval_f64`; a non-finite n·h gives NaN.
+double brdf_torrance_sparrow_eval_nh_f64(const struct BrdfTorranceSparrowF64 *ts, double n_i, double n_o, double i_o, double n_h);
 
 // The specular lobe k_s D F G / (4 (n·wi)(n·wo)) alone, in 1/sr; bad input as for
 // `brdf_torrance_sparrow_eval_f64`.

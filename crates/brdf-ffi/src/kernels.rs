@@ -527,6 +527,27 @@ pub unsafe extern "C" fn brdf_torrance_sparrow_eval_f32(
     }
 }
 
+/// `brdf_torrance_sparrow_eval_f32` with n·h as well, h = normalize(wi + wo) as a shader
+/// has it. Exact where the three dot products alone are not: for a near-mirror pair near
+/// the horizon 2 + 2 wi·wo cancels, and |wi + wo| (hence h, D and the BRDF) is then
+/// recovered from n·h instead (`Dots::with_n_h`). Bad input as for
+/// `brdf_torrance_sparrow_eval_f32`; a non-finite n·h gives NaN.
+#[no_mangle]
+pub unsafe extern "C" fn brdf_torrance_sparrow_eval_nh_f32(
+    ts: *const BrdfTorranceSparrowF32,
+    n_i: f32,
+    n_o: f32,
+    i_o: f32,
+    n_h: f32,
+) -> f32 {
+    match BrdfTorranceSparrowF32::get(ts) {
+        Some(t) if finite3(n_i, n_o, i_o) && n_h.is_finite() => {
+            t.eval_dots(Dots::with_n_h(n_i, n_o, i_o, n_h))
+        }
+        _ => f32::NAN,
+    }
+}
+
 /// The specular lobe k_s D F G / (4 (n·wi)(n·wo)) alone, in 1/sr; bad input as for
 /// `brdf_torrance_sparrow_eval_f32`.
 #[no_mangle]
@@ -934,6 +955,27 @@ pub unsafe extern "C" fn brdf_torrance_sparrow_eval_f64(
 ) -> f64 {
     match BrdfTorranceSparrowF64::get(ts) {
         Some(t) if finite3(n_i, n_o, i_o) => t.eval_dots(Dots::new(n_i, n_o, i_o)),
+        _ => f64::NAN,
+    }
+}
+
+/// `brdf_torrance_sparrow_eval_f64` with n·h as well, h = normalize(wi + wo) as a shader
+/// has it. Exact where the three dot products alone are not: for a near-mirror pair near
+/// the horizon 2 + 2 wi·wo cancels, and |wi + wo| (hence h, D and the BRDF) is then
+/// recovered from n·h instead (`Dots::with_n_h`). Bad input as for
+/// `brdf_torrance_sparrow_eval_f64`; a non-finite n·h gives NaN.
+#[no_mangle]
+pub unsafe extern "C" fn brdf_torrance_sparrow_eval_nh_f64(
+    ts: *const BrdfTorranceSparrowF64,
+    n_i: f64,
+    n_o: f64,
+    i_o: f64,
+    n_h: f64,
+) -> f64 {
+    match BrdfTorranceSparrowF64::get(ts) {
+        Some(t) if finite3(n_i, n_o, i_o) && n_h.is_finite() => {
+            t.eval_dots(Dots::with_n_h(n_i, n_o, i_o, n_h))
+        }
         _ => f64::NAN,
     }
 }

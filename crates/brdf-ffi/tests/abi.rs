@@ -235,3 +235,109 @@ fn g_table_over_sigma_agrees_with_the_direct_g_within_its_stated_error() {
     }
     assert!(unsafe { brdf_g_table3_g(t.as_ptr(), f32::NAN, 0.1, 0.3) }.is_nan());
 }
+
+#[test]
+fn torrance_sparrow_with_n_h_is_exact_for_near_mirror_pairs_at_the_horizon() {
+    // Beckmann, α = 0.05000000074505806 (σ = α/√2), separable Smith, F = 1, ks = 1, no
+    // diffuse part: values published with a defect report against an established renderer
+    // (12 significant digits). From the three dot products alone 2 + 2 wi·wo cancels and
+    // the f64 result is 5e-4 and 4e-2 off; with n·h it must match to the published digits.
+    let alpha = 0.05000000074505806f64;
+    let mut ts = MaybeUninit::<BrdfTorranceSparrowF64>::uninit();
+    let st = unsafe {
+        brdf_torrance_sparrow_init_f64(
+            ts.as_mut_ptr(),
+            alpha / 2f64.sqrt(),
+            BRDF_GEOMETRIC_SMITH_SEPARABLE,
+            BRDF_FRESNEL_ONE,
+            0.0,
+            1.0,
+            0.0,
+        )
+    };
+    assert_eq!(st, BRDF_STATUS_OK);
+    let ts = unsafe { ts.assume_init() };
+    let pairs = [
+        (
+            [
+                -0.5536822645109706,
+                -0.8327280167406141,
+                1.0062167677184382e-05,
+            ],
+            [0.5536824247997054, 0.8327279101650903, 1e-05],
+            154134.432937,
+        ),
+        (
+            [
+                0.39298152400471775,
+                0.9195463673952927,
+                1.02502789627328e-06,
+            ],
+            [-0.39298152558074945, -0.9195463667217801, 1e-06],
+            159942.898969,
+        ),
+    ];
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    for (wi, wo, published) in pairs {
+        // n·h as a shader computes it: normalize(wi + wo).z. The sums' x and y parts are
+        // exact (Sterbenz), so n·h carries only a few roundings.
+        let h = [wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2]];
+        let n_h = h[2] / dot(h, h).sqrt();
+        let got = unsafe { brdf_torrance_sparrow_eval_nh_f64(&ts, wi[2], wo[2], dot(wi, wo), n_h) };
+        // 12 published digits (±5e-12) plus n·h's rounding, amplified by tan²θh/α² ≈ 0.1
+        // in D's exponent: 1e-9 relative.
+        assert!(
+            ((got - published) / published).abs() < 1e-9,
+            "{got} vs {published}"
+        );
+        let lossy = unsafe { brdf_torrance_sparrow_eval_f64(&ts, wi[2], wo[2], dot(wi, wo)) };
+        assert!(
+            ((lossy - published) / published).abs() > 1e-5,
+            "three dots: {lossy}"
+        );
+        // Bad n·h: NaN, as for the other inputs.
+        assert!(unsafe {
+            brdf_torrance_sparrow_eval_nh_f64(&ts, wi[2], wo[2], dot(wi, wo), f64::NAN)
+        }
+        .is_nan());
+    }
+    // The f32 entry point at the first pair. Here tan²θh ≈ 9.2e-5, 1 − n·h ≈ 4.6e-5 and
+    // tan²θh/α² ≈ 0.037: n·h rounded to f32 (6e-8) is 1.3e-3 of 1 − n·h, i.e. of tan²θh,
+    // which moves D's exponent by 0.037 × 1.3e-3 ≈ 5e-5; bound 1e-4. The three dot
+    // products alone are off by 4e-2 in f32 (2 + 2 wi·wo is a few ulps of 2).
+    let mut t32 = MaybeUninit::<BrdfTorranceSparrowF32>::uninit();
+    let st = unsafe {
+        brdf_torrance_sparrow_init_f32(
+            t32.as_mut_ptr(),
+            (alpha / 2f64.sqrt()) as f32,
+            BRDF_GEOMETRIC_SMITH_SEPARABLE,
+            BRDF_FRESNEL_ONE,
+            0.0,
+            1.0,
+            0.0,
+        )
+    };
+    assert_eq!(st, BRDF_STATUS_OK);
+    let t32 = unsafe { t32.assume_init() };
+    let (wi, wo) = (pairs[0].0, pairs[0].1);
+    let h = [wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2]];
+    let n_h = h[2] / dot(h, h).sqrt();
+    let got = unsafe {
+        brdf_torrance_sparrow_eval_nh_f32(
+            &t32,
+            wi[2] as f32,
+            wo[2] as f32,
+            dot(wi, wo) as f32,
+            n_h as f32,
+        )
+    } as f64;
+    let rel = ((got - pairs[0].2) / pairs[0].2).abs();
+    assert!(rel < 1e-4, "f32 with n·h: {got}, {rel:e} relative");
+    let lossy = unsafe {
+        brdf_torrance_sparrow_eval_f32(&t32, wi[2] as f32, wo[2] as f32, dot(wi, wo) as f32)
+    } as f64;
+    assert!(
+        ((lossy - pairs[0].2) / pairs[0].2).abs() > 1e-3,
+        "f32 three dots: {lossy}"
+    );
+}
