@@ -273,6 +273,66 @@ fn main() {
     }
     groups.push(g);
 
+    // The same with n·h: random pairs, and near-mirror pairs near the horizon (cos θ from
+    // 1e-6 to 1e-2), where n·h is what keeps the value exact. n·h = normalize(wi + wo).z in
+    // f32, as a shader computes it.
+    let mut g = Group {
+        name: "torrance_sparrow_nh".into(),
+        export: "brdf_torrance_sparrow_nh",
+        types: "fuffffffff",
+        rows: vec![],
+        out: vec![],
+    };
+    for k in 0..N {
+        let s = rng.f(0.05, 1.0);
+        let kind = (rng.next() % 6) as u32;
+        let (r0, ks, albedo) = (rng.f(0.0, 1.0), rng.f(0.0, 2.0), rng.f(0.0, 1.0));
+        let (wi, wo) = if k % 2 == 0 {
+            (rng.dir(), rng.dir())
+        } else {
+            let c = 10f32.powf(rng.f(-6.0, -2.0));
+            let (phi, sn) = (
+                rng.f(0.0, 2.0 * core::f32::consts::PI),
+                Real::sqrt(1.0 - c * c),
+            );
+            let (sp, cp) = (Real::sin(phi), Real::cos(phi));
+            let wi = Vec3::new(sn * cp, sn * sp, c);
+            let c2 = c * rng.f(0.5, 2.0);
+            let sn2 = Real::sqrt(1.0 - c2 * c2);
+            let d = rng.f(-1e-3, 1e-3);
+            let (sp2, cp2) = (
+                Real::sin(phi + core::f32::consts::PI + d),
+                Real::cos(phi + core::f32::consts::PI + d),
+            );
+            (wi, Vec3::new(sn2 * cp2, sn2 * sp2, c2))
+        };
+        let h = wi.add(wo);
+        let n_h = h.z / Real::sqrt(h.dot(h));
+        let d = shader_dots(wi, wo);
+        let v = TorranceSparrow::<f32>::new(
+            s,
+            GeometricTerm::ALL[kind as usize],
+            Fresnel::schlick(r0).unwrap(),
+            ks,
+            albedo,
+        )
+        .unwrap()
+        .eval_dots(Dots::with_n_h(d.n_i, d.n_o, d.i_o, n_h));
+        g.rows.push(vec![
+            bits(s),
+            kind,
+            bits(r0),
+            bits(ks),
+            bits(albedo),
+            bits(d.n_i),
+            bits(d.n_o),
+            bits(d.i_o),
+            bits(n_h),
+        ]);
+        g.out.push(vec![bits(v)]);
+    }
+    groups.push(g);
+
     // Every model through brdf_eval: random parameters in range (integer ones integral),
     // random directions. Rows: model id, parameters (the model's slots), wi, wo. Out: status,
     // r, g, b.

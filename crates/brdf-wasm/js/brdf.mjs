@@ -153,6 +153,11 @@ export class Brdf {
     return this.exports.brdf_torrance_sparrow(sigma, gKind, r0, ks, albedo, nI, nO, iO);
   }
 
+  /** The same with n·h = normalize(wi + wo)·n as well: exact for near-mirror pairs at the horizon. */
+  torranceSparrowNh(sigma, gKind, r0, ks, albedo, nI, nO, iO, nH) {
+    return this.exports.brdf_torrance_sparrow_nh(sigma, gKind, r0, ks, albedo, nI, nO, iO, nH);
+  }
+
   // Runs `call(inOff, outOff, count)` over chunks that fit in the scratch buffer: `inWidth`
   // f32 per row in, `outWidth` out, inputs copied from `inputs` (array of [Float32Array,
   // width] column groups), results copied into a new Float32Array.

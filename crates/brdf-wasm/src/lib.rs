@@ -12,7 +12,7 @@
 //! | --- | --- |
 //! | memory | `brdf_scratch_ptr`, `brdf_scratch_len` |
 //! | G, direct | `brdf_g`, `brdf_g_dots`, `brdf_g_batch`, `brdf_g_dots_batch` ([`g`]) |
-//! | models | `brdf_model_count`, `brdf_model_info_ptr/len`, `brdf_eval`, `brdf_eval_batch`, `brdf_torrance_sparrow` ([`models`]) |
+//! | models | `brdf_model_count`, `brdf_model_info_ptr/len`, `brdf_eval`, `brdf_eval_batch`, `brdf_torrance_sparrow`, `brdf_torrance_sparrow_nh` ([`models`]) |
 //! | G and DFG from LUTs | `brdf_lut_ptr`, `brdf_lut_capacity`, `brdf_lut_load`, `brdf_lut_error`, `brdf_g_lut`, `brdf_g_lut_batch`, `brdf_g_lut_sigma_range`, `brdf_g_lut_fixed`, `brdf_g_lut_fixed_sigma`, `brdf_dfg`, `brdf_dfg_batch` ([`lut`]) |
 //! | rendering | `brdf_render_sphere` ([`render`]) |
 //!

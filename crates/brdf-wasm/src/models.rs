@@ -206,6 +206,34 @@ pub extern "C" fn brdf_torrance_sparrow(
     }
 }
 
+/// [`brdf_torrance_sparrow`] with n·h as well (h = normalize(wi + wo), as a shader has it):
+/// exact for near-mirror pairs near the horizon, where 2 + 2 wi·wo cancels and the three dot
+/// products alone lose n·h ([`Dots::with_n_h`]). A non-finite n·h gives NaN.
+#[no_mangle]
+#[allow(clippy::too_many_arguments)]
+pub extern "C" fn brdf_torrance_sparrow_nh(
+    sigma: f32,
+    g_kind: u32,
+    r0: f32,
+    ks: f32,
+    albedo: f32,
+    n_i: f32,
+    n_o: f32,
+    i_o: f32,
+    n_h: f32,
+) -> f32 {
+    let Some(&g) = GeometricTerm::ALL.get(g_kind as usize) else {
+        return f32::NAN;
+    };
+    let Ok(f) = Fresnel::schlick(r0) else {
+        return f32::NAN;
+    };
+    match TorranceSparrow::<f32>::new(sigma, g, f, ks, albedo) {
+        Ok(m) if n_h.is_finite() => m.eval_dots(Dots::with_n_h(n_i, n_o, i_o, n_h)),
+        _ => f32::NAN,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

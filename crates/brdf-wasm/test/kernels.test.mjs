@@ -57,6 +57,7 @@ function run(group) {
     case 'brdf_g':
     case 'brdf_g_dots':
     case 'brdf_torrance_sparrow':
+    case 'brdf_torrance_sparrow_nh':
     case 'brdf_g_lut':
     case 'brdf_g_lut_fixed':
       return rows.map((r) => [bitsOf(e[name](...args(types, r)))]);
