@@ -2,7 +2,10 @@
 //! input (recomputes the CRC-32 over the mutated bytes) so that mutations reach validation
 //! and the lookups instead of stopping at the checksum, and asserts the readers'
 //! invariants: no panic; G in [0, 1] for non-NaN input and NaN only for NaN input; finite
-//! values of every other table for finite input (node values are bounded at parse).
+//! values of every other table for finite input (node values are bounded at parse); every
+//! batch lookup equal, bit for bit, to its scalar lookup (the chunked SIMD paths included);
+//! G from dot products in [0, 1] or NaN; a table rebuilt from its layout (`with_layout`)
+//! answering like the parsed one.
 #![no_main]
 
 use brdf_lut::{
@@ -21,6 +24,27 @@ const PTS: [f32; 9] = [
     2.0,
     f32::INFINITY,
 ];
+
+/// Batch inputs: every point against every point (81 entries, so the chunked paths run full
+/// chunks and a tail), NaN at both ends.
+fn grid() -> ([f32; 83], [f32; 83]) {
+    let (mut a, mut b) = ([f32::NAN; 83], [f32::NAN; 83]);
+    for k in 0..81 {
+        a[k + 1] = PTS[k % 9];
+        b[k + 1] = PTS[k / 9];
+    }
+    (a, b)
+}
+
+fn same_bits(batch: &[f32], scalar: impl Fn(usize) -> f32, what: &str) {
+    for (k, &x) in batch.iter().enumerate() {
+        let y = scalar(k);
+        assert!(
+            x.to_bits() == y.to_bits() || (x.is_nan() && y.is_nan()),
+            "{what}[{k}]: batch {x} vs scalar {y}"
+        );
+    }
+}
 
 fn unit_or_nan(g: f32, nan_in: bool) {
     if nan_in {
@@ -51,6 +75,18 @@ fn check(data: &[u8]) {
         }
         unit_or_nan(t.g(f32::NAN, 0.3), true);
         unit_or_nan(t.g(0.3, f32::NAN), true);
+        let (a, b) = grid();
+        let mut out = [0.0f32; 83];
+        assert_eq!(t.g_batch(&a, &b, &mut out), 83);
+        same_bits(&out, |k| t.g(a[k], b[k]), "GTable::g_batch");
+        for &(x, y) in &[(0.9f32, 0.5f32), (0.0, 0.0), (1e-30, 1.0)] {
+            for &z in &[-1.0f32, 0.0, 0.5, 1.0] {
+                let g = t.g_dots(x, y, z);
+                assert!(g.is_nan() || (0.0..=1.0).contains(&g), "g_dots = {g}");
+            }
+        }
+        let r = GTable::with_layout(data, t.layout()).expect("own layout");
+        same_bits(&[r.g(0.3, -0.2)], |_| t.g(0.3, -0.2), "GTable::with_layout");
     }
     if let Ok(t) = GTable3::from_view(v) {
         for &a in &PTS {
@@ -60,6 +96,16 @@ fn check(data: &[u8]) {
             }
         }
         unit_or_nan(t.g(0.3, 0.2, f32::NAN), true);
+        let (a, b) = grid();
+        let mut out = [0.0f32; 83];
+        for &s in &[0.3f32, 1e-3, 2.0, f32::NAN] {
+            assert_eq!(t.g_batch(&a, &b, s, &mut out), 83);
+            same_bits(&out, |k| t.g(a[k], b[k], s), "GTable3::g_batch");
+        }
+        let g = t.g_dots(0.5, 0.6, 0.1, 0.3);
+        assert!(g.is_nan() || (0.0..=1.0).contains(&g), "g_dots = {g}");
+        let r = GTable3::with_layout(data, t.layout()).expect("own layout");
+        same_bits(&[r.g(0.3, -0.2, 0.3)], |_| t.g(0.3, -0.2, 0.3), "GTable3::with_layout");
     }
     if let Ok(t) = DfgTable::from_view(v) {
         for &a in &PTS {
@@ -67,16 +113,29 @@ fn check(data: &[u8]) {
             assert!(x.is_finite() && y.is_finite());
         }
         assert!(t.ab(f32::NAN, 0.5).0.is_nan());
+        let (m, r) = grid();
+        let (mut a, mut b) = ([0.0f32; 83], [0.0f32; 83]);
+        assert_eq!(t.ab_batch(&m, &r, &mut a, &mut b), 83);
+        same_bits(&a, |k| t.ab(m[k], r[k]).0, "DfgTable::ab_batch A");
+        same_bits(&b, |k| t.ab(m[k], r[k]).1, "DfgTable::ab_batch B");
     }
     if let Ok(t) = AlbedoTable::from_view(v) {
         for &a in &PTS {
             assert!(t.e(a, 1.0 - a).is_finite());
         }
+        let (m, r) = grid();
+        let mut out = [0.0f32; 83];
+        assert_eq!(t.e_batch(&m, &r, &mut out), 83);
+        same_bits(&out, |k| t.e(m[k], r[k]), "AlbedoTable::e_batch");
     }
     if let Ok(t) = AverageAlbedoTable::from_view(v) {
         for &a in &PTS {
             assert!(t.e_avg(a).is_finite());
         }
+        let (r, _) = grid();
+        let mut out = [0.0f32; 83];
+        assert_eq!(t.e_avg_batch(&r, &mut out), 83);
+        same_bits(&out, |k| t.e_avg(r[k]), "AverageAlbedoTable::e_avg_batch");
     }
 }
 
