@@ -46,7 +46,6 @@ fn cos_quadrant(x: f32) -> f32 {
 
 /// max(c, 0) with NaN staying NaN (one instruction; `f32::max` would turn NaN into 0 and
 /// the lookup of a NaN coordinate into a number).
-#[cfg(not(any(target_os = "none", target_family = "wasm")))]
 #[inline(always)]
 fn nonneg(c: f32) -> f32 {
     if c < 0.0 {
@@ -62,13 +61,8 @@ fn nonneg(c: f32) -> f32 {
 fn warp_w(warp: Warp, lo: f32, x: f32) -> f32 {
     match warp {
         Warp::Linear => x,
-        // The axis lies within [0, π/2] (checked when the header was parsed).
-        // Hosted: NaN stays NaN. Devices: the form the firmware budget was measured with
-        // (NaN becomes 0 here; the device G entry points check NaN before the lookup).
-        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        // The axis lies within [0, π/2] (checked when the header was parsed); NaN stays NaN.
         Warp::SqrtCos => libm::sqrtf(nonneg(cos_quadrant(x))),
-        #[cfg(any(target_os = "none", target_family = "wasm"))]
-        Warp::SqrtCos => libm::sqrtf(cos_quadrant(x).max(0.0)),
         Warp::Log => libm::logf(x),
         // x ≥ lo, so x − lo ≥ 0 (and NaN stays NaN).
         Warp::Sqrt => libm::sqrtf(x - lo),
