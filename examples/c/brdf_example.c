@@ -251,35 +251,28 @@ static void kernels(void) {
                                                 (double)albedo) == BRDF_STATUS_OK;
         for (size_t k = 0; k < N_OF(DOTS); k++) {
             float a = DOTS[k][0], b = DOTS[k][1], c = DOTS[k][2];
+            /* With n.h as a shader has it as well: the same BRDF where the three dots are
+             * well conditioned (f32 within 1e-4, f64 within 1e-9 relative). */
+            float nh = (float)DOTS_NH[k];
             float f = brdf_torrance_sparrow_eval_f32(&ts, a, b, c);
             float sp = brdf_torrance_sparrow_specular_f32(&ts, a, b, c);
+            float fh = brdf_torrance_sparrow_eval_nh_f32(&ts, a, b, c, nh);
             rec("ts_f32"), af(sigma), au(TS[j].g), au(TS[j].f), af(TS[j].p), af(ks), af(albedo);
-            af(a), af(b), af(c), eq(), af(f), af(sp), flush_line();
+            af(a), af(b), af(c), af(nh), eq(), af(f), af(sp), af(fh), flush_line();
             ts_ok &= f >= sp && sp >= 0.0f;
+            float df = fh - f, af_ = f < 0.0f ? -f : f;
+            ts_ok &= (df < 0.0f ? -df : df) <= 1e-4f * af_;
+            double nh64 = DOTS_NH[k];
             double f64 = brdf_torrance_sparrow_eval_f64(&ts64, (double)a, (double)b, (double)c);
             double sp64 =
                 brdf_torrance_sparrow_specular_f64(&ts64, (double)a, (double)b, (double)c);
+            double fh64 =
+                brdf_torrance_sparrow_eval_nh_f64(&ts64, (double)a, (double)b, (double)c, nh64);
             rec("ts_f64"), ad((double)sigma), au(TS[j].g), au(TS[j].f), ad((double)TS[j].p);
             ad((double)ks), ad((double)albedo), ad((double)a), ad((double)b), ad((double)c);
-            eq(), ad(f64), ad(sp64), flush_line();
-            /* With n.h as a shader has it: the same BRDF where the three dots are well
-             * conditioned (f32 within 1e-4, f64 within 1e-9 relative). */
-            {
-                float nh = (float)DOTS_NH[k];
-                float fh = brdf_torrance_sparrow_eval_nh_f32(&ts, a, b, c, nh);
-                rec("ts_nh_f32"), af(sigma), au(TS[j].g), au(TS[j].f), af(TS[j].p), af(ks);
-                af(albedo), af(a), af(b), af(c), af(nh), eq(), af(fh), flush_line();
-                float df = fh - f, af_ = f < 0.0f ? -f : f;
-                ts_ok &= (df < 0.0f ? -df : df) <= 1e-4f * af_;
-                double nh64 = DOTS_NH[k];
-                double fh64 = brdf_torrance_sparrow_eval_nh_f64(&ts64, (double)a, (double)b,
-                                                                (double)c, nh64);
-                rec("ts_nh_f64"), ad((double)sigma), au(TS[j].g), au(TS[j].f);
-                ad((double)TS[j].p), ad((double)ks), ad((double)albedo), ad((double)a);
-                ad((double)b), ad((double)c), ad(nh64), eq(), ad(fh64), flush_line();
-                double dd = fh64 - f64, ad_ = f64 < 0.0 ? -f64 : f64;
-                ts_ok &= (dd < 0.0 ? -dd : dd) <= 1e-9 * ad_;
-            }
+            ad(nh64), eq(), ad(f64), ad(sp64), ad(fh64), flush_line();
+            double dd = fh64 - f64, ad_ = f64 < 0.0 ? -f64 : f64;
+            ts_ok &= (dd < 0.0 ? -dd : dd) <= 1e-9 * ad_;
         }
     }
     check("torrance_sparrow_init_and_lobe", ts_ok);

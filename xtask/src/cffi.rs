@@ -711,7 +711,7 @@ fn host_values(t: &HostTables, kernel: &str, a: &[Arg]) -> Result<Vec<Val>> {
                 ))]
             }
             "ts_f32" => {
-                n(9)?;
+                n(10)?;
                 let (s, g, fr, p, ks, al) = (
                     f(&a[0])?,
                     u(&a[1])?,
@@ -721,19 +721,21 @@ fn host_values(t: &HostTables, kernel: &str, a: &[Arg]) -> Result<Vec<Val>> {
                     f(&a[5])?,
                 );
                 let (x, y, z) = (f(&a[6])?, f(&a[7])?, f(&a[8])?);
-                let (v, sp) = with_handle(
+                let nh = f(&a[9])?;
+                let (v, sp, vh) = with_handle(
                     |h| brdf_torrance_sparrow_init_f32(h, s, g, fr, p, ks, al),
                     |h| {
                         (
                             brdf_torrance_sparrow_eval_f32(h, x, y, z),
                             brdf_torrance_sparrow_specular_f32(h, x, y, z),
+                            brdf_torrance_sparrow_eval_nh_f32(h, x, y, z, nh),
                         )
                     },
                 )?;
-                vec![vf(v), vf(sp)]
+                vec![vf(v), vf(sp), vf(vh)]
             }
             "ts_f64" => {
-                n(9)?;
+                n(10)?;
                 let (s, g, fr, p, ks, al) = (
                     d(&a[0])?,
                     u(&a[1])?,
@@ -743,50 +745,18 @@ fn host_values(t: &HostTables, kernel: &str, a: &[Arg]) -> Result<Vec<Val>> {
                     d(&a[5])?,
                 );
                 let (x, y, z) = (d(&a[6])?, d(&a[7])?, d(&a[8])?);
-                let (v, sp) = with_handle(
+                let nh = d(&a[9])?;
+                let (v, sp, vh) = with_handle(
                     |h| brdf_torrance_sparrow_init_f64(h, s, g, fr, p, ks, al),
                     |h| {
                         (
                             brdf_torrance_sparrow_eval_f64(h, x, y, z),
                             brdf_torrance_sparrow_specular_f64(h, x, y, z),
+                            brdf_torrance_sparrow_eval_nh_f64(h, x, y, z, nh),
                         )
                     },
                 )?;
-                vec![vd(v), vd(sp)]
-            }
-            "ts_nh_f32" => {
-                n(10)?;
-                let (s, g, fr, p, ks, al) = (
-                    f(&a[0])?,
-                    u(&a[1])?,
-                    u(&a[2])?,
-                    f(&a[3])?,
-                    f(&a[4])?,
-                    f(&a[5])?,
-                );
-                let (x, y, z, h) = (f(&a[6])?, f(&a[7])?, f(&a[8])?, f(&a[9])?);
-                let v = with_handle(
-                    |hd| brdf_torrance_sparrow_init_f32(hd, s, g, fr, p, ks, al),
-                    |hd| brdf_torrance_sparrow_eval_nh_f32(hd, x, y, z, h),
-                )?;
-                vec![vf(v)]
-            }
-            "ts_nh_f64" => {
-                n(10)?;
-                let (s, g, fr, p, ks, al) = (
-                    d(&a[0])?,
-                    u(&a[1])?,
-                    u(&a[2])?,
-                    d(&a[3])?,
-                    d(&a[4])?,
-                    d(&a[5])?,
-                );
-                let (x, y, z, h) = (d(&a[6])?, d(&a[7])?, d(&a[8])?, d(&a[9])?);
-                let v = with_handle(
-                    |hd| brdf_torrance_sparrow_init_f64(hd, s, g, fr, p, ks, al),
-                    |hd| brdf_torrance_sparrow_eval_nh_f64(hd, x, y, z, h),
-                )?;
-                vec![vd(v)]
+                vec![vd(v), vd(sp), vd(vh)]
             }
             "ts_albedo_f32" => {
                 n(7)?;

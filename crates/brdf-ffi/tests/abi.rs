@@ -236,6 +236,13 @@ fn g_table_over_sigma_agrees_with_the_direct_g_within_its_stated_error() {
     assert!(unsafe { brdf_g_table3_g(t.as_ptr(), f32::NAN, 0.1, 0.3) }.is_nan());
 }
 
+/// A handle filled by `f`, which must report success.
+fn init<H>(f: impl FnOnce(*mut H) -> BrdfStatus) -> H {
+    let mut h = MaybeUninit::<H>::uninit();
+    assert_eq!(f(h.as_mut_ptr()), BRDF_STATUS_OK);
+    unsafe { h.assume_init() }
+}
+
 #[test]
 fn torrance_sparrow_with_n_h_is_exact_for_near_mirror_pairs_at_the_horizon() {
     // Beckmann, α = 0.05000000074505806 (σ = α/√2), separable Smith, F = 1, ks = 1, no
@@ -243,20 +250,9 @@ fn torrance_sparrow_with_n_h_is_exact_for_near_mirror_pairs_at_the_horizon() {
     // (12 significant digits). From the three dot products alone 2 + 2 wi·wo cancels and
     // the f64 result is 5e-4 and 4e-2 off; with n·h it must match to the published digits.
     let alpha = 0.05000000074505806f64;
-    let mut ts = MaybeUninit::<BrdfTorranceSparrowF64>::uninit();
-    let st = unsafe {
-        brdf_torrance_sparrow_init_f64(
-            ts.as_mut_ptr(),
-            alpha / 2f64.sqrt(),
-            BRDF_GEOMETRIC_SMITH_SEPARABLE,
-            BRDF_FRESNEL_ONE,
-            0.0,
-            1.0,
-            0.0,
-        )
-    };
-    assert_eq!(st, BRDF_STATUS_OK);
-    let ts = unsafe { ts.assume_init() };
+    let sigma = alpha / 2f64.sqrt();
+    let (g, f) = (BRDF_GEOMETRIC_SMITH_SEPARABLE, BRDF_FRESNEL_ONE);
+    let ts = init(|h| unsafe { brdf_torrance_sparrow_init_f64(h, sigma, g, f, 0.0, 1.0, 0.0) });
     let pairs = [
         (
             [
@@ -305,20 +301,8 @@ fn torrance_sparrow_with_n_h_is_exact_for_near_mirror_pairs_at_the_horizon() {
     // tan²θh/α² ≈ 0.037: n·h rounded to f32 (6e-8) is 1.3e-3 of 1 − n·h, i.e. of tan²θh,
     // which moves D's exponent by 0.037 × 1.3e-3 ≈ 5e-5; bound 1e-4. The three dot
     // products alone are off by 4e-2 in f32 (2 + 2 wi·wo is a few ulps of 2).
-    let mut t32 = MaybeUninit::<BrdfTorranceSparrowF32>::uninit();
-    let st = unsafe {
-        brdf_torrance_sparrow_init_f32(
-            t32.as_mut_ptr(),
-            (alpha / 2f64.sqrt()) as f32,
-            BRDF_GEOMETRIC_SMITH_SEPARABLE,
-            BRDF_FRESNEL_ONE,
-            0.0,
-            1.0,
-            0.0,
-        )
-    };
-    assert_eq!(st, BRDF_STATUS_OK);
-    let t32 = unsafe { t32.assume_init() };
+    let t32 =
+        init(|h| unsafe { brdf_torrance_sparrow_init_f32(h, sigma as f32, g, f, 0.0, 1.0, 0.0) });
     let (wi, wo) = (pairs[0].0, pairs[0].1);
     let h = [wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2]];
     let n_h = h[2] / dot(h, h).sqrt();

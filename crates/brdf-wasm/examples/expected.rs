@@ -120,6 +120,20 @@ fn shader_dots(wi: Vec3<f32>, wo: Vec3<f32>) -> Dots<f32> {
     Dots::new(d.n_i, d.n_o, d.i_o)
 }
 
+/// A near-mirror pair near the horizon: wi at cos θ ∈ [1e-6, 1e-2] (log-uniform), wo at
+/// 0.5–2 times that cosine on the opposite azimuth, give or take 1e-3 rad.
+fn grazing_mirror_pair(rng: &mut Rng) -> (Vec3<f32>, Vec3<f32>) {
+    let dir = |c: f32, phi: f32| {
+        let s = Real::sqrt(1.0 - c * c);
+        Vec3::new(s * Real::cos(phi), s * Real::sin(phi), c)
+    };
+    let c = 10f32.powf(rng.f(-6.0, -2.0));
+    let phi = rng.f(0.0, 2.0 * core::f32::consts::PI);
+    let c2 = c * rng.f(0.5, 2.0);
+    let phi2 = phi + core::f32::consts::PI + rng.f(-1e-3, 1e-3);
+    (dir(c, phi), dir(c2, phi2))
+}
+
 /// G from dot products, from brdf-core directly (NaN in, NaN out, also for G = 1).
 fn native_g_dots(kind: u32, sigma: f32, d: Dots<f32>) -> f32 {
     let Some(&t) = GeometricTerm::ALL.get(kind as usize) else {
@@ -237,101 +251,59 @@ fn main() {
         groups.push(g);
     }
 
-    // The Torrance–Sparrow shader-form export.
-    let mut g = Group {
-        name: "torrance_sparrow".into(),
-        export: "brdf_torrance_sparrow",
-        types: "fufffff",
-        rows: vec![],
-        out: vec![],
-    };
-    for _ in 0..N {
-        let s = rng.f(0.05, 1.0);
-        let kind = (rng.next() % 6) as u32;
-        let (r0, ks, albedo) = (rng.f(0.0, 1.0), rng.f(0.0, 2.0), rng.f(0.0, 1.0));
-        let d = shader_dots(rng.dir(), rng.dir());
-        let v = TorranceSparrow::<f32>::new(
-            s,
-            GeometricTerm::ALL[kind as usize],
-            Fresnel::schlick(r0).unwrap(),
-            ks,
-            albedo,
-        )
-        .unwrap()
-        .eval_dots(d);
-        g.rows.push(vec![
-            bits(s),
-            kind,
-            bits(r0),
-            bits(ks),
-            bits(albedo),
-            bits(d.n_i),
-            bits(d.n_o),
-            bits(d.i_o),
-        ]);
-        g.out.push(vec![bits(v)]);
-    }
-    groups.push(g);
-
-    // The same with n·h: random pairs, and near-mirror pairs near the horizon (cos θ from
-    // 1e-6 to 1e-2), where n·h is what keeps the value exact. n·h = normalize(wi + wo).z in
+    // The Torrance–Sparrow shader-form exports: three dots, and three dots with n·h. The
+    // second group mixes random pairs with near-mirror pairs near the horizon (cos θ from
+    // 1e-6 to 1e-2), where n·h is what keeps the value exact; n·h = normalize(wi + wo).z in
     // f32, as a shader computes it.
-    let mut g = Group {
-        name: "torrance_sparrow_nh".into(),
-        export: "brdf_torrance_sparrow_nh",
-        types: "fuffffffff",
-        rows: vec![],
-        out: vec![],
-    };
-    for k in 0..N {
-        let s = rng.f(0.05, 1.0);
-        let kind = (rng.next() % 6) as u32;
-        let (r0, ks, albedo) = (rng.f(0.0, 1.0), rng.f(0.0, 2.0), rng.f(0.0, 1.0));
-        let (wi, wo) = if k % 2 == 0 {
-            (rng.dir(), rng.dir())
-        } else {
-            let c = 10f32.powf(rng.f(-6.0, -2.0));
-            let (phi, sn) = (
-                rng.f(0.0, 2.0 * core::f32::consts::PI),
-                Real::sqrt(1.0 - c * c),
-            );
-            let (sp, cp) = (Real::sin(phi), Real::cos(phi));
-            let wi = Vec3::new(sn * cp, sn * sp, c);
-            let c2 = c * rng.f(0.5, 2.0);
-            let sn2 = Real::sqrt(1.0 - c2 * c2);
-            let d = rng.f(-1e-3, 1e-3);
-            let (sp2, cp2) = (
-                Real::sin(phi + core::f32::consts::PI + d),
-                Real::cos(phi + core::f32::consts::PI + d),
-            );
-            (wi, Vec3::new(sn2 * cp2, sn2 * sp2, c2))
+    for (name, export, types) in [
+        ("torrance_sparrow", "brdf_torrance_sparrow", "fufffff"),
+        (
+            "torrance_sparrow_nh",
+            "brdf_torrance_sparrow_nh",
+            "fuffffffff",
+        ),
+    ] {
+        let with_nh = types.len() == 10;
+        let mut g = Group {
+            name: name.into(),
+            export,
+            types,
+            rows: vec![],
+            out: vec![],
         };
-        let h = wi.add(wo);
-        let n_h = h.z / Real::sqrt(h.dot(h));
-        let d = shader_dots(wi, wo);
-        let v = TorranceSparrow::<f32>::new(
-            s,
-            GeometricTerm::ALL[kind as usize],
-            Fresnel::schlick(r0).unwrap(),
-            ks,
-            albedo,
-        )
-        .unwrap()
-        .eval_dots(Dots::with_n_h(d.n_i, d.n_o, d.i_o, n_h));
-        g.rows.push(vec![
-            bits(s),
-            kind,
-            bits(r0),
-            bits(ks),
-            bits(albedo),
-            bits(d.n_i),
-            bits(d.n_o),
-            bits(d.i_o),
-            bits(n_h),
-        ]);
-        g.out.push(vec![bits(v)]);
+        for k in 0..N {
+            let s = rng.f(0.05, 1.0);
+            let kind = (rng.next() % 6) as u32;
+            let (r0, ks, albedo) = (rng.f(0.0, 1.0), rng.f(0.0, 2.0), rng.f(0.0, 1.0));
+            let (wi, wo) = if with_nh && k % 2 == 1 {
+                grazing_mirror_pair(&mut rng)
+            } else {
+                (rng.dir(), rng.dir())
+            };
+            let d = shader_dots(wi, wo);
+            let h = wi.add(wo);
+            let n_h = h.z / Real::sqrt(h.dot(h));
+            let ts = TorranceSparrow::<f32>::new(
+                s,
+                GeometricTerm::ALL[kind as usize],
+                Fresnel::schlick(r0).unwrap(),
+                ks,
+                albedo,
+            )
+            .unwrap();
+            let mut row = vec![bits(s), kind, bits(r0), bits(ks), bits(albedo)];
+            row.extend([bits(d.n_i), bits(d.n_o), bits(d.i_o)]);
+            let v = if with_nh {
+                row.push(bits(n_h));
+                ts.eval_dots(Dots::with_n_h(d.n_i, d.n_o, d.i_o, n_h))
+            } else {
+                ts.eval_dots(d)
+            };
+            g.rows.push(row);
+            g.out.push(vec![bits(v)]);
+        }
+        groups.push(g);
     }
-    groups.push(g);
 
     // Every model through brdf_eval: random parameters in range (integer ones integral),
     // random directions. Rows: model id, parameters (the model's slots), wi, wo. Out: status,

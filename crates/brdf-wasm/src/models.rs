@@ -194,16 +194,7 @@ pub extern "C" fn brdf_torrance_sparrow(
     n_o: f32,
     i_o: f32,
 ) -> f32 {
-    let Some(&g) = GeometricTerm::ALL.get(g_kind as usize) else {
-        return f32::NAN;
-    };
-    let Ok(f) = Fresnel::schlick(r0) else {
-        return f32::NAN;
-    };
-    match TorranceSparrow::<f32>::new(sigma, g, f, ks, albedo) {
-        Ok(m) => m.eval_dots(Dots::new(n_i, n_o, i_o)),
-        Err(_) => f32::NAN,
-    }
+    torrance_sparrow(sigma, g_kind, r0, ks, albedo, Dots::new(n_i, n_o, i_o))
 }
 
 /// [`brdf_torrance_sparrow`] with n·h as well (h = normalize(wi + wo), as a shader has it):
@@ -222,6 +213,15 @@ pub extern "C" fn brdf_torrance_sparrow_nh(
     i_o: f32,
     n_h: f32,
 ) -> f32 {
+    if !n_h.is_finite() {
+        return f32::NAN;
+    }
+    let d = Dots::with_n_h(n_i, n_o, i_o, n_h);
+    torrance_sparrow(sigma, g_kind, r0, ks, albedo, d)
+}
+
+/// The two Torrance–Sparrow exports' body: the model, then its value at `d`.
+fn torrance_sparrow(sigma: f32, g_kind: u32, r0: f32, ks: f32, albedo: f32, d: Dots<f32>) -> f32 {
     let Some(&g) = GeometricTerm::ALL.get(g_kind as usize) else {
         return f32::NAN;
     };
@@ -229,8 +229,8 @@ pub extern "C" fn brdf_torrance_sparrow_nh(
         return f32::NAN;
     };
     match TorranceSparrow::<f32>::new(sigma, g, f, ks, albedo) {
-        Ok(m) if n_h.is_finite() => m.eval_dots(Dots::with_n_h(n_i, n_o, i_o, n_h)),
-        _ => f32::NAN,
+        Ok(m) => m.eval_dots(d),
+        Err(_) => f32::NAN,
     }
 }
 
