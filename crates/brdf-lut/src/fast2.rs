@@ -21,7 +21,7 @@ use core::arch::x86_64::{
     __m128, __m128i, _mm_add_ps, _mm_and_ps, _mm_andnot_ps, _mm_cvtepi32_ps, _mm_cvtsi128_si32,
     _mm_cvtss_f32, _mm_cvttps_epi32, _mm_loadl_epi64, _mm_max_ps, _mm_min_ps, _mm_movehl_ps,
     _mm_mul_ps, _mm_or_ps, _mm_setr_ps, _mm_setzero_ps, _mm_setzero_si128, _mm_shuffle_epi32,
-    _mm_shuffle_ps, _mm_sqrt_ps, _mm_sub_ps, _mm_unpackhi_epi16, _mm_unpacklo_epi16,
+    _mm_shuffle_ps, _mm_sqrt_ps, _mm_sub_epi32, _mm_sub_ps, _mm_unpackhi_epi16, _mm_unpacklo_epi16,
     _mm_unpacklo_epi32,
 };
 
@@ -229,11 +229,14 @@ impl Fast2 {
             // number widened to 32 bits (exact in f32).
             let q = _mm_unpacklo_epi32(r0, r1);
             let z = _mm_setzero_si128();
-            let p0 = _mm_cvtepi32_ps(_mm_unpacklo_epi16(q, z));
-            let p1 = _mm_cvtepi32_ps(_mm_unpackhi_epi16(q, z));
+            let (q0, q1) = (_mm_unpacklo_epi16(q, z), _mm_unpackhi_epi16(q, z));
+            // p₁ − p₀ of integers below 2¹⁶ is exact in f32, so it may be formed in the
+            // integer unit (one step shorter than after the conversion; the same f32).
+            let p0 = _mm_cvtepi32_ps(q0);
+            let d = _mm_cvtepi32_ps(_mm_sub_epi32(q1, q0));
             // Along axis 0: r = p₀ + f₀ (p₁ − p₀) = (r₀A, r₀B, r₁A, r₁B).
             let f0 = _mm_shuffle_ps(f, f, 0);
-            let r = _mm_add_ps(p0, _mm_mul_ps(f0, _mm_sub_ps(p1, p0)));
+            let r = _mm_add_ps(p0, _mm_mul_ps(f0, d));
             // Along axis 1: v = r₀ + f₁ (r₁ − r₀), then offset + scale · v per channel.
             let f1 = _mm_shuffle_ps(f, f, 0b0101_0101);
             let v = _mm_add_ps(r, _mm_mul_ps(f1, _mm_sub_ps(_mm_movehl_ps(r, r), r)));
