@@ -11,7 +11,7 @@
 //! Bit for bit the values of [`Reader::sample`]: every lane performs the scalar path's IEEE
 //! operations in the same order (no fused multiply–add; `maxps`/`minps` are the scalar
 //! comparisons' selects, NaN included), apart from operations that provably change no
-//! value for the tables that skip them (see [`Fast2::ab_in`]). Tables with linear or
+//! value for the tables that skip them (see `Fast2::ab_in`). Tables with linear or
 //! √-warped axes (w = √(x − lo)) take this path; any other warp, encoding, interpolant or
 //! shape keeps the general reader.
 
