@@ -40,7 +40,8 @@ enum Kind {
 }
 
 /// The per-table constants of the `Sqrt` form: lane 0 is axis 0 (μ), lane 1 axis 1
-/// (roughness). Small: the C interface keeps a prepared table in a fixed-size handle.
+/// (roughness). Small (40 bytes): the C interface keeps a prepared table in a fixed-size
+/// handle.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Fast2 {
     lo: [f32; 2],
@@ -52,7 +53,7 @@ pub(crate) struct Fast2 {
     /// Bytes between the rows of axis 1 (below 2³², see [`Fast2::new`]).
     row: u32,
     /// log₂ `row` (`Sqrt` tables, whose rows are a power of two bytes long).
-    row_shift: u32,
+    row_shift: u8,
     kind: Kind,
 }
 
@@ -116,7 +117,7 @@ impl Fast2 {
             a: [l0.a, l1.a],
             last_cell: [l0.last_cell_f, l1.last_cell_f],
             row: row.unwrap_or(0),
-            row_shift: row.unwrap_or(0).trailing_zeros(),
+            row_shift: row.unwrap_or(0).trailing_zeros() as u8,
             kind,
         }
     }
@@ -218,7 +219,7 @@ impl Fast2 {
         // (`Sqrt` tables: rows of 2^k bytes, a shift instead of the multiplication: one
         // step shorter on the way to the loads.)
         let r1 = if SQRT {
-            i1.wrapping_shl(self.row_shift)
+            i1.wrapping_shl(u32::from(self.row_shift))
         } else {
             i1.wrapping_mul(self.row)
         };
