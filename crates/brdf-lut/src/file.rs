@@ -227,7 +227,7 @@ impl Lut {
     #[inline]
     pub fn dfg(&self, mu: f32, roughness: f32) -> Result<(f32, f32), Error> {
         self.expect(TableKind::SplitSum, 2, "a split-sum table")?;
-        Ok(self.p.two(self.payload(), mu, roughness))
+        Ok(self.p.two_at(&self.bytes, mu, roughness))
     }
 
     /// Directional albedo E(μ, r).

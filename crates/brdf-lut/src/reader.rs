@@ -30,6 +30,14 @@ use crate::f16::f16_to_f32;
 use crate::header::{Axis, Encoding, Header, Interpolation, Placement, Warp, MAX_CHANNELS};
 use crate::view::Grid;
 
+/// The two-lane scalar lookup of 2-D two-channel linear u16 tables (hosted x86-64).
+#[cfg(all(
+    target_arch = "x86_64",
+    not(any(target_os = "none", target_family = "wasm"))
+))]
+#[path = "fast2.rs"]
+pub(crate) mod fast2;
+
 /// cos x for x ∈ [0, π/2] as sin(π/2 − x) by its Taylor series to r¹¹ (truncation < 1e-9,
 /// relative accuracy kept near π/2 where √cos x is steep). Only for the table warp, where an
 /// error of a few 1e-8 moves the interpolation point by < 1e-4 of a cell.

@@ -33,6 +33,12 @@ pub(crate) struct Prepared {
     /// a second reader would not fit the C interface's fixed table handles.
     #[cfg(not(any(target_os = "none", target_family = "wasm")))]
     pub(crate) dots: Option<crate::reader::Lane>,
+    /// The two-lane lookup of [`Prepared::two`] (2-D two-channel linear u16 tables).
+    #[cfg(all(
+        target_arch = "x86_64",
+        not(any(target_os = "none", target_family = "wasm"))
+    ))]
+    pub(crate) fast2: crate::reader::fast2::Fast2,
 }
 
 impl Prepared {
@@ -60,6 +66,11 @@ impl Prepared {
             } else {
                 None
             },
+            #[cfg(all(
+                target_arch = "x86_64",
+                not(any(target_os = "none", target_family = "wasm"))
+            ))]
+            fast2: crate::reader::fast2::Fast2::new(view.reader(), grid.dims, grid.channels),
         }
     }
 
@@ -193,10 +204,34 @@ impl Prepared {
     }
 
     /// Channels 0 and 1 of a 2-D table.
-    #[inline]
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     pub(crate) fn two(&self, payload: &[u8], x: f32, y: f32) -> (f32, f32) {
+        #[cfg(all(
+            target_arch = "x86_64",
+            not(any(target_os = "none", target_family = "wasm"))
+        ))]
+        if let Some(v) = self.fast2.ab(&self.reader, payload, 0, x, y) {
+            return v;
+        }
         let [a, b] = self.reader.sample::<2, 2>(&self.grid, payload, [x, y]);
         (a, b)
+    }
+
+    /// [`Prepared::two`] from the table's whole bytes (header, then payload from
+    /// `header_len`): the two-lane lookup reads them directly, with the payload's start in
+    /// its offsets.
+    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
+    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    pub(crate) fn two_at(&self, bytes: &[u8], x: f32, y: f32) -> (f32, f32) {
+        #[cfg(all(
+            target_arch = "x86_64",
+            not(any(target_os = "none", target_family = "wasm"))
+        ))]
+        if let Some(v) = self.fast2.ab(&self.reader, bytes, self.header_len, x, y) {
+            return v;
+        }
+        self.two(bytes.get(self.header_len..).unwrap_or(&[]), x, y)
     }
 
     /// Channel 0 of a 2-D one-channel table.
@@ -602,7 +637,7 @@ impl<B: AsRef<[u8]>> DfgTable<B> {
     #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
     #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     pub fn ab(&self, mu: f32, roughness: f32) -> (f32, f32) {
-        self.p.two(self.payload(), mu, roughness)
+        self.p.two_at(self.bytes.as_ref(), mu, roughness)
     }
     /// [`DfgTable::ab`] over slices: `a[k], b[k] = ab(mu[k], roughness[k])` for k below the
     /// shortest length, which is returned. Bit-identical to the scalar lookup.

@@ -1,0 +1,573 @@
+//! The scalar lookup of a 2-D, two-channel, linear, u16 table (the split-sum speed tier)
+//! on hosted x86-64, with the two axes side by side in the lanes of one SSE register.
+//!
+//! [`Reader::sample`] maps each axis on its own (clamp, warp, t = a·w + b, clamp, node,
+//! fraction) and then blends the two channels one after the other. Here both axes go
+//! through each of those steps in one packed instruction (SSE2 is part of the x86-64
+//! baseline), the 2 × 2 nodes of both channels are read as two 8-byte rows (the payload
+//! interleaves the channels, so a row of two nodes is A₀ B₀ A₁ B₁) behind one bounds check,
+//! and both channels and both rows are blended at once.
+//!
+//! Bit for bit the values of [`Reader::sample`]: every lane performs the scalar path's IEEE
+//! operations in the same order (no fused multiply–add; `maxps`/`minps` are the scalar
+//! comparisons' selects, NaN included), apart from operations that provably change no
+//! value for the tables that skip them (see `Fast2::ab_in`). Tables with linear or
+//! √-warped axes (w = √(x − lo)) take this path; any other warp, encoding, interpolant or
+//! shape keeps the general reader.
+
+use super::{Lane, Mode, Reader};
+use crate::header::{Encoding, Warp};
+use core::arch::x86_64::{
+    __m128, __m128i, _mm_add_ps, _mm_and_ps, _mm_andnot_ps, _mm_cvtepi32_ps, _mm_cvtsi128_si32,
+    _mm_cvtss_f32, _mm_cvttps_epi32, _mm_loadl_epi64, _mm_max_ps, _mm_min_ps, _mm_movehl_ps,
+    _mm_mul_ps, _mm_or_ps, _mm_setr_ps, _mm_setzero_ps, _mm_setzero_si128, _mm_shuffle_epi32,
+    _mm_shuffle_ps, _mm_sqrt_ps, _mm_sub_epi32, _mm_sub_ps, _mm_unpackhi_epi16, _mm_unpacklo_epi16,
+    _mm_unpacklo_epi32,
+};
+
+/// Which form of the two-lane lookup a table takes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Kind {
+    /// Not this path (another shape, warp, encoding or interpolant).
+    None,
+    /// Both axes √-warped with endpoint nodes (b = 0), t at hi rounds to at most n − 1,
+    /// and axis 0 has 2^k nodes: the split-sum speed tier. Inlined, with the constants
+    /// below.
+    Sqrt,
+    /// Any other mix of linear and √ axes: the general form, out of line, with the
+    /// constants read from the lanes.
+    Mixed,
+}
+
+/// The per-table constants of the `Sqrt` form: lane 0 is axis 0 (μ), lane 1 axis 1
+/// (roughness). Small (40 bytes): the C interface keeps a prepared table in a fixed-size
+/// handle.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Fast2 {
+    lo: [f32; 2],
+    /// hi − lo (rounded to f32).
+    span: [f32; 2],
+    a: [f32; 2],
+    /// n − 2 per axis.
+    last_cell: [f32; 2],
+    /// Bytes between the rows of axis 1 (below 2³², see [`Fast2::new`]).
+    row: u32,
+    /// log₂ `row` (`Sqrt` tables, whose rows are a power of two bytes long).
+    row_shift: u8,
+    kind: Kind,
+}
+
+/// Two constants in lanes 0 and 1 (one 8-byte load).
+#[inline(always)]
+fn pair(v: &[f32; 2]) -> __m128 {
+    // SAFETY: register-only SSE (see `Fast2::ab_in`).
+    #[allow(unused_unsafe)]
+    unsafe {
+        _mm_setr_ps(v[0], v[1], 0.0, 0.0)
+    }
+}
+
+/// Both channels NaN: a payload too short for the block (impossible for a parsed table;
+/// the scalar reader gives NaN too). Out of line, so the fast path does not prepare it.
+#[cold]
+#[inline(never)]
+fn short() -> (f32, f32) {
+    (f32::NAN, f32::NAN)
+}
+
+impl Fast2 {
+    /// The form and constants of the two-lane lookup for `reader`'s table.
+    pub(crate) fn new(reader: &Reader, dims: usize, channels: usize) -> Self {
+        let [l0, l1, _] = &reader.lanes;
+        let known = |l: &Lane| matches!(l.warp, Warp::Sqrt | Warp::Linear);
+        // Offsets are computed in u32: a 2-D table holds at most `MAX_VALUES` (2²⁶) values of
+        // 2 bytes, so every offset in the payload is below 2³².
+        let row = u32::try_from(l1.stride * 2).ok();
+        let fits = dims == 2
+            && channels == 2
+            && reader.mode == Mode::Linear
+            && reader.encoding == Encoding::Unorm16
+            && known(l0)
+            && known(l1)
+            && row.is_some()
+            // The scalar reader's layout: axis 0 innermost, the channels interleaved.
+            && l0.stride == 2
+            && l1.stride == 2 * l0.n
+            && l0.n >= 2
+            && l1.n >= 2;
+        // The `Sqrt` form: t = a·√(x − lo) (b = +0: endpoint nodes), and the clamp of t to
+        // [0, n − 1] is free: t ≥ 0, and t at hi rounds to at most n − 1, so every x in
+        // [lo, hi] gives t ≤ n − 1 (rounding is monotone, a > 0).
+        let sqrt0 = |l: &Lane| {
+            l.warp == Warp::Sqrt
+                && l.b.to_bits() == 0
+                && l.a > 0.0
+                && l.a * libm::sqrtf(l.hi - l.lo) <= l.last
+        };
+        let kind = if !fits {
+            Kind::None
+        } else if sqrt0(l0) && sqrt0(l1) && row.is_some_and(u32::is_power_of_two) {
+            Kind::Sqrt
+        } else {
+            Kind::Mixed
+        };
+        Fast2 {
+            lo: [l0.lo, l1.lo],
+            span: [l0.hi - l0.lo, l1.hi - l1.lo],
+            a: [l0.a, l1.a],
+            last_cell: [l0.last_cell_f, l1.last_cell_f],
+            row: row.unwrap_or(0),
+            row_shift: row.unwrap_or(0).trailing_zeros() as u8,
+            kind,
+        }
+    }
+
+    /// Channels 0 and 1 at (x, y) of `reader`'s table, whose payload starts at byte `base`
+    /// of `data`: [`Reader::sample`]`::<2, 2>` bit for bit (NaN in either coordinate gives
+    /// NaN; coordinates are clamped to the axes' ranges); `None` if the table does not
+    /// take this path.
+    #[inline(always)]
+    pub(crate) fn ab(
+        &self,
+        reader: &Reader,
+        data: &[u8],
+        base: usize,
+        x: f32,
+        y: f32,
+    ) -> Option<(f32, f32)> {
+        if self.kind == Kind::Sqrt {
+            Some(self.ab_in::<true>(reader, data, base, x, y))
+        } else if self.kind == Kind::Mixed {
+            Some(self.ab_mixed(reader, data, base, x, y))
+        } else {
+            None
+        }
+    }
+
+    /// [`Fast2::ab`] of a `Mixed` table (no shipped table is one; marked cold so that the
+    /// `Sqrt` test comes first).
+    #[cold]
+    #[inline(never)]
+    fn ab_mixed(&self, reader: &Reader, data: &[u8], base: usize, x: f32, y: f32) -> (f32, f32) {
+        self.ab_in::<false>(reader, data, base, x, y)
+    }
+
+    /// [`Fast2::ab`]; `SQRT`: a `Sqrt` table.
+    #[inline(always)]
+    fn ab_in<const SQRT: bool>(
+        &self,
+        reader: &Reader,
+        data: &[u8],
+        base: usize,
+        x: f32,
+        y: f32,
+    ) -> (f32, f32) {
+        let [l0, l1, _] = &reader.lanes;
+        // SAFETY: SSE and SSE2 are part of the x86-64 baseline, and these intrinsics only
+        // compute on registers (no memory access). They are safe functions from Rust 1.87
+        // on; the block is for the crate's minimum Rust, 1.84.
+        #[allow(unused_unsafe)]
+        let (i, f) = unsafe {
+            // Lanes 2 and 3 repeat the query; their results are not used.
+            let x = _mm_setr_ps(x, y, x, y);
+            // `maxps`/`minps` return their second operand unless the comparison holds, so
+            // these are [`crate::axis::clamp`]'s selects: (lo > x ? lo : x), then
+            // (hi < x ? hi : x); NaN stays NaN.
+            let t = if SQRT {
+                // √(clamp(x, lo, hi) − lo) as √ of x − lo clamped to [0, hi − lo]: the same
+                // f32 for every x. In range both subtract the same numbers; below lo, x − lo
+                // is negative (a non-zero difference of two f32 is at least the smallest
+                // subnormal, so it does not round to zero) and becomes +0 = lo − lo; above
+                // hi, x − lo ≥ hi − lo (rounding is monotone) and becomes hi − lo; NaN passes
+                // through both, and so does −0 (x = −0, lo = +0: −0 − 0 = −0).
+                let d = _mm_max_ps(_mm_setzero_ps(), _mm_sub_ps(x, pair(&self.lo)));
+                let w = _mm_sqrt_ps(_mm_min_ps(pair(&self.span), d));
+                // b = +0: a·w + b = a·w except that a·w = −0 (w = −0 above) becomes +0
+                // there; that only flips the sign of a zero fraction, and p₀ + (±0) = p₀
+                // for the stored p₀ ≥ +0 below (and then for r₀ ≥ +0), so no value
+                // changes. The clamp of t is free (see `Fast2::new`).
+                _mm_mul_ps(pair(&self.a), w)
+            } else {
+                let c = |f: fn(&Lane) -> f32| _mm_setr_ps(f(l0), f(l1), 0.0, 0.0);
+                let lo = c(|l| l.lo);
+                let x = _mm_min_ps(c(|l| l.hi), _mm_max_ps(lo, x));
+                // w = √(x − lo) or w = x per lane; t = a·w + b, clamped to [0, n − 1].
+                let root = _mm_sqrt_ps(_mm_sub_ps(x, lo));
+                let sq = |l: &Lane| f32::from_bits(if l.warp == Warp::Sqrt { !0 } else { 0 });
+                let m = _mm_setr_ps(sq(l0), sq(l1), 0.0, 0.0);
+                let w = _mm_or_ps(_mm_and_ps(m, root), _mm_andnot_ps(m, x));
+                let t = _mm_add_ps(_mm_mul_ps(c(|l| l.a), w), c(|l| l.b));
+                _mm_min_ps(c(|l| l.last), _mm_max_ps(_mm_setzero_ps(), t))
+            };
+            // Node ⌊min(t, n − 2)⌋ by the truncating conversion (t ≥ 0); NaN takes node
+            // n − 2 (min returns its second operand) and keeps f = NaN.
+            let i = _mm_cvttps_epi32(_mm_min_ps(t, pair(&self.last_cell)));
+            (i, _mm_sub_ps(t, _mm_cvtepi32_ps(i)))
+        };
+        // SAFETY: as above (register-only SSE2).
+        #[allow(unused_unsafe)]
+        let (i0, i1) = unsafe {
+            (
+                _mm_cvtsi128_si32(i) as u32,
+                _mm_cvtsi128_si32(_mm_shuffle_epi32(i, 0b01)) as u32,
+            )
+        };
+        // Byte offset of node (i0, i1) in the payload: below 2³² for every node of the
+        // table (see `Fast2::new`; the wrapping only matters for nodes the clamp never
+        // gives), so the sums cannot overflow a 64-bit usize (`base` is at most
+        // `data.len()`).
+        // (`Sqrt` tables: rows of 2^k bytes, a shift instead of the multiplication: one
+        // step shorter on the way to the loads.)
+        let r1 = if SQRT {
+            i1.wrapping_shl(u32::from(self.row_shift))
+        } else {
+            i1.wrapping_mul(self.row)
+        };
+        let row = self.row as usize;
+        let at = i0.wrapping_mul(4).wrapping_add(r1) as usize;
+        // One bounds check for both rows.
+        if base + at + row + 8 > data.len() {
+            return short();
+        }
+        let (sc, of) = (&reader.scale, &reader.offset);
+        // SAFETY: base + at + row + 8 ≤ data.len() (checked above), so both 8-byte reads lie in
+        // `data` (`movq` has no alignment requirement); the rest is register-only SSE2.
+        #[allow(unused_unsafe)]
+        unsafe {
+            let p = data.as_ptr().add(base + at);
+            // Stored u16 (node, row): A₀₀ B₀₀ A₁₀ B₁₀ and A₀₁ B₀₁ A₁₁ B₁₁.
+            let r0 = _mm_loadl_epi64(p.cast::<__m128i>());
+            let r1 = _mm_loadl_epi64(p.add(row).cast::<__m128i>());
+            // (A₀₀ B₀₀)(A₀₁ B₀₁)(A₁₀ B₁₀)(A₁₁ B₁₁): node 0 of both rows, then node 1, each
+            // number widened to 32 bits (exact in f32).
+            let q = _mm_unpacklo_epi32(r0, r1);
+            let z = _mm_setzero_si128();
+            let (q0, q1) = (_mm_unpacklo_epi16(q, z), _mm_unpackhi_epi16(q, z));
+            // p₁ − p₀ of integers below 2¹⁶ is exact in f32, so it may be formed in the
+            // integer unit (one step shorter than after the conversion; the same f32).
+            let p0 = _mm_cvtepi32_ps(q0);
+            let d = _mm_cvtepi32_ps(_mm_sub_epi32(q1, q0));
+            // Along axis 0: r = p₀ + f₀ (p₁ − p₀) = (r₀A, r₀B, r₁A, r₁B).
+            let f0 = _mm_shuffle_ps(f, f, 0);
+            let r = _mm_add_ps(p0, _mm_mul_ps(f0, d));
+            // Along axis 1: v = r₀ + f₁ (r₁ − r₀), then offset + scale · v per channel.
+            let f1 = _mm_shuffle_ps(f, f, 0b0101_0101);
+            let v = _mm_add_ps(r, _mm_mul_ps(f1, _mm_sub_ps(_mm_movehl_ps(r, r), r)));
+            let v = _mm_add_ps(
+                _mm_setr_ps(of[0], of[1], 0.0, 0.0),
+                _mm_mul_ps(_mm_setr_ps(sc[0], sc[1], 0.0, 0.0), v),
+            );
+            let b = _mm_shuffle_ps(v, v, 0b01);
+            (_mm_cvtss_f32(v), _mm_cvtss_f32(b))
+        }
+    }
+}
+
+#[cfg(all(test, feature = "std"))]
+mod tests {
+    extern crate std;
+    use super::*;
+    use crate::header::{Axis, Interpolation, Placement, TableKind};
+    use crate::tables::Prepared;
+    use crate::view::LutView;
+    use crate::write;
+    use std::vec::Vec;
+
+    fn same(a: (f32, f32), b: [f32; 2]) -> bool {
+        a.0.to_bits() == b[0].to_bits() && a.1.to_bits() == b[1].to_bits()
+    }
+
+    /// Coordinates for one axis of `lane`: special values, the range ends and their f32
+    /// neighbours, every node exactly (x = lo + (hi − lo)·s² or lo + (hi − lo)·s at node
+    /// s = k/(n − 1) and its neighbours), cell midpoints and an additive recurrence.
+    fn coords(l: &Lane) -> Vec<f32> {
+        let (lo, hi) = (l.lo, l.hi);
+        let up = |x: f32| {
+            f32::from_bits(if x >= 0.0 {
+                x.to_bits() + 1
+            } else {
+                x.to_bits() - 1
+            })
+        };
+        let down = |x: f32| {
+            f32::from_bits(if x > 0.0 {
+                x.to_bits() - 1
+            } else {
+                x.to_bits() + 1
+            })
+        };
+        let mut v = std::vec![
+            f32::NAN,
+            -f32::NAN,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            0.0,
+            -0.0,
+            f32::MAX,
+            -f32::MAX,
+            f32::MIN_POSITIVE,
+            1e-30,
+            -1e-30,
+            lo,
+            hi,
+            up(lo),
+            down(lo),
+            up(hi),
+            down(hi),
+            lo - 1.0,
+            hi + 1.0,
+            0.5 * (lo + hi),
+        ];
+        let n = l.n;
+        for k in 0..n {
+            for m in [0.0, 0.5] {
+                let s = ((k as f64 + m) / (n - 1) as f64).min(1.0);
+                let s = if l.warp == Warp::Sqrt { s * s } else { s };
+                let x = (lo as f64 + (hi as f64 - lo as f64) * s) as f32;
+                v.extend([x, up(x), down(x)]);
+            }
+        }
+        for k in 0..2000 {
+            let u = (0.618_033_988_749_895 * k as f64).fract() as f32;
+            v.push(lo + (hi - lo) * u);
+        }
+        v
+    }
+
+    /// `Fast2::ab` (from the payload and from the whole file) against the general scalar
+    /// reader, bit for bit, over the product of both axes' coordinates; returns the kind.
+    fn check(bytes: &[u8]) -> Kind {
+        let view = LutView::parse(bytes).unwrap();
+        let p = Prepared::new(&view);
+        let f = Fast2::new(&p.reader, p.grid.dims, p.grid.channels);
+        if f.kind == Kind::None {
+            return Kind::None;
+        }
+        let payload = view.payload();
+        let hl = p.header_len;
+        assert_eq!(&bytes[hl..], payload);
+        let (xs, ys) = (coords(&p.reader.lanes[0]), coords(&p.reader.lanes[1]));
+        let mut nan = 0;
+        for &x in &xs {
+            for &y in &ys {
+                let want = p.reader.sample::<2, 2>(&p.grid, payload, [x, y]);
+                let (a, b) = (
+                    f.ab(&p.reader, payload, 0, x, y),
+                    f.ab(&p.reader, bytes, hl, x, y),
+                );
+                // Two different NaNs (signs) meeting in one operation give either one: x86
+                // returns the first operand's, and the compiler may swap the operands of a
+                // multiplication. Only then are the NaNs' bits left free.
+                let free = x.is_nan() && y.is_nan() && x.to_bits() != y.to_bits();
+                let ok = |v: Option<(f32, f32)>| {
+                    v.is_some_and(|v| {
+                        same(v, want) || free && v.0.is_nan() && v.1.is_nan() && want[0].is_nan()
+                    })
+                };
+                assert!(ok(a) && ok(b), "({x:e}, {y:e}): {a:?} {b:?} vs {want:?}");
+                // NaN in either coordinate (only then) gives NaN in both channels.
+                assert_eq!(
+                    x.is_nan() || y.is_nan(),
+                    want[0].is_nan() && want[1].is_nan()
+                );
+                nan += usize::from(want[0].is_nan());
+            }
+        }
+        assert!(nan > 0);
+        // A payload one byte short of the last block reads NaN (no panic, no read past it).
+        let short = &payload[..payload.len() - 1];
+        let (l0, l1) = (&p.reader.lanes[0], &p.reader.lanes[1]);
+        let v = f.ab(&p.reader, short, 0, l0.hi, l1.hi).unwrap();
+        assert!(v.0.is_nan() && v.1.is_nan());
+        assert!(!f.ab(&p.reader, short, 0, l0.lo, l1.lo).unwrap().0.is_nan());
+        f.kind
+    }
+
+    fn asset(name: &str) -> Vec<u8> {
+        let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../assets")
+            .join(name);
+        std::fs::read(p).unwrap()
+    }
+
+    /// Every committed asset: the two-channel linear ones take the two-lane path (the
+    /// split-sum speed tier its inlined form) and equal the general reader bit for bit.
+    #[test]
+    fn assets_equal_the_general_reader() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets");
+        let mut taken = Vec::new();
+        for e in std::fs::read_dir(dir).unwrap() {
+            let name = e.unwrap().file_name().into_string().unwrap();
+            if !name.ends_with(".blut") {
+                continue;
+            }
+            let bytes = asset(&name);
+            let h = *LutView::parse(&bytes).unwrap().header();
+            let fits = h.axes.len() == 2
+                && h.channels.len() == 2
+                && h.encoding == Encoding::Unorm16
+                && h.interpolation == Interpolation::Linear;
+            let kind = check(&bytes);
+            assert_eq!(kind != Kind::None, fits, "{name}");
+            if fits {
+                taken.push((name, kind));
+            }
+        }
+        assert!(
+            taken.contains(&("dfg_ggx_linear.blut".into(), Kind::Sqrt)),
+            "{taken:?}"
+        );
+    }
+
+    /// A √ endpoint axis whose t at hi rounds above n − 1 (found by search) keeps the t
+    /// clamp: the table takes the out-of-line form, with the same values.
+    #[test]
+    fn rounding_past_the_last_node_keeps_the_clamp() {
+        let ax = |hi: f64| Axis {
+            name: "x",
+            count: 256,
+            lo: 0.0,
+            hi,
+            warp: Warp::Sqrt,
+            placement: Placement::Endpoint,
+        };
+        let over = (1..1000)
+            .map(|k| 0.3 + 0.0007 * k as f64)
+            .find(|&hi| {
+                let l = Lane::new(&ax(hi), 2).unwrap();
+                l.a * libm::sqrtf(l.hi - l.lo) + l.b > l.last
+            })
+            .expect("some range rounds past the last node");
+        let axes = [ax(over), ax(1.0)];
+        let spec = write::Spec {
+            kind: TableKind::SplitSum,
+            axes: &axes,
+            channels: &["A", "B"],
+            encoding: Encoding::Unorm16,
+            interpolation: Interpolation::Linear,
+            generator: Default::default(),
+        };
+        let values: Vec<f64> = (0..spec.nodes() * 2)
+            .map(|k| (0.37 * k as f64).sin())
+            .collect();
+        let (chans, payload) = write::quantise(&spec, &values).unwrap();
+        let h = write::header(&spec, chans, Default::default()).unwrap();
+        assert_eq!(check(&write::encode(&h, &payload).unwrap()), Kind::Mixed);
+        // The same table with the other range takes the inlined form.
+        let axes = [ax(1.0), ax(1.0)];
+        let spec = write::Spec {
+            axes: &axes,
+            ..spec
+        };
+        let (chans, payload) = write::quantise(&spec, &values).unwrap();
+        let h = write::header(&spec, chans, Default::default()).unwrap();
+        assert_eq!(check(&write::encode(&h, &payload).unwrap()), Kind::Sqrt);
+    }
+
+    /// Made-up tables of every axis form the path takes (linear, √, endpoint and texel-centre
+    /// nodes, 2 to 300 nodes, ranges that do and do not start at 0, negative ends), and
+    /// some it does not (log warp, Catmull–Rom, one channel).
+    #[test]
+    fn made_up_tables_equal_the_general_reader() {
+        let ax = |count, lo, hi, warp, placement| Axis {
+            name: "x",
+            count,
+            lo,
+            hi,
+            warp,
+            placement,
+        };
+        use Placement::{Endpoint as E, TexelCentre as T};
+        use Warp::{Linear as L, Log, Sqrt as S};
+        let cases = [
+            (
+                [ax(256, 0.0, 1.0, S, E), ax(256, 0.0, 1.0, S, E)],
+                2,
+                Interpolation::Linear,
+            ),
+            (
+                [ax(2, 0.0, 1.0, S, E), ax(3, 0.0, 1.0, S, E)],
+                2,
+                Interpolation::Linear,
+            ),
+            (
+                [ax(64, 0.05, 0.93, S, E), ax(19, 0.1, 1.0, S, E)],
+                2,
+                Interpolation::Linear,
+            ),
+            (
+                [ax(37, 0.05, 0.93, S, E), ax(19, 0.1, 1.0, S, E)],
+                2,
+                Interpolation::Linear,
+            ),
+            (
+                [ax(16, 0.0, 1.0, S, T), ax(9, 0.0, 1.0, S, T)],
+                2,
+                Interpolation::Linear,
+            ),
+            (
+                [ax(33, -1.5, 2.25, L, E), ax(17, 0.0, 1.0, S, E)],
+                2,
+                Interpolation::Linear,
+            ),
+            (
+                [ax(8, 0.0, 1.0, S, E), ax(300, -3.0, -1.0, L, T)],
+                2,
+                Interpolation::Linear,
+            ),
+            (
+                [ax(64, 0.0, 1.0, L, E), ax(64, 0.0, 1.0, L, E)],
+                2,
+                Interpolation::Linear,
+            ),
+            (
+                [ax(16, 0.1, 1.0, Log, E), ax(16, 0.0, 1.0, S, E)],
+                2,
+                Interpolation::Linear,
+            ),
+            (
+                [ax(16, 0.0, 1.0, S, E), ax(16, 0.0, 1.0, S, E)],
+                2,
+                Interpolation::CatmullRom,
+            ),
+            (
+                [ax(16, 0.0, 1.0, S, E), ax(16, 0.0, 1.0, S, E)],
+                1,
+                Interpolation::Linear,
+            ),
+        ];
+        let names = ["A", "B"];
+        let mut kinds = Vec::new();
+        for (axes, nc, interpolation) in cases {
+            let spec = write::Spec {
+                kind: if nc == 2 {
+                    TableKind::SplitSum
+                } else {
+                    TableKind::DirectionalAlbedo
+                },
+                axes: &axes,
+                channels: &names[..nc],
+                encoding: Encoding::Unorm16,
+                interpolation,
+                generator: Default::default(),
+            };
+            let nodes = spec.nodes();
+            // Smooth plus a fixed pseudo-random part, so neighbouring nodes differ.
+            let values: Vec<f64> = (0..nodes * nc)
+                .map(|k| {
+                    let u = (0.754_877_666_246_692_7 * k as f64).fract();
+                    (0.37 * k as f64).sin() + 0.2 * u
+                })
+                .collect();
+            let (chans, payload) = write::quantise(&spec, &values).unwrap();
+            let h = write::header(&spec, chans, Default::default()).unwrap();
+            let bytes = write::encode(&h, &payload).unwrap();
+            kinds.push(check(&bytes));
+        }
+        use Kind::{Mixed as M, None as N, Sqrt as Q};
+        // Which form each table takes: √ with endpoint nodes and 2^k nodes on axis 0 the
+        // inlined one (t at the range ends rounds into [0, n − 1] for these ranges), the
+        // rest (37 nodes on axis 0, texel centres, linear axes) out of line.
+        assert_eq!(kinds, [Q, Q, Q, M, M, M, M, M, N, N, N]);
+    }
+}
