@@ -33,9 +33,12 @@ pub(crate) fn slope_weight<T: Real>(v: T, sqrt2_sigma: T) -> T {
 pub struct SlopeDistribution<T, R = DefaultRule> {
     sigma: T,
     sqrt2_sigma: T,
-    /// 1/(2Z), Z = ∫₀^{V_CUT} √(1+u²) e^{−v²} dv by the rule `R` itself: the half-line mass
-    /// in the working variable. Using the same rule for the normaliser as for M makes
-    /// "everything passes" exactly 1.
+    /// Z = ∫₀^{V_CUT} √(1+u²) e^{−v²} dv by the rule `R` itself: the half-line mass in the
+    /// working variable, evaluated exactly as the modified G evaluates its integrals (f64:
+    /// [`Rule::integrate_slope_weight`]), so that an integral up to the cut is Z itself.
+    z: T,
+    /// 1/(2Z). Using the same rule for the normaliser as for M makes "everything passes"
+    /// exactly 1.
     inv_2z: T,
     /// C(σ) from Z evaluated to full precision (two 32-point panels), for [`Self::pdf`] and
     /// [`Self::normalisation_c`].
@@ -51,7 +54,13 @@ impl<T: Real, R: Rule> SlopeDistribution<T, R> {
         let sqrt2_sigma = T::from_f64(core::f64::consts::SQRT_2) * sigma;
         let vc = T::from_f64(V_CUT);
         let w = |v| slope_weight(v, sqrt2_sigma);
-        let z = R::integrate(T::ZERO, vc, w);
+        // f64: the integration the modified G uses (bit for bit the same for the same
+        // interval); f32: the one-pass rule, as there.
+        let z = if T::EPSILON < T::from_f64(1e-10) {
+            R::integrate_slope_weight(vc, sqrt2_sigma * sqrt2_sigma)
+        } else {
+            R::integrate(T::ZERO, vc, w)
+        };
         let mid = vc * T::HALF;
         let z_exact = GaussLegendre::<32>::integrate(T::ZERO, mid, w)
             + GaussLegendre::<32>::integrate(mid, vc, w);
@@ -60,6 +69,7 @@ impl<T: Real, R: Rule> SlopeDistribution<T, R> {
         Ok(Self {
             sigma,
             sqrt2_sigma,
+            z,
             inv_2z: T::ONE / (T::TWO * z),
             c,
             _rule: PhantomData,
@@ -74,6 +84,12 @@ impl<T: Real, R: Rule> SlopeDistribution<T, R> {
     #[inline]
     pub fn sqrt2_sigma(&self) -> T {
         self.sqrt2_sigma
+    }
+    /// Z, the rule's integral of the working-variable density up to the cut (see the
+    /// field).
+    #[inline]
+    pub(crate) fn z(&self) -> T {
+        self.z
     }
     /// 1/(2Z), the factor that turns a working-variable integral into a probability.
     #[inline]

@@ -157,26 +157,31 @@ impl<T: Real, R: Rule> ModifiedG<T, R> {
         let vc = T::from_f64(V_CUT);
         // Fully passing bound (eqs 6–7): tan lo = cot θ.
         let vlo = self.dist.v_of_tan(cos_t, sin_t);
-        let (vhi, corr) = self.semi_correction(cos_t, sin_t, cos_a, sin_a, vlo, vc, s2);
-        // √(1 + u²)·e^{−v²}. In f64 the exponential runs for all nodes first, two per SIMD
-        // register (same result bits as the one-pass rule); the one-pass rule is smaller
-        // and faster in f32.
-        let q = if T::EPSILON < T::from_f64(1e-10) {
-            R::integrate_product(
-                T::ZERO,
-                vhi,
-                |v| (-(v * v)).exp_bounded(),
-                |v: [T; 2]| {
-                    let u = [s2 * v[0], s2 * v[1]];
-                    T::sqrt2([T::ONE + u[0] * u[0], T::ONE + u[1] * u[1]])
-                },
-            )
+        let q;
+        let corr;
+        if T::EPSILON < T::from_f64(1e-10) {
+            // f64. lo beyond the cut: every neighbour passes, M = 1 exactly (NaN goes on).
+            if vlo >= vc {
+                return T::ONE;
+            }
+            let (vhi, k) = self.semi_correction(cos_t, sin_t, cos_a, sin_a, vlo, vc, s2);
+            // Up to the cut the integral is the normaliser's, evaluated the same way (the
+            // same bits).
+            q = if vhi >= vc {
+                self.dist.z()
+            } else {
+                R::integrate_slope_weight(vhi, s2 * s2)
+            };
+            corr = k;
         } else {
-            R::integrate(T::ZERO, vhi, |v| {
+            let (vhi, k) = self.semi_correction(cos_t, sin_t, cos_a, sin_a, vlo, vc, s2);
+            // √(1 + u²)·e^{−v²}, one pass.
+            q = R::integrate(T::ZERO, vhi, |v| {
                 let u = s2 * v;
                 (T::ONE + u * u).sqrt() * (-(v * v)).exp_bounded()
-            })
-        };
+            });
+            corr = k;
+        }
         (T::HALF + (q - corr) * self.dist.inv_2z()).clamp(T::ZERO, T::ONE)
     }
 
@@ -373,12 +378,11 @@ fn gauss_tail_moment<T: Real>(a: T, d: T) -> T {
         // bounded exp and erfc apply.
         let b = a + d;
         let c = a * T::from_f64(SQRT_PI_2);
-        // Inlined, so that the two calls can share SIMD registers.
-        #[inline(always)]
-        fn f<T: Real>(x: T, c: T) -> T {
-            (-(x * x)).exp_bounded() * T::HALF - c * x.erfc_bounded()
-        }
-        f(a, c) - f(b, c)
+        let e = T::exp_neg2([a * a, b * b]);
+        // F(x) = e^{−x²} (½ − c e^{x²} erfc x).
+        let fa = e[0] * (T::HALF - c * a.erfcx_bounded());
+        let fb = e[1] * (T::HALF - c * b.erfcx_bounded());
+        fa - fb
     } else {
         let b = a + d;
         ((-(a * a)).exp() - (-(b * b)).exp()) * T::HALF

@@ -15,7 +15,10 @@
 
 mod fast64;
 
-pub use fast64::{erfc_bounded_f64, exp_bounded_f64, sin_cos2_f64, sin_cos_f64};
+pub use fast64::{
+    erfc_bounded_f64, erfcx_bounded_f64, exp_bounded_f64, exp_neg2_f64, exp_neg_f64, sin_cos2_f64,
+    sin_cos_f64,
+};
 
 use core::fmt::Debug;
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
@@ -80,6 +83,14 @@ pub trait Real:
     fn exp_bounded(self) -> Self {
         self.exp()
     }
+    /// [e^{−z₀}, e^{−z₁}] for z ∈ [0, 87] (the Gaussian factors e^{−v²} of the kernels'
+    /// integrands, given z = v²; results outside that range unspecified but never a panic).
+    /// (`f64`: [`exp_neg2_f64`], within (2 + z)·ε of libm, the two lanes side by side;
+    /// otherwise [`Real::exp_bounded`] per lane.)
+    #[inline]
+    fn exp_neg2(z: [Self; 2]) -> [Self; 2] {
+        [(-z[0]).exp_bounded(), (-z[1]).exp_bounded()]
+    }
     /// Natural logarithm ln x (NaN for x < 0, −∞ at 0).
     fn ln(self) -> Self;
     /// sin x (x in radians).
@@ -125,6 +136,13 @@ pub trait Real:
     #[inline]
     fn erfc_bounded(self) -> Self {
         self.erfc()
+    }
+    /// The scaled complementary error function e^{x²} erfc x for x ∈ [0, 4.6] (results
+    /// outside unspecified but never a panic) (`f64`: [`erfcx_bounded_f64`]; otherwise
+    /// e^{x²} times [`Real::erfc`]).
+    #[inline]
+    fn erfcx_bounded(self) -> Self {
+        (self * self).exp() * self.erfc()
     }
 
     /// `true` for NaN.
@@ -301,6 +319,14 @@ impl Real for f64 {
     #[inline]
     fn erfc_bounded(self) -> Self {
         erfc_bounded_f64(self)
+    }
+    #[inline]
+    fn erfcx_bounded(self) -> Self {
+        erfcx_bounded_f64(self)
+    }
+    #[inline]
+    fn exp_neg2(z: [Self; 2]) -> [Self; 2] {
+        exp_neg2_f64(z)
     }
 }
 
