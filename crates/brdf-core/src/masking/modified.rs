@@ -379,10 +379,9 @@ fn gauss_tail_moment<T: Real>(a: T, d: T) -> T {
         let b = a + d;
         let c = a * T::from_f64(SQRT_PI_2);
         let e = T::exp_neg2([a * a, b * b]);
+        let x = T::erfcx2_bounded([a, b]);
         // F(x) = e^{−x²} (½ − c e^{x²} erfc x).
-        let fa = e[0] * (T::HALF - c * a.erfcx_bounded());
-        let fb = e[1] * (T::HALF - c * b.erfcx_bounded());
-        fa - fb
+        e[0] * (T::HALF - c * x[0]) - e[1] * (T::HALF - c * x[1])
     } else {
         let b = a + d;
         ((-(a * a)).exp() - (-(b * b)).exp()) * T::HALF

@@ -16,8 +16,8 @@
 mod fast64;
 
 pub use fast64::{
-    erfc_bounded_f64, erfcx_bounded_f64, exp_bounded_f64, exp_neg2_f64, exp_neg_f64, sin_cos2_f64,
-    sin_cos_f64,
+    erfc_bounded_f64, erfcx2_bounded_f64, erfcx_bounded_f64, exp_bounded_f64, exp_neg2_f64,
+    exp_neg_f64, sin_cos2_f64, sin_cos_f64,
 };
 
 use core::fmt::Debug;
@@ -143,6 +143,12 @@ pub trait Real:
     #[inline]
     fn erfcx_bounded(self) -> Self {
         (self * self).exp() * self.erfc()
+    }
+    /// [`Real::erfcx_bounded`] of two arguments, lane by lane the same values (`f64`:
+    /// [`erfcx2_bounded_f64`], the two side by side).
+    #[inline]
+    fn erfcx2_bounded(x: [Self; 2]) -> [Self; 2] {
+        [x[0].erfcx_bounded(), x[1].erfcx_bounded()]
     }
 
     /// `true` for NaN.
@@ -323,6 +329,10 @@ impl Real for f64 {
     #[inline]
     fn erfcx_bounded(self) -> Self {
         erfcx_bounded_f64(self)
+    }
+    #[inline]
+    fn erfcx2_bounded(x: [Self; 2]) -> [Self; 2] {
+        erfcx2_bounded_f64(x)
     }
     #[inline]
     fn exp_neg2(z: [Self; 2]) -> [Self; 2] {
