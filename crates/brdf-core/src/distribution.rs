@@ -33,12 +33,10 @@ pub(crate) fn slope_weight<T: Real>(v: T, sqrt2_sigma: T) -> T {
 pub struct SlopeDistribution<T, R = DefaultRule> {
     sigma: T,
     sqrt2_sigma: T,
-    /// Z = ∫₀^{V_CUT} √(1+u²) e^{−v²} dv by the rule `R` itself: the half-line mass in the
-    /// working variable, evaluated exactly as the modified G evaluates its integrals (f64:
-    /// [`Rule::integrate_slope_weight`]), so that an integral up to the cut is Z itself.
-    z: T,
-    /// 1/(2Z). Using the same rule for the normaliser as for M makes "everything passes"
-    /// exactly 1.
+    /// 1/(2Z), Z = ∫₀^{V_CUT} √(1+u²) e^{−v²} dv by the rule `R` itself: the half-line mass
+    /// in the working variable, evaluated as the modified G evaluates its integrals (f64:
+    /// [`Rule::integrate_slope_weight`]). Using the same rule for the normaliser as for M
+    /// makes "everything passes" exactly 1.
     inv_2z: T,
     /// C(σ) from Z evaluated to full precision (two 32-point panels), for [`Self::pdf`] and
     /// [`Self::normalisation_c`].
@@ -69,7 +67,6 @@ impl<T: Real, R: Rule> SlopeDistribution<T, R> {
         Ok(Self {
             sigma,
             sqrt2_sigma,
-            z,
             inv_2z: T::ONE / (T::TWO * z),
             c,
             _rule: PhantomData,
@@ -84,12 +81,6 @@ impl<T: Real, R: Rule> SlopeDistribution<T, R> {
     #[inline]
     pub fn sqrt2_sigma(&self) -> T {
         self.sqrt2_sigma
-    }
-    /// Z, the rule's integral of the working-variable density up to the cut (see the
-    /// field).
-    #[inline]
-    pub(crate) fn z(&self) -> T {
-        self.z
     }
     /// 1/(2Z), the factor that turns a working-variable integral into a probability.
     #[inline]
