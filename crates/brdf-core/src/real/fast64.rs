@@ -220,12 +220,26 @@ trait Lanes:
 {
     /// The constant in every lane.
     fn splat(x: f64) -> Self;
+    /// Lane by lane `odd` where k ≠ 0 and `even` where k = 0 (NaN counts as ≠ 0), without a
+    /// branch.
+    fn pick_nonzero(k: Self, odd: Self, even: Self) -> Self;
+}
+
+/// [`Lanes::pick_nonzero`] of one lane, as a bit mask.
+#[inline(always)]
+fn pick1(k: f64, odd: f64, even: f64) -> f64 {
+    let m = if k == 0.0 { 0 } else { u64::MAX };
+    f64::from_bits((odd.to_bits() & m) | (even.to_bits() & !m))
 }
 
 impl Lanes for f64 {
     #[inline(always)]
     fn splat(x: f64) -> Self {
         x
+    }
+    #[inline(always)]
+    fn pick_nonzero(k: Self, odd: Self, even: Self) -> Self {
+        pick1(k, odd, even)
     }
 }
 
@@ -279,6 +293,19 @@ impl Lanes for F2 {
     #[inline(always)]
     fn splat(x: f64) -> Self {
         F2::new([x, x])
+    }
+    #[inline(always)]
+    fn pick_nonzero(k: Self, odd: Self, even: Self) -> Self {
+        #[cfg(target_arch = "x86_64")]
+        {
+            use wide::CmpNe;
+            F2(k.0.cmp_ne(wide::f64x2::ZERO).blend(odd.0, even.0))
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        {
+            let (k, o, e) = (k.0, odd.0, even.0);
+            F2([pick1(k[0], o[0], e[0]), pick1(k[1], o[1], e[1])])
+        }
     }
 }
 
@@ -367,15 +394,14 @@ pub fn sin_cos2_f64(x: [f64; 2]) -> ([f64; 2], [f64; 2]) {
         let (s1, c1) = sin_cos_f64(x[1]);
         return ([s0, s1], [c0, c1]);
     }
-    let (s0, c0) = sin_cos_short(x[0]);
-    let (s1, c1) = sin_cos_short(x[1]);
-    ([s0, s1], [c0, c1])
+    let (s, c) = sin_cos_short(F2::new(x));
+    (s.get(), c.get())
 }
 
 /// The body of [`sin_cos_f64`] for |x| ≤ 1.6 (always inlined, so that two calls can share
 /// SIMD registers).
 #[inline(always)]
-fn sin_cos_short(x: f64) -> (f64, f64) {
+fn sin_cos_short<V: Lanes>(x: V) -> (V, V) {
     const FRAC_2_PI: f64 = core::f64::consts::FRAC_2_PI;
     const P1: f64 = core::f64::consts::FRAC_PI_2;
     const P2: f64 = 6.123_233_995_736_766e-17; // π/2 − P1
@@ -402,21 +428,24 @@ fn sin_cos_short(x: f64) -> (f64, f64) {
         -1.0 / 87_178_291_200.0,
         1.0 / 20_922_789_888_000.0,
     ];
+    let l = V::splat;
     // k = round(2x/π) by adding and subtracting 1.5·2⁵² (|2x/π| < 1.02 here).
-    let k = (x * FRAC_2_PI + MAGIC) - MAGIC;
-    let r = (x - k * P1) - k * P2;
+    let k = (x * l(FRAC_2_PI) + l(MAGIC)) - l(MAGIC);
+    let r = (x - k * l(P1)) - k * l(P2);
     let r2 = r * r;
-    let (mut ps, mut pc) = (S[7], K[7]);
+    let (mut ps, mut pc) = (l(S[7]), l(K[7]));
     for j in (0..7).rev() {
-        ps = ps * r2 + S[j];
-        pc = pc * r2 + K[j];
+        ps = ps * r2 + l(S[j]);
+        pc = pc * r2 + l(K[j]);
     }
     let s = r + r * (r2 * ps);
-    let c = 1.0 + r2 * pc;
-    // The quadrant swap as a bit mask rather than a branch (the angles are not predictable).
-    let m = if k == 0.0 { 0 } else { u64::MAX };
-    let pick = |odd: f64, even: f64| f64::from_bits((odd.to_bits() & m) | (even.to_bits() & !m));
-    (pick(k * c, s), pick(-k * s, c))
+    let c = l(1.0) + r2 * pc;
+    // The quadrant swap as a selection rather than a branch (the angles are not
+    // predictable); −k·s as (0 − k)·s, the same value.
+    (
+        V::pick_nonzero(k, k * c, s),
+        V::pick_nonzero(k, (l(0.0) - k) * s, c),
+    )
 }
 
 #[cfg(test)]
