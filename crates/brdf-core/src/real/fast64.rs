@@ -1,8 +1,10 @@
 //! f64 kernels for the hot loops of the f64 instantiation: eˣ on the bounded range of the
-//! integrands ([`exp_bounded_f64`]) and sin/cos on the clamped angle range
-//! ([`sin_cos_f64`]). Both are branch-free on their fast range (so the compiler can keep
-//! them inline and evaluate two of them in one SSE2 register) and fall back to libm
-//! elsewhere.
+//! integrands ([`exp_bounded_f64`], and e^{−z} from z = v² by [`exp_neg_f64`]), the scaled
+//! complementary error function of the tail integrals ([`erfcx_bounded_f64`]) and sin/cos
+//! on the clamped angle range ([`sin_cos_f64`]). All are branch-free on their fast range
+//! (so the compiler can keep them inline and evaluate two of them in one SSE2 register;
+//! the pair versions are written once over [`Lanes`], one f64 or two side by side) and
+//! fall back to libm elsewhere.
 
 /// 2^(j/256) for j = 0…255, each the f64 nearest to the exact value (computed in 50-digit
 /// arithmetic; checked against libm's `exp2` in the tests).

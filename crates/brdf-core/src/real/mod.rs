@@ -4,11 +4,14 @@
 //! `f32` (devices, shaders) and `f64` (table generation, references). Both use `libm`,
 //! except for the f32 functions this module implements itself in f32 arithmetic
 //! ([`sin_cos_f32`], [`exp_f32`], [`erfc_f32`]) and the f64 functions of the modified G's
-//! inner loops ([`exp_bounded_f64`], [`erfc_bounded_f64`], and [`sin_cos_f64`] for
-//! |x| ≤ 1.6), written branch-free so that two evaluations share one SIMD register
-//! (all within a few ulp of libm); on x86-64 the f64 pair functions [`Real::sqrt2`] (the
-//! `wide` crate's two-lane square root, correctly rounded like libm's) and
-//! [`Real::sin_cos2`] evaluate two arguments at once. The `micromath` feature adds a third
+//! inner loops ([`exp_bounded_f64`], [`exp_neg_f64`], [`erfc_bounded_f64`],
+//! [`erfcx_bounded_f64`], and [`sin_cos_f64`] for |x| ≤ 1.6), written branch-free so that
+//! two evaluations share one SIMD register (all within a few ulp of libm, [`exp_neg_f64`]
+//! within (2 + z)·ε); the f64 pair functions [`Real::exp_neg2`], [`Real::erfcx2_bounded`],
+//! [`Real::sin_cos2`] and, on x86-64, [`Real::sqrt2`] (the `wide` crate's two-lane square
+//! root, correctly rounded like libm's) evaluate two arguments at once, in one SSE2
+//! register on x86-64 and as two scalars with the same operations elsewhere (the same
+//! values on every target). The `micromath` feature adds a third
 //! scalar, `Micro` (an `f32` whose transcendental functions come from micromath where
 //! that keeps the kernels within 2e-2 of libm); it never changes what `f32` computes, so
 //! enabling it in one crate leaves every other crate's f32 results alone.
