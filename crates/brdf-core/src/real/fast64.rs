@@ -172,7 +172,18 @@ pub fn exp_neg_f64(z: f64) -> f64 {
 /// lanes where the target has two-lane f64 SIMD).
 #[inline(always)]
 pub fn exp_neg2_f64(z: [f64; 2]) -> [f64; 2] {
-    [exp_neg_f64(z[0]), exp_neg_f64(z[1])]
+    #[cfg(not(target_os = "none"))]
+    return [exp_neg_f64(z[0]), exp_neg_f64(z[1])];
+    // Bare-metal devices (soft f64): one out-of-line copy (smaller, the same values).
+    #[cfg(target_os = "none")]
+    return [exp_neg_once(z[0]), exp_neg_once(z[1])];
+}
+
+/// [`exp_neg_f64`], not inlined.
+#[cfg(target_os = "none")]
+#[inline(never)]
+fn exp_neg_once(z: f64) -> f64 {
+    exp_neg_f64(z)
 }
 
 /// The complementary error function for x ∈ [0, 4.6] in f64, branch-free; the f64
@@ -207,7 +218,18 @@ pub fn erfcx_bounded_f64(x: f64) -> f64 {
 /// side: each step of the polynomial serves both lanes).
 #[inline(always)]
 pub fn erfcx2_bounded_f64(x: [f64; 2]) -> [f64; 2] {
-    erfcx_poly(F2::new(x)).get()
+    #[cfg(not(target_os = "none"))]
+    return erfcx_poly(F2::new(x)).get();
+    // Bare-metal devices (soft f64): one out-of-line copy (smaller, the same values).
+    #[cfg(target_os = "none")]
+    return [erfcx_once(x[0]), erfcx_once(x[1])];
+}
+
+/// [`erfcx_bounded_f64`], not inlined.
+#[cfg(target_os = "none")]
+#[inline(never)]
+fn erfcx_once(x: f64) -> f64 {
+    erfcx_poly(x)
 }
 
 /// Arithmetic on one f64 or on two side by side ([`F2`]), with the same IEEE operations
