@@ -34,8 +34,9 @@ pub struct SlopeDistribution<T, R = DefaultRule> {
     sigma: T,
     sqrt2_sigma: T,
     /// 1/(2Z), Z = ∫₀^{V_CUT} √(1+u²) e^{−v²} dv by the rule `R` itself: the half-line mass
-    /// in the working variable. Using the same rule for the normaliser as for M makes
-    /// "everything passes" exactly 1.
+    /// in the working variable, evaluated as the modified G evaluates its integrals (f64:
+    /// [`Rule::integrate_slope_weight`]). Using the same rule for the normaliser as for M
+    /// makes "everything passes" exactly 1.
     inv_2z: T,
     /// C(σ) from Z evaluated to full precision (two 32-point panels), for [`Self::pdf`] and
     /// [`Self::normalisation_c`].
@@ -51,7 +52,13 @@ impl<T: Real, R: Rule> SlopeDistribution<T, R> {
         let sqrt2_sigma = T::from_f64(core::f64::consts::SQRT_2) * sigma;
         let vc = T::from_f64(V_CUT);
         let w = |v| slope_weight(v, sqrt2_sigma);
-        let z = R::integrate(T::ZERO, vc, w);
+        // f64: the integration the modified G uses (bit for bit the same for the same
+        // interval); f32: the one-pass rule, as there.
+        let z = if T::EPSILON < T::from_f64(1e-10) {
+            R::integrate_slope_weight(vc, sqrt2_sigma * sqrt2_sigma)
+        } else {
+            R::integrate(T::ZERO, vc, w)
+        };
         let mid = vc * T::HALF;
         let z_exact = GaussLegendre::<32>::integrate(T::ZERO, mid, w)
             + GaussLegendre::<32>::integrate(mid, vc, w);

@@ -146,8 +146,13 @@ impl<T: Real, R: Rule> ModifiedG<T, R> {
     /// is, counts as 0). NaN in, NaN out.
     ///
     /// One rule-`R` integral of √(1 + u²)e^{−v²} over [0, v_hi] plus the closed-form
-    /// correction described in the module docs.
+    /// correction described in the module docs. In f64 the integral is skipped where its
+    /// value is known by definition: lo beyond the cut (M = 1) and v_hi at the cut (the
+    /// integral is the normaliser's Z, so M = 1 − K/(2Z)).
     pub fn passing_cs(&self, cos_t: T, sin_t: T, cos_a: T, sin_a: T) -> T {
+        if T::EPSILON < T::from_f64(1e-10) {
+            return self.passing_cs_f64(cos_t, sin_t, cos_a, sin_a);
+        }
         if sin_t == T::ZERO {
             return T::ONE;
         }
@@ -158,26 +163,40 @@ impl<T: Real, R: Rule> ModifiedG<T, R> {
         // Fully passing bound (eqs 6–7): tan lo = cot θ.
         let vlo = self.dist.v_of_tan(cos_t, sin_t);
         let (vhi, corr) = self.semi_correction(cos_t, sin_t, cos_a, sin_a, vlo, vc, s2);
-        // √(1 + u²)·e^{−v²}. In f64 the exponential runs for all nodes first, two per SIMD
-        // register (same result bits as the one-pass rule); the one-pass rule is smaller
-        // and faster in f32.
-        let q = if T::EPSILON < T::from_f64(1e-10) {
-            R::integrate_product(
-                T::ZERO,
-                vhi,
-                |v| (-(v * v)).exp_bounded(),
-                |v: [T; 2]| {
-                    let u = [s2 * v[0], s2 * v[1]];
-                    T::sqrt2([T::ONE + u[0] * u[0], T::ONE + u[1] * u[1]])
-                },
-            )
-        } else {
-            R::integrate(T::ZERO, vhi, |v| {
-                let u = s2 * v;
-                (T::ONE + u * u).sqrt() * (-(v * v)).exp_bounded()
-            })
-        };
+        // √(1 + u²)·e^{−v²}, one pass.
+        let q = R::integrate(T::ZERO, vhi, |v| {
+            let u = s2 * v;
+            (T::ONE + u * u).sqrt() * (-(v * v)).exp_bounded()
+        });
         (T::HALF + (q - corr) * self.dist.inv_2z()).clamp(T::ZERO, T::ONE)
+    }
+
+    /// [`ModifiedG::passing_cs`] in f64: the same integrals, with two shortcuts that are
+    /// exact by definition (lo beyond the cut: M = 1; the semi-passing range reaching the
+    /// cut: the integral is Z itself) and the integral from the squared nodes
+    /// ([`Rule::integrate_slope_weight`]).
+    #[inline]
+    fn passing_cs_f64(&self, cos_t: T, sin_t: T, cos_a: T, sin_a: T) -> T {
+        if sin_t == T::ZERO {
+            return T::ONE;
+        }
+        let cos_t = if cos_t < T::ZERO { T::ZERO } else { cos_t };
+        let s2 = self.dist.sqrt2_sigma();
+        let vc = T::from_f64(V_CUT);
+        let vlo = self.dist.v_of_tan(cos_t, sin_t);
+        // lo beyond the cut: every neighbour passes, M = 1 exactly (NaN goes on).
+        if vlo >= vc {
+            return T::ONE;
+        }
+        let (vhi, corr) = self.semi_correction(cos_t, sin_t, cos_a, sin_a, vlo, vc, s2);
+        let inv_2z = self.dist.inv_2z();
+        if vhi >= vc {
+            // Semi-passing range up to the cut: the integral is the normaliser's own, Z
+            // (by definition), so M = ½ + (Z − K)/(2Z) = 1 − K/(2Z).
+            return (T::ONE - corr * inv_2z).clamp(T::ZERO, T::ONE);
+        }
+        let q = R::integrate_slope_weight(vhi, s2 * s2);
+        (T::HALF + (q - corr) * inv_2z).clamp(T::ZERO, T::ONE)
     }
 
     /// The semi-passing range's end v_hi (v_lo when the range is empty) and the correction K
@@ -373,12 +392,10 @@ fn gauss_tail_moment<T: Real>(a: T, d: T) -> T {
         // bounded exp and erfc apply.
         let b = a + d;
         let c = a * T::from_f64(SQRT_PI_2);
-        // Inlined, so that the two calls can share SIMD registers.
-        #[inline(always)]
-        fn f<T: Real>(x: T, c: T) -> T {
-            (-(x * x)).exp_bounded() * T::HALF - c * x.erfc_bounded()
-        }
-        f(a, c) - f(b, c)
+        let e = T::exp_neg2([a * a, b * b]);
+        let x = T::erfcx2_bounded([a, b]);
+        // F(x) = e^{−x²} (½ − c e^{x²} erfc x).
+        e[0] * (T::HALF - c * x[0]) - e[1] * (T::HALF - c * x[1])
     } else {
         let b = a + d;
         ((-(a * a)).exp() - (-(b * b)).exp()) * T::HALF

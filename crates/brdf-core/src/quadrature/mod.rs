@@ -28,6 +28,34 @@ pub trait Rule: Copy + Default {
     fn half_nodes() -> &'static [f64];
     /// Weights of [`Rule::half_nodes`].
     fn half_weights() -> &'static [f64];
+    /// For each half node x, the squares of the nodes of the rule mapped to [0, 1]:
+    /// [((1 − x)/2)², ((1 + x)/2)²] (computed from [`Rule::half_nodes`] in f64).
+    fn half_y2() -> &'static [[f64; 2]];
+
+    /// ∫₀ᵇ √(1 + c v²) e^{−v²} dv by this rule, for b ∈ [0, 4.6] and c ≥ 0: the slope
+    /// density's integral in the working variable (see [`crate::distribution`]), with
+    /// c = 2σ².
+    ///
+    /// On [0, b] the nodes are v = b·y with y = (1 ∓ x)/2, so v² = b²·y² and
+    /// u² = c·v²: the integrand needs only z = b²·y² per node (one product with the table
+    /// [`Rule::half_y2`]), e^{−z} by [`Real::exp_neg2`] and √(1 + c z) by [`Real::sqrt2`],
+    /// the two nodes of a half node side by side. The sum is kept in two partial sums (the
+    /// − and + nodes), added at the end. The same rule as [`Rule::integrate`] of the same
+    /// integrand, differing only in rounding (relative 1e-14 in f64, from e^{−z}).
+    #[inline]
+    fn integrate_slope_weight<T: Real>(b: T, c: T) -> T {
+        let bb = b * b;
+        let mut acc = [T::ZERO; 2];
+        for (y, w) in Self::half_y2().iter().zip(Self::half_weights()) {
+            let z = [bb * T::from_f64(y[0]), bb * T::from_f64(y[1])];
+            let e = T::exp_neg2(z);
+            let s = T::sqrt2([T::ONE + c * z[0], T::ONE + c * z[1]]);
+            let w = T::from_f64(*w);
+            acc[0] += w * (s[0] * e[0]);
+            acc[1] += w * (s[1] * e[1]);
+        }
+        (acc[0] + acc[1]) * (b * T::HALF)
+    }
 
     /// ∫ₐᵇ f(x) dx. Returns 0 for `b == a`; an inverted interval gives the negated integral.
     #[inline]
@@ -91,6 +119,19 @@ pub trait Rule: Copy + Default {
     }
 }
 
+/// [((1 − x)/2)², ((1 + x)/2)²] for each half node x (see [`Rule::half_y2`]).
+const fn y2<const H: usize>(x: &[f64; H]) -> [[f64; 2]; H] {
+    let mut out = [[0.0; 2]; H];
+    let mut i = 0;
+    while i < H {
+        let lo = (1.0 - x[i]) * 0.5;
+        let hi = (1.0 + x[i]) * 0.5;
+        out[i] = [lo * lo, hi * hi];
+        i += 1;
+    }
+    out
+}
+
 macro_rules! rule {
     ($n:literal, $x:ident, $w:ident) => {
         impl Rule for GaussLegendre<$n> {
@@ -102,6 +143,11 @@ macro_rules! rule {
             #[inline]
             fn half_weights() -> &'static [f64] {
                 &tables::$w
+            }
+            #[inline]
+            fn half_y2() -> &'static [[f64; 2]] {
+                static Y2: [[f64; 2]; $n / 2] = y2(&tables::$x);
+                &Y2
             }
         }
     };
@@ -231,6 +277,59 @@ mod tests {
         both::<GaussLegendre<10>>(1e-14);
         both::<GaussLegendre<32>>(1e-14);
         both::<GaussLegendre<4>>(1e-8);
+    }
+
+    /// The slope-weight integral in f64 (squared nodes from the table, the two-lane
+    /// exponential) against the one-pass rule on the same integrand with libm's `exp` and
+    /// `sqrt` (the same rule, so they differ by rounding only: the integrand's relative
+    /// error is below 25ε ≈ 5.6e-15, see [`crate::real::exp_neg_f64`], and the sum of
+    /// positive terms keeps it; 1e-14 relative allowed), for every rule, b ∈ [0, 4.6] and
+    /// c from 0 to 2·10² (σ up to 10); and at c = 0 against the closed form
+    /// ∫₀ᵇ e^{−v²} dv = (√π/2) erf b with the 32-point rule (whose own error on this
+    /// Gaussian is below 1e-15 for b ≤ 4.6). In f32 it is the one-pass rule on
+    /// √(1 + c v²)·e^{−v²} with the f32 exponential, to f32 rounding.
+    #[test]
+    fn slope_weight_integral_matches_one_pass_rule_and_closed_form() {
+        fn one<R: Rule>() {
+            let mut worst = 0f64;
+            for i in 0..=460 {
+                let b = i as f64 * 0.01;
+                for c in [0.0, 0.005, 0.18, 2.0, 200.0] {
+                    let got = R::integrate_slope_weight(b, c);
+                    let want = R::integrate(0.0, b, |v: f64| {
+                        libm::sqrt(1.0 + c * v * v) * libm::exp(-(v * v))
+                    });
+                    if want > 0.0 {
+                        worst = worst.max((got - want).abs() / want);
+                    } else {
+                        assert_eq!(got, 0.0);
+                    }
+                    let got32 = R::integrate_slope_weight(b as f32, c as f32) as f64;
+                    assert!((got32 - want).abs() <= 1e-5 * want, "N={} f32", R::N);
+                }
+            }
+            assert!(
+                worst <= 1e-14,
+                "N={}: max relative difference {worst:e}",
+                R::N
+            );
+        }
+        one::<GaussLegendre<4>>();
+        one::<GaussLegendre<6>>();
+        one::<GaussLegendre<8>>();
+        one::<GaussLegendre<10>>();
+        one::<GaussLegendre<12>>();
+        one::<GaussLegendre<16>>();
+        one::<GaussLegendre<20>>();
+        one::<GaussLegendre<24>>();
+        one::<GaussLegendre<32>>();
+        for i in 0..=46 {
+            let b = i as f64 * 0.1;
+            let got = GaussLegendre::<32>::integrate_slope_weight(b, 0.0);
+            let want = 0.5 * core::f64::consts::PI.sqrt() * libm::erf(b);
+            assert!((got - want).abs() <= 1e-15, "b={b}: {got} vs {want}");
+        }
+        assert!(GaussLegendre::<10>::integrate_slope_weight(f64::NAN, 0.1).is_nan());
     }
 
     #[test]

@@ -4,18 +4,24 @@
 //! `f32` (devices, shaders) and `f64` (table generation, references). Both use `libm`,
 //! except for the f32 functions this module implements itself in f32 arithmetic
 //! ([`sin_cos_f32`], [`exp_f32`], [`erfc_f32`]) and the f64 functions of the modified G's
-//! inner loops ([`exp_bounded_f64`], [`erfc_bounded_f64`], and [`sin_cos_f64`] for
-//! |x| ≤ 1.6), written branch-free so that two evaluations share one SIMD register
-//! (all within a few ulp of libm); on x86-64 the f64 pair functions [`Real::sqrt2`] (the
-//! `wide` crate's two-lane square root, correctly rounded like libm's) and
-//! [`Real::sin_cos2`] evaluate two arguments at once. The `micromath` feature adds a third
+//! inner loops ([`exp_bounded_f64`], [`exp_neg_f64`], [`erfc_bounded_f64`],
+//! [`erfcx_bounded_f64`], and [`sin_cos_f64`] for |x| ≤ 1.6), written branch-free so that
+//! two evaluations share one SIMD register (all within a few ulp of libm, [`exp_neg_f64`]
+//! within (2 + z)·ε); the f64 pair functions [`Real::exp_neg2`], [`Real::erfcx2_bounded`],
+//! [`Real::sin_cos2`] and, on x86-64, [`Real::sqrt2`] (the `wide` crate's two-lane square
+//! root, correctly rounded like libm's) evaluate two arguments at once, in one SSE2
+//! register on x86-64 and as two scalars with the same operations elsewhere (the same
+//! values on every target). The `micromath` feature adds a third
 //! scalar, `Micro` (an `f32` whose transcendental functions come from micromath where
 //! that keeps the kernels within 2e-2 of libm); it never changes what `f32` computes, so
 //! enabling it in one crate leaves every other crate's f32 results alone.
 
 mod fast64;
 
-pub use fast64::{erfc_bounded_f64, exp_bounded_f64, sin_cos2_f64, sin_cos_f64};
+pub use fast64::{
+    erfc_bounded_f64, erfcx2_bounded_f64, erfcx_bounded_f64, exp_bounded_f64, exp_neg2_f64,
+    exp_neg_f64, sin_cos2_f64, sin_cos_f64,
+};
 
 use core::fmt::Debug;
 use core::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
@@ -80,6 +86,14 @@ pub trait Real:
     fn exp_bounded(self) -> Self {
         self.exp()
     }
+    /// [e^{−z₀}, e^{−z₁}] for z ∈ [0, 87] (the Gaussian factors e^{−v²} of the kernels'
+    /// integrands, given z = v²; results outside that range unspecified but never a panic).
+    /// (`f64`: [`exp_neg2_f64`], within (2 + z)·ε of libm, the two lanes side by side;
+    /// otherwise [`Real::exp_bounded`] per lane.)
+    #[inline]
+    fn exp_neg2(z: [Self; 2]) -> [Self; 2] {
+        [(-z[0]).exp_bounded(), (-z[1]).exp_bounded()]
+    }
     /// Natural logarithm ln x (NaN for x < 0, −∞ at 0).
     fn ln(self) -> Self;
     /// sin x (x in radians).
@@ -125,6 +139,19 @@ pub trait Real:
     #[inline]
     fn erfc_bounded(self) -> Self {
         self.erfc()
+    }
+    /// The scaled complementary error function e^{x²} erfc x for x ∈ [0, 4.6] (results
+    /// outside unspecified but never a panic) (`f64`: [`erfcx_bounded_f64`]; otherwise
+    /// e^{x²} times [`Real::erfc`]).
+    #[inline]
+    fn erfcx_bounded(self) -> Self {
+        (self * self).exp() * self.erfc()
+    }
+    /// [`Real::erfcx_bounded`] of two arguments, lane by lane the same values (`f64`:
+    /// [`erfcx2_bounded_f64`], the two side by side).
+    #[inline]
+    fn erfcx2_bounded(x: [Self; 2]) -> [Self; 2] {
+        [x[0].erfcx_bounded(), x[1].erfcx_bounded()]
     }
 
     /// `true` for NaN.
@@ -301,6 +328,18 @@ impl Real for f64 {
     #[inline]
     fn erfc_bounded(self) -> Self {
         erfc_bounded_f64(self)
+    }
+    #[inline]
+    fn erfcx_bounded(self) -> Self {
+        erfcx_bounded_f64(self)
+    }
+    #[inline]
+    fn erfcx2_bounded(x: [Self; 2]) -> [Self; 2] {
+        erfcx2_bounded_f64(x)
+    }
+    #[inline]
+    fn exp_neg2(z: [Self; 2]) -> [Self; 2] {
+        exp_neg2_f64(z)
     }
 }
 
