@@ -241,9 +241,14 @@ impl Prepared {
         out: [&mut [f32]; C],
     ) {
         let r = &self.reader;
-        self.drive_batch::<D, C, CHUNK>(x, out, payload, |xs| {
-            r.chunk_cubic::<D, C, CHUNK>(payload, xs)
-        });
+        crate::reader::wide(
+            #[inline(always)]
+            |_| {
+                self.drive_batch::<D, C, CHUNK>(x, out, payload, |xs| {
+                    r.chunk_cubic::<D, C, CHUNK>(payload, xs)
+                })
+            },
+        );
     }
 
     /// G of `N` in-plane pairs of a 2-D (`z` = None) or 3-D Catmull–Rom table (`z`: the
@@ -287,6 +292,21 @@ impl Prepared {
     /// not be NaN) of a Catmull–Rom table for k < `out.len()` (chunks, then the scalar
     /// tail); the table must be `cubic_chunked()`.
     pub(crate) fn g_batch_cubic(
+        &self,
+        payload: &[u8],
+        ti: &[f32],
+        tr: &[f32],
+        sigma: Option<f32>,
+        out: &mut [f32],
+    ) {
+        crate::reader::wide(
+            #[inline(always)]
+            |_| self.g_batch_cubic_body(payload, ti, tr, sigma, out),
+        )
+    }
+
+    #[inline(always)]
+    fn g_batch_cubic_body(
         &self,
         payload: &[u8],
         ti: &[f32],

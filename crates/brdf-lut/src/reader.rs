@@ -461,6 +461,7 @@ impl Reader {
                 data,
                 &[[a[0], b[0]], [a[1], b[1]]],
                 z,
+                false,
             );
             return (va, vb);
         }
@@ -829,8 +830,8 @@ impl Reader {
     ) -> (f32, f32) {
         let x = [[a[0], b[0]], [a[1], b[1]]];
         let [va, vb] = match z {
-            Some(z) => self.chunk3_in::<2, false>(l0, data, &x, z),
-            None => self.chunk_in::<2, 1, 2, false, false>(l0, data, &x)[0],
+            Some(z) => self.chunk3_in::<2, false>(l0, data, &x, z, false),
+            None => self.chunk_in::<2, 1, 2, false, false>(l0, data, &x, false)[0],
         };
         (va, vb)
     }
@@ -845,14 +846,16 @@ impl Reader {
     }
 
     /// `N` lookups of a 1-D or 2-D linear u16 table (`chunked()` must hold): channel c of
-    /// query k in `out[c][k]`, equal to [`Reader::sample`] bit for bit.
+    /// query k in `out[c][k]`, equal to [`Reader::sample`] bit for bit. `avx2`: the code is
+    /// compiled for AVX2 (see [`wide`]).
     #[inline(always)]
     pub(crate) fn chunk<const D: usize, const C: usize, const N: usize>(
         &self,
         data: &[u8],
         x: &[[f32; N]; D],
+        avx2: bool,
     ) -> [[f32; N]; C] {
-        self.chunk_in::<D, C, N, false, false>(&self.lanes[0], data, x)
+        self.chunk_in::<D, C, N, false, false>(&self.lanes[0], data, x, avx2)
     }
 
     /// [`Reader::chunk`]; `IN_RANGE`: every coordinate lies in its axis' range already.
@@ -868,6 +871,7 @@ impl Reader {
         l0: &Lane,
         data: &[u8],
         x: &[[f32; N]; D],
+        avx2: bool,
     ) -> [[f32; N]; C] {
         let l = &self.lanes;
         let (i0, f0) = l0.cells::<N, IN_RANGE, MINMAX>(&x[0]);
@@ -880,13 +884,39 @@ impl Reader {
         let mut q = [[[0u32; N]; 4]; C];
         let mut bad = [0.0f32; N];
         let s = l[1].stride * 2;
+        // Bytes of a row of taps (2 nodes × C channels) and of the block of both rows.
+        let w = 4 * C;
+        let span = if D > 1 { s + w } else { w };
+        if N > 2 && C <= 2 {
+            // Chunks: each row read as C little-endian 32-bit words (two stored numbers
+            // each), then split into the stored numbers by one vectorising loop per tap.
+            let mut at = [0u32; N];
+            for k in 0..N {
+                at[k] = (i0[k] * C as u32 + i1[k] * l[1].stride as u32) * 2;
+            }
+            let off1 = if D > 1 { s as u32 } else { 0 };
+            let (words, nan) = rows::<N, 2, C>(data, &at, [0, off1], avx2);
+            bad = nan;
+            // Stored number m = node × C + channel of a row: word m / 2, low half if m even.
+            for (r, wr) in words.iter().enumerate() {
+                for m in 0..2 * C {
+                    let (c, node) = (m % C, m / C);
+                    let (src, dst) = (&wr[m / 2], &mut q[c][2 * r + node]);
+                    for k in 0..N {
+                        dst[k] = if m % 2 == 0 {
+                            src[k] & 0xffff
+                        } else {
+                            src[k] >> 16
+                        };
+                    }
+                }
+            }
+        }
         for k in 0..N {
+            if N > 2 && C <= 2 {
+                break;
+            }
             let at = (i0[k] as usize * C + i1[k] as usize * l[1].stride) * 2;
-            let (span, w) = if D > 1 {
-                (s + 4 * C, 4 * C)
-            } else {
-                (4 * C, 4 * C)
-            };
             let rows = data
                 .get(at..at + span)
                 .and_then(|b| Some((b.get(..w)?, b.get(span - w..)?)));
@@ -931,8 +961,9 @@ impl Reader {
         data: &[u8],
         x: &[[f32; N]; 2],
         z: f32,
+        avx2: bool,
     ) -> [f32; N] {
-        self.chunk3_in::<N, false>(&self.lanes[0], data, x, z)
+        self.chunk3_in::<N, false>(&self.lanes[0], data, x, z, avx2)
     }
 
     /// [`Reader::chunk3`]; `IN_RANGE`: every x lies in its axis' range already.
@@ -943,6 +974,7 @@ impl Reader {
         data: &[u8],
         x: &[[f32; N]; 2],
         z: f32,
+        avx2: bool,
     ) -> [f32; N] {
         let l = &self.lanes;
         let (k2, f2) = l[2].cell_ln(z);
@@ -950,7 +982,31 @@ impl Reader {
         let (i1, f1) = l[1].cells::<N, IN_RANGE, true>(&x[1]);
         let (s1, s2) = (l[1].stride * 2, l[2].stride * 2);
         let mut q = [[0u32; N]; 8];
+        if N > 2 {
+            // Chunks: the four rows (2 nodes each) as 32-bit words, split by vectorising
+            // loops.
+            let mut at = [0u32; N];
+            let base = (k2 * l[2].stride) as u32;
+            for k in 0..N {
+                at[k] = (i0[k] + i1[k] * l[1].stride as u32 + base) * 2;
+            }
+            let (s1, s2) = (s1 as u32, s2 as u32);
+            let ([[w0], [w1], [w2], [w3]], bad) =
+                rows::<N, 4, 1>(data, &at, [0, s1, s2, s2 + s1], avx2);
+            for (j, w) in [w0, w1, w2, w3].iter().enumerate() {
+                for k in 0..N {
+                    q[2 * j][k] = w[k] & 0xffff;
+                    q[2 * j + 1][k] = w[k] >> 16;
+                }
+            }
+            for k in 0..N {
+                f0[k] += bad[k];
+            }
+        }
         for k in 0..N {
+            if N > 2 {
+                break;
+            }
             let at = (i0[k] as usize + i1[k] as usize * l[1].stride + k2 * l[2].stride) * 2;
             let planes = data.get(at..at + s2 + s1 + 4).and_then(|b| {
                 Some((
@@ -983,6 +1039,39 @@ impl Reader {
         }
         out
     }
+}
+
+/// Runs `body` (a batch loop whose stages are written to vectorise) compiled for AVX2
+/// when the processor has it (with feature `std` on x86-64, detected at run time; the
+/// standard library caches the answer), else as compiled for the baseline (SSE2 on
+/// x86-64). Only the vector width changes: AVX2 has no fused multiply-add (that is FMA,
+/// which stays off, as it would round a·b + c once instead of twice), and packed add,
+/// multiply, divide, square root, min/max and conversions round exactly like their scalar
+/// forms, so the values are the same bit for bit.
+#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[inline(always)]
+pub(crate) fn wide<R>(body: impl FnOnce(bool) -> R) -> R {
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    if std::is_x86_feature_detected!("avx2") {
+        // SAFETY: `avx2` only requires that the processor support AVX2, checked just above.
+        return unsafe { avx2(body) };
+    }
+    body(false)
+}
+
+/// `body(true)` compiled with AVX2 enabled (its stages are inlined into this function;
+/// `true` tells them that they may use AVX2 instructions, e.g. [`rows`]' gathers).
+///
+/// # Safety
+/// The processor must support AVX2.
+#[cfg(all(
+    feature = "std",
+    target_arch = "x86_64",
+    not(any(target_os = "none", target_family = "wasm"))
+))]
+#[target_feature(enable = "avx2")]
+unsafe fn avx2<R>(body: impl FnOnce(bool) -> R) -> R {
+    body(true)
 }
 
 /// √x, correctly rounded like `libm::sqrtf` (IEEE 754 square root, so the same bits), but
@@ -1107,6 +1196,109 @@ fn trunc_small(x: f32) -> i32 {
 #[inline(always)]
 fn trunc_small(x: f32) -> i32 {
     x as i32
+}
+
+/// The payload rows of `N` queries: word j of row r of query k is the little-endian 32-bit
+/// word at byte `at[k] + off[r] + 4j` of `data` (`[row][word][query]`), and `bad[k]` is NaN
+/// for a query whose rows lie past the payload (impossible for a parsed table: its words
+/// are then 0) and 0 otherwise. `avx2`: the caller runs compiled for AVX2 (see [`wide`]),
+/// so the words are read by gathers, eight queries at a time, after one bounds check per
+/// query in vector form.
+#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[inline(always)]
+#[allow(clippy::type_complexity)]
+fn rows<const N: usize, const R: usize, const W: usize>(
+    data: &[u8],
+    at: &[u32; N],
+    off: [u32; R],
+    avx2: bool,
+) -> ([[[u32; N]; W]; R], [f32; N]) {
+    let mut words = [[[0u32; N]; W]; R];
+    let mut bad = [0.0f32; N];
+    // Bytes from a query's first word to the end of its last.
+    let span = off.iter().max().map_or(0, |&o| o as usize) + 4 * W;
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    if avx2 && N % 8 == 0 && data.len() <= i32::MAX as usize && data.len() >= span {
+        // Queries whose rows end past the payload read the first word instead (and are
+        // marked bad), so that every gathered word lies in `data`.
+        let limit = (data.len() - span) as u32;
+        let mut idx = [0u32; N];
+        for k in 0..N {
+            let ok = at[k] <= limit;
+            idx[k] = if ok { at[k] } else { 0 };
+            bad[k] = if ok { 0.0 } else { f32::NAN };
+        }
+        // SAFETY: the processor supports AVX2 (`avx2`: the caller was entered through
+        // `wide`'s check), and every word read lies in `data`: idx[k] ≤ len − span and
+        // off[r] + 4j + 4 ≤ span, with len ≤ i32::MAX so that the offsets are
+        // non-negative i32.
+        unsafe { gather_words(data.as_ptr(), &idx, &off, &mut words) };
+        return (words, bad);
+    }
+    let _ = avx2;
+    for k in 0..N {
+        let at = at[k] as usize;
+        match data.get(at..at + span) {
+            Some(b) => {
+                for (wr, &o) in words.iter_mut().zip(&off) {
+                    for (j, w) in wr.iter_mut().enumerate() {
+                        w[k] = u32_at(b, o as usize + 4 * j);
+                    }
+                }
+            }
+            None => bad[k] = f32::NAN,
+        }
+    }
+    (words, bad)
+}
+
+/// [`rows`]' gathers: `words[r][j][k]` = the little-endian 32-bit word at byte
+/// `idx[k] + off[r] + 4j` from `base`, eight queries per gather (`N` a multiple of 8).
+///
+/// # Safety
+/// The processor supports AVX2, and every such word lies in one allocation at `base`,
+/// with every offset below 2³¹.
+#[cfg(all(
+    feature = "std",
+    target_arch = "x86_64",
+    not(any(target_os = "none", target_family = "wasm"))
+))]
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn gather_words<const N: usize, const R: usize, const W: usize>(
+    base: *const u8,
+    idx: &[u32; N],
+    off: &[u32; R],
+    words: &mut [[[u32; N]; W]; R],
+) {
+    use core::arch::x86_64::{
+        __m256i, _mm256_add_epi32, _mm256_i32gather_epi32, _mm256_loadu_si256, _mm256_set1_epi32,
+        _mm256_storeu_si256,
+    };
+    for g in (0..N).step_by(8) {
+        // SAFETY (all blocks): 8 lanes from g < N, N a multiple of 8, lie in the arrays;
+        // the gathered words lie in the allocation by the caller's contract.
+        let v = unsafe { _mm256_loadu_si256(idx.as_ptr().add(g).cast::<__m256i>()) };
+        for (wr, &o) in words.iter_mut().zip(off) {
+            for (j, w) in wr.iter_mut().enumerate() {
+                let o = _mm256_add_epi32(v, _mm256_set1_epi32((o + 4 * j as u32) as i32));
+                unsafe {
+                    let x = _mm256_i32gather_epi32::<1>(base.cast::<i32>(), o);
+                    _mm256_storeu_si256(w.as_mut_ptr().add(g).cast::<__m256i>(), x);
+                }
+            }
+        }
+    }
+}
+
+/// Little-endian 32-bit word `k` of `b` (0 past the end; callers pass rows that hold it).
+#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[inline(always)]
+fn u32_at(b: &[u8], k: usize) -> u32 {
+    match b.get(4 * k..4 * k + 4) {
+        Some(&[b0, b1, b2, b3]) => u32::from_le_bytes([b0, b1, b2, b3]),
+        _ => 0,
+    }
 }
 
 /// Stored u16 number `k` of `b` (0 past the end; callers pass rows that hold it).

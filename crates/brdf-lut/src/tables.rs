@@ -109,7 +109,7 @@ impl Prepared {
         let r = &self.reader;
         #[cfg(not(any(target_os = "none", target_family = "wasm")))]
         if r.chunked() {
-            let [[gm, gs]] = r.chunk::<2, 1, 2>(payload, &[[m[0], s[0]], [m[1], s[1]]]);
+            let [[gm, gs]] = r.chunk::<2, 1, 2>(payload, &[[m[0], s[0]], [m[1], s[1]]], false);
             return (gm, gs);
         }
         (
@@ -227,6 +227,7 @@ impl Prepared {
         ti: &[f32; N],
         tr: &[f32; N],
         z: Option<f32>,
+        avx2: bool,
     ) -> [f32; N] {
         let (mut m, mut s) = ([[0.0f32; N]; 2], [[0.0f32; N]; 2]);
         let mut nan = [false; N];
@@ -237,10 +238,13 @@ impl Prepared {
         }
         let r = &self.reader;
         let (gm, gs) = match z {
-            Some(z) => (r.chunk3::<N>(payload, &m, z), r.chunk3::<N>(payload, &s, z)),
+            Some(z) => (
+                r.chunk3::<N>(payload, &m, z, avx2),
+                r.chunk3::<N>(payload, &s, z, avx2),
+            ),
             None => (
-                r.chunk::<2, 1, N>(payload, &m)[0],
-                r.chunk::<2, 1, N>(payload, &s)[0],
+                r.chunk::<2, 1, N>(payload, &m, avx2)[0],
+                r.chunk::<2, 1, N>(payload, &s, avx2)[0],
             ),
         };
         let mut out = [0.0f32; N];
@@ -254,6 +258,22 @@ impl Prepared {
     /// `out[k] = G(theta_i[k], theta_r[k])` for k < n (chunks, then the scalar tail).
     #[inline(always)]
     fn g_batch(&self, payload: &[u8], ti: &[f32], tr: &[f32], z: Option<f32>, out: &mut [f32]) {
+        crate::reader::wide(
+            #[inline(always)]
+            |avx2| self.g_batch_body(payload, ti, tr, z, out, avx2),
+        )
+    }
+
+    #[inline(always)]
+    fn g_batch_body(
+        &self,
+        payload: &[u8],
+        ti: &[f32],
+        tr: &[f32],
+        z: Option<f32>,
+        out: &mut [f32],
+        avx2: bool,
+    ) {
         let mut done = 0;
         for ((o, a), b) in out
             .chunks_exact_mut(CHUNK)
@@ -261,7 +281,7 @@ impl Prepared {
             .zip(tr.chunks_exact(CHUNK))
         {
             if let (Some(a), Some(b)) = (a.first_chunk(), b.first_chunk()) {
-                o.copy_from_slice(&self.g_chunk::<CHUNK>(payload, a, b, z));
+                o.copy_from_slice(&self.g_chunk::<CHUNK>(payload, a, b, z, avx2));
                 done += CHUNK;
             }
         }
@@ -283,7 +303,14 @@ impl Prepared {
         out: [&mut [f32]; C],
     ) {
         let r = &self.reader;
-        self.drive_batch::<D, C, CHUNK>(x, out, payload, |xs| r.chunk::<D, C, CHUNK>(payload, xs));
+        crate::reader::wide(
+            #[inline(always)]
+            |avx2| {
+                self.drive_batch::<D, C, CHUNK>(x, out, payload, |xs| {
+                    r.chunk::<D, C, CHUNK>(payload, xs, avx2)
+                })
+            },
+        );
     }
 
     /// The batch driver shared by every chunked path: `chunk` computes `N` queries at once
