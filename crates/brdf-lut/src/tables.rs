@@ -44,11 +44,20 @@ impl Prepared {
             .axes
             .last()
             .map_or((0.0, 1.0), |a| (a.lo as f32, a.hi as f32));
+        #[allow(unused_mut)]
+        let mut reader = *view.reader();
+        // Albedo tables read their log μ axis with the reader's inline logarithm (scalar
+        // and batch lookups alike; `LutView::sample`, which the table's error was
+        // measured with, keeps libm's).
+        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        if h.kind == TableKind::DirectionalAlbedo {
+            reader.fast_ln();
+        }
         Prepared {
             header_len: view.header_len(),
             kind: h.kind,
             grid,
-            reader: *view.reader(),
+            reader,
             sigma: h.generator.sigma.map_or(f32::NAN, |s| s as f32),
             last_range: last,
             reciprocal: h.generator.convention == Convention::Reciprocal,
@@ -733,6 +742,63 @@ mod tests {
     fn asset(name: &str) -> std::vec::Vec<u8> {
         let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/");
         std::fs::read(std::format!("{dir}{name}")).unwrap()
+    }
+
+    /// The batch entry points through the baseline (non-AVX2) build of their chunk loops
+    /// equal the scalar lookups bit for bit (tests/batch_bits.rs checks the build that
+    /// this processor picks), over every kind, NaN, infinities and out-of-range values.
+    #[test]
+    fn baseline_batches_equal_scalar_lookups() {
+        use std::vec::Vec;
+        crate::reader::BASELINE_ONLY.store(true, core::sync::atomic::Ordering::Relaxed);
+        let n = 203;
+        let special = [f32::NAN, f32::INFINITY, -f32::INFINITY, -0.1, 1.7, 0.0, 1.0];
+        let xs = |seed: f32, lo: f32, hi: f32| -> Vec<f32> {
+            (0..n)
+                .map(|k| {
+                    if k % 9 == 4 {
+                        special[(k / 9) % special.len()]
+                    } else {
+                        lo + (hi - lo) * ((seed + 0.618_034 * k as f32) % 1.0)
+                    }
+                })
+                .collect()
+        };
+        let same = |a: &[f32], b: &[f32]| a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits());
+        let (u, v) = (xs(0.1, -0.1, 1.7), xs(0.4, -1.7, 1.7));
+        let mut o = std::vec![0.0; n];
+        let mut o2 = std::vec![0.0; n];
+        for name in [
+            "g_modified_sigma0.3_linear.blut",
+            "g_modified_sigma0.3.blut",
+        ] {
+            let t = GTable::parse(asset(name)).unwrap();
+            t.g_batch(&u, &v, &mut o);
+            let s: Vec<f32> = u.iter().zip(&v).map(|(&a, &b)| t.g(a, b)).collect();
+            assert!(same(&o, &s), "{name}");
+        }
+        for name in ["g_modified_linear.blut", "g_modified.blut"] {
+            let t = GTable3::parse(asset(name)).unwrap();
+            t.g_batch(&u, &v, 0.3, &mut o);
+            let s: Vec<f32> = u.iter().zip(&v).map(|(&a, &b)| t.g(a, b, 0.3)).collect();
+            assert!(same(&o, &s), "{name}");
+        }
+        let (u, v) = (xs(0.2, -0.1, 1.1), xs(0.7, -0.1, 1.1));
+        for name in ["dfg_ggx_linear.blut", "dfg_ggx.blut"] {
+            let t = DfgTable::parse(asset(name)).unwrap();
+            t.ab_batch(&u, &v, &mut o, &mut o2);
+            let (a, b): (Vec<f32>, Vec<f32>) = u.iter().zip(&v).map(|(&m, &r)| t.ab(m, r)).unzip();
+            assert!(same(&o, &a) && same(&o2, &b), "{name}");
+        }
+        let t = AlbedoTable::parse(asset("kc_e_ggx.blut")).unwrap();
+        t.e_batch(&u, &v, &mut o);
+        let s: Vec<f32> = u.iter().zip(&v).map(|(&m, &r)| t.e(m, r)).collect();
+        assert!(same(&o, &s), "E");
+        let t = AverageAlbedoTable::parse(asset("kc_eavg_ggx.blut")).unwrap();
+        t.e_avg_batch(&v, &mut o);
+        let s: Vec<f32> = v.iter().map(|&r| t.e_avg(r)).collect();
+        assert!(same(&o, &s), "E_avg");
+        crate::reader::BASELINE_ONLY.store(false, core::sync::atomic::Ordering::Relaxed);
     }
 
     /// G from dot products through the cosine route (√cos θ straight from n·v, n·l) against
