@@ -12,7 +12,7 @@
 
 use crate::header::Encoding;
 use crate::reader::{Lane, Mode, Reader};
-use crate::tables::{g_args, min_g, unit01, Prepared};
+use crate::tables::{g_args_n, g_of_sides, Prepared};
 
 /// Queries per chunk.
 const CHUNK: usize = 8;
@@ -266,13 +266,7 @@ impl Prepared {
         tr: &[f32; N],
         z: Option<&(usize, [f32; 4])>,
     ) -> [f32; N] {
-        let (mut m, mut s) = ([[0.0f32; N]; 2], [[0.0f32; N]; 2]);
-        let mut nan = [false; N];
-        for k in 0..N {
-            nan[k] = ti[k].is_nan() || tr[k].is_nan();
-            let (mk, sk) = g_args(ti[k], tr[k]);
-            (m[0][k], m[1][k], s[0][k], s[1][k]) = (mk[0], mk[1], sk[0], sk[1]);
-        }
+        let (m, s, nan) = g_args_n(ti, tr);
         let r = &self.reader;
         let (gm, gs) = match z {
             Some(z) => (
@@ -284,12 +278,7 @@ impl Prepared {
                 r.chunk_cubic::<2, 1, N>(payload, &s)[0],
             ),
         };
-        let mut out = [0.0f32; N];
-        for k in 0..N {
-            let g = min_g(unit01(gm[k]), unit01(gs[k]));
-            out[k] = if nan[k] { f32::NAN } else { g };
-        }
-        out
+        g_of_sides(&gm, &gs, &nan)
     }
 
     /// `out[k] = G(theta_i[k], theta_r[k])` (at σ = `sigma` for a 3-D table, which must

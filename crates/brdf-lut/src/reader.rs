@@ -1152,83 +1152,88 @@ unsafe fn avx2<R>(body: impl FnOnce(bool) -> R) -> R {
     body(true)
 }
 
-/// √x, correctly rounded like `libm::sqrtf` (IEEE 754 square root, so the same bits), but
-/// in a form the compiler can turn into packed `sqrtps` in the chunk loops (libm's is
-/// inline assembly, which it cannot).
+/// Scalar steps of the lookups as single SSE instructions (x86-64, hosted targets):
+/// `sqrt_v` √x, correctly rounded like `libm::sqrtf` (IEEE 754 square root, so the same
+/// bits), but in a form the compiler can turn into packed `sqrtps` in the chunk loops
+/// (libm's is inline assembly, which it cannot); `clamp_s` [`clamp`] as one max and one min
+/// instruction (NaN stays NaN; the plain comparisons let the compiler turn a two-lane clamp
+/// into a vector compare, a mask extraction and branches); `min_s` min(t, m) = (t < m ? t :
+/// m); `trunc_small` ⌊x⌋ of x ∈ [0, 2¹⁶) as the processor's truncating conversion, without
+/// the saturation checks of `as` (callers pass no NaN).
 #[cfg(all(
     target_arch = "x86_64",
     not(any(target_os = "none", target_family = "wasm"))
 ))]
-#[inline(always)]
-fn sqrt_v(x: f32) -> f32 {
-    use core::arch::x86_64::{_mm_cvtss_f32, _mm_set_ss, _mm_sqrt_ss};
-    // SAFETY: SSE is part of the x86_64 baseline, and these intrinsics only compute on
-    // registers (no memory access). They are safe functions from Rust 1.87 on; the block
-    // is for the crate's minimum Rust, 1.84.
-    #[allow(unused_unsafe)]
-    unsafe {
-        _mm_cvtss_f32(_mm_sqrt_ss(_mm_set_ss(x)))
+mod sse {
+    use core::arch::x86_64::{
+        _mm_cvtss_f32, _mm_cvttss_si32, _mm_max_ss, _mm_min_ss, _mm_set_ss, _mm_sqrt_ss,
+    };
+
+    /// Evaluates an expression of the SSE intrinsics imported above.
+    macro_rules! sse {
+        ($e:expr) => {{
+            // SAFETY: SSE is part of the x86_64 baseline, and these intrinsics only compute
+            // on registers (no memory access). They are safe functions from Rust 1.87 on;
+            // the block is for the crate's minimum Rust, 1.84.
+            #[allow(unused_unsafe)]
+            unsafe {
+                $e
+            }
+        }};
     }
-}
-#[cfg(all(
-    not(target_arch = "x86_64"),
-    not(any(target_os = "none", target_family = "wasm"))
-))]
-#[inline(always)]
-fn sqrt_v(x: f32) -> f32 {
-    libm::sqrtf(x)
+
+    #[inline(always)]
+    pub(crate) fn sqrt_v(x: f32) -> f32 {
+        sse!(_mm_cvtss_f32(_mm_sqrt_ss(_mm_set_ss(x))))
+    }
+
+    /// maxss/minss return their second operand when either is NaN:
+    /// (lo > x ? lo : x), then (hi < y ? hi : y).
+    #[inline(always)]
+    pub(crate) fn clamp_s(x: f32, lo: f32, hi: f32) -> f32 {
+        let y = sse!(_mm_max_ss(_mm_set_ss(lo), _mm_set_ss(x)));
+        sse!(_mm_cvtss_f32(_mm_min_ss(_mm_set_ss(hi), y)))
+    }
+
+    #[inline(always)]
+    pub(crate) fn min_s(t: f32, m: f32) -> f32 {
+        sse!(_mm_cvtss_f32(_mm_min_ss(_mm_set_ss(t), _mm_set_ss(m))))
+    }
+
+    #[inline(always)]
+    pub(crate) fn trunc_small(x: f32) -> i32 {
+        sse!(_mm_cvttss_si32(_mm_set_ss(x)))
+    }
 }
 
-/// [`clamp`] as one max and one min instruction per value (NaN stays NaN). The plain
-/// comparisons let the compiler turn a two-lane clamp into a vector compare, a mask
-/// extraction and branches.
-#[cfg(all(
-    target_arch = "x86_64",
-    not(any(target_os = "none", target_family = "wasm"))
-))]
-#[inline(always)]
-pub(crate) fn clamp_s(x: f32, lo: f32, hi: f32) -> f32 {
-    use core::arch::x86_64::{_mm_cvtss_f32, _mm_max_ss, _mm_min_ss, _mm_set_ss};
-    // SAFETY: SSE is part of the x86_64 baseline; register-only intrinsics (safe functions
-    // from Rust 1.87 on; the block is for the crate's minimum Rust, 1.84). maxss/minss
-    // return their second operand when either is NaN: (lo > x ? lo : x), (hi < y ? hi : y).
-    #[allow(unused_unsafe)]
-    unsafe {
-        let y = _mm_max_ss(_mm_set_ss(lo), _mm_set_ss(x));
-        _mm_cvtss_f32(_mm_min_ss(_mm_set_ss(hi), y))
-    }
-}
-/// min(t, m) as one instruction (t < m ? t : m).
-#[cfg(all(
-    target_arch = "x86_64",
-    not(any(target_os = "none", target_family = "wasm"))
-))]
-#[inline(always)]
-fn min_s(t: f32, m: f32) -> f32 {
-    use core::arch::x86_64::{_mm_cvtss_f32, _mm_min_ss, _mm_set_ss};
-    // SAFETY: as in `clamp_s`.
-    #[allow(unused_unsafe)]
-    unsafe {
-        _mm_cvtss_f32(_mm_min_ss(_mm_set_ss(t), _mm_set_ss(m)))
-    }
-}
+/// [`sse`]'s steps in portable form (the same values) on other hosted processors.
 #[cfg(all(
     not(target_arch = "x86_64"),
     not(any(target_os = "none", target_family = "wasm"))
 ))]
-pub(crate) use clamp as clamp_s;
-#[cfg(all(
-    not(target_arch = "x86_64"),
-    not(any(target_os = "none", target_family = "wasm"))
-))]
-#[inline(always)]
-fn min_s(t: f32, m: f32) -> f32 {
-    if t < m {
-        t
-    } else {
-        m
+mod sse {
+    pub(crate) use crate::axis::clamp as clamp_s;
+    pub(crate) use libm::sqrtf as sqrt_v;
+
+    #[inline(always)]
+    pub(crate) fn min_s(t: f32, m: f32) -> f32 {
+        if t < m {
+            t
+        } else {
+            m
+        }
+    }
+
+    #[inline(always)]
+    pub(crate) fn trunc_small(x: f32) -> i32 {
+        x as i32
     }
 }
+
+#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+pub(crate) use sse::clamp_s;
+#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+use sse::{min_s, sqrt_v, trunc_small};
 
 /// ln x for a normal positive finite f32 x: x = 2ᵏ m with m ∈ [√½, √2), then
 /// ln m = 2 atanh s = 2s (1 + s²/3 + s⁴/5 + s⁶/7 + …) with s = (m − 1)/(m + 1), |s| ≤ 0.1716
@@ -1262,31 +1267,6 @@ fn ln_lane(x: f32) -> f32 {
     } else {
         y
     }
-}
-
-/// ⌊x⌋ of x ∈ [0, 2¹⁶) as the processor's truncating conversion, without the saturation
-/// checks of `as`. Callers pass no NaN.
-#[cfg(all(
-    target_arch = "x86_64",
-    not(any(target_os = "none", target_family = "wasm"))
-))]
-#[inline(always)]
-fn trunc_small(x: f32) -> i32 {
-    use core::arch::x86_64::{_mm_cvttss_si32, _mm_set_ss};
-    // SAFETY: SSE is part of the x86_64 baseline; register-only intrinsics (safe functions
-    // from Rust 1.87 on; the block is for the crate's minimum Rust, 1.84).
-    #[allow(unused_unsafe)]
-    unsafe {
-        _mm_cvttss_si32(_mm_set_ss(x))
-    }
-}
-#[cfg(all(
-    not(target_arch = "x86_64"),
-    not(any(target_os = "none", target_family = "wasm"))
-))]
-#[inline(always)]
-fn trunc_small(x: f32) -> i32 {
-    x as i32
 }
 
 /// The payload rows of `N` queries: word j of row r of query k is the little-endian 32-bit

@@ -243,13 +243,7 @@ impl Prepared {
         z: Option<f32>,
         avx2: bool,
     ) -> [f32; N] {
-        let (mut m, mut s) = ([[0.0f32; N]; 2], [[0.0f32; N]; 2]);
-        let mut nan = [false; N];
-        for k in 0..N {
-            nan[k] = ti[k].is_nan() || tr[k].is_nan();
-            let (mk, sk) = g_args(ti[k], tr[k]);
-            (m[0][k], m[1][k], s[0][k], s[1][k]) = (mk[0], mk[1], sk[0], sk[1]);
-        }
+        let (m, s, nan) = g_args_n(ti, tr);
         let r = &self.reader;
         let (gm, gs) = match z {
             Some(z) => (
@@ -261,12 +255,7 @@ impl Prepared {
                 r.chunk::<2, 1, N>(payload, &s, avx2)[0],
             ),
         };
-        let mut out = [0.0f32; N];
-        for k in 0..N {
-            let g = min_g(unit01(gm[k]), unit01(gs[k]));
-            out[k] = if nan[k] { f32::NAN } else { g };
-        }
-        out
+        g_of_sides(&gm, &gs, &nan)
     }
 
     /// `out[k] = G(theta_i[k], theta_r[k])` for k < n (chunks, then the scalar tail).
@@ -380,6 +369,43 @@ pub(crate) fn g_args(theta_i: f32, theta_r: f32) -> ([f32; 2], [f32; 2]) {
     let tr = crate::axis::clamp(theta_r, -FRAC_PI_2, FRAC_PI_2);
     let s = if tr < 0.0 { -ti } else { ti };
     ([tr.abs(), s], [ti, tr])
+}
+
+/// [`g_args`] of `N` queries (`[argument][query]` for each side) and which queries have a
+/// NaN angle: the first stage of the G batch chunks.
+#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[inline(always)]
+#[allow(clippy::type_complexity)]
+pub(crate) fn g_args_n<const N: usize>(
+    ti: &[f32; N],
+    tr: &[f32; N],
+) -> ([[f32; N]; 2], [[f32; N]; 2], [bool; N]) {
+    let (mut m, mut s) = ([[0.0f32; N]; 2], [[0.0f32; N]; 2]);
+    let mut nan = [false; N];
+    for k in 0..N {
+        nan[k] = ti[k].is_nan() || tr[k].is_nan();
+        let (mk, sk) = g_args(ti[k], tr[k]);
+        (m[0][k], m[1][k], s[0][k], s[1][k]) = (mk[0], mk[1], sk[0], sk[1]);
+    }
+    (m, s, nan)
+}
+
+/// G = min(GM, GS) (paper eq 13) of `N` queries from their one-sided factors, each
+/// clamped to [0, 1], and NaN for the queries with a NaN angle: the last stage of the G
+/// batch chunks ([`Prepared::g2`] / [`Prepared::g3`] per query).
+#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[inline(always)]
+pub(crate) fn g_of_sides<const N: usize>(
+    gm: &[f32; N],
+    gs: &[f32; N],
+    nan: &[bool; N],
+) -> [f32; N] {
+    let mut out = [0.0f32; N];
+    for k in 0..N {
+        let g = min_g(unit01(gm[k]), unit01(gs[k]));
+        out[k] = if nan[k] { f32::NAN } else { g };
+    }
+    out
 }
 
 /// [`g_args`] for one query (the same values): on hosted targets the clamps as scalar
