@@ -2,7 +2,8 @@
 //! not feature `compact`).
 //!
 //! `N` queries at once, in stages that are each a loop over the chunk, so that the compiler
-//! turns the arithmetic stages into packed SSE instructions: the axis maps
+//! turns the arithmetic stages into packed SSE instructions (AVX2 where the processor has
+//! it, picked at run time by `reader::wide`): the axis maps
 //! ([`Lane::cells`]), the four Catmull–Rom weights and the first node of every axis (the
 //! cubic polynomials of docs/lut-format.md §7 with the end extrapolation folded in, chosen
 //! by selects instead of branches), the payload reads into arrays of stored numbers, and the

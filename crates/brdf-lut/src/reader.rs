@@ -731,8 +731,10 @@ impl Reader {
 
 /// Chunked lookups for the batch entry points (hosted targets): `N` queries at once, in
 /// stages that are each a loop over the chunk (coordinate maps, then the payload reads, then
-/// the blend), so that the compiler turns the arithmetic stages into packed SSE
-/// instructions. Every query goes through exactly the scalar path's operations
+/// the blend), so that the compiler turns the arithmetic stages into packed instructions:
+/// SSE, or AVX2 where the processor has it (the batch loops are compiled twice and one is
+/// picked at run time, see [`wide`]; the payload rows are then read by AVX2 gathers, see
+/// [`rows`]). Every query goes through exactly the scalar path's operations
 /// ([`Lane::cell`], [`Reader::plane`], the channel scale and offset), so the results are
 /// the scalar lookups' bit for bit.
 #[cfg(not(any(target_os = "none", target_family = "wasm")))]
