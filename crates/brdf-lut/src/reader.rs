@@ -402,6 +402,24 @@ impl Reader {
         self.sample_any(grid, data, x)
     }
 
+    /// [`Reader::sample`], with the log axes of a Catmull–Rom u16 table read through
+    /// [`ln_fast`] if [`Reader::fast_ln`] was called (the typed albedo tables' scalar
+    /// lookup, and the scalar tail of their batches). A separate entry so that the other
+    /// lookups' code stays as it was.
+    #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+    #[inline]
+    pub(crate) fn sample_fast<const D: usize, const C: usize>(
+        &self,
+        grid: &Grid,
+        data: &[u8],
+        x: [f32; D],
+    ) -> [f32; C] {
+        if self.fast_ln && self.mode == Mode::Cubic && self.encoding == Encoding::Unorm16 {
+            return self.finish(self.cubic::<U16, D, C, true>(data, x));
+        }
+        self.sample(grid, data, x)
+    }
+
     /// Channel scale and offset applied to values in stored units.
     #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
     #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
@@ -423,15 +441,15 @@ impl Reader {
     ) -> [f32; C] {
         let raw = match (self.mode, self.encoding) {
             (Mode::Linear, Encoding::Unorm16) => self.linear::<U16, D, C>(data, x),
-            (Mode::Cubic, Encoding::Unorm16) => self.cubic::<U16, D, C>(data, x),
+            (Mode::Cubic, Encoding::Unorm16) => self.cubic::<U16, D, C, false>(data, x),
             #[cfg(not(feature = "compact"))]
             (Mode::Linear, Encoding::F16) => self.linear::<F16, D, C>(data, x),
             #[cfg(not(feature = "compact"))]
             (Mode::Linear, Encoding::F32) => self.linear::<F32, D, C>(data, x),
             #[cfg(not(feature = "compact"))]
-            (Mode::Cubic, Encoding::F16) => self.cubic::<F16, D, C>(data, x),
+            (Mode::Cubic, Encoding::F16) => self.cubic::<F16, D, C, false>(data, x),
             #[cfg(not(feature = "compact"))]
-            (Mode::Cubic, Encoding::F32) => self.cubic::<F32, D, C>(data, x),
+            (Mode::Cubic, Encoding::F32) => self.cubic::<F32, D, C, false>(data, x),
             // Short Catmull–Rom axes (and, with feature `compact`, float payloads).
             _ => {
                 let v = grid.sample(data, &x);
@@ -671,17 +689,15 @@ impl Reader {
     /// Catmull–Rom in stored units.
     #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
     #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
-    fn cubic<S: Store, const D: usize, const C: usize>(
+    fn cubic<S: Store, const D: usize, const C: usize, const FAST_LN: bool>(
         &self,
         data: &[u8],
         x: [f32; D],
     ) -> [f32; C] {
         let l = &self.lanes;
+        // `FAST_LN`: log axes through `ln_fast` (hosted targets; see `Reader::fast_ln`).
         #[cfg(not(any(target_os = "none", target_family = "wasm")))]
-        let cubic = |l: &Lane, x: f32| {
-            let (i, f) = l.cell_with(x, self.fast_ln);
-            l.cubic_at(i, f)
-        };
+        let cubic = |l: &Lane, x: f32| l.cubic_mode::<FAST_LN>(x);
         #[cfg(any(target_os = "none", target_family = "wasm"))]
         let cubic = |l: &Lane, x: f32| l.cubic(x);
         let (b0, w0) = cubic(&l[0], x[0]);
@@ -751,6 +767,16 @@ impl Lane {
         let t = clamp_s(self.a * ln_fast(x) + self.b, 0.0, self.last);
         let i = trunc_small(min_s(t, self.last_cell_f));
         (i as usize, t - i as f32)
+    }
+
+    /// [`Lane::cubic`]; `FAST_LN`: with a log axis read as in [`Lane::cell_with`].
+    #[inline(always)]
+    fn cubic_mode<const FAST_LN: bool>(&self, x: f32) -> (usize, [f32; 4]) {
+        if !FAST_LN {
+            return self.cubic(x);
+        }
+        let (i, f) = self.cell_with(x, true);
+        self.cubic_at(i, f)
     }
 
     /// [`Lane::cell`], with a log axis (lower end a normal f32) read with [`ln_fast`] if
@@ -855,8 +881,8 @@ impl Lane {
 
 #[cfg(not(any(target_os = "none", target_family = "wasm")))]
 impl Reader {
-    /// Catmull–Rom lookups (scalar and chunked alike) read every log axis whose lower end
-    /// is a normal f32 with [`ln_fast`]: inline and vectorising, about a third of libm's
+    /// Catmull–Rom lookups through [`Reader::sample_fast`] and the chunk paths read every
+    /// log axis whose lower end is a normal f32 with [`ln_fast`]: inline and vectorising, about a third of libm's
     /// `logf` instructions, and within 1.5e-7 + 2.5e-7·|ln x| of ln x, which moves the
     /// node index by a·(that) (for the 64-node μ axes over [sin 1°, 1]: < 2e-5 of a cell).
     pub(crate) fn fast_ln(&mut self) {

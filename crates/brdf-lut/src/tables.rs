@@ -208,9 +208,13 @@ impl Prepared {
         (a, b)
     }
 
-    /// Channel 0 of a 2-D one-channel table.
+    /// Channel 0 of a 2-D one-channel table (on hosted targets, an albedo table's log axis
+    /// through the reader's inline logarithm, see `Reader::fast_ln`).
     #[inline]
     pub(crate) fn two1(&self, payload: &[u8], x: f32, y: f32) -> f32 {
+        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        return self.reader.sample_fast::<2, 1>(&self.grid, payload, [x, y])[0];
+        #[cfg(any(target_os = "none", target_family = "wasm"))]
         self.reader.sample::<2, 1>(&self.grid, payload, [x, y])[0]
     }
 
@@ -350,7 +354,7 @@ impl Prepared {
             for d in 0..D {
                 xk[d] = x[d].get(k).copied().unwrap_or(f32::NAN);
             }
-            let v = self.reader.sample::<D, C>(&self.grid, payload, xk);
+            let v = self.reader.sample_fast::<D, C>(&self.grid, payload, xk);
             for c in 0..C {
                 if let Some(o) = out[c].get_mut(k) {
                     *o = v[c];
