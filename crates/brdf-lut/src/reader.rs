@@ -244,15 +244,15 @@ impl Lane {
     #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
     #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     pub(crate) fn cubic(&self, x: f32) -> (usize, [f32; 4]) {
-        let (i, f) = self.cell(x);
-        self.cubic_at(i, f)
+        self.cubic_with(|l| l.cell(x))
     }
 
-    /// [`Lane::cubic`] of the cell `(i, f)` of x.
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
-    fn cubic_at(&self, i: usize, f: f32) -> (usize, [f32; 4]) {
+    /// [`Lane::cubic`] with the cell `(i, f)` of x from `cell` (always inlined: on devices
+    /// too, so that `Lane::cubic` compiles as one function).
+    #[inline(always)]
+    fn cubic_with(&self, cell: impl FnOnce(&Self) -> (usize, f32)) -> (usize, [f32; 4]) {
         let n = self.n;
+        let (i, f) = cell(self);
         let (f2, f3) = (f * f, f * f * f);
         let wm = 0.5 * (-f3 + 2.0 * f2 - f);
         let w0 = 0.5 * (3.0 * f3 - 5.0 * f2 + 2.0);
@@ -696,11 +696,7 @@ impl Reader {
     ) -> [f32; C] {
         let l = &self.lanes;
         // `FAST_LN`: log axes through `ln_fast` (hosted targets; see `Reader::fast_ln`).
-        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
-        let cubic = |l: &Lane, x: f32| l.cubic_mode::<FAST_LN>(x);
-        #[cfg(any(target_os = "none", target_family = "wasm"))]
-        let cubic = |l: &Lane, x: f32| l.cubic(x);
-        let (b0, w0) = cubic(&l[0], x[0]);
+        let (b0, w0) = l[0].cubic_mode::<FAST_LN>(x[0]);
         let row = |at: usize| -> [f32; C] {
             let Some(p) = data.get(at * S::BYTES..(at + 4 * C) * S::BYTES) else {
                 return [f32::NAN; C];
@@ -716,7 +712,7 @@ impl Reader {
         if D == 1 {
             return row(b0 * C);
         }
-        let (b1, w1) = cubic(&l[1], x[1]);
+        let (b1, w1) = l[1].cubic_mode::<FAST_LN>(x[1]);
         let patch = |at: usize| -> [f32; C] {
             let mut acc = [0.0; C];
             for (j, wj) in w1.iter().enumerate() {
@@ -731,7 +727,7 @@ impl Reader {
         if D == 2 {
             return patch(at);
         }
-        let (b2, w2) = cubic(&l[2], x[2]);
+        let (b2, w2) = l[2].cubic_mode::<FAST_LN>(x[2]);
         let mut acc = [0.0; C];
         for (k, &wk) in w2.iter().enumerate() {
             if wk != 0.0 {
@@ -742,6 +738,15 @@ impl Reader {
             }
         }
         acc
+    }
+}
+
+#[cfg(any(target_os = "none", target_family = "wasm"))]
+impl Lane {
+    /// [`Lane::cubic`] (devices have no `FAST_LN` reading).
+    #[inline(always)]
+    fn cubic_mode<const FAST_LN: bool>(&self, x: f32) -> (usize, [f32; 4]) {
+        self.cubic(x)
     }
 }
 
@@ -771,12 +776,11 @@ impl Lane {
 
     /// [`Lane::cubic`]; `FAST_LN`: with a log axis read as in [`Lane::cell_with`].
     #[inline(always)]
-    fn cubic_mode<const FAST_LN: bool>(&self, x: f32) -> (usize, [f32; 4]) {
+    pub(crate) fn cubic_mode<const FAST_LN: bool>(&self, x: f32) -> (usize, [f32; 4]) {
         if !FAST_LN {
             return self.cubic(x);
         }
-        let (i, f) = self.cell_with(x, true);
-        self.cubic_at(i, f)
+        self.cubic_with(|l| l.cell_with(x, true))
     }
 
     /// [`Lane::cell`], with a log axis (lower end a normal f32) read with [`ln_fast`] if
