@@ -2,7 +2,8 @@
 //! not feature `compact`).
 //!
 //! `N` queries at once, in stages that are each a loop over the chunk, so that the compiler
-//! turns the arithmetic stages into packed SSE instructions: the axis maps
+//! turns the arithmetic stages into packed SSE instructions (AVX2 where the processor has
+//! it, picked at run time by `reader::wide`): the axis maps
 //! ([`Lane::cells`]), the four Catmull–Rom weights and the first node of every axis (the
 //! cubic polynomials of docs/lut-format.md §7 with the end extrapolation folded in, chosen
 //! by selects instead of branches), the payload reads into arrays of stored numbers, and the
@@ -12,7 +13,7 @@
 
 use crate::header::Encoding;
 use crate::reader::{Lane, Mode, Reader};
-use crate::tables::{g_args, min_g, unit01, Prepared};
+use crate::tables::{g_args_n, g_of_sides, Prepared};
 
 /// Queries per chunk.
 const CHUNK: usize = 8;
@@ -20,8 +21,12 @@ const CHUNK: usize = 8;
 /// First node and the four weights of `N` coordinates on a Catmull–Rom axis of n ≥ 4 nodes:
 /// `Lane::cubic` per query (weights `[tap][query]`).
 #[inline(always)]
-fn cubics<const N: usize>(l: &Lane, x: &[f32; N]) -> ([u32; N], [[f32; N]; 4]) {
-    let (i, f) = l.cells::<N, false, false>(x);
+fn cubics<const N: usize>(l: &Lane, x: &[f32; N], fast_ln: bool) -> ([u32; N], [[f32; N]; 4]) {
+    let (i, f) = if fast_ln {
+        l.cells::<N, false, false, true>(x)
+    } else {
+        l.cells::<N, false, false, false>(x)
+    };
     // n − 2, the last cell; n − 4, the first node of the far end's window.
     let (end, far) = ((l.n - 2) as u32, (l.n - 4) as u32);
     // The cubic polynomials, then the three cases of `Lane::cubic` (each with its own
@@ -79,9 +84,9 @@ impl Reader {
         x: &[[f32; N]; D],
     ) -> [[f32; N]; C] {
         let l = &self.lanes;
-        let a0 = cubics(&l[0], &x[0]);
+        let a0 = cubics(&l[0], &x[0], self.fast_ln);
         let a1 = if D > 1 {
-            cubics(&l[1], &x[1])
+            cubics(&l[1], &x[1], self.fast_ln)
         } else {
             ([0; N], [[0.0; N]; 4])
         };
@@ -193,8 +198,8 @@ impl Reader {
         w2: &(usize, [f32; 4]),
     ) -> [f32; N] {
         let l = &self.lanes;
-        let a0 = cubics(&l[0], &x[0]);
-        let a1 = cubics(&l[1], &x[1]);
+        let a0 = cubics(&l[0], &x[0], self.fast_ln);
+        let a1 = cubics(&l[1], &x[1], self.fast_ln);
         let (b2, w2) = w2;
         let mut acc = [0.0f32; N];
         let mut bad = [false; N];
@@ -241,9 +246,14 @@ impl Prepared {
         out: [&mut [f32]; C],
     ) {
         let r = &self.reader;
-        self.drive_batch::<D, C, CHUNK>(x, out, payload, |xs| {
-            r.chunk_cubic::<D, C, CHUNK>(payload, xs)
-        });
+        crate::reader::wide(
+            #[inline(always)]
+            |_| {
+                self.drive_batch::<D, C, CHUNK>(x, out, payload, |xs| {
+                    r.chunk_cubic::<D, C, CHUNK>(payload, xs)
+                })
+            },
+        );
     }
 
     /// G of `N` in-plane pairs of a 2-D (`z` = None) or 3-D Catmull–Rom table (`z`: the
@@ -257,13 +267,7 @@ impl Prepared {
         tr: &[f32; N],
         z: Option<&(usize, [f32; 4])>,
     ) -> [f32; N] {
-        let (mut m, mut s) = ([[0.0f32; N]; 2], [[0.0f32; N]; 2]);
-        let mut nan = [false; N];
-        for k in 0..N {
-            nan[k] = ti[k].is_nan() || tr[k].is_nan();
-            let (mk, sk) = g_args(ti[k], tr[k]);
-            (m[0][k], m[1][k], s[0][k], s[1][k]) = (mk[0], mk[1], sk[0], sk[1]);
-        }
+        let (m, s, nan) = g_args_n(ti, tr);
         let r = &self.reader;
         let (gm, gs) = match z {
             Some(z) => (
@@ -275,18 +279,28 @@ impl Prepared {
                 r.chunk_cubic::<2, 1, N>(payload, &s)[0],
             ),
         };
-        let mut out = [0.0f32; N];
-        for k in 0..N {
-            let g = min_g(unit01(gm[k]), unit01(gs[k]));
-            out[k] = if nan[k] { f32::NAN } else { g };
-        }
-        out
+        g_of_sides(&gm, &gs, &nan)
     }
 
     /// `out[k] = G(theta_i[k], theta_r[k])` (at σ = `sigma` for a 3-D table, which must
     /// not be NaN) of a Catmull–Rom table for k < `out.len()` (chunks, then the scalar
     /// tail); the table must be `cubic_chunked()`.
     pub(crate) fn g_batch_cubic(
+        &self,
+        payload: &[u8],
+        ti: &[f32],
+        tr: &[f32],
+        sigma: Option<f32>,
+        out: &mut [f32],
+    ) {
+        crate::reader::wide(
+            #[inline(always)]
+            |_| self.g_batch_cubic_body(payload, ti, tr, sigma, out),
+        )
+    }
+
+    #[inline(always)]
+    fn g_batch_cubic_body(
         &self,
         payload: &[u8],
         ti: &[f32],

@@ -96,6 +96,7 @@ fn warp_q(warp: Warp, lo: f32, x: f32) -> f32 {
 fn warp_far(warp: Warp, lo: f32, x: f32) -> f32 {
     warp_w(warp, lo, x)
 }
+
 // Devices: one copy of the warp (code size has a budget there).
 #[cfg(any(target_os = "none", target_family = "wasm"))]
 use warp_w as warp_q;
@@ -116,6 +117,7 @@ pub(crate) struct Lane {
     /// n − 2 as f32 (hosted targets: the node is found in f32, see [`Lane::cell`]).
     #[cfg(not(any(target_os = "none", target_family = "wasm")))]
     last_cell_f: f32,
+
     /// Values (nodes × channels) between neighbouring nodes of this axis.
     pub(crate) stride: usize,
     pub(crate) n: usize,
@@ -163,6 +165,7 @@ impl Lane {
             last_cell: axis.count as i32 - 2,
             #[cfg(not(any(target_os = "none", target_family = "wasm")))]
             last_cell_f: (axis.count as i32 - 2) as f32,
+
             stride,
             n: axis.count as usize,
         })
@@ -200,6 +203,7 @@ impl Lane {
         last_cell: 0,
         #[cfg(not(any(target_os = "none", target_family = "wasm")))]
         last_cell_f: 0.0,
+
         stride: 0,
         n: 1,
     };
@@ -242,8 +246,15 @@ impl Lane {
     #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
     #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
     pub(crate) fn cubic(&self, x: f32) -> (usize, [f32; 4]) {
+        self.cubic_with(|l| l.cell(x))
+    }
+
+    /// [`Lane::cubic`] with the cell `(i, f)` of x from `cell` (always inlined: on devices
+    /// too, so that `Lane::cubic` compiles as one function).
+    #[inline(always)]
+    fn cubic_with(&self, cell: impl FnOnce(&Self) -> (usize, f32)) -> (usize, [f32; 4]) {
         let n = self.n;
-        let (i, f) = self.cell(x);
+        let (i, f) = cell(self);
         let (f2, f3) = (f * f, f * f * f);
         let wm = 0.5 * (-f3 + 2.0 * f2 - f);
         let w0 = 0.5 * (3.0 * f3 - 5.0 * f2 + 2.0);
@@ -324,6 +335,10 @@ pub(crate) struct Reader {
     /// Per channel: value = offset + scale × stored (u16: scale already divided by 65535).
     pub(crate) scale: [f32; MAX_CHANNELS],
     pub(crate) offset: [f32; MAX_CHANNELS],
+    /// Catmull–Rom lookups read log axes with [`ln_fast`] (hosted targets; see
+    /// [`Reader::fast_ln`]).
+    #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+    pub(crate) fast_ln: bool,
 }
 
 impl Reader {
@@ -363,6 +378,8 @@ impl Reader {
             mode,
             scale,
             offset,
+            #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+            fast_ln: false,
         })
     }
 
@@ -387,6 +404,24 @@ impl Reader {
         self.sample_any(grid, data, x)
     }
 
+    /// [`Reader::sample`], with the log axes of a Catmull–Rom u16 table read through
+    /// [`ln_fast`] if [`Reader::fast_ln`] was called (the typed albedo tables' scalar
+    /// lookup, and the scalar tail of their batches). A separate entry so that the other
+    /// lookups' code stays as it was.
+    #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+    #[inline]
+    pub(crate) fn sample_fast<const D: usize, const C: usize>(
+        &self,
+        grid: &Grid,
+        data: &[u8],
+        x: [f32; D],
+    ) -> [f32; C] {
+        if self.fast_ln && self.mode == Mode::Cubic && self.encoding == Encoding::Unorm16 {
+            return self.finish(self.cubic::<U16, D, C, true>(data, x));
+        }
+        self.sample(grid, data, x)
+    }
+
     /// Channel scale and offset applied to values in stored units.
     #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
     #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
@@ -408,15 +443,15 @@ impl Reader {
     ) -> [f32; C] {
         let raw = match (self.mode, self.encoding) {
             (Mode::Linear, Encoding::Unorm16) => self.linear::<U16, D, C>(data, x),
-            (Mode::Cubic, Encoding::Unorm16) => self.cubic::<U16, D, C>(data, x),
+            (Mode::Cubic, Encoding::Unorm16) => self.cubic::<U16, D, C, false>(data, x),
             #[cfg(not(feature = "compact"))]
             (Mode::Linear, Encoding::F16) => self.linear::<F16, D, C>(data, x),
             #[cfg(not(feature = "compact"))]
             (Mode::Linear, Encoding::F32) => self.linear::<F32, D, C>(data, x),
             #[cfg(not(feature = "compact"))]
-            (Mode::Cubic, Encoding::F16) => self.cubic::<F16, D, C>(data, x),
+            (Mode::Cubic, Encoding::F16) => self.cubic::<F16, D, C, false>(data, x),
             #[cfg(not(feature = "compact"))]
-            (Mode::Cubic, Encoding::F32) => self.cubic::<F32, D, C>(data, x),
+            (Mode::Cubic, Encoding::F32) => self.cubic::<F32, D, C, false>(data, x),
             // Short Catmull–Rom axes (and, with feature `compact`, float payloads).
             _ => {
                 let v = grid.sample(data, &x);
@@ -463,6 +498,7 @@ impl Reader {
                 data,
                 &[[a[0], b[0]], [a[1], b[1]]],
                 z,
+                false,
             );
             return (va, vb);
         }
@@ -655,13 +691,14 @@ impl Reader {
     /// Catmull–Rom in stored units.
     #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
     #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
-    fn cubic<S: Store, const D: usize, const C: usize>(
+    fn cubic<S: Store, const D: usize, const C: usize, const FAST_LN: bool>(
         &self,
         data: &[u8],
         x: [f32; D],
     ) -> [f32; C] {
         let l = &self.lanes;
-        let (b0, w0) = l[0].cubic(x[0]);
+        // `FAST_LN`: log axes through `ln_fast` (hosted targets; see `Reader::fast_ln`).
+        let (b0, w0) = l[0].cubic_mode::<FAST_LN>(x[0]);
         let row = |at: usize| -> [f32; C] {
             let Some(p) = data.get(at * S::BYTES..(at + 4 * C) * S::BYTES) else {
                 return [f32::NAN; C];
@@ -677,7 +714,7 @@ impl Reader {
         if D == 1 {
             return row(b0 * C);
         }
-        let (b1, w1) = l[1].cubic(x[1]);
+        let (b1, w1) = l[1].cubic_mode::<FAST_LN>(x[1]);
         let patch = |at: usize| -> [f32; C] {
             let mut acc = [0.0; C];
             for (j, wj) in w1.iter().enumerate() {
@@ -692,7 +729,7 @@ impl Reader {
         if D == 2 {
             return patch(at);
         }
-        let (b2, w2) = l[2].cubic(x[2]);
+        let (b2, w2) = l[2].cubic_mode::<FAST_LN>(x[2]);
         let mut acc = [0.0; C];
         for (k, &wk) in w2.iter().enumerate() {
             if wk != 0.0 {
@@ -706,10 +743,21 @@ impl Reader {
     }
 }
 
+#[cfg(any(target_os = "none", target_family = "wasm"))]
+impl Lane {
+    /// [`Lane::cubic`] (devices have no `FAST_LN` reading).
+    #[inline(always)]
+    fn cubic_mode<const FAST_LN: bool>(&self, x: f32) -> (usize, [f32; 4]) {
+        self.cubic(x)
+    }
+}
+
 /// Chunked lookups for the batch entry points (hosted targets): `N` queries at once, in
 /// stages that are each a loop over the chunk (coordinate maps, then the payload reads, then
-/// the blend), so that the compiler turns the arithmetic stages into packed SSE
-/// instructions. Every query goes through exactly the scalar path's operations
+/// the blend), so that the compiler turns the arithmetic stages into packed instructions:
+/// SSE, or AVX2 where the processor has it (the batch loops are compiled twice and one is
+/// picked at run time, see [`wide`]; the payload rows are then read by AVX2 gathers, see
+/// [`rows`]). Every query goes through exactly the scalar path's operations
 /// ([`Lane::cell`], [`Reader::plane`], the channel scale and offset), so the results are
 /// the scalar lookups' bit for bit.
 #[cfg(not(any(target_os = "none", target_family = "wasm")))]
@@ -728,12 +776,45 @@ impl Lane {
         (i as usize, t - i as f32)
     }
 
+    /// [`Lane::cubic`]; `FAST_LN`: with a log axis read as in [`Lane::cell_with`].
+    #[inline(always)]
+    pub(crate) fn cubic_mode<const FAST_LN: bool>(&self, x: f32) -> (usize, [f32; 4]) {
+        if !FAST_LN {
+            return self.cubic(x);
+        }
+        self.cubic_with(|l| l.cell_with(x, true))
+    }
+
+    /// [`Lane::cell`], with a log axis (lower end a normal f32) read with [`ln_fast`] if
+    /// `fast_ln` (see [`Reader::fast_ln`]): the same steps as [`Lane::cells`] with
+    /// `FAST_LN` for one coordinate.
+    #[inline(always)]
+    pub(crate) fn cell_with(&self, x: f32, fast_ln: bool) -> (usize, f32) {
+        if !(fast_ln && self.warp == Warp::Log && self.lo >= f32::MIN_POSITIVE) {
+            return self.cell(x);
+        }
+        self.cell_fast_ln(x)
+    }
+
+    #[inline(always)]
+    fn cell_fast_ln(&self, x: f32) -> (usize, f32) {
+        let x = clamp(x, self.lo, self.hi);
+        let t = clamp(self.a * ln_lane(x) + self.b, 0.0, self.last);
+        let i = trunc_small(min_s(t, self.last_cell_f));
+        (i as usize, t - i as f32)
+    }
+
     /// [`Lane::cell`] of `N` coordinates; `IN_RANGE`: the caller guarantees x ∈ [lo, hi]
     /// (the clamp would change nothing and is skipped); `MINMAX`: for N ≤ 2, the index
     /// clamp as scalar max/min instructions (the same values; which form the compiler turns
     /// into less code depends on the caller; longer chunks keep the vectorising form).
     #[inline(always)]
-    pub(crate) fn cells<const N: usize, const IN_RANGE: bool, const MINMAX: bool>(
+    pub(crate) fn cells<
+        const N: usize,
+        const IN_RANGE: bool,
+        const MINMAX: bool,
+        const FAST_LN: bool,
+    >(
         &self,
         x: &[f32; N],
     ) -> ([u32; N], [f32; N]) {
@@ -757,6 +838,11 @@ impl Lane {
                 }
                 for w in &mut w {
                     *w = sqrt_v(*w);
+                }
+            }
+            Warp::Log if FAST_LN && self.lo >= f32::MIN_POSITIVE => {
+                for w in &mut w {
+                    *w = ln_lane(*w);
                 }
             }
             _ => {
@@ -801,6 +887,14 @@ impl Lane {
 
 #[cfg(not(any(target_os = "none", target_family = "wasm")))]
 impl Reader {
+    /// Catmull–Rom lookups through [`Reader::sample_fast`] and the chunk paths read every
+    /// log axis whose lower end is a normal f32 with [`ln_fast`]: inline and vectorising, about a third of libm's
+    /// `logf` instructions, and within 1.5e-7 + 2.5e-7·|ln x| of ln x, which moves the
+    /// node index by a·(that) (for the 64-node μ axes over [sin 1°, 1]: < 2e-5 of a cell).
+    pub(crate) fn fast_ln(&mut self) {
+        self.fast_ln = true;
+    }
+
     /// Whether [`Reader::chunk`] applies (linear u16 tables); otherwise callers loop over
     /// the scalar lookup.
     #[inline(always)]
@@ -831,8 +925,8 @@ impl Reader {
     ) -> (f32, f32) {
         let x = [[a[0], b[0]], [a[1], b[1]]];
         let [va, vb] = match z {
-            Some(z) => self.chunk3_in::<2, false>(l0, data, &x, z),
-            None => self.chunk_in::<2, 1, 2, false, false>(l0, data, &x)[0],
+            Some(z) => self.chunk3_in::<2, false>(l0, data, &x, z, false),
+            None => self.chunk_in::<2, 1, 2, false, false>(l0, data, &x, false)[0],
         };
         (va, vb)
     }
@@ -847,14 +941,16 @@ impl Reader {
     }
 
     /// `N` lookups of a 1-D or 2-D linear u16 table (`chunked()` must hold): channel c of
-    /// query k in `out[c][k]`, equal to [`Reader::sample`] bit for bit.
+    /// query k in `out[c][k]`, equal to [`Reader::sample`] bit for bit. `avx2`: the code is
+    /// compiled for AVX2 (see [`wide`]).
     #[inline(always)]
     pub(crate) fn chunk<const D: usize, const C: usize, const N: usize>(
         &self,
         data: &[u8],
         x: &[[f32; N]; D],
+        avx2: bool,
     ) -> [[f32; N]; C] {
-        self.chunk_in::<D, C, N, false, false>(&self.lanes[0], data, x)
+        self.chunk_in::<D, C, N, false, false>(&self.lanes[0], data, x, avx2)
     }
 
     /// [`Reader::chunk`]; `IN_RANGE`: every coordinate lies in its axis' range already.
@@ -870,11 +966,12 @@ impl Reader {
         l0: &Lane,
         data: &[u8],
         x: &[[f32; N]; D],
+        avx2: bool,
     ) -> [[f32; N]; C] {
         let l = &self.lanes;
-        let (i0, f0) = l0.cells::<N, IN_RANGE, MINMAX>(&x[0]);
+        let (i0, f0) = l0.cells::<N, IN_RANGE, MINMAX, false>(&x[0]);
         let (i1, f1) = if D > 1 {
-            l[1].cells::<N, IN_RANGE, MINMAX>(&x[1])
+            l[1].cells::<N, IN_RANGE, MINMAX, false>(&x[1])
         } else {
             ([0; N], [0.0; N])
         };
@@ -882,13 +979,39 @@ impl Reader {
         let mut q = [[[0u32; N]; 4]; C];
         let mut bad = [0.0f32; N];
         let s = l[1].stride * 2;
+        // Bytes of a row of taps (2 nodes × C channels) and of the block of both rows.
+        let w = 4 * C;
+        let span = if D > 1 { s + w } else { w };
+        if N > 2 && C <= 2 {
+            // Chunks: each row read as C little-endian 32-bit words (two stored numbers
+            // each), then split into the stored numbers by one vectorising loop per tap.
+            let mut at = [0u32; N];
+            for k in 0..N {
+                at[k] = (i0[k] * C as u32 + i1[k] * l[1].stride as u32) * 2;
+            }
+            let off1 = if D > 1 { s as u32 } else { 0 };
+            let (words, nan) = rows::<N, 2, C>(data, &at, [0, off1], avx2);
+            bad = nan;
+            // Stored number m = node × C + channel of a row: word m / 2, low half if m even.
+            for (r, wr) in words.iter().enumerate() {
+                for m in 0..2 * C {
+                    let (c, node) = (m % C, m / C);
+                    let (src, dst) = (&wr[m / 2], &mut q[c][2 * r + node]);
+                    for k in 0..N {
+                        dst[k] = if m % 2 == 0 {
+                            src[k] & 0xffff
+                        } else {
+                            src[k] >> 16
+                        };
+                    }
+                }
+            }
+        }
         for k in 0..N {
+            if N > 2 && C <= 2 {
+                break;
+            }
             let at = (i0[k] as usize * C + i1[k] as usize * l[1].stride) * 2;
-            let (span, w) = if D > 1 {
-                (s + 4 * C, 4 * C)
-            } else {
-                (4 * C, 4 * C)
-            };
             let rows = data
                 .get(at..at + span)
                 .and_then(|b| Some((b.get(..w)?, b.get(span - w..)?)));
@@ -933,8 +1056,9 @@ impl Reader {
         data: &[u8],
         x: &[[f32; N]; 2],
         z: f32,
+        avx2: bool,
     ) -> [f32; N] {
-        self.chunk3_in::<N, false>(&self.lanes[0], data, x, z)
+        self.chunk3_in::<N, false>(&self.lanes[0], data, x, z, avx2)
     }
 
     /// [`Reader::chunk3`]; `IN_RANGE`: every x lies in its axis' range already.
@@ -945,14 +1069,39 @@ impl Reader {
         data: &[u8],
         x: &[[f32; N]; 2],
         z: f32,
+        avx2: bool,
     ) -> [f32; N] {
         let l = &self.lanes;
         let (k2, f2) = l[2].cell_ln(z);
-        let (i0, mut f0) = l0.cells::<N, IN_RANGE, true>(&x[0]);
-        let (i1, f1) = l[1].cells::<N, IN_RANGE, true>(&x[1]);
+        let (i0, mut f0) = l0.cells::<N, IN_RANGE, true, false>(&x[0]);
+        let (i1, f1) = l[1].cells::<N, IN_RANGE, true, false>(&x[1]);
         let (s1, s2) = (l[1].stride * 2, l[2].stride * 2);
         let mut q = [[0u32; N]; 8];
+        if N > 2 {
+            // Chunks: the four rows (2 nodes each) as 32-bit words, split by vectorising
+            // loops.
+            let mut at = [0u32; N];
+            let base = (k2 * l[2].stride) as u32;
+            for k in 0..N {
+                at[k] = (i0[k] + i1[k] * l[1].stride as u32 + base) * 2;
+            }
+            let (s1, s2) = (s1 as u32, s2 as u32);
+            let ([[w0], [w1], [w2], [w3]], bad) =
+                rows::<N, 4, 1>(data, &at, [0, s1, s2, s2 + s1], avx2);
+            for (j, w) in [w0, w1, w2, w3].iter().enumerate() {
+                for k in 0..N {
+                    q[2 * j][k] = w[k] & 0xffff;
+                    q[2 * j + 1][k] = w[k] >> 16;
+                }
+            }
+            for k in 0..N {
+                f0[k] += bad[k];
+            }
+        }
         for k in 0..N {
+            if N > 2 {
+                break;
+            }
             let at = (i0[k] as usize + i1[k] as usize * l[1].stride + k2 * l[2].stride) * 2;
             let planes = data.get(at..at + s2 + s1 + 4).and_then(|b| {
                 Some((
@@ -987,83 +1136,138 @@ impl Reader {
     }
 }
 
-/// √x, correctly rounded like `libm::sqrtf` (IEEE 754 square root, so the same bits), but
-/// in a form the compiler can turn into packed `sqrtps` in the chunk loops (libm's is
-/// inline assembly, which it cannot).
-#[cfg(all(
-    target_arch = "x86_64",
-    not(any(target_os = "none", target_family = "wasm"))
-))]
+/// Runs `body` (a batch loop whose stages are written to vectorise) compiled for AVX2
+/// when the processor has it (with feature `std` on x86-64, detected at run time; the
+/// standard library caches the answer), else as compiled for the baseline (SSE2 on
+/// x86-64). Only the vector width changes: AVX2 has no fused multiply-add (that is FMA,
+/// which stays off, as it would round a·b + c once instead of twice), and packed add,
+/// multiply, divide, square root, min/max and conversions round exactly like their scalar
+/// forms, so the values are the same bit for bit.
+#[cfg(not(any(target_os = "none", target_family = "wasm")))]
 #[inline(always)]
-fn sqrt_v(x: f32) -> f32 {
-    use core::arch::x86_64::{_mm_cvtss_f32, _mm_set_ss, _mm_sqrt_ss};
-    // SAFETY: SSE is part of the x86_64 baseline, and these intrinsics only compute on
-    // registers (no memory access). They are safe functions from Rust 1.87 on; the block
-    // is for the crate's minimum Rust, 1.84.
-    #[allow(unused_unsafe)]
-    unsafe {
-        _mm_cvtss_f32(_mm_sqrt_ss(_mm_set_ss(x)))
+pub(crate) fn wide<R>(body: impl FnOnce(bool) -> R) -> R {
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    if std::is_x86_feature_detected!("avx2") && !baseline_only() {
+        // SAFETY: `avx2` only requires that the processor support AVX2, checked just above.
+        return unsafe { avx2(body) };
     }
-}
-#[cfg(all(
-    not(target_arch = "x86_64"),
-    not(any(target_os = "none", target_family = "wasm"))
-))]
-#[inline(always)]
-fn sqrt_v(x: f32) -> f32 {
-    libm::sqrtf(x)
+    body(false)
 }
 
-/// [`clamp`] as one max and one min instruction per value (NaN stays NaN). The plain
-/// comparisons let the compiler turn a two-lane clamp into a vector compare, a mask
-/// extraction and branches.
+/// Unit tests: the batch loops run their baseline build even where AVX2 is available.
+#[cfg(all(test, feature = "std"))]
+pub(crate) static BASELINE_ONLY: core::sync::atomic::AtomicBool =
+    core::sync::atomic::AtomicBool::new(false);
 #[cfg(all(
+    feature = "std",
     target_arch = "x86_64",
     not(any(target_os = "none", target_family = "wasm"))
 ))]
 #[inline(always)]
-pub(crate) fn clamp_s(x: f32, lo: f32, hi: f32) -> f32 {
-    use core::arch::x86_64::{_mm_cvtss_f32, _mm_max_ss, _mm_min_ss, _mm_set_ss};
-    // SAFETY: SSE is part of the x86_64 baseline; register-only intrinsics (safe functions
-    // from Rust 1.87 on; the block is for the crate's minimum Rust, 1.84). maxss/minss
-    // return their second operand when either is NaN: (lo > x ? lo : x), (hi < y ? hi : y).
-    #[allow(unused_unsafe)]
-    unsafe {
-        let y = _mm_max_ss(_mm_set_ss(lo), _mm_set_ss(x));
-        _mm_cvtss_f32(_mm_min_ss(_mm_set_ss(hi), y))
-    }
+fn baseline_only() -> bool {
+    #[cfg(all(test, feature = "std"))]
+    return BASELINE_ONLY.load(core::sync::atomic::Ordering::Relaxed);
+    #[cfg(not(all(test, feature = "std")))]
+    false
 }
-/// min(t, m) as one instruction (t < m ? t : m).
+
+/// `body(true)` compiled with AVX2 enabled (its stages are inlined into this function;
+/// `true` tells them that they may use AVX2 instructions, e.g. [`rows`]' gathers).
+///
+/// # Safety
+/// The processor must support AVX2.
+#[cfg(all(
+    feature = "std",
+    target_arch = "x86_64",
+    not(any(target_os = "none", target_family = "wasm"))
+))]
+#[target_feature(enable = "avx2")]
+unsafe fn avx2<R>(body: impl FnOnce(bool) -> R) -> R {
+    body(true)
+}
+
+/// Scalar steps of the lookups as single SSE instructions (x86-64, hosted targets):
+/// `sqrt_v` √x, correctly rounded like `libm::sqrtf` (IEEE 754 square root, so the same
+/// bits), but in a form the compiler can turn into packed `sqrtps` in the chunk loops
+/// (libm's is inline assembly, which it cannot); `clamp_s` [`clamp`] as one max and one min
+/// instruction (NaN stays NaN; the plain comparisons let the compiler turn a two-lane clamp
+/// into a vector compare, a mask extraction and branches); `min_s` min(t, m) = (t < m ? t :
+/// m); `trunc_small` ⌊x⌋ of x ∈ [0, 2¹⁶) as the processor's truncating conversion, without
+/// the saturation checks of `as` (callers pass no NaN).
 #[cfg(all(
     target_arch = "x86_64",
     not(any(target_os = "none", target_family = "wasm"))
 ))]
-#[inline(always)]
-fn min_s(t: f32, m: f32) -> f32 {
-    use core::arch::x86_64::{_mm_cvtss_f32, _mm_min_ss, _mm_set_ss};
-    // SAFETY: as in `clamp_s`.
-    #[allow(unused_unsafe)]
-    unsafe {
-        _mm_cvtss_f32(_mm_min_ss(_mm_set_ss(t), _mm_set_ss(m)))
+mod sse {
+    use core::arch::x86_64::{
+        _mm_cvtss_f32, _mm_cvttss_si32, _mm_max_ss, _mm_min_ss, _mm_set_ss, _mm_sqrt_ss,
+    };
+
+    /// Evaluates an expression of the SSE intrinsics imported above.
+    macro_rules! sse {
+        ($e:expr) => {{
+            // SAFETY: SSE is part of the x86_64 baseline, and these intrinsics only compute
+            // on registers (no memory access). They are safe functions from Rust 1.87 on;
+            // the block is for the crate's minimum Rust, 1.84.
+            #[allow(unused_unsafe)]
+            unsafe {
+                $e
+            }
+        }};
+    }
+
+    #[inline(always)]
+    pub(crate) fn sqrt_v(x: f32) -> f32 {
+        sse!(_mm_cvtss_f32(_mm_sqrt_ss(_mm_set_ss(x))))
+    }
+
+    /// maxss/minss return their second operand when either is NaN:
+    /// (lo > x ? lo : x), then (hi < y ? hi : y).
+    #[inline(always)]
+    pub(crate) fn clamp_s(x: f32, lo: f32, hi: f32) -> f32 {
+        let y = sse!(_mm_max_ss(_mm_set_ss(lo), _mm_set_ss(x)));
+        sse!(_mm_cvtss_f32(_mm_min_ss(_mm_set_ss(hi), y)))
+    }
+
+    #[inline(always)]
+    pub(crate) fn min_s(t: f32, m: f32) -> f32 {
+        sse!(_mm_cvtss_f32(_mm_min_ss(_mm_set_ss(t), _mm_set_ss(m))))
+    }
+
+    #[inline(always)]
+    pub(crate) fn trunc_small(x: f32) -> i32 {
+        sse!(_mm_cvttss_si32(_mm_set_ss(x)))
     }
 }
+
+/// [`sse`]'s steps in portable form (the same values) on other hosted processors.
 #[cfg(all(
     not(target_arch = "x86_64"),
     not(any(target_os = "none", target_family = "wasm"))
 ))]
-pub(crate) use clamp as clamp_s;
-#[cfg(all(
-    not(target_arch = "x86_64"),
-    not(any(target_os = "none", target_family = "wasm"))
-))]
-#[inline(always)]
-fn min_s(t: f32, m: f32) -> f32 {
-    if t < m {
-        t
-    } else {
-        m
+mod sse {
+    pub(crate) use crate::axis::clamp as clamp_s;
+    pub(crate) use libm::sqrtf as sqrt_v;
+
+    #[inline(always)]
+    pub(crate) fn min_s(t: f32, m: f32) -> f32 {
+        if t < m {
+            t
+        } else {
+            m
+        }
+    }
+
+    #[inline(always)]
+    pub(crate) fn trunc_small(x: f32) -> i32 {
+        x as i32
     }
 }
+
+#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+pub(crate) use sse::clamp_s;
+#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+use sse::{min_s, sqrt_v, trunc_small};
 
 /// ln x for a normal positive finite f32 x: x = 2ᵏ m with m ∈ [√½, √2), then
 /// ln m = 2 atanh s = 2s (1 + s²/3 + s⁴/5 + s⁶/7 + …) with s = (m − 1)/(m + 1), |s| ≤ 0.1716
@@ -1086,29 +1290,121 @@ pub(crate) fn ln_fast(x: f32) -> f32 {
     k as f32 * core::f32::consts::LN_2 + s * p
 }
 
-/// ⌊x⌋ of x ∈ [0, 2¹⁶) as the processor's truncating conversion, without the saturation
-/// checks of `as`. Callers pass no NaN.
+/// [`ln_fast`] of a coordinate already clamped to a log axis' range [lo, hi] with lo a
+/// normal positive f32 (so x is one, or NaN, which stays NaN).
+#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[inline(always)]
+fn ln_lane(x: f32) -> f32 {
+    let y = ln_fast(x);
+    if x.is_nan() {
+        x
+    } else {
+        y
+    }
+}
+
+/// The payload rows of `N` queries: word j of row r of query k is the little-endian 32-bit
+/// word at byte `at[k] + off[r] + 4j` of `data` (`[row][word][query]`), and `bad[k]` is NaN
+/// for a query whose rows lie past the payload (impossible for a parsed table: its words
+/// are then 0) and 0 otherwise. `avx2`: the caller runs compiled for AVX2 (see [`wide`]),
+/// so the words are read by gathers, eight queries at a time, after one bounds check per
+/// query in vector form.
+#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[inline(always)]
+#[allow(clippy::type_complexity)]
+fn rows<const N: usize, const R: usize, const W: usize>(
+    data: &[u8],
+    at: &[u32; N],
+    off: [u32; R],
+    avx2: bool,
+) -> ([[[u32; N]; W]; R], [f32; N]) {
+    let mut words = [[[0u32; N]; W]; R];
+    let mut bad = [0.0f32; N];
+    // Bytes from a query's first word to the end of its last.
+    let span = off.iter().max().map_or(0, |&o| o as usize) + 4 * W;
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    if avx2 && N % 8 == 0 && data.len() <= i32::MAX as usize && data.len() >= span {
+        // Queries whose rows end past the payload read the first word instead (and are
+        // marked bad), so that every gathered word lies in `data`.
+        let limit = (data.len() - span) as u32;
+        let mut idx = [0u32; N];
+        for k in 0..N {
+            let ok = at[k] <= limit;
+            idx[k] = if ok { at[k] } else { 0 };
+            bad[k] = if ok { 0.0 } else { f32::NAN };
+        }
+        // SAFETY: the processor supports AVX2 (`avx2`: the caller was entered through
+        // `wide`'s check), and every word read lies in `data`: idx[k] ≤ len − span and
+        // off[r] + 4j + 4 ≤ span, with len ≤ i32::MAX so that the offsets are
+        // non-negative i32.
+        unsafe { gather_words(data.as_ptr(), &idx, &off, &mut words) };
+        return (words, bad);
+    }
+    let _ = avx2;
+    for k in 0..N {
+        let at = at[k] as usize;
+        match data.get(at..at + span) {
+            Some(b) => {
+                for (wr, &o) in words.iter_mut().zip(&off) {
+                    for (j, w) in wr.iter_mut().enumerate() {
+                        w[k] = u32_at(b, o as usize + 4 * j);
+                    }
+                }
+            }
+            None => bad[k] = f32::NAN,
+        }
+    }
+    (words, bad)
+}
+
+/// [`rows`]' gathers: `words[r][j][k]` = the little-endian 32-bit word at byte
+/// `idx[k] + off[r] + 4j` from `base`, eight queries per gather (`N` a multiple of 8).
+///
+/// # Safety
+/// The processor supports AVX2, and every such word lies in one allocation at `base`,
+/// with every offset below 2³¹.
 #[cfg(all(
+    feature = "std",
     target_arch = "x86_64",
     not(any(target_os = "none", target_family = "wasm"))
 ))]
-#[inline(always)]
-fn trunc_small(x: f32) -> i32 {
-    use core::arch::x86_64::{_mm_cvttss_si32, _mm_set_ss};
-    // SAFETY: SSE is part of the x86_64 baseline; register-only intrinsics (safe functions
-    // from Rust 1.87 on; the block is for the crate's minimum Rust, 1.84).
-    #[allow(unused_unsafe)]
-    unsafe {
-        _mm_cvttss_si32(_mm_set_ss(x))
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn gather_words<const N: usize, const R: usize, const W: usize>(
+    base: *const u8,
+    idx: &[u32; N],
+    off: &[u32; R],
+    words: &mut [[[u32; N]; W]; R],
+) {
+    use core::arch::x86_64::{
+        __m256i, _mm256_add_epi32, _mm256_i32gather_epi32, _mm256_loadu_si256, _mm256_set1_epi32,
+        _mm256_storeu_si256,
+    };
+    for g in (0..N).step_by(8) {
+        // SAFETY (all blocks): 8 lanes from g < N, N a multiple of 8, lie in the arrays;
+        // the gathered words lie in the allocation by the caller's contract.
+        let v = unsafe { _mm256_loadu_si256(idx.as_ptr().add(g).cast::<__m256i>()) };
+        for (wr, &o) in words.iter_mut().zip(off) {
+            for (j, w) in wr.iter_mut().enumerate() {
+                let o = _mm256_add_epi32(v, _mm256_set1_epi32((o + 4 * j as u32) as i32));
+                unsafe {
+                    let x = _mm256_i32gather_epi32::<1>(base.cast::<i32>(), o);
+                    _mm256_storeu_si256(w.as_mut_ptr().add(g).cast::<__m256i>(), x);
+                }
+            }
+        }
     }
 }
-#[cfg(all(
-    not(target_arch = "x86_64"),
-    not(any(target_os = "none", target_family = "wasm"))
-))]
+
+/// The little-endian 32-bit word at byte `at` of `b` (0 past the end; callers pass rows
+/// that hold it).
+#[cfg(not(any(target_os = "none", target_family = "wasm")))]
 #[inline(always)]
-fn trunc_small(x: f32) -> i32 {
-    x as i32
+fn u32_at(b: &[u8], at: usize) -> u32 {
+    match b.get(at..at + 4) {
+        Some(&[b0, b1, b2, b3]) => u32::from_le_bytes([b0, b1, b2, b3]),
+        _ => 0,
+    }
 }
 
 /// Stored u16 number `k` of `b` (0 past the end; callers pass rows that hold it).
@@ -1163,9 +1459,9 @@ mod tests {
         };
         let lane = Lane::new(&axis, 1).unwrap();
         assert!(lane.cell(f32::NAN).1.is_nan());
-        let (_, f) = lane.cells::<2, false, false>(&[f32::NAN, 0.5]);
+        let (_, f) = lane.cells::<2, false, false, false>(&[f32::NAN, 0.5]);
         assert!(f[0].is_nan() && !f[1].is_nan());
-        let (_, f) = lane.cells::<16, false, false>(&[f32::NAN; 16]);
+        let (_, f) = lane.cells::<16, false, false, false>(&[f32::NAN; 16]);
         assert!(f.iter().all(|f| f.is_nan()));
     }
 

@@ -160,3 +160,56 @@ fn nan_coordinates_give_nan_on_sqrt_warped_axes() {
     let (a, bb) = t.ab(0.5, 0.5);
     assert!(a > 0.0 && bb > 0.0 && a + bb <= 1.0, "{a} {bb}");
 }
+
+/// Albedo tables read their log μ axis with the reader's inline logarithm (scalar and batch
+/// lookups alike); `LutView::sample`, which the table's recorded error was measured with,
+/// keeps libm's `logf`. The node index then moves by at most a·ε + 2 ulp(t): ε = 1.2e-6 the
+/// logarithm's error bound at |ln x| ≤ ln(1/sin 1°) = 4.05 (1.5e-7 + 2.5e-7·4.05, tested
+/// against the f64 logarithm in the reader's unit tests), a = (n − 1)/ln(hi/lo) nodes per
+/// unit of ln μ, and t < 64 rounded in f32 (ulp 3.8e-6). The Catmull–Rom interpolant's
+/// slope per cell, in Hermite form p' = (6f² − 6f)(v_i − v_{i+1}) + (3f² − 4f + 1) m_i +
+/// (3f² − 2f) m_{i+1} with tangents m = (v_{i+1} − v_{i−1})/2, is at most 1.5 + 2 + 2 = 5.5
+/// times the largest step between neighbouring nodes (|m| ≤ 1 step inside, ≤ 2 steps
+/// with the end extrapolation 3v₀ − 3v₁ + v₂), and the f32 sums add < 1e-6: so typed and
+/// view lookups differ by at most (a·ε + 8e-6)·6·step + 1e-6, far below the tables'
+/// recorded error.
+#[test]
+fn albedo_lookups_stay_within_the_log_bound_of_the_measured_reader() {
+    use brdf_lut::LutView;
+    for name in ["kc_e_ggx.blut", "kc_e_beckmann.blut"] {
+        let b = asset(name);
+        let t = AlbedoTable::parse(&b[..]).unwrap();
+        let v = LutView::parse(&b[..]).unwrap();
+        let axes = &v.header().axes;
+        let (mu, r) = (&axes[0], &axes[1]);
+        assert_eq!(mu.warp, brdf_lut::Warp::Log);
+        let a = (mu.count - 1) as f64 / (mu.hi / mu.lo).ln();
+        let eps = 1.5e-7 + 2.5e-7 * (mu.hi / mu.lo).ln();
+        // Largest step between neighbouring μ nodes over a grid of roughness values.
+        let mut step = 0f64;
+        for j in 0..=40 {
+            let rr = (r.lo + (r.hi - r.lo) * j as f64 / 40.0) as f32;
+            for i in 0..mu.count - 1 {
+                let x0 = (mu.lo * (mu.hi / mu.lo).powf(i as f64 / (mu.count - 1) as f64)) as f32;
+                let x1 =
+                    (mu.lo * (mu.hi / mu.lo).powf((i + 1) as f64 / (mu.count - 1) as f64)) as f32;
+                let d = v.sample(&[x1, rr])[0] - v.sample(&[x0, rr])[0];
+                step = step.max(d.abs() as f64);
+            }
+        }
+        let bound = (a * eps + 8e-6) * 6.0 * step + 1e-6;
+        let mut worst = 0f64;
+        for k in 0..20_000 {
+            let m = (mu.lo + (mu.hi - mu.lo) * ((0.3 + 0.618_033_988_7 * k as f64) % 1.0)) as f32;
+            let rr = (r.lo + (r.hi - r.lo) * ((0.1 + 0.414_213_562_3 * k as f64) % 1.0)) as f32;
+            let d = (t.e(m, rr) as f64 - v.sample(&[m, rr])[0] as f64).abs();
+            worst = worst.max(d);
+        }
+        println!("{name}: typed − view ≤ {worst:.1e} (bound {bound:.1e})");
+        assert!(worst <= bound, "{name}: {worst:e} > {bound:e}");
+        assert!(
+            bound < 0.1 * v.header().error.max_abs as f64,
+            "{name}: bound {bound:e}"
+        );
+    }
+}
