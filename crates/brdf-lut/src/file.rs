@@ -112,6 +112,20 @@ pub fn read_capped(path: impl AsRef<Path>) -> Result<Vec<u8>, Error> {
 pub struct Lut {
     bytes: Vec<u8>,
     p: Prepared,
+    g: GShape,
+}
+
+/// What a G query can do with a table, decided at load so that a query makes one test.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum GShape {
+    /// Not a passing-factor table.
+    NotG,
+    /// A passing-factor table in the printed convention (not served).
+    Printed,
+    /// A per-σ 2-D table (reciprocal).
+    PerSigma,
+    /// A 3-D table over σ (reciprocal).
+    OverSigma,
 }
 
 impl Lut {
@@ -123,7 +137,13 @@ impl Lut {
             });
         }
         let p = Prepared::new(&LutView::parse(&bytes)?);
-        Ok(Self { bytes, p })
+        let g = match (p.kind, p.reciprocal, p.grid.dims) {
+            (TableKind::PassingFactor, false, _) => GShape::Printed,
+            (TableKind::PassingFactor, true, 3) => GShape::OverSigma,
+            (TableKind::PassingFactor, true, _) => GShape::PerSigma,
+            _ => GShape::NotG,
+        };
+        Ok(Self { bytes, p, g })
     }
 
     /// Reads ([`read_capped`]) and validates a file.
@@ -193,28 +213,24 @@ impl Lut {
         theta_r: f32,
         sigma: f32,
     ) -> Result<(f32, f32, f32), Error> {
-        if self.p.kind != TableKind::PassingFactor {
-            return Err(Error::WrongKind {
+        match self.g {
+            GShape::OverSigma => Ok(self.p.g3(self.payload(), theta_i, theta_r, sigma)),
+            // Within 1e-6 of the table's σ (NaN fails the comparison).
+            GShape::PerSigma if (self.p.sigma - sigma).abs() <= 1e-6 => {
+                Ok(self.p.g2(self.payload(), theta_i, theta_r))
+            }
+            GShape::PerSigma => Err(Error::SigmaMismatch {
+                table: self.p.sigma,
+                asked: sigma,
+            }),
+            GShape::Printed => Err(Error::Format(LutError::Inconsistent(
+                "G tables must use the reciprocal convention",
+            ))),
+            GShape::NotG => Err(Error::WrongKind {
                 expected: "a modified-G passing-factor table",
                 found: self.p.kind,
-            });
+            }),
         }
-        if self.p.reciprocal {
-            if self.p.grid.dims == 3 {
-                return Ok(self.p.g3(self.payload(), theta_i, theta_r, sigma));
-            }
-            let d = (self.p.sigma - sigma).abs();
-            if d.is_nan() || d > 1e-6 {
-                return Err(Error::SigmaMismatch {
-                    table: self.p.sigma,
-                    asked: sigma,
-                });
-            }
-            return Ok(self.p.g2(self.payload(), theta_i, theta_r));
-        }
-        Err(Error::Format(LutError::Inconsistent(
-            "G tables must use the reciprocal convention",
-        )))
     }
 
     /// G = min(GM, GS); see [`Lut::g_terms`].
@@ -356,6 +372,27 @@ mod tests {
         assert!(matches!(a.dfg(0.5, 0.5), Err(Error::WrongKind { .. })));
         let s = a.summary();
         assert!(s.contains("AverageAlbedo") && s.contains("roughness"));
+    }
+
+    #[test]
+    fn g_queries_route_by_table_shape() {
+        // A per-σ table answers only at its σ (within 1e-6; NaN σ is a mismatch), a 3-D
+        // table at any σ; both equal their typed tables bit for bit.
+        let b = std::fs::read(asset("g_modified_sigma0.3.blut")).unwrap();
+        let lut = Lut::from_bytes(b.clone()).unwrap();
+        let t = crate::GTable::parse(&b[..]).unwrap();
+        let g = lut.g(0.4, -0.7, 0.3).unwrap();
+        assert_eq!(g.to_bits(), t.g(0.4, -0.7).to_bits());
+        for s in [0.31, 0.3 + 2e-6, f32::NAN] {
+            assert!(matches!(lut.g(0.4, -0.7, s), Err(Error::SigmaMismatch { .. })));
+        }
+        let b3 = std::fs::read(asset("g_modified.blut")).unwrap();
+        let lut3 = Lut::from_bytes(b3.clone()).unwrap();
+        let t3 = crate::GTable3::parse(&b3[..]).unwrap();
+        for s in [0.05, 0.31, 0.9] {
+            let g = lut3.g(0.4, -0.7, s).unwrap();
+            assert_eq!(g.to_bits(), t3.g(0.4, -0.7, s).to_bits());
+        }
     }
 
     #[test]
