@@ -384,7 +384,10 @@ mod tests {
         let g = lut.g(0.4, -0.7, 0.3).unwrap();
         assert_eq!(g.to_bits(), t.g(0.4, -0.7).to_bits());
         for s in [0.31, 0.3 + 2e-6, f32::NAN] {
-            assert!(matches!(lut.g(0.4, -0.7, s), Err(Error::SigmaMismatch { .. })));
+            assert!(matches!(
+                lut.g(0.4, -0.7, s),
+                Err(Error::SigmaMismatch { .. })
+            ));
         }
         let b3 = std::fs::read(asset("g_modified.blut")).unwrap();
         let lut3 = Lut::from_bytes(b3.clone()).unwrap();
