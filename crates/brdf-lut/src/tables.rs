@@ -42,6 +42,42 @@ pub(crate) struct Prepared {
 }
 
 impl Prepared {
+    /// Channels of `D`-axis lookups over slices (every slice the same length), through
+    /// the fastest path the table has: linear u16 chunks, Catmull–Rom chunks, else
+    /// `scalar` per query (the scalar lookup itself, so the results are the same bits).
+    #[inline(always)]
+    fn batch<const D: usize, const C: usize>(
+        &self,
+        payload: &[u8],
+        x: [&[f32]; D],
+        mut out: [&mut [f32]; C],
+        scalar: impl Fn([f32; D]) -> [f32; C],
+    ) {
+        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        if self.reader.chunked() {
+            return self.sample_batch::<D, C>(payload, x, out);
+        }
+        #[cfg(not(any(feature = "compact", target_os = "none", target_family = "wasm")))]
+        if self.reader.cubic_chunked() {
+            return self.cubic_batch::<D, C>(payload, x, out);
+        }
+        let _ = payload;
+        // (Checked accesses: no panic path, whatever the compiler proves of the lengths.)
+        for k in 0..out.first().map_or(0, |o| o.len()) {
+            let v = scalar(core::array::from_fn(|d| {
+                x.get(d)
+                    .and_then(|xd| xd.get(k))
+                    .copied()
+                    .unwrap_or(f32::NAN)
+            }));
+            for (o, v) in out.iter_mut().zip(v) {
+                if let Some(o) = o.get_mut(k) {
+                    *o = v;
+                }
+            }
+        }
+    }
+
     /// The prepared form of a view.
     pub(crate) fn new(view: &LutView<'_>) -> Self {
         let h = view.header();
@@ -715,21 +751,11 @@ impl<B: AsRef<[u8]>> DfgTable<B> {
     pub fn ab_batch(&self, mu: &[f32], roughness: &[f32], a: &mut [f32], b: &mut [f32]) -> usize {
         let p = self.payload();
         let n = mu.len().min(roughness.len()).min(a.len()).min(b.len());
-        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
-        if self.p.reader.chunked() {
-            self.p
-                .sample_batch::<2, 2>(p, [&mu[..n], &roughness[..n]], [&mut a[..n], &mut b[..n]]);
-            return n;
-        }
-        #[cfg(not(any(feature = "compact", target_os = "none", target_family = "wasm")))]
-        if self.p.reader.cubic_chunked() {
-            self.p
-                .cubic_batch::<2, 2>(p, [&mu[..n], &roughness[..n]], [&mut a[..n], &mut b[..n]]);
-            return n;
-        }
-        for k in 0..n {
-            (a[k], b[k]) = self.p.two(p, mu[k], roughness[k]);
-        }
+        let x = [&mu[..n], &roughness[..n]];
+        self.p.batch(p, x, [&mut a[..n], &mut b[..n]], |[m, r]| {
+            let (a, b) = self.p.two(p, m, r);
+            [a, b]
+        });
         n
     }
 }
@@ -745,21 +771,9 @@ impl<B: AsRef<[u8]>> AlbedoTable<B> {
     pub fn e_batch(&self, mu: &[f32], roughness: &[f32], out: &mut [f32]) -> usize {
         let p = self.payload();
         let n = mu.len().min(roughness.len()).min(out.len());
-        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
-        if self.p.reader.chunked() {
-            self.p
-                .sample_batch::<2, 1>(p, [&mu[..n], &roughness[..n]], [&mut out[..n]]);
-            return n;
-        }
-        #[cfg(not(any(feature = "compact", target_os = "none", target_family = "wasm")))]
-        if self.p.reader.cubic_chunked() {
-            self.p
-                .cubic_batch::<2, 1>(p, [&mu[..n], &roughness[..n]], [&mut out[..n]]);
-            return n;
-        }
-        for ((o, &m), &r) in out[..n].iter_mut().zip(mu).zip(roughness) {
-            *o = self.p.two1(p, m, r);
-        }
+        let x = [&mu[..n], &roughness[..n]];
+        self.p
+            .batch(p, x, [&mut out[..n]], |[m, r]| [self.p.two1(p, m, r)]);
         n
     }
 }
@@ -775,21 +789,9 @@ impl<B: AsRef<[u8]>> AverageAlbedoTable<B> {
     pub fn e_avg_batch(&self, roughness: &[f32], out: &mut [f32]) -> usize {
         let p = self.payload();
         let n = roughness.len().min(out.len());
-        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
-        if self.p.reader.chunked() {
-            self.p
-                .sample_batch::<1, 1>(p, [&roughness[..n]], [&mut out[..n]]);
-            return n;
-        }
-        #[cfg(not(any(feature = "compact", target_os = "none", target_family = "wasm")))]
-        if self.p.reader.cubic_chunked() {
-            self.p
-                .cubic_batch::<1, 1>(p, [&roughness[..n]], [&mut out[..n]]);
-            return n;
-        }
-        for (o, &r) in out[..n].iter_mut().zip(roughness) {
-            *o = self.p.one(p, r);
-        }
+        self.p.batch(p, [&roughness[..n]], [&mut out[..n]], |[r]| {
+            [self.p.one(p, r)]
+        });
         n
     }
 }
