@@ -144,6 +144,88 @@ impl Fast2 {
         }
     }
 
+    /// [`Fast2::ab`] over slices of one length (`a[k], b[k]` at `(x[k], y[k])`), eight
+    /// queries at a time with AVX2 when the processor has it: `false` (nothing written)
+    /// unless the table takes the `Sqrt` form and AVX2 is there. Bit for bit the scalar
+    /// lookup: the eight lanes perform its IEEE operations in its order, and the tail of
+    /// fewer than eight queries is the scalar lookup itself.
+    #[cfg(feature = "std")]
+    #[inline(always)]
+    pub(crate) fn batch(
+        &self,
+        reader: &Reader,
+        data: &[u8],
+        base: usize,
+        x: &[f32],
+        y: &[f32],
+        out: [&mut [f32]; 2],
+    ) -> bool {
+        let n = x.len();
+        let [a, b] = out;
+        if self.kind != Kind::Sqrt || y.len() != n || a.len() != n || b.len() != n {
+            return false;
+        }
+        let Some(limit) = self.limit(data, base) else {
+            return false;
+        };
+        crate::reader::wide(
+            #[inline(always)]
+            // SAFETY: `avx2` is true only where the processor has AVX2 (`wide`'s check).
+            |avx2| avx2 && unsafe { self.batch_avx2(reader, data, base, limit, x, y, [a, b]) },
+        )
+    }
+
+    /// The largest row offset (from `base`) whose two rows (the second `row` bytes on) end
+    /// in `data`, at most 2³¹ − 1; `None` if no row fits.
+    #[cfg(feature = "std")]
+    fn limit(&self, data: &[u8], base: usize) -> Option<u32> {
+        let l = data.len().checked_sub(base + self.row as usize + 8)?;
+        u32::try_from(l.min(i32::MAX as usize)).ok()
+    }
+
+    /// [`Fast2::batch`] past its checks: `limit` is the largest row offset whose two rows
+    /// end in `data` (below 2³¹), the slices have one length, and the table takes the
+    /// `Sqrt` form. Returns `true`.
+    ///
+    /// # Safety
+    /// The processor supports AVX2.
+    #[cfg(feature = "std")]
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    unsafe fn batch_avx2(
+        &self,
+        reader: &Reader,
+        data: &[u8],
+        base: usize,
+        limit: u32,
+        x: &[f32],
+        y: &[f32],
+        out: [&mut [f32]; 2],
+    ) -> bool {
+        let [a, b] = out;
+        let n = x.len();
+        // SAFETY: `data` from `base`, base ≤ len (`limit` exists).
+        let p = unsafe { data.as_ptr().add(base) };
+        let mut k = 0;
+        while k + 8 <= n {
+            let (xs, ys) = (&x[k..k + 8], &y[k..k + 8]);
+            let (ak, bk) = (&mut a[k..k + 8], &mut b[k..k + 8]);
+            // SAFETY: AVX2 (the caller's contract), eight values per slice, and a row offset
+            // at ≤ limit reads bytes base + at up to base + at + row + 8 ≤ len; limit < 2³¹.
+            let done = unsafe { wide8::eight(self, reader, p, limit, xs, ys, [ak, bk]) };
+            if !done {
+                for j in k..k + 8 {
+                    (a[j], b[j]) = self.ab_in::<true>(reader, data, base, x[j], y[j]);
+                }
+            }
+            k += 8;
+        }
+        for j in k..n {
+            (a[j], b[j]) = self.ab_in::<true>(reader, data, base, x[j], y[j]);
+        }
+        true
+    }
+
     /// [`Fast2::ab`] of a `Mixed` table (no shipped table is one; marked cold so that the
     /// `Sqrt` test comes first).
     #[cold]
@@ -260,6 +342,131 @@ impl Fast2 {
             let b = _mm_shuffle_ps(v, v, 0b01);
             (_mm_cvtss_f32(v), _mm_cvtss_f32(b))
         }
+    }
+}
+
+/// Eight lookups at once: [`Fast2::batch`]'s AVX2 body.
+#[cfg(feature = "std")]
+mod wide8 {
+    use super::{Fast2, Reader};
+    use core::arch::x86_64::{
+        __m256, __m256i, _mm256_add_epi32, _mm256_add_ps, _mm256_and_si256, _mm256_castps_si256,
+        _mm256_castsi128_si256, _mm256_castsi256_ps, _mm256_cmpgt_epi32, _mm256_cvtepi32_ps,
+        _mm256_cvttps_epi32, _mm256_extract_epi32, _mm256_inserti128_si256, _mm256_loadu_ps,
+        _mm256_max_ps, _mm256_min_ps, _mm256_movemask_epi8, _mm256_mul_ps, _mm256_set1_epi32,
+        _mm256_set1_ps, _mm256_setzero_ps, _mm256_shuffle_ps, _mm256_sll_epi32, _mm256_slli_epi32,
+        _mm256_sqrt_ps, _mm256_srli_epi32, _mm256_storeu_ps, _mm256_sub_epi32, _mm256_sub_ps,
+        _mm_castpd_si128, _mm_castsi128_pd, _mm_cvtsi32_si128, _mm_loadh_pd, _mm_loadl_epi64,
+    };
+
+    /// Node and fraction of eight coordinates on one `Sqrt` axis: [`Fast2::ab_in`]'s lane
+    /// steps (the same IEEE operations, eight lanes wide).
+    #[inline(always)]
+    unsafe fn cells(f: &Fast2, k: usize, x: __m256) -> (__m256i, __m256) {
+        let d = _mm256_max_ps(
+            _mm256_setzero_ps(),
+            _mm256_sub_ps(x, _mm256_set1_ps(f.lo[k])),
+        );
+        let w = _mm256_sqrt_ps(_mm256_min_ps(_mm256_set1_ps(f.span[k]), d));
+        let t = _mm256_mul_ps(_mm256_set1_ps(f.a[k]), w);
+        let i = _mm256_cvttps_epi32(_mm256_min_ps(t, _mm256_set1_ps(f.last_cell[k])));
+        (i, _mm256_sub_ps(t, _mm256_cvtepi32_ps(i)))
+    }
+
+    /// The 8-byte rows at `p + at[k]` for queries (k, k + 1, k + 4, k + 5), k = 0 or 2:
+    /// lanes 0–1 of the result hold queries k and k + 1, lanes 2–3 queries k + 4, k + 5.
+    #[inline(always)]
+    unsafe fn rows4(p: *const u8, at: &[u32; 8], k: usize) -> __m256i {
+        let two = |j: usize| {
+            let lo = _mm_loadl_epi64(p.add(at[j] as usize).cast());
+            _mm_castpd_si128(_mm_loadh_pd(
+                _mm_castsi128_pd(lo),
+                p.add(at[j + 1] as usize).cast(),
+            ))
+        };
+        _mm256_inserti128_si256::<1>(_mm256_castsi128_si256(two(k)), two(k + 4))
+    }
+
+    /// Channels A and B of eight queries of a `Sqrt` table whose payload starts at `p`, or
+    /// `None` when a row would lie past `limit` (the largest valid row offset; impossible
+    /// for a parsed table).
+    ///
+    /// # Safety
+    /// AVX2 is available, and every 8-byte read at `p + at` and `p + at + row` with
+    /// at ≤ `limit` lies in one allocation; `limit` < 2³¹.
+    #[target_feature(enable = "avx2")]
+    #[inline]
+    pub(super) unsafe fn eight(
+        f: &Fast2,
+        reader: &Reader,
+        p: *const u8,
+        limit: u32,
+        x: &[f32],
+        y: &[f32],
+        out: [&mut [f32]; 2],
+    ) -> bool {
+        let (i0, f0) = cells(f, 0, _mm256_loadu_ps(x.as_ptr()));
+        let (i1, f1) = cells(f, 1, _mm256_loadu_ps(y.as_ptr()));
+        // Byte offset of node (i0, i1): 4·i0 + i1 · 2^row_shift, as in the scalar path.
+        let at = _mm256_add_epi32(
+            _mm256_slli_epi32::<2>(i0),
+            _mm256_sll_epi32(i1, _mm_cvtsi32_si128(i32::from(f.row_shift))),
+        );
+        if _mm256_movemask_epi8(_mm256_cmpgt_epi32(at, _mm256_set1_epi32(limit as i32))) != 0 {
+            return false;
+        }
+        let o: [u32; 8] = [
+            _mm256_extract_epi32::<0>(at) as u32,
+            _mm256_extract_epi32::<1>(at) as u32,
+            _mm256_extract_epi32::<2>(at) as u32,
+            _mm256_extract_epi32::<3>(at) as u32,
+            _mm256_extract_epi32::<4>(at) as u32,
+            _mm256_extract_epi32::<5>(at) as u32,
+            _mm256_extract_epi32::<6>(at) as u32,
+            _mm256_extract_epi32::<7>(at) as u32,
+        ];
+        let q = p.add(f.row as usize);
+        // Row words: node 0 (A₀ B₀) and node 1 (A₁ B₁) of each query, rows 0 and 1, in
+        // query order (the shuffles pick the even, then the odd words of queries
+        // 0 1 | 4 5 and 2 3 | 6 7).
+        let (a0, b0) = (rows4(p, &o, 0), rows4(p, &o, 2));
+        let (a1, b1) = (rows4(q, &o, 0), rows4(q, &o, 2));
+        let split = |a: __m256i, b: __m256i, imm: bool| {
+            let (a, b) = (_mm256_castsi256_ps(a), _mm256_castsi256_ps(b));
+            _mm256_castps_si256(if imm {
+                _mm256_shuffle_ps::<0b11_01_11_01>(a, b)
+            } else {
+                _mm256_shuffle_ps::<0b10_00_10_00>(a, b)
+            })
+        };
+        let words = [
+            [split(a0, b0, false), split(a0, b0, true)],
+            [split(a1, b1, false), split(a1, b1, true)],
+        ];
+        let low = _mm256_set1_epi32(0xffff);
+        for (c, o) in out.into_iter().enumerate() {
+            let num = |w: __m256i| {
+                if c == 0 {
+                    _mm256_and_si256(w, low)
+                } else {
+                    _mm256_srli_epi32::<16>(w)
+                }
+            };
+            // Along axis 0 per row (p₁ − p₀ formed exactly in integers), then axis 1, then
+            // offset + scale · v: the scalar path's operations in its order.
+            let r = words.map(|[n0, n1]| {
+                let (q0, q1) = (num(n0), num(n1));
+                let d = _mm256_cvtepi32_ps(_mm256_sub_epi32(q1, q0));
+                _mm256_add_ps(_mm256_cvtepi32_ps(q0), _mm256_mul_ps(f0, d))
+            });
+            let v = _mm256_add_ps(r[0], _mm256_mul_ps(f1, _mm256_sub_ps(r[1], r[0])));
+            let v = _mm256_add_ps(
+                _mm256_set1_ps(reader.offset[c]),
+                _mm256_mul_ps(_mm256_set1_ps(reader.scale[c]), v),
+            );
+            _mm256_storeu_ps(o.as_mut_ptr(), v);
+        }
+        true
     }
 }
 
@@ -380,7 +587,61 @@ mod tests {
         let v = f.ab(&p.reader, short, 0, l0.hi, l1.hi).unwrap();
         assert!(v.0.is_nan() && v.1.is_nan());
         assert!(!f.ab(&p.reader, short, 0, l0.lo, l1.lo).unwrap().0.is_nan());
+        if f.kind == Kind::Sqrt {
+            batch_equals_scalar(&f, &p.reader, bytes, hl, &xs, &ys);
+        }
         f.kind
+    }
+
+    /// The eight-lane batch (where the processor has AVX2) against `Fast2::ab`, bit for
+    /// bit: every (x, y) of the coordinate product in query order, a tail of 1–7, and a
+    /// payload one byte short, whose chunks that touch the last block fall back to the
+    /// scalar lookup (NaN there).
+    fn batch_equals_scalar(f: &Fast2, r: &Reader, bytes: &[u8], hl: usize, xs: &[f32], ys: &[f32]) {
+        if !std::is_x86_feature_detected!("avx2") {
+            return;
+        }
+        let (mut x, mut y) = (Vec::new(), Vec::new());
+        for &a in xs {
+            for &b in ys {
+                x.push(a);
+                y.push(b);
+            }
+        }
+        let (l0, l1) = (&r.lanes[0], &r.lanes[1]);
+        let short = &bytes[..bytes.len() - 1];
+        for (data, n) in [(bytes, x.len()), (bytes, 13), (short, 40)] {
+            let (x, mut y) = (&x[x.len() - n..], y[y.len() - n..].to_vec());
+            if data.len() < bytes.len() {
+                // Every third query at the far corner (its block is the short one).
+                let mut x = x.to_vec();
+                for k in (0..n).step_by(3) {
+                    (x[k], y[k]) = (l0.hi, l1.hi);
+                }
+                return run(f, r, data, hl, &x, &y);
+            }
+            run(f, r, data, hl, x, &y);
+        }
+        fn run(f: &Fast2, r: &Reader, data: &[u8], hl: usize, x: &[f32], y: &[f32]) {
+            let n = x.len();
+            let (mut a, mut b) = (std::vec![-1.0; n], std::vec![-1.0; n]);
+            let limit = f.limit(data, hl).unwrap();
+            // SAFETY: the processor has AVX2 (checked above).
+            assert!(unsafe { f.batch_avx2(r, data, hl, limit, x, y, [&mut a, &mut b]) });
+            for k in 0..n {
+                let want = f.ab(r, data, hl, x[k], y[k]).unwrap();
+                let free = x[k].is_nan() && y[k].is_nan() && x[k].to_bits() != y[k].to_bits();
+                let ok = same((a[k], b[k]), [want.0, want.1])
+                    || free && a[k].is_nan() && b[k].is_nan() && want.0.is_nan();
+                assert!(
+                    ok,
+                    "{k} ({:e}, {:e}): {:?} vs {want:?}",
+                    x[k],
+                    y[k],
+                    (a[k], b[k])
+                );
+            }
+        }
     }
 
     fn asset(name: &str) -> Vec<u8> {

@@ -751,6 +751,21 @@ impl<B: AsRef<[u8]>> DfgTable<B> {
     pub fn ab_batch(&self, mu: &[f32], roughness: &[f32], a: &mut [f32], b: &mut [f32]) -> usize {
         let p = self.payload();
         let n = mu.len().min(roughness.len()).min(a.len()).min(b.len());
+        #[cfg(all(
+            feature = "std",
+            target_arch = "x86_64",
+            not(any(target_os = "none", target_family = "wasm"))
+        ))]
+        if self.p.fast2.batch(
+            &self.p.reader,
+            self.bytes.as_ref(),
+            self.p.header_len,
+            &mu[..n],
+            &roughness[..n],
+            [&mut a[..n], &mut b[..n]],
+        ) {
+            return n;
+        }
         let x = [&mu[..n], &roughness[..n]];
         self.p.batch(p, x, [&mut a[..n], &mut b[..n]], |[m, r]| {
             let (a, b) = self.p.two(p, m, r);
