@@ -322,12 +322,19 @@ fn kernel_target_rows(
         Some(x) if (at_most && x <= limit) || (!at_most && x >= limit) => "**met**",
         Some(_) => "**missed**",
     };
+    let per = |id: &str| r.est.get(id).map(Est::per_call);
+    // "a / b = x×" of two criterion times.
+    let times = |a: Option<f64>, b: Option<f64>| {
+        Some(a?)
+            .zip(b)
+            .map(|(a, b)| format!("{} / {} = {:.2}×", fmt_ns(a), fmt_ns(b), a / b))
+    };
     let mut rows = String::new();
-    // Instruction ratio of `k` over `base`, at most `limit`.
-    let mut ratio_row = |what: String, k: &str, base: &str, limit: f64| {
+    // Instruction ratio of `k` over `base`, at most `limit`; `extra` follows the ratio.
+    let mut ratio_row = |what: String, k: &str, base: &str, limit: f64, extra: String| {
         let x = ratio(ir(k), ir(base));
         let measured = match (ir(k), ir(base)) {
-            (Some(a), Some(b)) => format!("{a:.0} / {b:.0} = {:.2}×", a / b),
+            (Some(a), Some(b)) => format!("{a:.0} / {b:.0} = {:.2}×{extra}", a / b),
             _ => "–".into(),
         };
         rows.push_str(&row(&[
@@ -342,18 +349,21 @@ fn kernel_target_rows(
         "dfg_lut",
         "floor_bilinear2",
         1.5,
+        String::new(),
     );
     ratio_row(
         "`g_lut2d_linear` instructions vs the floor".into(),
         "g_lut2d_linear",
         "floor_bilinear2",
         2.0,
+        String::new(),
     );
     ratio_row(
         "`g_lut3d_linear` instructions vs the floor".into(),
         "g_lut3d_linear",
         "floor_bilinear2",
         3.0,
+        String::new(),
     );
     // Every `_std` entry against its no_std twin: the named ones always, others when present.
     let mut std_names: Vec<String> = vec!["dfg_lut_std".into(), "g_lut2d_linear_std".into()];
@@ -366,24 +376,16 @@ fn kernel_target_rows(
     }
     // (The verdict is on instructions: both run the same lookup code, so their times differ
     // by the run's noise; the times of this run are shown beside them.)
-    let per = |id: &str| r.est.get(id).map(Est::per_call);
     for k in &std_names {
         let twin = k.trim_end_matches("_std");
-        let time = match (per(&format!("lut/{k}")), per(&format!("lut/{twin}"))) {
-            (Some(a), Some(b)) => format!("; time {} / {} = {:.2}×", fmt_ns(a), fmt_ns(b), a / b),
-            _ => String::new(),
-        };
-        let x = ratio(ir(k), ir(twin));
-        let measured = match (ir(k), ir(twin)) {
-            (Some(a), Some(b)) => format!("{a:.0} / {b:.0} = {:.2}×{time}", a / b),
-            _ => "–".into(),
-        };
-        rows.push_str(&row(&[
+        let time = times(per(&format!("lut/{k}")), per(&format!("lut/{twin}")));
+        ratio_row(
             format!("`{k}` instructions vs its no_std twin `{twin}`"),
-            measured,
-            "≤ 1.2×".into(),
-            judge(x, 1.2, true).into(),
-        ]));
+            k,
+            twin,
+            1.2,
+            time.map_or(String::new(), |t| format!("; time {t}")),
+        );
     }
     // Batch entry points against their scalar twins: throughput ratio from criterion (the
     // verdict), instructions per lookup from callgrind (a `_batch` call covers BATCH inputs).
@@ -405,12 +407,7 @@ fn kernel_target_rows(
         };
         rows.push_str(&row(&[
             format!("`{k}_batch` throughput vs scalar `{k}` (criterion)"),
-            match (ts, tb) {
-                (Some(a), Some(b)) => {
-                    format!("{} / {} = {:.2}×{ins}", fmt_ns(a), fmt_ns(b), a / b)
-                }
-                _ => "–".into(),
-            },
+            times(ts, tb).map_or("–".into(), |t| format!("{t}{ins}")),
             "≥ 3×".into(),
             judge(x, 3.0, false).into(),
         ]));
@@ -419,10 +416,7 @@ fn kernel_target_rows(
     // verdict takes the larger ratio.
     let (lut_ns, lut_karis_ns) = (per("lut/dfg_lut"), per("lut/dfg_karis"));
     let t = ratio(dfg_lut_ns, karis_ns).zip(ratio(lut_ns, lut_karis_ns));
-    let pair = |a: Option<f64>, b: Option<f64>| match (a, b) {
-        (Some(a), Some(b)) => format!("{} / {} = {:.2}×", fmt_ns(a), fmt_ns(b), a / b),
-        _ => "–".into(),
-    };
+    let pair = |a, b| times(a, b).unwrap_or_else(|| "–".into());
     rows.push_str(&row(&[
         "`dfg_lut` time (speed tier) vs Karis's analytic fit (criterion: `dfg/lut_linear_f32` vs `dfg/karis_approx_f32`, and `lut/dfg_lut` vs `lut/dfg_karis`)".to_string(),
         format!(
