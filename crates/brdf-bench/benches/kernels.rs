@@ -12,6 +12,7 @@ use brdf_core::fresnel::Fresnel;
 use brdf_core::masking::{self, ModifiedG};
 use brdf_core::models::*;
 use brdf_core::quadrature::{GaussLegendre, DEFAULT_NODES};
+use brdf_core::roughness::{alpha_from_perceptual, beckmann_m_from_sigma};
 use brdf_core::split_sum::{dfg_ggx, InnerRule, OuterRule};
 use brdf_core::{albedo, Real, Vec3};
 use brdf_lut::{DfgTable, GTable, GTable3, LutView};
@@ -65,7 +66,7 @@ fn g_direct<T: Real>(c: &mut Criterion) {
 /// Closed forms (Smith, Blinn) and the modified G from dot products, shader inputs.
 fn g_closed<T: Real>(c: &mut Criterion) {
     let d = dots_pairs::<T>(BATCH);
-    let m = T::from_f64(std::f64::consts::SQRT_2 * SIGMA);
+    let m = beckmann_m_from_sigma(T::from_f64(SIGMA));
     let mut grp = c.benchmark_group(format!("g_closed_{}", type_tag::<T>()));
     grp.throughput(Throughput::Elements(BATCH as u64));
     grp.bench_function("smith_beckmann_correlated", |b| {
@@ -286,7 +287,7 @@ fn dfg(c: &mut Criterion) {
     let models: Vec<(f64, Ggx<f64>)> = few
         .iter()
         .map(|&(m, r)| {
-            let a = (r * r).max(1e-4);
+            let a = alpha_from_perceptual(r).max(1e-4);
             let g = Ggx::new(
                 Rgb::splat(1.0),
                 a,
@@ -329,7 +330,7 @@ fn batches<T: brdf_core::batch::BatchReal>(c: &mut Criterion) {
     let mut out = vec![T::ZERO; BATCH_LEN];
     let (mut o1, mut o2) = (vec![T::ZERO; BATCH_LEN], vec![T::ZERO; BATCH_LEN]);
     let g = ModifiedG::<T>::new(T::from_f64(SIGMA)).unwrap();
-    let m = T::from_f64(std::f64::consts::SQRT_2 * SIGMA);
+    let m = beckmann_m_from_sigma(T::from_f64(SIGMA));
     let alpha = T::from_f64(0.3);
     let ts = TorranceSparrow::<T>::new(
         T::from_f64(SIGMA),

@@ -49,7 +49,7 @@ impl<T: Real, R: Rule> SlopeDistribution<T, R> {
     /// σ ∈ [0.05, 1]; any finite σ > 0 gives finite results.
     pub fn new(sigma: T) -> Result<Self, ParamError> {
         let sigma = check_range("sigma", sigma, T::ZERO, true, T::INFINITY, "(0, ∞)")?;
-        let sqrt2_sigma = T::from_f64(core::f64::consts::SQRT_2) * sigma;
+        let sqrt2_sigma = crate::roughness::beckmann_m_from_sigma(sigma);
         let vc = T::from_f64(V_CUT);
         let w = |v| slope_weight(v, sqrt2_sigma);
         // f64: the integration the modified G uses (bit for bit the same for the same

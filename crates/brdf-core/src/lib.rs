@@ -18,6 +18,7 @@ pub mod microfacet;
 pub mod models;
 pub mod quadrature;
 pub mod real;
+pub mod roughness;
 pub mod sampling;
 pub mod split_sum;
 

@@ -27,6 +27,7 @@ use crate::distribution::{d_beckmann, d_ggx};
 use crate::geometry::Dots;
 use crate::masking::{g_smith_beckmann_correlated, g_smith_ggx_correlated, ModifiedG};
 use crate::quadrature::{GaussLegendre, Rule};
+use crate::roughness::{alpha_from_perceptual, beckmann_m_from_sigma};
 use crate::Real;
 
 /// The outer (ξ) rule of the default split-sum kernels.
@@ -260,7 +261,7 @@ pub fn dfg_ggx<T: Real, RO: Rule, RI: Rule>(mu: T, r: T) -> (T, T) {
         return (T::NAN, T::NAN);
     }
     let r = r.clamp(T::ZERO, T::ONE);
-    let alpha = r * r;
+    let alpha = alpha_from_perceptual(r);
     if !(alpha > T::from_f64(1e-7)) {
         return mirror(mu);
     }
@@ -287,7 +288,7 @@ pub fn dfg_beckmann<T: Real, RO: Rule, RI: Rule>(mu: T, m: T) -> (T, T) {
 /// Torrance–Sparrow split sum (A, B) for Gaussian slopes of RMS slope σ (Beckmann D,
 /// m = √2σ, paper eq 3 / docs/conventions.md §5) with height-correlated Smith G (§6).
 pub fn dfg_ts_smith<T: Real, RO: Rule, RI: Rule>(mu: T, sigma: T) -> (T, T) {
-    dfg_beckmann::<T, RO, RI>(mu, T::from_f64(core::f64::consts::SQRT_2) * sigma)
+    dfg_beckmann::<T, RO, RI>(mu, beckmann_m_from_sigma(sigma))
 }
 
 /// Torrance–Sparrow split sum (A, B) for Gaussian slopes of RMS slope σ with the paper's
@@ -298,7 +299,7 @@ pub fn dfg_ts_modified<T: Real, RO: Rule, RI: Rule>(mu: T, sigma: T) -> (T, T) {
     let Ok(gm) = ModifiedG::<T>::new(sigma) else {
         return (T::NAN, T::NAN);
     };
-    let m = T::from_f64(core::f64::consts::SQRT_2) * sigma;
+    let m = beckmann_m_from_sigma(sigma);
     split_sum::<T, RO, RI>(mu, Ndf::Beckmann(m), |d| gm.g_dots(d))
 }
 
@@ -326,7 +327,7 @@ pub fn e_beckmann<T: Real, RO: Rule, RI: Rule>(mu: T, r: T) -> T {
         return T::NAN;
     }
     let r = r.clamp(T::ZERO, T::ONE);
-    let (a, b) = dfg_beckmann::<T, RO, RI>(mu, r * r);
+    let (a, b) = dfg_beckmann::<T, RO, RI>(mu, alpha_from_perceptual(r));
     a + b
 }
 

@@ -8,6 +8,7 @@
 
 use brdf_bench::*;
 use brdf_core::masking::{self, ModifiedG};
+use brdf_core::roughness::beckmann_m_from_sigma;
 use brdf_core::split_sum::{dfg_ggx, InnerRule, OuterRule};
 use brdf_lut::{AlbedoTable, AverageAlbedoTable, DfgTable, GTable, GTable3};
 use std::hint::black_box;
@@ -106,7 +107,7 @@ fn main() {
             run!(|k: usize| t.g(black_box(ti32[k]), black_box(tr32[k])))
         }
         "smith_beckmann_f32" => {
-            let m = (std::f64::consts::SQRT_2 * SIGMA) as f32;
+            let m = beckmann_m_from_sigma(SIGMA) as f32;
             run!(|k: usize| masking::g_smith_beckmann_correlated(
                 black_box(d32[k].n_i),
                 black_box(d32[k].n_o),

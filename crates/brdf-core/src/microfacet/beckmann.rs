@@ -37,7 +37,7 @@ impl<T: Real> Beckmann<T> {
     }
     /// From the paper's RMS slope σ: α = √2 σ (isotropic, checked).
     pub fn from_sigma(sigma: T) -> Result<Self, ParamError> {
-        Self::isotropic(T::from_f64(core::f64::consts::SQRT_2) * sigma)
+        Self::isotropic(crate::roughness::beckmann_m_from_sigma(sigma))
     }
     /// Any widths, clamped into [ε², 1/ε²] (module docs of [`super`]); NaN stays NaN.
     pub fn clamped(ax: T, ay: T) -> Self {

@@ -100,7 +100,7 @@ impl<T: Real, R: Rule> TorranceSparrow<T, R> {
         )?;
         Self::build(
             sigma,
-            T::from_f64(sqrt2) * sigma,
+            crate::roughness::beckmann_m_from_sigma(sigma),
             g_term,
             fresnel,
             ks,
@@ -117,7 +117,7 @@ impl<T: Real, R: Rule> TorranceSparrow<T, R> {
         albedo: T,
     ) -> Result<Self, ParamError> {
         let alpha = crate::microfacet::check_alpha("alpha", alpha)?;
-        let sigma = alpha / T::from_f64(core::f64::consts::SQRT_2);
+        let sigma = crate::roughness::sigma_from_beckmann_m(alpha);
         Self::build(sigma, alpha, g_term, fresnel, ks, albedo)
     }
     fn build(
