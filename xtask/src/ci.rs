@@ -5,7 +5,8 @@
 //! themselves: the published LUTs (`cargo xtask anchors`, from npm and crates.io), the web
 //! tools (`.ci/install-web.sh`), QEMU (`cargo xtask firmware` runs `.ci/install-qemu.sh`), the
 //! MSRV toolchain (`rustup toolchain install`), SciPy for the benchmark's peer (a venv under
-//! `.cache/`, made by `cargo xtask bench`).
+//! `.cache/`, made by `cargo xtask bench`), the Python package's build and test tools (a venv
+//! under `.cache/`, made by `.ci/python.sh`).
 
 use anyhow::{bail, Result};
 use std::process::Command;
@@ -164,6 +165,11 @@ const STEPS: &[Step] = &[
     Step {
         name: "C ABI: header up to date, C example on QEMU and host, bit-exact",
         cmd: &["cargo", "xtask", "cffi"],
+        slow: true,
+    },
+    Step {
+        name: "Python package: pip install ./crates/brdf-py into a venv under .cache/, pytest",
+        cmd: &["bash", ".ci/python.sh"],
         slow: true,
     },
     Step {
