@@ -211,8 +211,12 @@ fn contiguous<'a, T: Float>(v: &'a ArrayViewD<'a, T>, shape: &[usize]) -> PyResu
     Ok(Cow::Owned(out))
 }
 
-/// The result arrays: component `k` of output `j` is `outs[offset_j + k]`; a width-3 output
-/// becomes shape `shape + (3,)`.
+/// The width of an output that is one number per element (shape = the broadcast shape); a
+/// width `w` ≥ 1 adds a last axis of length `w`.
+pub const SCALAR: usize = 0;
+
+/// The result arrays: the components of each output in turn; a [`SCALAR`] output has the
+/// broadcast shape, a width-`w` output the broadcast shape + `(w,)`.
 fn assemble<'py, T: Float>(
     py: Python<'py>,
     shape: &[usize],
@@ -223,7 +227,7 @@ fn assemble<'py, T: Float>(
     let mut it = outs.into_iter();
     let mut res = Vec::new();
     for &w in widths {
-        if w == 1 {
+        if w == SCALAR {
             let v = it.next().unwrap_or_default();
             res.push(numpy::PyArray1::from_vec(py, v).reshape(shape.to_vec())?.into_any());
         } else {
@@ -269,7 +273,7 @@ fn run_typed<'py, T: Float, K: Kernel>(
         .map(|(v, _)| contiguous(v, &shape))
         .collect::<PyResult<_>>()?;
     let mut outs: Vec<Vec<T>> = Vec::new();
-    for _ in 0..widths.iter().sum::<usize>() {
+    for _ in 0..widths.iter().map(|&w| w.max(1)).sum::<usize>() {
         outs.push(alloc::<T>(n)?);
     }
     let status = {
@@ -282,15 +286,15 @@ fn run_typed<'py, T: Float, K: Kernel>(
 }
 
 /// Evaluates `k` on `args` with NumPy broadcasting and returns one object per output width
-/// (an array; a Python float when every argument is a Python number and the output is
-/// scalar per element).
+/// (an array; a Python float when every argument is a Python number and every output is
+/// [`SCALAR`]).
 pub fn run<'py, K: Kernel>(
     py: Python<'py>,
     args: &[Arg<'_, 'py>],
     widths: &[usize],
     k: &K,
 ) -> PyResult<Vec<Bound<'py, PyAny>>> {
-    if args.iter().all(|a| a.width == 1 && is_number(a.obj)) && widths.iter().all(|&w| w == 1) {
+    if args.iter().all(|a| a.width == 1 && is_number(a.obj)) && widths.iter().all(|&w| w == SCALAR) {
         return run_scalar(py, args, widths, k);
     }
     if wants_f32(py, args)? {

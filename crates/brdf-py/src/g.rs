@@ -2,7 +2,7 @@
 //! extension from dot products), Blinn's V-groove G and Smith's G, each a thin [`Kernel`]
 //! over `brdf_core::batch` or the scalar kernels of `brdf_core::masking`.
 
-use crate::arrays::{self, num, Float, Kernel};
+use crate::arrays::{self, num, Float, Kernel, SCALAR};
 use brdf_core::batch::{self, DotsSoa};
 use brdf_core::masking::{self, Convention, ModifiedG};
 use brdf_core::quadrature::{GaussLegendre, Rule, NODE_COUNTS};
@@ -52,7 +52,7 @@ struct Modified {
 impl Modified {
     fn with<T: Float, R: Rule>(&self, inp: &[&[T]], out: &mut [&mut [T]]) -> Result<(), String> {
         let g = ModifiedG::<T, R>::new(T::from_f64(self.sigma))
-            .map_err(|e| format!("argument `sigma`: {e} (0, inf)"))?
+            .map_err(|e| format!("argument `sigma` in {}: {e}", T::DTYPE))?
             .with_convention(self.convention);
         let e = |e: batch::BatchError| e.to_string();
         match (self.dots, self.terms, inp, out) {
@@ -88,9 +88,14 @@ impl Kernel for Modified {
 
 /// Checks σ, the convention and the node count before any array work.
 fn modified(sigma: f64, conv: &str, nodes: usize, dots: bool, terms: bool) -> PyResult<Modified> {
-    if !(sigma.is_finite() && sigma > 0.0) {
+    if let Err(e) = ModifiedG::<f64>::new(sigma) {
+        // The accepted range, as the checked constructor states it for a σ above it.
+        let range = match ModifiedG::<f64>::new(2.0 * ModifiedG::<f64>::SIGMA_MAX) {
+            Err(brdf_core::ParamError::OutOfRange { range, .. }) => range,
+            _ => "(0, ∞)",
+        };
         return Err(PyValueError::new_err(format!(
-            "argument `sigma` = {sigma} is outside its range (0, inf)"
+            "argument `sigma` = {sigma} is outside its range {range} ({e})"
         )));
     }
     if !NODE_COUNTS.contains(&nodes) {
@@ -116,7 +121,7 @@ fn modified(sigma: f64, conv: &str, nodes: usize, dots: bool, terms: bool) -> Py
 ///     (θr > 0 on the forward side); broadcast together. Out-of-range angles are clamped,
 ///     NaN gives NaN.
 /// sigma : float
-///     RMS slope σ > 0 of the Gaussian surface.
+///     RMS slope σ ∈ (0, 1e6] of the Gaussian surface.
 /// convention : {"reciprocal", "printed"}
 ///     "reciprocal" (default) or eq 12 as printed in the paper.
 /// nodes : int
@@ -133,7 +138,7 @@ fn modified(sigma: f64, conv: &str, nodes: usize, dots: bool, terms: bool) -> Py
 /// Raises
 /// ------
 /// ValueError
-///     σ not finite and > 0, unknown convention or node count, shapes that do not broadcast.
+///     σ outside (0, 1e6], unknown convention or node count, shapes that do not broadcast.
 #[pyfunction]
 #[pyo3(signature = (theta_i, theta_r, sigma, *, convention="reciprocal", nodes=10, terms=false))]
 pub fn g_modified<'py>(
@@ -146,7 +151,7 @@ pub fn g_modified<'py>(
     terms: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
     let k = modified(sigma, convention, nodes, false, terms)?;
-    let widths: &[usize] = if terms { &[1, 1, 1] } else { &[1] };
+    let widths: &[usize] = if terms { &[SCALAR; 3] } else { &[SCALAR] };
     let args = [num("theta_i", theta_i), num("theta_r", theta_r)];
     arrays::one_or_tuple(py, arrays::run(py, &args, widths, &k)?)
 }
@@ -159,7 +164,7 @@ pub fn g_modified<'py>(
 ///     n·wi, n·wo and wi·wo of unit vectors (z up); broadcast together. A direction at or
 ///     below the horizon gives 0, NaN gives NaN.
 /// sigma : float
-///     RMS slope σ > 0.
+///     RMS slope σ ∈ (0, 1e6].
 /// convention : {"reciprocal", "printed"}
 ///     As in :func:`g_modified`.
 /// nodes : int
@@ -190,7 +195,7 @@ pub fn g_modified_dots<'py>(
     terms: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
     let k = modified(sigma, convention, nodes, true, terms)?;
-    let widths: &[usize] = if terms { &[1, 1, 1] } else { &[1] };
+    let widths: &[usize] = if terms { &[SCALAR; 3] } else { &[SCALAR] };
     let args = [num("n_i", n_i), num("n_o", n_o), num("i_o", i_o)];
     arrays::one_or_tuple(py, arrays::run(py, &args, widths, &k)?)
 }
@@ -236,7 +241,7 @@ pub fn g_blinn<'py>(
     theta_r: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let args = [num("theta_i", theta_i), num("theta_r", theta_r)];
-    arrays::one_or_tuple(py, arrays::run(py, &args, &[1], &Blinn { dots: false })?)
+    arrays::one_or_tuple(py, arrays::run(py, &args, &[SCALAR], &Blinn { dots: false })?)
 }
 
 /// Blinn's V-groove G from dot products n·wi, n·wo, wi·wo.
@@ -258,7 +263,7 @@ pub fn g_blinn_dots<'py>(
     i_o: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let args = [num("n_i", n_i), num("n_o", n_o), num("i_o", i_o)];
-    arrays::one_or_tuple(py, arrays::run(py, &args, &[1], &Blinn { dots: true })?)
+    arrays::one_or_tuple(py, arrays::run(py, &args, &[SCALAR], &Blinn { dots: true })?)
 }
 
 /// Smith's G for Beckmann (width m) or GGX (width α), separable or height-correlated.
@@ -318,7 +323,7 @@ fn smith<'py>(
         correlated,
     };
     let args = [num("cos_i", cos_i), num("cos_o", cos_o)];
-    arrays::one_or_tuple(py, arrays::run(py, &args, &[1], &k)?)
+    arrays::one_or_tuple(py, arrays::run(py, &args, &[SCALAR], &k)?)
 }
 
 /// Smith's separable G = G1(θi) G1(θo).

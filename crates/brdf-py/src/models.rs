@@ -244,7 +244,7 @@ pub fn sample<'py>(
     }
     let (u0, u1) = (ua.get_item((pyo3::types::PyEllipsis::get(py), 0))?, ua.get_item((pyo3::types::PyEllipsis::get(py), 1))?);
     let args = [dir("wo", wo), arrays::num("u", &u0), arrays::num("u", &u1)];
-    let r = arrays::run(py, &args, &[3, 3, 1], &k)?;
+    let r = arrays::run(py, &args, &[3, 3, arrays::SCALAR], &k)?;
     arrays::one_or_tuple(py, r)
 }
 

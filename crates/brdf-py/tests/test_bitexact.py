@@ -25,7 +25,7 @@ RAD = math.pi / 180.0  # Rust's f64::to_radians multiplies by PI / 180.0
 
 
 def _xtask_g(sigma, extra=()):
-    rows = "\n".join(f"{a!r},{b!r},{sigma!r}" for a, b in zip(TI_G, TR_G))
+    rows = "\n".join(f"{float(a)!r},{float(b)!r},{sigma!r}" for a, b in zip(TI_G, TR_G))
     out = cargo(["xtask", "eval", "g", *extra], stdin="theta_i_deg,theta_r_deg,sigma\n" + rows + "\n")
     lines = out.strip().splitlines()
     assert lines[0].startswith("theta_i_deg,theta_r_deg,sigma,GM,GS,G,G_blinn")

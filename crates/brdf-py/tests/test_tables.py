@@ -25,7 +25,7 @@ SPECS = [
         "axes": {"mu": {"lo": 0.05, "hi": 1.0, "warp": "log", "placement": "texel-centre"}},
     },
     {"kind": "g-per-sigma", "sigma": 0.3, "res": "12x11", "samples": 200, "seed": 7},
-    {"kind": "e-avg", "model": "beckmann", "roughness": "alpha", "encoding": "f32", "axes": {"m": {"count": 6}}},
+    {"kind": "e-avg", "model": "beckmann", "roughness": "alpha", "encoding": "f32", "samples": 20, "axes": {"m": {"count": 6}}},
 ]
 
 
@@ -137,7 +137,7 @@ def test_lookup_errors():
         ({"kind": "split-sum", "model": "ggx", "encoding": "u8"}, "encoding"),
         ({"kind": "g-per-sigma"}, "sigma"),
         ({"kind": "split-sum", "model": "ggx", "masking": "modified"}, "Torrance"),
-        ({"kind": "split-sum", "model": "ggx", "res": "1x8"}, ""),
+        ({"kind": "split-sum", "model": "ggx", "res": "1x8"}, "axis mu.*at least 2"),
     ],
 )
 def test_spec_errors(spec, match):
