@@ -7,7 +7,9 @@
 
 use brdf_core::Real;
 use numpy::ndarray::{ArrayViewD, Axis, IxDyn};
-use numpy::{Element, PyArrayDescrMethods, PyArrayDyn, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods};
+use numpy::{
+    Element, PyArrayDescrMethods, PyArrayDyn, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods,
+};
 use pyo3::exceptions::{PyMemoryError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
@@ -155,7 +157,10 @@ pub fn alloc<T: Float>(n: usize) -> PyResult<Vec<T>> {
 }
 
 /// Each argument converted to a `T` array (a read-only NumPy array the views borrow from).
-fn convert<'py, T: Float>(py: Python<'py>, args: &[Arg<'_, 'py>]) -> PyResult<Vec<Bound<'py, PyArrayDyn<T>>>> {
+fn convert<'py, T: Float>(
+    py: Python<'py>,
+    args: &[Arg<'_, 'py>],
+) -> PyResult<Vec<Bound<'py, PyArrayDyn<T>>>> {
     let asarray = numpy_fn(py, "asarray")?;
     args.iter()
         .map(|a| {
@@ -177,7 +182,10 @@ fn convert<'py, T: Float>(py: Python<'py>, args: &[Arg<'_, 'py>]) -> PyResult<Ve
 use pyo3::types::IntoPyDict;
 
 /// The scalar components of every argument (x, y, z for a direction) as views.
-fn components<'a, T: Float>(args: &[Arg<'_, '_>], views: &'a [ArrayViewD<'a, T>]) -> Vec<(ArrayViewD<'a, T>, &'static str)> {
+fn components<'a, T: Float>(
+    args: &[Arg<'_, '_>],
+    views: &'a [ArrayViewD<'a, T>],
+) -> Vec<(ArrayViewD<'a, T>, &'static str)> {
     let mut v = Vec::new();
     for (a, view) in args.iter().zip(views) {
         if a.width == 3 {
@@ -229,7 +237,11 @@ fn assemble<'py, T: Float>(
     for &w in widths {
         if w == SCALAR {
             let v = it.next().unwrap_or_default();
-            res.push(numpy::PyArray1::from_vec(py, v).reshape(shape.to_vec())?.into_any());
+            res.push(
+                numpy::PyArray1::from_vec(py, v)
+                    .reshape(shape.to_vec())?
+                    .into_any(),
+            );
         } else {
             let parts: Vec<Vec<T>> = it.by_ref().take(w).collect();
             let mut inter = alloc::<T>(n * w)?;
@@ -294,7 +306,8 @@ pub fn run<'py, K: Kernel>(
     widths: &[usize],
     k: &K,
 ) -> PyResult<Vec<Bound<'py, PyAny>>> {
-    if args.iter().all(|a| a.width == 1 && is_number(a.obj)) && widths.iter().all(|&w| w == SCALAR) {
+    if args.iter().all(|a| a.width == 1 && is_number(a.obj)) && widths.iter().all(|&w| w == SCALAR)
+    {
         return run_scalar(py, args, widths, k);
     }
     if wants_f32(py, args)? {
@@ -330,7 +343,10 @@ fn run_scalar<'py, K: Kernel>(
 }
 
 /// One result, or a tuple of several.
-pub fn one_or_tuple<'py>(py: Python<'py>, mut v: Vec<Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyAny>> {
+pub fn one_or_tuple<'py>(
+    py: Python<'py>,
+    mut v: Vec<Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyAny>> {
     if v.len() == 1 {
         if let Some(x) = v.pop() {
             return Ok(x);

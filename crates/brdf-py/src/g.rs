@@ -14,16 +14,45 @@ use pyo3::prelude::*;
 macro_rules! with_rule {
     ($n:expr, $r:ident => $body:expr) => {
         match $n {
-            4 => { type $r = GaussLegendre<4>; $body }
-            6 => { type $r = GaussLegendre<6>; $body }
-            8 => { type $r = GaussLegendre<8>; $body }
-            10 => { type $r = GaussLegendre<10>; $body }
-            12 => { type $r = GaussLegendre<12>; $body }
-            16 => { type $r = GaussLegendre<16>; $body }
-            20 => { type $r = GaussLegendre<20>; $body }
-            24 => { type $r = GaussLegendre<24>; $body }
-            32 => { type $r = GaussLegendre<32>; $body }
-            n => Err(format!("argument `nodes` = {n} is not one of {NODE_COUNTS:?}")),
+            4 => {
+                type $r = GaussLegendre<4>;
+                $body
+            }
+            6 => {
+                type $r = GaussLegendre<6>;
+                $body
+            }
+            8 => {
+                type $r = GaussLegendre<8>;
+                $body
+            }
+            10 => {
+                type $r = GaussLegendre<10>;
+                $body
+            }
+            12 => {
+                type $r = GaussLegendre<12>;
+                $body
+            }
+            16 => {
+                type $r = GaussLegendre<16>;
+                $body
+            }
+            20 => {
+                type $r = GaussLegendre<20>;
+                $body
+            }
+            24 => {
+                type $r = GaussLegendre<24>;
+                $body
+            }
+            32 => {
+                type $r = GaussLegendre<32>;
+                $body
+            }
+            n => Err(format!(
+                "argument `nodes` = {n} is not one of {NODE_COUNTS:?}"
+            )),
         }
     };
 }
@@ -58,7 +87,11 @@ impl Modified {
         match (self.dots, self.terms, inp, out) {
             (false, false, [ti, tr], [o]) => batch::g_modified(&g, ti, tr, o).map_err(e),
             (true, false, [a, b, c], [o]) => {
-                let d = DotsSoa { n_i: a, n_o: b, i_o: c };
+                let d = DotsSoa {
+                    n_i: a,
+                    n_o: b,
+                    i_o: c,
+                };
                 batch::g_modified_dots(&g, d, o).map_err(e)
             }
             (false, true, [ti, tr], [gm, gs, gg]) => {
@@ -215,7 +248,11 @@ impl Kernel for Blinn {
                 Ok(())
             }
             (true, [a, b, c], [o]) => {
-                let d = DotsSoa { n_i: a, n_o: b, i_o: c };
+                let d = DotsSoa {
+                    n_i: a,
+                    n_o: b,
+                    i_o: c,
+                };
                 batch::g_blinn_dots(d, o).map_err(|e| e.to_string())
             }
             _ => Err("internal: argument count".into()),
@@ -241,7 +278,10 @@ pub fn g_blinn<'py>(
     theta_r: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let args = [num("theta_i", theta_i), num("theta_r", theta_r)];
-    arrays::one_or_tuple(py, arrays::run(py, &args, &[SCALAR], &Blinn { dots: false })?)
+    arrays::one_or_tuple(
+        py,
+        arrays::run(py, &args, &[SCALAR], &Blinn { dots: false })?,
+    )
 }
 
 /// Blinn's V-groove G from dot products n·wi, n·wo, wi·wo.
@@ -263,7 +303,10 @@ pub fn g_blinn_dots<'py>(
     i_o: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let args = [num("n_i", n_i), num("n_o", n_o), num("i_o", i_o)];
-    arrays::one_or_tuple(py, arrays::run(py, &args, &[SCALAR], &Blinn { dots: true })?)
+    arrays::one_or_tuple(
+        py,
+        arrays::run(py, &args, &[SCALAR], &Blinn { dots: true })?,
+    )
 }
 
 /// Smith's G for Beckmann (width m) or GGX (width α), separable or height-correlated.

@@ -25,7 +25,11 @@ fn find(name: &str) -> PyResult<&'static ModelSpec> {
 fn put(p: &catalogue::ParamSpec, v: &Bound<'_, PyAny>, flat: &mut [f64]) -> PyResult<()> {
     let bad = |what: String| PyValueError::new_err(format!("parameter `{}`: {what}", p.name));
     match p.kind {
-        ParamKind::Scalar => flat[0] = v.extract::<f64>().map_err(|_| bad("expected a number".into()))?,
+        ParamKind::Scalar => {
+            flat[0] = v
+                .extract::<f64>()
+                .map_err(|_| bad("expected a number".into()))?
+        }
         ParamKind::Rgb(_) => {
             if let Ok(x) = v.extract::<f64>() {
                 flat[..3].fill(x);
@@ -34,7 +38,10 @@ fn put(p: &catalogue::ParamSpec, v: &Bound<'_, PyAny>, flat: &mut [f64]) -> PyRe
                     .extract()
                     .map_err(|_| bad("expected a number or three numbers (r, g, b)".into()))?;
                 let [r, g, b] = c[..] else {
-                    return Err(bad(format!("expected 3 numbers (r, g, b), got {}", c.len())));
+                    return Err(bad(format!(
+                        "expected 3 numbers (r, g, b), got {}",
+                        c.len()
+                    )));
                 };
                 flat[..3].copy_from_slice(&[r, g, b]);
             }
@@ -132,7 +139,9 @@ impl Kernel for ModelKernel {
                 Job::Sample => {
                     let s = unit(&inp[0..3], k).and_then(|wo| m.sample(wo, [inp[3][k], inp[4][k]]));
                     match s {
-                        Some(s) => [s.wi.x, s.wi.y, s.wi.z, s.weight.r, s.weight.g, s.weight.b, s.pdf],
+                        Some(s) => [
+                            s.wi.x, s.wi.y, s.wi.z, s.weight.r, s.weight.g, s.weight.b, s.pdf,
+                        ],
                         None => [T::NAN; 7],
                     }
                 }
@@ -242,7 +251,10 @@ pub fn sample<'py>(
             arrays::shape_text(&shape)
         )));
     }
-    let (u0, u1) = (ua.get_item((pyo3::types::PyEllipsis::get(py), 0))?, ua.get_item((pyo3::types::PyEllipsis::get(py), 1))?);
+    let (u0, u1) = (
+        ua.get_item((pyo3::types::PyEllipsis::get(py), 0))?,
+        ua.get_item((pyo3::types::PyEllipsis::get(py), 1))?,
+    );
     let args = [dir("wo", wo), arrays::num("u", &u0), arrays::num("u", &u1)];
     let r = arrays::run(py, &args, &[3, 3, arrays::SCALAR], &k)?;
     arrays::one_or_tuple(py, r)
@@ -309,7 +321,10 @@ fn param_dict<'py>(py: Python<'py>, p: &catalogue::ParamSpec) -> PyResult<Bound<
         ParamKind::Choice(o) => {
             d.set_item("kind", "choice")?;
             d.set_item("options", o.to_vec())?;
-            d.set_item("default", o.get(p.default[0] as usize).copied().unwrap_or(""))?;
+            d.set_item(
+                "default",
+                o.get(p.default[0] as usize).copied().unwrap_or(""),
+            )?;
         }
     }
     Ok(d)

@@ -68,8 +68,19 @@ struct Fields<'py> {
 }
 
 const KEYS: &[&str] = &[
-    "kind", "model", "masking", "roughness", "sigma", "res", "encoding", "interpolation",
-    "samples", "seed", "max-error", "axes", "out",
+    "kind",
+    "model",
+    "masking",
+    "roughness",
+    "sigma",
+    "res",
+    "encoding",
+    "interpolation",
+    "samples",
+    "seed",
+    "max-error",
+    "axes",
+    "out",
 ];
 
 impl<'py> Fields<'py> {
@@ -103,37 +114,75 @@ impl<'py> Fields<'py> {
 
 /// Kind, distribution and masking, with xtask's defaults.
 fn kind_model(f: &Fields<'_>) -> PyResult<Spec> {
-    let kind_s: String = f
-        .get("kind")?
-        .ok_or_else(|| PyValueError::new_err("spec field `kind` is missing (g-per-sigma, g-over-sigma, split-sum, e, e-avg)"))?;
+    let kind_s: String = f.get("kind")?.ok_or_else(|| {
+        PyValueError::new_err(
+            "spec field `kind` is missing (g-per-sigma, g-over-sigma, split-sum, e, e-avg)",
+        )
+    })?;
     let sigma: Option<f64> = f.get("sigma")?;
     let kind = match kind_s.as_str() {
         "g-per-sigma" => Kind::GPerSigma {
-            sigma: sigma.ok_or_else(|| PyValueError::new_err("a g-per-sigma spec needs field `sigma`"))?,
+            sigma: sigma
+                .ok_or_else(|| PyValueError::new_err("a g-per-sigma spec needs field `sigma`"))?,
         },
         "g-over-sigma" => Kind::GOverSigma,
         "split-sum" => Kind::SplitSum,
         "e" => Kind::Albedo,
         "e-avg" => Kind::AverageAlbedo,
-        o => return Err(PyValueError::new_err(format!("spec field `kind`: {o:?} is not one of g-per-sigma, g-over-sigma, split-sum, e, e-avg"))),
+        o => {
+            return Err(PyValueError::new_err(format!(
+            "spec field `kind`: {o:?} is not one of g-per-sigma, g-over-sigma, split-sum, e, e-avg"
+        )))
+        }
     };
     if sigma.is_some() && !matches!(kind, Kind::GPerSigma { .. }) {
-        return Err(PyValueError::new_err("spec field `sigma` is the fixed σ of a g-per-sigma table; other kinds take a σ axis"));
+        return Err(PyValueError::new_err(
+            "spec field `sigma` is the fixed σ of a g-per-sigma table; other kinds take a σ axis",
+        ));
     }
     let g_table = matches!(kind, Kind::GPerSigma { .. } | Kind::GOverSigma);
     let dist = match f.get::<String>("model")? {
-        Some(m) => choose("model", &m, &[("ggx", Distribution::Ggx), ("beckmann", Distribution::Beckmann), ("torrance-sparrow", Distribution::TorranceSparrow)])?,
+        Some(m) => choose(
+            "model",
+            &m,
+            &[
+                ("ggx", Distribution::Ggx),
+                ("beckmann", Distribution::Beckmann),
+                ("torrance-sparrow", Distribution::TorranceSparrow),
+            ],
+        )?,
         None if g_table => Distribution::TorranceSparrow,
-        None => return Err(PyValueError::new_err("spec field `model` is missing (ggx, beckmann, torrance-sparrow)")),
+        None => {
+            return Err(PyValueError::new_err(
+                "spec field `model` is missing (ggx, beckmann, torrance-sparrow)",
+            ))
+        }
     };
     let masking = match f.get::<String>("masking")? {
-        Some(m) => choose("masking", &m, &[("smith-separable", Masking::SmithSeparable), ("smith-correlated", Masking::SmithCorrelated), ("v-cavity", Masking::VCavity), ("modified", Masking::Modified)])?,
+        Some(m) => choose(
+            "masking",
+            &m,
+            &[
+                ("smith-separable", Masking::SmithSeparable),
+                ("smith-correlated", Masking::SmithCorrelated),
+                ("v-cavity", Masking::VCavity),
+                ("modified", Masking::Modified),
+            ],
+        )?,
         None if dist == Distribution::TorranceSparrow => Masking::Modified,
         None => Masking::SmithCorrelated,
     };
     let mut spec = Spec::new(kind, dist, masking);
     if let Some(r) = f.get::<String>("roughness")? {
-        spec.roughness = choose("roughness", &r, &[("perceptual", Roughness::Perceptual), ("alpha", Roughness::Alpha), ("sigma", Roughness::Sigma)])?;
+        spec.roughness = choose(
+            "roughness",
+            &r,
+            &[
+                ("perceptual", Roughness::Perceptual),
+                ("alpha", Roughness::Alpha),
+                ("sigma", Roughness::Sigma),
+            ],
+        )?;
         spec.axes = spec.default_axes();
     }
     Ok(spec)
@@ -144,7 +193,10 @@ fn axes(f: &Fields<'_>, spec: &mut Spec) -> PyResult<()> {
     let names = spec.axis_names();
     let index = |name: &str| {
         names.iter().position(|n| *n == name).ok_or_else(|| {
-            PyValueError::new_err(format!("spec: no axis `{name}`; this table's axes are {}", names.join(", ")))
+            PyValueError::new_err(format!(
+                "spec: no axis `{name}`; this table's axes are {}",
+                names.join(", ")
+            ))
         })
     };
     if let Some(ax) = f.get::<Bound<'_, PyDict>>("axes")? {
@@ -155,11 +207,17 @@ fn axes(f: &Fields<'_>, spec: &mut Spec) -> PyResult<()> {
         items.sort_by(|a, b| a.0.cmp(&b.0));
         for (name, v) in items {
             let i = index(&name)?;
-            let a = Fields { d: v.cast_into::<PyDict>().map_err(|_| PyValueError::new_err(format!("spec axis `{name}` must be a dict")))? };
+            let a = Fields {
+                d: v.cast_into::<PyDict>().map_err(|_| {
+                    PyValueError::new_err(format!("spec axis `{name}` must be a dict"))
+                })?,
+            };
             for (k, _) in a.d.iter() {
                 let k: String = k.extract()?;
                 if !["count", "lo", "hi", "warp", "placement"].contains(&k.as_str()) {
-                    return Err(PyValueError::new_err(format!("spec axis `{name}`: unknown field `{k}` (count, lo, hi, warp, placement)")));
+                    return Err(PyValueError::new_err(format!(
+                        "spec axis `{name}`: unknown field `{k}` (count, lo, hi, warp, placement)"
+                    )));
                 }
             }
             let x = &mut spec.axes[i];
@@ -177,10 +235,21 @@ fn axes(f: &Fields<'_>, spec: &mut Spec) -> PyResult<()> {
     if let Some(res) = f.get::<String>("res")? {
         let counts: Vec<u32> = res
             .split('x')
-            .map(|t| t.trim().parse::<u32>().map_err(|_| PyValueError::new_err(format!("spec field `res` {res:?}: {t:?} is not a whole number"))))
+            .map(|t| {
+                t.trim().parse::<u32>().map_err(|_| {
+                    PyValueError::new_err(format!(
+                        "spec field `res` {res:?}: {t:?} is not a whole number"
+                    ))
+                })
+            })
             .collect::<PyResult<_>>()?;
         if counts.len() != names.len() {
-            return Err(PyValueError::new_err(format!("spec field `res` {res:?} gives {} sizes; this table has {} axes ({})", counts.len(), names.len(), names.join(", "))));
+            return Err(PyValueError::new_err(format!(
+                "spec field `res` {res:?} gives {} sizes; this table has {} axes ({})",
+                counts.len(),
+                names.len(),
+                names.join(", ")
+            )));
         }
         for (x, c) in spec.axes.iter_mut().zip(counts) {
             x.count = c;
@@ -195,10 +264,25 @@ fn spec_from(d: &Bound<'_, PyDict>) -> PyResult<(Spec, Option<f64>, Option<PathB
     let mut spec = kind_model(&f)?;
     axes(&f, &mut spec)?;
     if let Some(e) = f.get::<String>("encoding")? {
-        spec.encoding = choose("encoding", &e, &[("u16", Encoding::Unorm16), ("f16", Encoding::F16), ("f32", Encoding::F32)])?;
+        spec.encoding = choose(
+            "encoding",
+            &e,
+            &[
+                ("u16", Encoding::Unorm16),
+                ("f16", Encoding::F16),
+                ("f32", Encoding::F32),
+            ],
+        )?;
     }
     if let Some(i) = f.get::<String>("interpolation")? {
-        spec.interpolation = choose("interpolation", &i, &[("linear", Interpolation::Linear), ("catmull-rom", Interpolation::CatmullRom)])?;
+        spec.interpolation = choose(
+            "interpolation",
+            &i,
+            &[
+                ("linear", Interpolation::Linear),
+                ("catmull-rom", Interpolation::CatmullRom),
+            ],
+        )?;
     }
     if let Some(n) = f.get::<u32>("samples")? {
         spec.samples = n;
@@ -209,10 +293,13 @@ fn spec_from(d: &Bound<'_, PyDict>) -> PyResult<(Spec, Option<f64>, Option<PathB
     let max_error: Option<f64> = f.get("max-error")?;
     if let Some(e) = max_error {
         if !(e.is_finite() && e > 0.0) {
-            return Err(PyValueError::new_err(format!("spec field `max-error` = {e} must be a positive number")));
+            return Err(PyValueError::new_err(format!(
+                "spec field `max-error` = {e} must be a positive number"
+            )));
         }
     }
-    spec.validate().map_err(|e| PyValueError::new_err(format!("spec: {e}")))?;
+    spec.validate()
+        .map_err(|e| PyValueError::new_err(format!("spec: {e}")))?;
     Ok((spec, max_error, f.get::<PathBuf>("out")?))
 }
 
@@ -229,7 +316,11 @@ fn quiet_cancel_hook() {
     ONCE.call_once(|| {
         let prev = std::panic::take_hook();
         std::panic::set_hook(Box::new(move |info| {
-            let stopping = STOP.with(|s| s.borrow().as_ref().is_some_and(|a| a.load(Ordering::Relaxed)));
+            let stopping = STOP.with(|s| {
+                s.borrow()
+                    .as_ref()
+                    .is_some_and(|a| a.load(Ordering::Relaxed))
+            });
             if !stopping {
                 prev(info);
             }
@@ -293,7 +384,10 @@ fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
         Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
         _ => PathBuf::from("."),
     };
-    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
     let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
     let res = (|| {
         let mut f = std::fs::File::create(&tmp)?;
@@ -335,7 +429,6 @@ impl Kernel for Lookup<'_> {
         Ok(())
     }
 }
-
 
 #[pymethods]
 impl Table {
@@ -462,7 +555,11 @@ impl Table {
     /// ValueError
     ///     Wrong number of coordinates, shapes that do not broadcast.
     #[pyo3(signature = (*coords))]
-    fn lookup<'py>(&self, py: Python<'py>, coords: Vec<Bound<'py, PyAny>>) -> PyResult<Bound<'py, PyAny>> {
+    fn lookup<'py>(
+        &self,
+        py: Python<'py>,
+        coords: Vec<Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
         let h = self.lut.header();
         let names: Vec<&'static str> = ["x0", "x1", "x2"].to_vec();
         if coords.len() != h.axes.len() {
@@ -478,13 +575,23 @@ impl Table {
         let widths = [h.channels.len()];
         let k = Lookup { lut: &self.lut };
         let mut r = arrays::run(py, &args, &widths, &k)?;
-        r.pop().ok_or_else(|| PyValueError::new_err("internal: no result"))
+        r.pop()
+            .ok_or_else(|| PyValueError::new_err("internal: no result"))
     }
 
     fn __repr__(&self) -> String {
         let h = self.lut.header();
-        let axes: Vec<String> = h.axes.iter().map(|a| format!("{}[{}]", a.name, a.count)).collect();
-        format!("<brdf_kernels.Table {:?} {} {} bytes>", h.kind, axes.join("×"), self.lut.bytes().len())
+        let axes: Vec<String> = h
+            .axes
+            .iter()
+            .map(|a| format!("{}[{}]", a.name, a.count))
+            .collect();
+        format!(
+            "<brdf_kernels.Table {:?} {} {} bytes>",
+            h.kind,
+            axes.join("×"),
+            self.lut.bytes().len()
+        )
     }
 }
 

@@ -68,7 +68,7 @@ fn g<T: Elem>(a: &[String]) -> Result<(), String> {
     let n = x.len() / 2;
     let (ti, tr) = x.split_at(n);
     let g = ModifiedG::<T>::new(T::from_f64(num(&a[0])?)).map_err(|e| e.to_string())?;
-    let mut cols = vec![Vec::with_capacity(n); 4];
+    let mut cols: Vec<Vec<T>> = (0..4).map(|_| Vec::with_capacity(n)).collect();
     for k in 0..n {
         let t = g.terms(ti[k], tr[k]);
         cols[0].push(t.gm);
@@ -83,7 +83,7 @@ fn dots<T: Elem>(a: &[String]) -> Result<(), String> {
     let x = read::<T>(&a[1])?;
     let n = x.len() / 3;
     let g = ModifiedG::<T>::new(T::from_f64(num(&a[0])?)).map_err(|e| e.to_string())?;
-    let mut cols = vec![Vec::with_capacity(n); 2];
+    let mut cols: Vec<Vec<T>> = (0..2).map(|_| Vec::with_capacity(n)).collect();
     for k in 0..n {
         let d = Dots::new(x[k], x[n + k], x[2 * n + k]);
         cols[0].push(g.g_dots(d));
@@ -159,7 +159,8 @@ fn bench(a: &[String]) -> Result<(), String> {
 
 fn main() -> ExitCode {
     let a: Vec<String> = std::env::args().skip(1).collect();
-    let typed = |f32f: fn(&[String]) -> Result<(), String>, f64f: fn(&[String]) -> Result<(), String>| {
+    let typed = |f32f: fn(&[String]) -> Result<(), String>,
+                 f64f: fn(&[String]) -> Result<(), String>| {
         match a.get(1).map(String::as_str) {
             Some("f32") if a.len() >= 5 => f32f(&a[2..]),
             Some("f64") if a.len() >= 5 => f64f(&a[2..]),
