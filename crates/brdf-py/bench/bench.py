@@ -43,7 +43,7 @@ def python_ns_per_element(ti, tr, reps):
 
 
 def quad_ns_per_element(ti, tr):
-    pairs = ";".join(f"{a!r},{b!r}" for a, b in zip(ti[:64], tr[:64]))
+    pairs = ";".join(f"{float(a)!r},{float(b)!r}" for a, b in zip(ti[:64], tr[:64]))
     peer = ROOT / "crates/brdf-bench/peer/g_peer.py"
     r = subprocess.run([sys.executable, str(peer), "--sigma", str(SIGMA), "--pairs", pairs, "--repeat", "3"], capture_output=True, text=True)
     if r.returncode != 0:

@@ -79,8 +79,14 @@ fn vote(py: Python<'_>, a: &Arg<'_, '_>) -> PyResult<Option<bool>> {
     if is_number(a.obj) {
         return Ok(None);
     }
-    let arr = numpy_fn(py, "asarray")?.call1((a.obj,))?;
-    let arr = arr.cast::<PyUntypedArray>()?;
+    let converted;
+    let arr = match a.obj.cast::<PyUntypedArray>() {
+        Ok(arr) => arr,
+        Err(_) => {
+            converted = numpy_fn(py, "asarray")?.call1((a.obj,))?;
+            converted.cast::<PyUntypedArray>()?
+        }
+    };
     let dt = arr.dtype();
     let (kind, size) = (dt.kind(), dt.itemsize());
     match kind {
@@ -164,8 +170,15 @@ fn convert<'py, T: Float>(
     let asarray = numpy_fn(py, "asarray")?;
     args.iter()
         .map(|a| {
-            let arr = asarray.call((a.obj,), Some(&[("dtype", T::DTYPE)].into_py_dict(py)?))?;
-            let arr = arr.cast_into::<PyArrayDyn<T>>()?;
+            let arr = match a.obj.cast::<PyArrayDyn<T>>() {
+                Ok(arr) => arr.clone(),
+                Err(_) => {
+                    let kw = [("dtype", T::DTYPE)].into_py_dict(py)?;
+                    asarray
+                        .call((a.obj,), Some(&kw))?
+                        .cast_into::<PyArrayDyn<T>>()?
+                }
+            };
             let sh = arr.shape();
             if a.width == 3 && sh.last() != Some(&3) {
                 return Err(PyValueError::new_err(format!(

@@ -5,10 +5,13 @@
 use crate::arrays::{self, num, Float, Kernel, SCALAR};
 use brdf_core::batch::{self, DotsSoa};
 use brdf_core::masking::{self, Convention, ModifiedG};
-use brdf_core::quadrature::{GaussLegendre, Rule, NODE_COUNTS};
+use brdf_core::quadrature::{GaussLegendre, Rule, DEFAULT_NODES, NODE_COUNTS};
 use brdf_core::Dots;
+use brdf_core::ParamError;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
+use std::any::{Any, TypeId};
+use std::cell::RefCell;
 
 /// Calls `$body` with `$r` bound to the Gauss–Legendre rule of `$n` nodes.
 macro_rules! with_rule {
@@ -78,10 +81,54 @@ struct Modified {
     terms: bool,
 }
 
+/// Recently built surfaces, per thread: building one integrates the normaliser C(σ), which
+/// costs more than a G value, so repeated calls with the same σ (a scalar loop) reuse it.
+type Cached = (TypeId, u64, Box<dyn Any>);
+thread_local! {
+    static SURFACES: RefCell<Vec<Cached>> = const { RefCell::new(Vec::new()) };
+}
+
+/// `ModifiedG::<T, R>::new(σ)`, from the per-thread cache when built before.
+fn surface<T: Float, R: Rule + 'static>(sigma: f64) -> Result<ModifiedG<T, R>, ParamError> {
+    let key = (TypeId::of::<ModifiedG<T, R>>(), sigma.to_bits());
+    let hit = SURFACES.with(|c| {
+        c.borrow()
+            .iter()
+            .find(|(t, s, _)| (*t, *s) == key)
+            .and_then(|(_, _, g)| g.downcast_ref::<ModifiedG<T, R>>().copied())
+    });
+    if let Some(g) = hit {
+        return Ok(g);
+    }
+    let g = ModifiedG::<T, R>::new(T::from_f64(sigma))?;
+    SURFACES.with(|c| {
+        let mut c = c.borrow_mut();
+        if c.len() >= 8 {
+            c.remove(0);
+        }
+        c.push((key.0, key.1, Box::new(g)));
+    });
+    Ok(g)
+}
+
+/// The `ValueError` text for a σ the constructor refused, with the accepted range as the
+/// constructor states it for a σ above it.
+fn sigma_error(sigma: f64, e: ParamError) -> String {
+    let range = match ModifiedG::<f64>::new(2.0 * ModifiedG::<f64>::SIGMA_MAX) {
+        Err(ParamError::OutOfRange { range, .. }) => range,
+        _ => "(0, ∞)",
+    };
+    format!("argument `sigma` = {sigma} is outside its range {range} ({e})")
+}
+
 impl Modified {
-    fn with<T: Float, R: Rule>(&self, inp: &[&[T]], out: &mut [&mut [T]]) -> Result<(), String> {
-        let g = ModifiedG::<T, R>::new(T::from_f64(self.sigma))
-            .map_err(|e| format!("argument `sigma` in {}: {e}", T::DTYPE))?
+    fn with<T: Float, R: Rule + 'static>(
+        &self,
+        inp: &[&[T]],
+        out: &mut [&mut [T]],
+    ) -> Result<(), String> {
+        let g = surface::<T, R>(self.sigma)
+            .map_err(|e| sigma_error(self.sigma, e))?
             .with_convention(self.convention);
         let e = |e: batch::BatchError| e.to_string();
         match (self.dots, self.terms, inp, out) {
@@ -121,15 +168,8 @@ impl Kernel for Modified {
 
 /// Checks σ, the convention and the node count before any array work.
 fn modified(sigma: f64, conv: &str, nodes: usize, dots: bool, terms: bool) -> PyResult<Modified> {
-    if let Err(e) = ModifiedG::<f64>::new(sigma) {
-        // The accepted range, as the checked constructor states it for a σ above it.
-        let range = match ModifiedG::<f64>::new(2.0 * ModifiedG::<f64>::SIGMA_MAX) {
-            Err(brdf_core::ParamError::OutOfRange { range, .. }) => range,
-            _ => "(0, ∞)",
-        };
-        return Err(PyValueError::new_err(format!(
-            "argument `sigma` = {sigma} is outside its range {range} ({e})"
-        )));
+    if let Err(e) = surface::<f64, GaussLegendre<DEFAULT_NODES>>(sigma) {
+        return Err(PyValueError::new_err(sigma_error(sigma, e)));
     }
     if !NODE_COUNTS.contains(&nodes) {
         return Err(PyValueError::new_err(format!(
