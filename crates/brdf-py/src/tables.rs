@@ -561,7 +561,19 @@ impl Table {
         coords: Vec<Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let h = self.lut.header();
-        let names: Vec<&'static str> = ["x0", "x1", "x2"].to_vec();
+        // The axis names of the generator, for messages (arguments need static names).
+        const KNOWN: [&str; 7] = ["theta", "phi", "sigma", "mu", "roughness", "alpha", "m"];
+        let names: Vec<&'static str> = h
+            .axes
+            .iter()
+            .map(|a| {
+                KNOWN
+                    .iter()
+                    .find(|k| **k == a.name)
+                    .copied()
+                    .unwrap_or("coordinate")
+            })
+            .collect();
         if coords.len() != h.axes.len() {
             let an: Vec<&str> = h.axes.iter().map(|a| a.name).collect();
             return Err(PyValueError::new_err(format!(

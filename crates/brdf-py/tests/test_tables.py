@@ -121,7 +121,7 @@ def test_lookup_errors():
     with pytest.raises(ValueError, match="1 coordinates"):
         t.lookup(0.1, 0.2)
     t2 = bk.build_table(SPECS[0])
-    with pytest.raises(ValueError, match="do not broadcast"):
+    with pytest.raises(ValueError, match=r"do not broadcast: `mu` \(2,\), `roughness` \(3,\)"):
         t2.lookup(np.zeros(2), np.zeros(3))
 
 
