@@ -60,6 +60,9 @@ pub struct Field {
     k: [Vec<[f64; 2]>; 2],
     /// Per triangle type: max over the window of |K_m,1| + |K_m,2|.
     k_abs: [f64; 2],
+    /// Per triangle type and Chebyshev distance d ∈ [0, WIN + 1]: the max of |K_m|₁ over
+    /// the nodes at distance ≥ d (non-increasing; 0 at WIN + 1).
+    k_dist: [Vec<f64>; 2],
     /// Per triangle type: Σ_d (scaled units).
     sigma_d: [[[f64; 2]; 2]; 2],
 }
@@ -126,6 +129,7 @@ impl Field {
         }
         let (k0, a0, s0) = Self::kriging(0);
         let (k1, a1, s1) = Self::kriging(1);
+        let k_dist = [Self::radial_bound(&k0), Self::radial_bound(&k1)];
         Self {
             n,
             h,
@@ -133,6 +137,7 @@ impl Field {
             bmax,
             k: [k0, k1],
             k_abs: [a0, a1],
+            k_dist,
             sigma_d: [s0, s1],
         }
     }
@@ -194,6 +199,23 @@ impl Field {
             }
         }
         (k, kmax, sd)
+    }
+
+    /// max of |K_m|₁ over the nodes at Chebyshev distance ≥ d, d = 0 ..= WIN + 1.
+    fn radial_bound(k: &[[f64; 2]]) -> Vec<f64> {
+        let w = 2 * WIN + 1;
+        let mut at = vec![0.0f64; (WIN + 2) as usize];
+        for my in -WIN..=WIN {
+            for mx in -WIN..=WIN {
+                let kk = k[((my + WIN) * w + mx + WIN) as usize];
+                let d = mx.abs().max(my.abs()) as usize;
+                at[d] = at[d].max(kk[0].abs() + kk[1].abs());
+            }
+        }
+        for d in (0..at.len() - 1).rev() {
+            at[d] = at[d].max(at[d + 1]);
+        }
+        at
     }
 
     /// Nodes per side.
@@ -286,6 +308,7 @@ pub struct Conditioned<'a> {
     t: usize,
     delta: [f64; 2],
     ceiling: f64,
+    dmax: f64,
 }
 
 /// A traced ray: its origin (scaled units) and its direction (σx wx, σy wy, wz).
@@ -302,7 +325,8 @@ impl<'a> Conditioned<'a> {
     pub fn new(f: &'a Field, ci: i64, cj: i64, t: usize, s: [f64; 2]) -> Self {
         let d = f.tri_slope(ci, cj, t);
         let delta = [s[0] - d[0], s[1] - d[1]];
-        let ceiling = f.gmax + f.k_abs[t] * delta[0].abs().max(delta[1].abs());
+        let dmax = delta[0].abs().max(delta[1].abs());
+        let ceiling = f.gmax + f.k_abs[t] * dmax;
         Self {
             f,
             ci,
@@ -310,6 +334,7 @@ impl<'a> Conditioned<'a> {
             t,
             delta,
             ceiling,
+            dmax,
         }
     }
     /// The unconditioned field itself (δ = 0).
@@ -321,6 +346,7 @@ impl<'a> Conditioned<'a> {
             t: 0,
             delta: [0.0; 2],
             ceiling: f.gmax,
+            dmax: 0.0,
         }
     }
 
@@ -393,12 +419,24 @@ impl<'a> Conditioned<'a> {
             if z_in > self.ceiling {
                 return true;
             }
-            let tx = tcross(r.o[0], i, dx, sx);
-            let ty = tcross(r.o[1], j, dy, sy);
+            // Along the ray, the Chebyshev distance from its origin (in the conditioned cell)
+            // grows like t·|d|∞, so every node ahead is at least that minus 2 from the
+            // conditioned cell — until the ray nears a periodic copy of it, at travel
+            // n − WIN − 2. Above the unconditioned maximum plus the largest correction that
+            // far out, and above the global ceiling by the time a copy is near, nothing
+            // ahead can block.
+            let dinf = dx.abs().max(dy.abs());
+            let dn = (t_in * dinf).floor() as i64 - 2;
+            let t_wrap = (self.f.n as i64 - WIN - 2) as f64 / dinf;
+            if z_in > self.f.gmax + self.corr_bound(dn) && r.o[2] + dz * t_wrap > self.ceiling {
+                return true;
+            }
             if let Some((t, ni, nj)) = self.block_skip(r, (i, j), t_in, z_in) {
                 (t_in, i, j) = (t, ni, nj);
                 continue;
             }
+            let tx = tcross(r.o[0], i, dx, sx);
+            let ty = tcross(r.o[1], j, dy, sy);
             let t_out = tx.min(ty);
             // Diagonal crossing inside the cell: (ox − i) + t dx = (oy − j) + t dy.
             let den = dy - dx;
@@ -428,7 +466,9 @@ impl<'a> Conditioned<'a> {
         let nb = (self.f.n / BLK) as i64;
         let (bi, bj) = (c.0.div_euclid(b), c.1.div_euclid(b));
         let bm = self.f.bmax[(bj.rem_euclid(nb) * nb + bi.rem_euclid(nb)) as usize];
-        if r.d[2] < 0.0 || z_in <= bm + (self.ceiling - self.f.gmax) {
+        // The conditioning changes only nodes within WIN of the conditioned cell.
+        let corr = self.corr_bound(self.dist_to(bi * b, bj * b, b));
+        if r.d[2] < 0.0 || z_in <= bm + corr {
             return None;
         }
         let exit = |o: f64, d: f64, blk: i64| -> f64 {
@@ -454,6 +494,28 @@ impl<'a> Conditioned<'a> {
         } else {
             (t, inside(px, bi), step(r.d[1], bj))
         })
+    }
+
+    /// Bound on the conditioning's change of any node at Chebyshev distance ≥ d (periodic)
+    /// from the conditioned cell's first node.
+    fn corr_bound(&self, d: i64) -> f64 {
+        let k = &self.f.k_dist[self.t];
+        k[d.clamp(0, k.len() as i64 - 1) as usize] * self.dmax
+    }
+
+    /// Periodic Chebyshev distance from the conditioned cell to the nearest node of the
+    /// node range [lo, lo + len] along each axis (lower bound).
+    fn dist_to(&self, x0: i64, y0: i64, len: i64) -> i64 {
+        let n = self.f.n as i64;
+        let axis = |a: i64, c: i64| -> i64 {
+            let lo = (a - c + n / 2).rem_euclid(n) - n / 2;
+            if lo <= 0 && lo + len >= 0 {
+                0
+            } else {
+                lo.abs().min((lo + len).abs())
+            }
+        };
+        axis(x0, self.ci).max(axis(y0, self.cj))
     }
 
     /// Is the ray below the surface at parameter `t` (a point of cell (i, j))?
