@@ -483,7 +483,7 @@ impl<'a> Conditioned<'a> {
         let tx = exit(r.o[0], r.d[0], bi) / r.d[0];
         let ty = exit(r.o[1], r.d[1], bj) / r.d[1];
         let t = tx.min(ty);
-        if !(t > t_in) || !t.is_finite() {
+        if !t.is_finite() || t <= t_in {
             return None;
         }
         let step = |d: f64, blk: i64| if d > 0.0 { (blk + 1) * b } else { blk * b - 1 };

@@ -69,7 +69,11 @@ fn tracer_agrees_with_dense_scan() {
         let th = (20.0 + (k % 7) as f64 * 10.0f64).to_radians();
         let psi = k as f64 * 0.37;
         let sigma = 0.5;
-        let d = [sigma * th.sin() * psi.cos(), sigma * th.sin() * psi.sin(), th.cos()];
+        let d = [
+            sigma * th.sin() * psi.cos(),
+            sigma * th.sin() * psi.sin(),
+            th.cos(),
+        ];
         if d[2] - s[0] * d[0] - s[1] * d[1] <= 0.0 {
             continue;
         }
@@ -92,7 +96,10 @@ fn tracer_agrees_with_dense_scan() {
             disagree += 1;
         }
     }
-    assert!(blocked > 20 && total - blocked > 20, "both outcomes ({blocked} of {total})");
+    assert!(
+        blocked > 20 && total - blocked > 20,
+        "both outcomes ({blocked} of {total})"
+    );
     assert_eq!(disagree, 0);
 }
 
