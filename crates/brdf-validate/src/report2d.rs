@@ -120,6 +120,18 @@ pub fn run(root: &Path, s: &Settings2d) -> Result<Outcome2d> {
     })
 }
 
+/// Re-renders §7 of `<root>/docs/validation.md` from `<root>/docs/validation-2d.json` (for
+/// template changes without a new simulation; the full run renders from the same value).
+pub fn rerender(root: &Path) -> Result<String> {
+    let text = std::fs::read_to_string(root.join("docs").join("validation-2d.json"))?;
+    let data: Json = serde_json::from_str(&text)?;
+    let section = fill(&data)?;
+    let md_path = root.join("docs").join("validation.md");
+    let old = std::fs::read_to_string(&md_path).unwrap_or_default();
+    std::fs::write(&md_path, splice(&old, &section))?;
+    Ok(section)
+}
+
 /// The section template.
 const TEMPLATE: &str = include_str!("../templates/validation2d.md");
 

@@ -186,3 +186,11 @@ fn timing_probe() {
     }
     println!("sweeps {:.2} s", t0.elapsed().as_secs_f64());
 }
+
+/// Re-renders §7 from the committed docs/validation-2d.json (template changes only).
+#[test]
+#[ignore = "writes docs/"]
+fn rerender_section() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    brdf_validate::report2d::rerender(&root).expect("re-render");
+}
