@@ -6,6 +6,8 @@
 //!   one-sided G1(θ | α), the projected-area identity and a slope-bin estimator.
 //! * [`facet`]: the paper's own single-neighbour facet model simulated geometrically.
 //! * [`smith1d`]: an independent 1-D Smith Λ (Gaussian slopes), for the known-answer checks.
+//! * [`surface2d`], [`study2d`], [`report2d`]: the same measurement in three dimensions, on
+//!   2-D Gaussian random height fields (triangle pairs, exact conditioning and tracing).
 //! * [`stats`]: estimates with batch-means and binomial standard errors.
 //! * [`study`]: the grids, error tables and figure data; [`figures`] and [`report`] write
 //!   the SVG/PNG figures and `docs/validation.md` (`cargo xtask plot`).
@@ -21,8 +23,11 @@ pub mod figures;
 pub mod profile;
 pub mod progress;
 pub mod report;
+pub mod report2d;
 pub mod smith1d;
 pub mod stats;
 pub mod study;
+pub mod study2d;
 pub mod surface;
+pub mod surface2d;
 pub mod textbook;

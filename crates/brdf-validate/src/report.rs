@@ -99,7 +99,14 @@ pub fn run(root: &Path, s: &Settings) -> Result<Outcome> {
         &fig7,
         &[&albedo_note, &dfg_note],
     )?;
-    std::fs::write(root.join("docs").join("validation.md"), &md)?;
+    // Keep the 3-D study's section (§7, `cargo xtask plot --3d`) when rewriting the file.
+    let md_path = root.join("docs").join("validation.md");
+    let old = std::fs::read_to_string(&md_path).unwrap_or_default();
+    let md = match crate::report2d::existing_section(&old) {
+        Some(sec) => crate::report2d::splice(&md, sec),
+        None => md,
+    };
+    std::fs::write(&md_path, &md)?;
     Ok(Outcome {
         markdown: md,
         seconds: elapsed,
