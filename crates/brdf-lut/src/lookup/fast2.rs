@@ -168,7 +168,7 @@ impl Fast2 {
         let Some(limit) = self.limit(data, base) else {
             return false;
         };
-        crate::reader::wide(
+        super::wide(
             #[inline(always)]
             // SAFETY: `avx2` is true only where the processor has AVX2 (`wide`'s check).
             |avx2| avx2 && unsafe { self.batch_avx2(reader, data, base, limit, x, y, [a, b]) },
@@ -476,8 +476,8 @@ mod tests {
     use super::*;
     use crate::header::{Axis, Interpolation, Placement, TableKind};
     use crate::tables::Prepared;
-    use crate::view::LutView;
     use crate::write;
+    use crate::LutView;
     use std::vec::Vec;
 
     fn same(a: (f32, f32), b: [f32; 2]) -> bool {

@@ -22,27 +22,29 @@
 //! linear interpolation nests v = v₀ + f (v₁ − v₀) from axis 0 outward; Catmull–Rom sums
 //! Σ_j w1_j Σ_i w0_i v_ij per plane and Σ_k w2_k · plane_k over σ. A Catmull–Rom axis with
 //! 2 or 3 nodes has no contiguous 4-tap window; such (unusual) tables are read by the
-//! per-tap general path of [`Grid`](crate::view::Grid), which gives the same values up to
+//! per-tap general path of [`Grid`], which gives the same values up to
 //! f32 summation order.
 
 use crate::axis::clamp;
 use crate::f16::f16_to_f32;
 use crate::header::{Axis, Encoding, Header, Interpolation, Placement, Warp, MAX_CHANNELS};
-use crate::view::Grid;
 
+/// Chunked Catmull–Rom lookups for the batch entry points.
+#[cfg(all(hosted, not(feature = "compact")))]
+mod cubic;
 /// The two-lane scalar lookup of 2-D two-channel linear u16 tables (hosted x86-64).
-#[cfg(all(
-    target_arch = "x86_64",
-    not(any(target_os = "none", target_family = "wasm"))
-))]
-#[path = "fast2.rs"]
+#[cfg(all(hosted, target_arch = "x86_64"))]
 pub(crate) mod fast2;
+mod grid;
+
+pub(crate) use grid::Grid;
+pub use grid::Values;
 
 /// cos x for x ∈ [0, π/2] as sin(π/2 − x) by its Taylor series to r¹¹ (truncation < 1e-9,
 /// relative accuracy kept near π/2 where √cos x is steep). Only for the table warp, where an
 /// error of a few 1e-8 moves the interpolation point by < 1e-4 of a cell.
-#[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-#[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+#[cfg_attr(not(hosted), inline)]
+#[cfg_attr(hosted, inline(always))]
 fn cos_quadrant(x: f32) -> f32 {
     let r = core::f32::consts::FRAC_PI_2 - x;
     let r2 = r * r;
@@ -64,8 +66,8 @@ fn nonneg(c: f32) -> f32 {
 }
 
 /// The warp's monotone part w(x) (x already clamped to the axis range).
-#[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-#[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+#[cfg_attr(not(hosted), inline)]
+#[cfg_attr(hosted, inline(always))]
 fn warp_w(warp: Warp, lo: f32, x: f32) -> f32 {
     match warp {
         Warp::Linear => x,
@@ -81,7 +83,7 @@ fn warp_w(warp: Warp, lo: f32, x: f32) -> f32 {
 /// [`warp_w`] for queries on hosted targets: the warps of the speed tiers (linear, √, √cos:
 /// a few instructions) inline, `ln` and `cos` out of line, so that every lookup variant does
 /// not carry copies of them.
-#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[cfg(hosted)]
 #[inline(always)]
 fn warp_q(warp: Warp, lo: f32, x: f32) -> f32 {
     match warp {
@@ -91,14 +93,14 @@ fn warp_q(warp: Warp, lo: f32, x: f32) -> f32 {
         _ => warp_far(warp, lo, x),
     }
 }
-#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[cfg(hosted)]
 #[inline(never)]
 fn warp_far(warp: Warp, lo: f32, x: f32) -> f32 {
     warp_w(warp, lo, x)
 }
 
 // Devices: one copy of the warp (code size has a budget there).
-#[cfg(any(target_os = "none", target_family = "wasm"))]
+#[cfg(not(hosted))]
 use warp_w as warp_q;
 
 /// One axis: physical coordinate → fractional node index.
@@ -112,10 +114,10 @@ pub(crate) struct Lane {
     /// n − 1.
     last: f32,
     /// n − 2, the last cell.
-    #[cfg(any(target_os = "none", target_family = "wasm"))]
+    #[cfg(not(hosted))]
     last_cell: i32,
     /// n − 2 as f32 (hosted targets: the node is found in f32, see [`Lane::cell`]).
-    #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+    #[cfg(hosted)]
     last_cell_f: f32,
 
     /// Values (nodes × channels) between neighbouring nodes of this axis.
@@ -161,9 +163,9 @@ impl Lane {
             a,
             b,
             last: nf - 1.0,
-            #[cfg(any(target_os = "none", target_family = "wasm"))]
+            #[cfg(not(hosted))]
             last_cell: axis.count as i32 - 2,
-            #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+            #[cfg(hosted)]
             last_cell_f: (axis.count as i32 - 2) as f32,
 
             stride,
@@ -174,7 +176,7 @@ impl Lane {
     /// For a √cos-warped axis: the same lane taking the warped value w = √cos x instead of
     /// x (a linear lane w ↦ a·w + b over [√cos hi, √cos lo]); `None` for other warps.
     /// The node index equals this lane's up to the rounding of the caller's √cos x.
-    #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+    #[cfg(hosted)]
     fn prewarped(&self) -> Option<Lane> {
         if self.warp != Warp::SqrtCos {
             return None;
@@ -199,9 +201,9 @@ impl Lane {
         a: 0.0,
         b: 0.0,
         last: 0.0,
-        #[cfg(any(target_os = "none", target_family = "wasm"))]
+        #[cfg(not(hosted))]
         last_cell: 0,
-        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        #[cfg(hosted)]
         last_cell_f: 0.0,
 
         stride: 0,
@@ -209,8 +211,8 @@ impl Lane {
     };
 
     /// The fractional node index of x (x not NaN).
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     pub(crate) fn index(&self, x: f32) -> f32 {
         let x = clamp(x, self.lo, self.hi);
         clamp(
@@ -221,30 +223,30 @@ impl Lane {
     }
 
     /// Node i ≤ n − 2 and the fraction f ∈ [0, 1] of x.
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     fn cell(&self, x: f32) -> (usize, f32) {
         let t = self.index(x);
         // t ∈ [0, n − 1] with n ≤ 65536: ⌊min(t, n − 2)⌋ = min(⌊t⌋, n − 2) (n − 2 is an
         // integer) by the truncating conversion (t ≥ 0), without saturation checks. NaN
         // takes node n − 2 (and f = NaN).
         // (As u32: the node's zero extension to usize is free.)
-        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        #[cfg(hosted)]
         let i = trunc_small(if t < self.last_cell_f {
             t
         } else {
             self.last_cell_f
         }) as u32;
         // Devices: the form whose code size the firmware budget was measured with.
-        #[cfg(any(target_os = "none", target_family = "wasm"))]
+        #[cfg(not(hosted))]
         let i = (t as i32).min(self.last_cell).max(0);
         (i as usize, t - i as f32)
     }
 
     /// First node and the four Catmull–Rom weights (docs/lut-format.md §7) of x on an axis
     /// of n ≥ 4 nodes, the end extrapolation folded in.
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     pub(crate) fn cubic(&self, x: f32) -> (usize, [f32; 4]) {
         self.cubic_with(|l| l.cell(x))
     }
@@ -286,8 +288,8 @@ struct F16;
 struct F32;
 impl Store for U16 {
     const BYTES: usize = 2;
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     fn at(b: &[u8], k: usize) -> f32 {
         match b.get(2 * k..2 * k + 2) {
             Some(&[b0, b1]) => u16::from_le_bytes([b0, b1]) as f32,
@@ -297,8 +299,8 @@ impl Store for U16 {
 }
 impl Store for F16 {
     const BYTES: usize = 2;
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     fn at(b: &[u8], k: usize) -> f32 {
         match b.get(2 * k..2 * k + 2) {
             Some(&[b0, b1]) => f16_to_f32(u16::from_le_bytes([b0, b1])),
@@ -308,8 +310,8 @@ impl Store for F16 {
 }
 impl Store for F32 {
     const BYTES: usize = 4;
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     fn at(b: &[u8], k: usize) -> f32 {
         match b.get(4 * k..4 * k + 4) {
             Some(&[b0, b1, b2, b3]) => f32::from_le_bytes([b0, b1, b2, b3]),
@@ -337,7 +339,7 @@ pub(crate) struct Reader {
     pub(crate) offset: [f32; MAX_CHANNELS],
     /// Catmull–Rom lookups read log axes with [`ln_fast`] (hosted targets; see
     /// [`Reader::fast_ln`]).
-    #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+    #[cfg(hosted)]
     pub(crate) fast_ln: bool,
 }
 
@@ -378,7 +380,7 @@ impl Reader {
             mode,
             scale,
             offset,
-            #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+            #[cfg(hosted)]
             fast_ln: false,
         })
     }
@@ -389,15 +391,15 @@ impl Reader {
     /// Hosted targets test for the speed tiers' case (linear, u16) first and always inline
     /// it; the other cases follow, inlined or not as the optimiser decides (the same
     /// arithmetic either way).
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     pub(crate) fn sample<const D: usize, const C: usize>(
         &self,
         grid: &Grid,
         data: &[u8],
         x: [f32; D],
     ) -> [f32; C] {
-        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        #[cfg(hosted)]
         if self.mode == Mode::Linear && self.encoding == Encoding::Unorm16 {
             return self.finish(self.linear::<U16, D, C>(data, x));
         }
@@ -408,7 +410,7 @@ impl Reader {
     /// [`ln_fast`] if [`Reader::fast_ln`] was called (the typed albedo tables' scalar
     /// lookup, and the scalar tail of their batches). A separate entry so that the other
     /// lookups' code stays as it was.
-    #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+    #[cfg(hosted)]
     #[inline]
     pub(crate) fn sample_fast<const D: usize, const C: usize>(
         &self,
@@ -423,8 +425,8 @@ impl Reader {
     }
 
     /// Channel scale and offset applied to values in stored units.
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     fn finish<const C: usize>(&self, raw: [f32; C]) -> [f32; C] {
         let mut out = [0.0; C];
         for c in 0..C {
@@ -465,8 +467,8 @@ impl Reader {
 
     /// Two one-channel 3-D lookups that share the last coordinate (the two one-sided factors
     /// of G over σ): the σ taps are computed once. Equal to two [`Reader::sample`] calls.
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     pub(crate) fn pair3(
         &self,
         grid: &Grid,
@@ -480,8 +482,8 @@ impl Reader {
 
     /// [`Reader::pair3`]; `IN_RANGE`: a and b lie in the ranges of axes 0 and 1 already
     /// (hosted targets skip their clamp; the same values).
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     pub(crate) fn pair3_in<const IN_RANGE: bool>(
         &self,
         grid: &Grid,
@@ -490,7 +492,7 @@ impl Reader {
         b: [f32; 2],
         z: f32,
     ) -> (f32, f32) {
-        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        #[cfg(hosted)]
         if self.chunked() {
             // Both sides side by side (the same arithmetic as `pair3_linear`).
             let [va, vb] = self.chunk3_in::<2, IN_RANGE>(
@@ -532,8 +534,8 @@ impl Reader {
         )
     }
 
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     fn pair3_linear<S: Store>(&self, data: &[u8], a: [f32; 2], b: [f32; 2], z: f32) -> (f32, f32) {
         let l = &self.lanes;
         let (k, f2) = l[2].cell(z);
@@ -541,9 +543,9 @@ impl Reader {
             let (i0, f0) = l[0].cell(x[0]);
             let (i1, f1) = l[1].cell(x[1]);
             let at = i0 + i1 * l[1].stride + k * l[2].stride;
-            #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+            #[cfg(hosted)]
             let plane = |at: usize| Self::plane::<S, 1>(data, at, l[1].stride, f0, f1)[0];
-            #[cfg(any(target_os = "none", target_family = "wasm"))]
+            #[cfg(not(hosted))]
             let plane = |at: usize| {
                 let lo = Self::row::<S, 1>(data, at, f0);
                 let hi = Self::row::<S, 1>(data, at + l[1].stride, f0);
@@ -555,8 +557,8 @@ impl Reader {
         (one(a), one(b))
     }
 
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     fn pair3_cubic<S: Store>(&self, data: &[u8], a: [f32; 2], b: [f32; 2], z: f32) -> (f32, f32) {
         let l = &self.lanes;
         let (b2, w2) = l[2].cubic(z);
@@ -588,8 +590,8 @@ impl Reader {
     }
 
     /// Two neighbouring nodes (all channels) starting at value index `at`.
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     fn pair<S: Store, const C: usize>(data: &[u8], at: usize) -> Option<([f32; C], [f32; C])> {
         let p = data.get(at * S::BYTES..(at + 2 * C) * S::BYTES)?;
         let (mut a, mut b) = ([0.0; C], [0.0; C]);
@@ -601,8 +603,8 @@ impl Reader {
     }
 
     /// Linear along axis 0 in the row starting at value index `at`.
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     fn row<S: Store, const C: usize>(data: &[u8], at: usize, f: f32) -> [f32; C] {
         match Self::pair::<S, C>(data, at) {
             Some((a, b)) => {
@@ -618,7 +620,7 @@ impl Reader {
 
     /// Bilinear in the plane of the 2 × 2 nodes starting at value index `at`, rows `s` values
     /// apart: one bounds-checked block of the payload for both rows.
-    #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+    #[cfg(hosted)]
     #[inline(always)]
     fn plane<S: Store, const C: usize>(
         data: &[u8],
@@ -645,8 +647,8 @@ impl Reader {
         v
     }
 
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     fn lerp<const C: usize>(a: [f32; C], b: [f32; C], f: f32) -> [f32; C] {
         let mut v = [0.0; C];
         for c in 0..C {
@@ -656,8 +658,8 @@ impl Reader {
     }
 
     /// (Bi/tri)linear in stored units.
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     fn linear<S: Store, const D: usize, const C: usize>(
         &self,
         data: &[u8],
@@ -670,11 +672,11 @@ impl Reader {
         }
         let (i1, f1) = l[1].cell(x[1]);
         let at = i0 * C + i1 * l[1].stride;
-        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        #[cfg(hosted)]
         let plane = |at: usize| Self::plane::<S, C>(data, at, l[1].stride, f0, f1);
         // Devices: one bounds check per row (the form the firmware budget was measured
         // with; the same values).
-        #[cfg(any(target_os = "none", target_family = "wasm"))]
+        #[cfg(not(hosted))]
         let plane = |at: usize| {
             let lo = Self::row::<S, C>(data, at, f0);
             let hi = Self::row::<S, C>(data, at + l[1].stride, f0);
@@ -689,8 +691,8 @@ impl Reader {
     }
 
     /// Catmull–Rom in stored units.
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     fn cubic<S: Store, const D: usize, const C: usize, const FAST_LN: bool>(
         &self,
         data: &[u8],
@@ -743,7 +745,7 @@ impl Reader {
     }
 }
 
-#[cfg(any(target_os = "none", target_family = "wasm"))]
+#[cfg(not(hosted))]
 impl Lane {
     /// [`Lane::cubic`] (devices have no `FAST_LN` reading).
     #[inline(always)]
@@ -760,7 +762,7 @@ impl Lane {
 /// [`rows`]). Every query goes through exactly the scalar path's operations
 /// ([`Lane::cell`], [`Reader::plane`], the channel scale and offset), so the results are
 /// the scalar lookups' bit for bit.
-#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[cfg(hosted)]
 impl Lane {
     /// [`Lane::cell`], with ln x of a log axis by [`ln_fast`] (inline, a few 1e-8 from
     /// libm's: the node index moves by far less than 1e-4 of a cell). For the σ lane of
@@ -885,7 +887,7 @@ impl Lane {
     }
 }
 
-#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[cfg(hosted)]
 impl Reader {
     /// Catmull–Rom lookups through [`Reader::sample_fast`] and the chunk paths read every
     /// log axis whose lower end is a normal f32 with [`ln_fast`]: inline and vectorising, about a third of libm's
@@ -1143,7 +1145,7 @@ impl Reader {
 /// which stays off, as it would round a·b + c once instead of twice), and packed add,
 /// multiply, divide, square root, min/max and conversions round exactly like their scalar
 /// forms, so the values are the same bit for bit.
-#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[cfg(hosted)]
 #[inline(always)]
 pub(crate) fn wide<R>(body: impl FnOnce(bool) -> R) -> R {
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
@@ -1158,11 +1160,7 @@ pub(crate) fn wide<R>(body: impl FnOnce(bool) -> R) -> R {
 #[cfg(all(test, feature = "std"))]
 pub(crate) static BASELINE_ONLY: core::sync::atomic::AtomicBool =
     core::sync::atomic::AtomicBool::new(false);
-#[cfg(all(
-    feature = "std",
-    target_arch = "x86_64",
-    not(any(target_os = "none", target_family = "wasm"))
-))]
+#[cfg(all(hosted, feature = "std", target_arch = "x86_64"))]
 #[inline(always)]
 fn baseline_only() -> bool {
     #[cfg(all(test, feature = "std"))]
@@ -1176,11 +1174,7 @@ fn baseline_only() -> bool {
 ///
 /// # Safety
 /// The processor must support AVX2.
-#[cfg(all(
-    feature = "std",
-    target_arch = "x86_64",
-    not(any(target_os = "none", target_family = "wasm"))
-))]
+#[cfg(all(hosted, feature = "std", target_arch = "x86_64"))]
 #[target_feature(enable = "avx2")]
 unsafe fn avx2<R>(body: impl FnOnce(bool) -> R) -> R {
     body(true)
@@ -1194,10 +1188,7 @@ unsafe fn avx2<R>(body: impl FnOnce(bool) -> R) -> R {
 /// into a vector compare, a mask extraction and branches); `min_s` min(t, m) = (t < m ? t :
 /// m); `trunc_small` ⌊x⌋ of x ∈ [0, 2¹⁶) as the processor's truncating conversion, without
 /// the saturation checks of `as` (callers pass no NaN).
-#[cfg(all(
-    target_arch = "x86_64",
-    not(any(target_os = "none", target_family = "wasm"))
-))]
+#[cfg(all(hosted, target_arch = "x86_64"))]
 mod sse {
     use core::arch::x86_64::{
         _mm_cvtss_f32, _mm_cvttss_si32, _mm_max_ss, _mm_min_ss, _mm_set_ss, _mm_sqrt_ss,
@@ -1241,10 +1232,7 @@ mod sse {
 }
 
 /// [`sse`]'s steps in portable form (the same values) on other hosted processors.
-#[cfg(all(
-    not(target_arch = "x86_64"),
-    not(any(target_os = "none", target_family = "wasm"))
-))]
+#[cfg(all(hosted, not(target_arch = "x86_64")))]
 mod sse {
     pub(crate) use crate::axis::clamp as clamp_s;
     pub(crate) use libm::sqrtf as sqrt_v;
@@ -1264,9 +1252,9 @@ mod sse {
     }
 }
 
-#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[cfg(hosted)]
 pub(crate) use sse::clamp_s;
-#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[cfg(hosted)]
 use sse::{min_s, sqrt_v, trunc_small};
 
 /// ln x for a normal positive finite f32 x: x = 2ᵏ m with m ∈ [√½, √2), then
@@ -1274,7 +1262,7 @@ use sse::{min_s, sqrt_v, trunc_small};
 /// (series truncation < 2.9e-8; with the f32 rounding the error stays below
 /// 1.5e-7 + 6e-8 |ln x|). Not correctly rounded like libm's `logf`, but inline and about
 /// a third of its instructions.
-#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[cfg(hosted)]
 #[inline(always)]
 pub(crate) fn ln_fast(x: f32) -> f32 {
     // The bits of √½: adding 1.0's bits minus these carries into the exponent exactly when
@@ -1292,7 +1280,7 @@ pub(crate) fn ln_fast(x: f32) -> f32 {
 
 /// [`ln_fast`] of a coordinate already clamped to a log axis' range [lo, hi] with lo a
 /// normal positive f32 (so x is one, or NaN, which stays NaN).
-#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[cfg(hosted)]
 #[inline(always)]
 fn ln_lane(x: f32) -> f32 {
     let y = ln_fast(x);
@@ -1309,7 +1297,7 @@ fn ln_lane(x: f32) -> f32 {
 /// are then 0) and 0 otherwise. `avx2`: the caller runs compiled for AVX2 (see [`wide`]),
 /// so the words are read by gathers, eight queries at a time, after one bounds check per
 /// query in vector form.
-#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[cfg(hosted)]
 #[inline(always)]
 #[allow(clippy::type_complexity)]
 fn rows<const N: usize, const R: usize, const W: usize>(
@@ -1363,11 +1351,7 @@ fn rows<const N: usize, const R: usize, const W: usize>(
 /// # Safety
 /// The processor supports AVX2, and every such word lies in one allocation at `base`,
 /// with every offset below 2³¹.
-#[cfg(all(
-    feature = "std",
-    target_arch = "x86_64",
-    not(any(target_os = "none", target_family = "wasm"))
-))]
+#[cfg(all(hosted, feature = "std", target_arch = "x86_64"))]
 #[target_feature(enable = "avx2")]
 #[inline]
 unsafe fn gather_words<const N: usize, const R: usize, const W: usize>(
@@ -1398,7 +1382,7 @@ unsafe fn gather_words<const N: usize, const R: usize, const W: usize>(
 
 /// The little-endian 32-bit word at byte `at` of `b` (0 past the end; callers pass rows
 /// that hold it).
-#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[cfg(hosted)]
 #[inline(always)]
 fn u32_at(b: &[u8], at: usize) -> u32 {
     match b.get(at..at + 4) {
@@ -1408,7 +1392,7 @@ fn u32_at(b: &[u8], at: usize) -> u32 {
 }
 
 /// Stored u16 number `k` of `b` (0 past the end; callers pass rows that hold it).
-#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[cfg(hosted)]
 #[inline(always)]
 fn u16_at(b: &[u8], k: usize) -> u16 {
     match b.get(2 * k..2 * k + 2) {
@@ -1417,7 +1401,7 @@ fn u16_at(b: &[u8], k: usize) -> u16 {
     }
 }
 
-#[cfg(all(test, not(any(target_os = "none", target_family = "wasm"))))]
+#[cfg(all(test, hosted))]
 mod tests {
     use super::*;
 
