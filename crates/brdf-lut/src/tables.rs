@@ -83,15 +83,10 @@ impl Prepared {
             .axes
             .last()
             .map_or((0.0, 1.0), |a| (a.lo as f32, a.hi as f32));
-        #[allow(unused_mut)]
-        let mut reader = *view.reader();
-        // Albedo tables read their log μ axis with the reader's inline logarithm (scalar
-        // and batch lookups alike; `LutView::sample`, which the table's error was
-        // measured with, keeps libm's).
-        #[cfg(hosted)]
-        if h.kind == TableKind::DirectionalAlbedo {
-            reader.fast_ln();
-        }
+        // The view's own reader: the typed lookups are `LutView::sample`'s arithmetic, bit
+        // for bit (the one exception: the σ lane of a linear 3-D G table, see
+        // `LutView::sample`).
+        let reader = *view.reader();
         Prepared {
             header_len: view.header_len(),
             kind: h.kind,
@@ -267,13 +262,10 @@ impl Prepared {
         self.two(bytes.get(self.header_len..).unwrap_or(&[]), x, y)
     }
 
-    /// Channel 0 of a 2-D one-channel table (on hosted targets, an albedo table's log axis
-    /// through the reader's inline logarithm, see `Reader::fast_ln`).
+    /// Channel 0 of a 2-D one-channel table: the lookup of [`LutView::sample2`] (the same
+    /// function, so the same bits).
     #[inline]
     pub(crate) fn two1(&self, payload: &[u8], x: f32, y: f32) -> f32 {
-        #[cfg(hosted)]
-        return self.reader.sample_fast::<2, 1>(&self.grid, payload, [x, y])[0];
-        #[cfg(not(hosted))]
         self.reader.sample::<2, 1>(&self.grid, payload, [x, y])[0]
     }
 
@@ -413,7 +405,7 @@ impl Prepared {
             for d in 0..D {
                 xk[d] = x[d].get(k).copied().unwrap_or(f32::NAN);
             }
-            let v = self.reader.sample_fast::<D, C>(&self.grid, payload, xk);
+            let v = self.reader.sample::<D, C>(&self.grid, payload, xk);
             for c in 0..C {
                 if let Some(o) = out[c].get_mut(k) {
                     *o = v[c];

@@ -257,7 +257,10 @@ impl<'a> LutView<'a> {
     /// coordinates count as the axis' lower end, extra ones are ignored). Coordinates are
     /// clamped to each axis' range; a NaN coordinate gives NaN in every channel. The same
     /// prepared reader as the typed tables, so the values are theirs bit for bit (G tables
-    /// before the G clamp to [0, 1]).
+    /// before the G clamp to [0, 1]), with one exception: on hosted targets `GTable3` reads
+    /// the log-warped σ axis of a linear u16 table (the speed tier) with an inline
+    /// logarithm, which moves σ's node fraction by less than 1e-4 of a cell (so G by less
+    /// than 1e-4; `tests/view_agrees.rs`).
     pub fn sample(&self, x: &[f32]) -> Values {
         let at = |k: usize| x.get(k).copied().unwrap_or(f32::NEG_INFINITY);
         if (0..self.grid.dims).any(|k| at(k).is_nan()) {

@@ -17,12 +17,8 @@ use crate::header::Encoding;
 /// First node and the four weights of `N` coordinates on a Catmull–Rom axis of n ≥ 4 nodes:
 /// `Lane::cubic` per query (weights `[tap][query]`).
 #[inline(always)]
-fn cubics<const N: usize>(l: &Lane, x: &[f32; N], fast_ln: bool) -> ([u32; N], [[f32; N]; 4]) {
-    let (i, f) = if fast_ln {
-        l.cells::<N, false, false, true>(x)
-    } else {
-        l.cells::<N, false, false, false>(x)
-    };
+fn cubics<const N: usize>(l: &Lane, x: &[f32; N]) -> ([u32; N], [[f32; N]; 4]) {
+    let (i, f) = l.cells::<N, false, false>(x);
     // n − 2, the last cell; n − 4, the first node of the far end's window.
     let (end, far) = ((l.n - 2) as u32, (l.n - 4) as u32);
     // The cubic polynomials, then the three cases of `Lane::cubic` (each with its own
@@ -80,9 +76,9 @@ impl Reader {
         x: &[[f32; N]; D],
     ) -> [[f32; N]; C] {
         let l = &self.lanes;
-        let a0 = cubics(&l[0], &x[0], self.fast_ln);
+        let a0 = cubics(&l[0], &x[0]);
         let a1 = if D > 1 {
-            cubics(&l[1], &x[1], self.fast_ln)
+            cubics(&l[1], &x[1])
         } else {
             ([0; N], [[0.0; N]; 4])
         };
@@ -194,8 +190,8 @@ impl Reader {
         w2: &(usize, [f32; 4]),
     ) -> [f32; N] {
         let l = &self.lanes;
-        let a0 = cubics(&l[0], &x[0], self.fast_ln);
-        let a1 = cubics(&l[1], &x[1], self.fast_ln);
+        let a0 = cubics(&l[0], &x[0]);
+        let a1 = cubics(&l[1], &x[1]);
         let (b2, w2) = w2;
         let mut acc = [0.0f32; N];
         let mut bad = [false; N];

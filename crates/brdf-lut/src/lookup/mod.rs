@@ -337,10 +337,6 @@ pub(crate) struct Reader {
     /// Per channel: value = offset + scale × stored (u16: scale already divided by 65535).
     pub(crate) scale: [f32; MAX_CHANNELS],
     pub(crate) offset: [f32; MAX_CHANNELS],
-    /// Catmull–Rom lookups read log axes with [`ln_fast`] (hosted targets; see
-    /// [`Reader::fast_ln`]).
-    #[cfg(hosted)]
-    pub(crate) fast_ln: bool,
 }
 
 impl Reader {
@@ -380,8 +376,6 @@ impl Reader {
             mode,
             scale,
             offset,
-            #[cfg(hosted)]
-            fast_ln: false,
         })
     }
 
@@ -406,24 +400,6 @@ impl Reader {
         self.sample_any(grid, data, x)
     }
 
-    /// [`Reader::sample`], with the log axes of a Catmull–Rom u16 table read through
-    /// [`ln_fast`] if [`Reader::fast_ln`] was called (the typed albedo tables' scalar
-    /// lookup, and the scalar tail of their batches). A separate entry so that the other
-    /// lookups' code stays as it was.
-    #[cfg(hosted)]
-    #[inline]
-    pub(crate) fn sample_fast<const D: usize, const C: usize>(
-        &self,
-        grid: &Grid,
-        data: &[u8],
-        x: [f32; D],
-    ) -> [f32; C] {
-        if self.fast_ln && self.mode == Mode::Cubic && self.encoding == Encoding::Unorm16 {
-            return self.finish(self.cubic::<U16, D, C, true>(data, x));
-        }
-        self.sample(grid, data, x)
-    }
-
     /// Channel scale and offset applied to values in stored units.
     #[cfg_attr(not(hosted), inline)]
     #[cfg_attr(hosted, inline(always))]
@@ -445,15 +421,15 @@ impl Reader {
     ) -> [f32; C] {
         let raw = match (self.mode, self.encoding) {
             (Mode::Linear, Encoding::Unorm16) => self.linear::<U16, D, C>(data, x),
-            (Mode::Cubic, Encoding::Unorm16) => self.cubic::<U16, D, C, false>(data, x),
+            (Mode::Cubic, Encoding::Unorm16) => self.cubic::<U16, D, C>(data, x),
             #[cfg(not(feature = "compact"))]
             (Mode::Linear, Encoding::F16) => self.linear::<F16, D, C>(data, x),
             #[cfg(not(feature = "compact"))]
             (Mode::Linear, Encoding::F32) => self.linear::<F32, D, C>(data, x),
             #[cfg(not(feature = "compact"))]
-            (Mode::Cubic, Encoding::F16) => self.cubic::<F16, D, C, false>(data, x),
+            (Mode::Cubic, Encoding::F16) => self.cubic::<F16, D, C>(data, x),
             #[cfg(not(feature = "compact"))]
-            (Mode::Cubic, Encoding::F32) => self.cubic::<F32, D, C, false>(data, x),
+            (Mode::Cubic, Encoding::F32) => self.cubic::<F32, D, C>(data, x),
             // Short Catmull–Rom axes (and, with feature `compact`, float payloads).
             _ => {
                 let v = grid.sample(data, &x);
@@ -693,14 +669,13 @@ impl Reader {
     /// Catmull–Rom in stored units.
     #[cfg_attr(not(hosted), inline)]
     #[cfg_attr(hosted, inline(always))]
-    fn cubic<S: Store, const D: usize, const C: usize, const FAST_LN: bool>(
+    fn cubic<S: Store, const D: usize, const C: usize>(
         &self,
         data: &[u8],
         x: [f32; D],
     ) -> [f32; C] {
         let l = &self.lanes;
-        // `FAST_LN`: log axes through `ln_fast` (hosted targets; see `Reader::fast_ln`).
-        let (b0, w0) = l[0].cubic_mode::<FAST_LN>(x[0]);
+        let (b0, w0) = l[0].cubic(x[0]);
         let row = |at: usize| -> [f32; C] {
             let Some(p) = data.get(at * S::BYTES..(at + 4 * C) * S::BYTES) else {
                 return [f32::NAN; C];
@@ -716,7 +691,7 @@ impl Reader {
         if D == 1 {
             return row(b0 * C);
         }
-        let (b1, w1) = l[1].cubic_mode::<FAST_LN>(x[1]);
+        let (b1, w1) = l[1].cubic(x[1]);
         let patch = |at: usize| -> [f32; C] {
             let mut acc = [0.0; C];
             for (j, wj) in w1.iter().enumerate() {
@@ -731,7 +706,7 @@ impl Reader {
         if D == 2 {
             return patch(at);
         }
-        let (b2, w2) = l[2].cubic_mode::<FAST_LN>(x[2]);
+        let (b2, w2) = l[2].cubic(x[2]);
         let mut acc = [0.0; C];
         for (k, &wk) in w2.iter().enumerate() {
             if wk != 0.0 {
@@ -742,15 +717,6 @@ impl Reader {
             }
         }
         acc
-    }
-}
-
-#[cfg(not(hosted))]
-impl Lane {
-    /// [`Lane::cubic`] (devices have no `FAST_LN` reading).
-    #[inline(always)]
-    fn cubic_mode<const FAST_LN: bool>(&self, x: f32) -> (usize, [f32; 4]) {
-        self.cubic(x)
     }
 }
 
@@ -778,45 +744,12 @@ impl Lane {
         (i as usize, t - i as f32)
     }
 
-    /// [`Lane::cubic`]; `FAST_LN`: with a log axis read as in [`Lane::cell_with`].
-    #[inline(always)]
-    pub(crate) fn cubic_mode<const FAST_LN: bool>(&self, x: f32) -> (usize, [f32; 4]) {
-        if !FAST_LN {
-            return self.cubic(x);
-        }
-        self.cubic_with(|l| l.cell_with(x, true))
-    }
-
-    /// [`Lane::cell`], with a log axis (lower end a normal f32) read with [`ln_fast`] if
-    /// `fast_ln` (see [`Reader::fast_ln`]): the same steps as [`Lane::cells`] with
-    /// `FAST_LN` for one coordinate.
-    #[inline(always)]
-    pub(crate) fn cell_with(&self, x: f32, fast_ln: bool) -> (usize, f32) {
-        if !(fast_ln && self.warp == Warp::Log && self.lo >= f32::MIN_POSITIVE) {
-            return self.cell(x);
-        }
-        self.cell_fast_ln(x)
-    }
-
-    #[inline(always)]
-    fn cell_fast_ln(&self, x: f32) -> (usize, f32) {
-        let x = clamp(x, self.lo, self.hi);
-        let t = clamp(self.a * ln_lane(x) + self.b, 0.0, self.last);
-        let i = trunc_small(min_s(t, self.last_cell_f));
-        (i as usize, t - i as f32)
-    }
-
     /// [`Lane::cell`] of `N` coordinates; `IN_RANGE`: the caller guarantees x ∈ [lo, hi]
     /// (the clamp would change nothing and is skipped); `MINMAX`: for N ≤ 2, the index
     /// clamp as scalar max/min instructions (the same values; which form the compiler turns
     /// into less code depends on the caller; longer chunks keep the vectorising form).
     #[inline(always)]
-    pub(crate) fn cells<
-        const N: usize,
-        const IN_RANGE: bool,
-        const MINMAX: bool,
-        const FAST_LN: bool,
-    >(
+    pub(crate) fn cells<const N: usize, const IN_RANGE: bool, const MINMAX: bool>(
         &self,
         x: &[f32; N],
     ) -> ([u32; N], [f32; N]) {
@@ -840,11 +773,6 @@ impl Lane {
                 }
                 for w in &mut w {
                     *w = sqrt_v(*w);
-                }
-            }
-            Warp::Log if FAST_LN && self.lo >= f32::MIN_POSITIVE => {
-                for w in &mut w {
-                    *w = ln_lane(*w);
                 }
             }
             _ => {
@@ -889,14 +817,6 @@ impl Lane {
 
 #[cfg(hosted)]
 impl Reader {
-    /// Catmull–Rom lookups through [`Reader::sample_fast`] and the chunk paths read every
-    /// log axis whose lower end is a normal f32 with [`ln_fast`]: inline and vectorising, about a third of libm's
-    /// `logf` instructions, and within 1.5e-7 + 2.5e-7·|ln x| of ln x, which moves the
-    /// node index by a·(that) (for the 64-node μ axes over [sin 1°, 1]: < 2e-5 of a cell).
-    pub(crate) fn fast_ln(&mut self) {
-        self.fast_ln = true;
-    }
-
     /// Whether [`Reader::chunk`] applies (linear u16 tables); otherwise callers loop over
     /// the scalar lookup.
     #[inline(always)]
@@ -971,9 +891,9 @@ impl Reader {
         avx2: bool,
     ) -> [[f32; N]; C] {
         let l = &self.lanes;
-        let (i0, f0) = l0.cells::<N, IN_RANGE, MINMAX, false>(&x[0]);
+        let (i0, f0) = l0.cells::<N, IN_RANGE, MINMAX>(&x[0]);
         let (i1, f1) = if D > 1 {
-            l[1].cells::<N, IN_RANGE, MINMAX, false>(&x[1])
+            l[1].cells::<N, IN_RANGE, MINMAX>(&x[1])
         } else {
             ([0; N], [0.0; N])
         };
@@ -1075,8 +995,8 @@ impl Reader {
     ) -> [f32; N] {
         let l = &self.lanes;
         let (k2, f2) = l[2].cell_ln(z);
-        let (i0, mut f0) = l0.cells::<N, IN_RANGE, true, false>(&x[0]);
-        let (i1, f1) = l[1].cells::<N, IN_RANGE, true, false>(&x[1]);
+        let (i0, mut f0) = l0.cells::<N, IN_RANGE, true>(&x[0]);
+        let (i1, f1) = l[1].cells::<N, IN_RANGE, true>(&x[1]);
         let (s1, s2) = (l[1].stride * 2, l[2].stride * 2);
         let mut q = [[0u32; N]; 8];
         if N > 2 {
@@ -1278,19 +1198,6 @@ pub(crate) fn ln_fast(x: f32) -> f32 {
     k as f32 * core::f32::consts::LN_2 + s * p
 }
 
-/// [`ln_fast`] of a coordinate already clamped to a log axis' range [lo, hi] with lo a
-/// normal positive f32 (so x is one, or NaN, which stays NaN).
-#[cfg(hosted)]
-#[inline(always)]
-fn ln_lane(x: f32) -> f32 {
-    let y = ln_fast(x);
-    if x.is_nan() {
-        x
-    } else {
-        y
-    }
-}
-
 /// The payload rows of `N` queries: word j of row r of query k is the little-endian 32-bit
 /// word at byte `at[k] + off[r] + 4j` of `data` (`[row][word][query]`), and `bad[k]` is NaN
 /// for a query whose rows lie past the payload (impossible for a parsed table: its words
@@ -1443,9 +1350,9 @@ mod tests {
         };
         let lane = Lane::new(&axis, 1).unwrap();
         assert!(lane.cell(f32::NAN).1.is_nan());
-        let (_, f) = lane.cells::<2, false, false, false>(&[f32::NAN, 0.5]);
+        let (_, f) = lane.cells::<2, false, false>(&[f32::NAN, 0.5]);
         assert!(f[0].is_nan() && !f[1].is_nan());
-        let (_, f) = lane.cells::<16, false, false, false>(&[f32::NAN; 16]);
+        let (_, f) = lane.cells::<16, false, false>(&[f32::NAN; 16]);
         assert!(f.iter().all(|f| f.is_nan()));
     }
 
