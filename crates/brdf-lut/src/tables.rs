@@ -35,7 +35,7 @@ pub(crate) struct Prepared {
     pub(crate) dots: Option<crate::lookup::Lane>,
     /// The two-lane lookup of [`Prepared::two`] (2-D two-channel linear u16 tables).
     #[cfg(all(hosted, target_arch = "x86_64"))]
-    pub(crate) fast2: crate::lookup::fast2::Fast2,
+    pub(crate) fast2: crate::lookup::simd::Fast2,
 }
 
 impl Prepared {
@@ -104,7 +104,7 @@ impl Prepared {
                 None
             },
             #[cfg(all(hosted, target_arch = "x86_64"))]
-            fast2: crate::lookup::fast2::Fast2::new(view.reader(), grid.dims, grid.channels),
+            fast2: crate::lookup::simd::Fast2::new(view.reader(), grid.dims, grid.channels),
         }
     }
 

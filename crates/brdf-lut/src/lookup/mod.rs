@@ -32,13 +32,21 @@ use crate::header::{Axis, Encoding, Header, Interpolation, Placement, Warp, MAX_
 /// Chunked Catmull–Rom lookups for the batch entry points.
 #[cfg(all(hosted, not(feature = "compact")))]
 mod cubic;
-/// The two-lane scalar lookup of 2-D two-channel linear u16 tables (hosted x86-64).
-#[cfg(all(hosted, target_arch = "x86_64"))]
-pub(crate) mod fast2;
 mod grid;
+/// All `core::arch` code (hosted targets).
+#[cfg(hosted)]
+pub(crate) mod simd;
 
 pub(crate) use grid::Grid;
 pub use grid::Values;
+#[cfg(all(hosted, feature = "std", target_arch = "x86_64"))]
+use simd::gather_words;
+#[cfg(all(hosted, test, feature = "std"))]
+pub(crate) use simd::BASELINE_ONLY;
+#[cfg(hosted)]
+pub(crate) use simd::{clamp_s, wide};
+#[cfg(hosted)]
+use simd::{min_s, sqrt_v, trunc_small};
 
 /// cos x for x ∈ [0, π/2] as sin(π/2 − x) by its Taylor series to r¹¹ (truncation < 1e-9,
 /// relative accuracy kept near π/2 where √cos x is steep). Only for the table warp, where an
@@ -1058,125 +1066,6 @@ impl Reader {
     }
 }
 
-/// Runs `body` (a batch loop whose stages are written to vectorise) compiled for AVX2
-/// when the processor has it (with feature `std` on x86-64, detected at run time; the
-/// standard library caches the answer), else as compiled for the baseline (SSE2 on
-/// x86-64). Only the vector width changes: AVX2 has no fused multiply-add (that is FMA,
-/// which stays off, as it would round a·b + c once instead of twice), and packed add,
-/// multiply, divide, square root, min/max and conversions round exactly like their scalar
-/// forms, so the values are the same bit for bit.
-#[cfg(hosted)]
-#[inline(always)]
-pub(crate) fn wide<R>(body: impl FnOnce(bool) -> R) -> R {
-    #[cfg(all(feature = "std", target_arch = "x86_64"))]
-    if std::is_x86_feature_detected!("avx2") && !baseline_only() {
-        // SAFETY: `avx2` only requires that the processor support AVX2, checked just above.
-        return unsafe { avx2(body) };
-    }
-    body(false)
-}
-
-/// Unit tests: the batch loops run their baseline build even where AVX2 is available.
-#[cfg(all(test, feature = "std"))]
-pub(crate) static BASELINE_ONLY: core::sync::atomic::AtomicBool =
-    core::sync::atomic::AtomicBool::new(false);
-#[cfg(all(hosted, feature = "std", target_arch = "x86_64"))]
-#[inline(always)]
-fn baseline_only() -> bool {
-    #[cfg(all(test, feature = "std"))]
-    return BASELINE_ONLY.load(core::sync::atomic::Ordering::Relaxed);
-    #[cfg(not(all(test, feature = "std")))]
-    false
-}
-
-/// `body(true)` compiled with AVX2 enabled (its stages are inlined into this function;
-/// `true` tells them that they may use AVX2 instructions, e.g. [`rows`]' gathers).
-///
-/// # Safety
-/// The processor must support AVX2.
-#[cfg(all(hosted, feature = "std", target_arch = "x86_64"))]
-#[target_feature(enable = "avx2")]
-unsafe fn avx2<R>(body: impl FnOnce(bool) -> R) -> R {
-    body(true)
-}
-
-/// Scalar steps of the lookups as single SSE instructions (x86-64, hosted targets):
-/// `sqrt_v` √x, correctly rounded like `libm::sqrtf` (IEEE 754 square root, so the same
-/// bits), but in a form the compiler can turn into packed `sqrtps` in the chunk loops
-/// (libm's is inline assembly, which it cannot); `clamp_s` [`clamp`] as one max and one min
-/// instruction (NaN stays NaN; the plain comparisons let the compiler turn a two-lane clamp
-/// into a vector compare, a mask extraction and branches); `min_s` min(t, m) = (t < m ? t :
-/// m); `trunc_small` ⌊x⌋ of x ∈ [0, 2¹⁶) as the processor's truncating conversion, without
-/// the saturation checks of `as` (callers pass no NaN).
-#[cfg(all(hosted, target_arch = "x86_64"))]
-mod sse {
-    use core::arch::x86_64::{
-        _mm_cvtss_f32, _mm_cvttss_si32, _mm_max_ss, _mm_min_ss, _mm_set_ss, _mm_sqrt_ss,
-    };
-
-    /// Evaluates an expression of the SSE intrinsics imported above.
-    macro_rules! sse {
-        ($e:expr) => {{
-            // SAFETY: SSE is part of the x86_64 baseline, and these intrinsics only compute
-            // on registers (no memory access). They are safe functions from Rust 1.87 on;
-            // the block is for the crate's minimum Rust, 1.84.
-            #[allow(unused_unsafe)]
-            unsafe {
-                $e
-            }
-        }};
-    }
-
-    #[inline(always)]
-    pub(crate) fn sqrt_v(x: f32) -> f32 {
-        sse!(_mm_cvtss_f32(_mm_sqrt_ss(_mm_set_ss(x))))
-    }
-
-    /// maxss/minss return their second operand when either is NaN:
-    /// (lo > x ? lo : x), then (hi < y ? hi : y).
-    #[inline(always)]
-    pub(crate) fn clamp_s(x: f32, lo: f32, hi: f32) -> f32 {
-        let y = sse!(_mm_max_ss(_mm_set_ss(lo), _mm_set_ss(x)));
-        sse!(_mm_cvtss_f32(_mm_min_ss(_mm_set_ss(hi), y)))
-    }
-
-    #[inline(always)]
-    pub(crate) fn min_s(t: f32, m: f32) -> f32 {
-        sse!(_mm_cvtss_f32(_mm_min_ss(_mm_set_ss(t), _mm_set_ss(m))))
-    }
-
-    #[inline(always)]
-    pub(crate) fn trunc_small(x: f32) -> i32 {
-        sse!(_mm_cvttss_si32(_mm_set_ss(x)))
-    }
-}
-
-/// [`sse`]'s steps in portable form (the same values) on other hosted processors.
-#[cfg(all(hosted, not(target_arch = "x86_64")))]
-mod sse {
-    pub(crate) use crate::axis::clamp as clamp_s;
-    pub(crate) use libm::sqrtf as sqrt_v;
-
-    #[inline(always)]
-    pub(crate) fn min_s(t: f32, m: f32) -> f32 {
-        if t < m {
-            t
-        } else {
-            m
-        }
-    }
-
-    #[inline(always)]
-    pub(crate) fn trunc_small(x: f32) -> i32 {
-        x as i32
-    }
-}
-
-#[cfg(hosted)]
-pub(crate) use sse::clamp_s;
-#[cfg(hosted)]
-use sse::{min_s, sqrt_v, trunc_small};
-
 /// ln x for a normal positive finite f32 x: x = 2ᵏ m with m ∈ [√½, √2), then
 /// ln m = 2 atanh s = 2s (1 + s²/3 + s⁴/5 + s⁶/7 + …) with s = (m − 1)/(m + 1), |s| ≤ 0.1716
 /// (series truncation < 2.9e-8; with the f32 rounding the error stays below
@@ -1250,41 +1139,6 @@ fn rows<const N: usize, const R: usize, const W: usize>(
         }
     }
     (words, bad)
-}
-
-/// [`rows`]' gathers: `words[r][j][k]` = the little-endian 32-bit word at byte
-/// `idx[k] + off[r] + 4j` from `base`, eight queries per gather (`N` a multiple of 8).
-///
-/// # Safety
-/// The processor supports AVX2, and every such word lies in one allocation at `base`,
-/// with every offset below 2³¹.
-#[cfg(all(hosted, feature = "std", target_arch = "x86_64"))]
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn gather_words<const N: usize, const R: usize, const W: usize>(
-    base: *const u8,
-    idx: &[u32; N],
-    off: &[u32; R],
-    words: &mut [[[u32; N]; W]; R],
-) {
-    use core::arch::x86_64::{
-        __m256i, _mm256_add_epi32, _mm256_i32gather_epi32, _mm256_loadu_si256, _mm256_set1_epi32,
-        _mm256_storeu_si256,
-    };
-    for g in (0..N).step_by(8) {
-        // SAFETY (all blocks): 8 lanes from g < N, N a multiple of 8, lie in the arrays;
-        // the gathered words lie in the allocation by the caller's contract.
-        let v = unsafe { _mm256_loadu_si256(idx.as_ptr().add(g).cast::<__m256i>()) };
-        for (wr, &o) in words.iter_mut().zip(off) {
-            for (j, w) in wr.iter_mut().enumerate() {
-                let o = _mm256_add_epi32(v, _mm256_set1_epi32((o + 4 * j as u32) as i32));
-                unsafe {
-                    let x = _mm256_i32gather_epi32::<1>(base.cast::<i32>(), o);
-                    _mm256_storeu_si256(w.as_mut_ptr().add(g).cast::<__m256i>(), x);
-                }
-            }
-        }
-    }
 }
 
 /// The little-endian 32-bit word at byte `at` of `b` (0 past the end; callers pass rows
