@@ -20,15 +20,13 @@ extern crate alloc;
 extern crate std;
 
 mod axis;
-#[cfg(not(any(feature = "compact", target_os = "none", target_family = "wasm")))]
-mod batch_cubic;
 mod codec;
 mod crc;
 mod error;
 mod f16;
 mod header;
 mod kernel;
-mod reader;
+mod lookup;
 mod tables;
 mod view;
 
@@ -48,9 +46,10 @@ pub use header::{
     Placement, TableKind, Warp, FORMAT_VERSION, MAGIC, MAX_AXES, MAX_AXIS_COUNT, MAX_CHANNELS,
     MAX_GENERATOR_NODES, MAX_VALUES, MAX_VALUE_MAGNITUDE,
 };
+pub use lookup::Values;
 pub use tables::layout::TableLayout;
 pub use tables::{AlbedoTable, AverageAlbedoTable, DfgTable, GTable, GTable3};
-pub use view::{encode_into, header_len, LutView, Values};
+pub use view::{encode_into, header_len, LutView};
 
 #[cfg(feature = "std")]
 pub use file::{read_capped, summary, Error, Escaped, Lut, MAX_FILE_BYTES};

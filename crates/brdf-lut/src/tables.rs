@@ -4,8 +4,8 @@
 //! payload.
 
 use crate::header::{Convention, TableKind};
-use crate::reader::Reader;
-use crate::view::{Grid, LutView};
+use crate::lookup::{Grid, Reader};
+use crate::view::LutView;
 use crate::LutError;
 use core::f32::consts::FRAC_PI_2;
 
@@ -27,18 +27,15 @@ pub(crate) struct Prepared {
     pub(crate) last_range: (f32, f32),
     /// A passing-factor table whose θ and φ axes span exactly the ranges [`g_args`] clamps
     /// to: the lanes skip their own clamp of those arguments (hosted targets).
-    #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+    #[cfg(hosted)]
     pub(crate) g_in_range: bool,
     /// The θ lane taking √cos θ (hosted targets; see [`Prepared::g_dots`]). Only the lane:
     /// a second reader would not fit the C interface's fixed table handles.
-    #[cfg(not(any(target_os = "none", target_family = "wasm")))]
-    pub(crate) dots: Option<crate::reader::Lane>,
+    #[cfg(hosted)]
+    pub(crate) dots: Option<crate::lookup::Lane>,
     /// The two-lane lookup of [`Prepared::two`] (2-D two-channel linear u16 tables).
-    #[cfg(all(
-        target_arch = "x86_64",
-        not(any(target_os = "none", target_family = "wasm"))
-    ))]
-    pub(crate) fast2: crate::reader::fast2::Fast2,
+    #[cfg(all(hosted, target_arch = "x86_64"))]
+    pub(crate) fast2: crate::lookup::simd::Fast2,
 }
 
 impl Prepared {
@@ -53,11 +50,11 @@ impl Prepared {
         mut out: [&mut [f32]; C],
         scalar: impl Fn([f32; D]) -> [f32; C],
     ) {
-        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        #[cfg(hosted)]
         if self.reader.chunked() {
             return self.sample_batch::<D, C>(payload, x, out);
         }
-        #[cfg(not(any(feature = "compact", target_os = "none", target_family = "wasm")))]
+        #[cfg(all(hosted, not(feature = "compact")))]
         if self.reader.cubic_chunked() {
             return self.cubic_batch::<D, C>(payload, x, out);
         }
@@ -86,15 +83,10 @@ impl Prepared {
             .axes
             .last()
             .map_or((0.0, 1.0), |a| (a.lo as f32, a.hi as f32));
-        #[allow(unused_mut)]
-        let mut reader = *view.reader();
-        // Albedo tables read their log μ axis with the reader's inline logarithm (scalar
-        // and batch lookups alike; `LutView::sample`, which the table's error was
-        // measured with, keeps libm's).
-        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
-        if h.kind == TableKind::DirectionalAlbedo {
-            reader.fast_ln();
-        }
+        // The view's own reader: the typed lookups are `LutView::sample`'s arithmetic, bit
+        // for bit (the one exception: the σ lane of a linear 3-D G table, see
+        // `LutView::sample`).
+        let reader = *view.reader();
         Prepared {
             header_len: view.header_len(),
             kind: h.kind,
@@ -103,19 +95,16 @@ impl Prepared {
             sigma: h.generator.sigma.map_or(f32::NAN, |s| s as f32),
             last_range: last,
             reciprocal: h.generator.convention == Convention::Reciprocal,
-            #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+            #[cfg(hosted)]
             g_in_range: h.kind == TableKind::PassingFactor && view.reader().g_ranges(),
-            #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+            #[cfg(hosted)]
             dots: if h.kind == TableKind::PassingFactor {
                 view.reader().prewarped()
             } else {
                 None
             },
-            #[cfg(all(
-                target_arch = "x86_64",
-                not(any(target_os = "none", target_family = "wasm"))
-            ))]
-            fast2: crate::reader::fast2::Fast2::new(view.reader(), grid.dims, grid.channels),
+            #[cfg(all(hosted, target_arch = "x86_64"))]
+            fast2: crate::lookup::simd::Fast2::new(view.reader(), grid.dims, grid.channels),
         }
     }
 
@@ -142,8 +131,8 @@ impl Prepared {
     }
 
     /// (GM, GS, G) of a 2-D passing-factor table.
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     pub(crate) fn g2(&self, payload: &[u8], theta_i: f32, theta_r: f32) -> (f32, f32, f32) {
         if theta_i.is_nan() || theta_r.is_nan() {
             return (f32::NAN, f32::NAN, f32::NAN);
@@ -159,11 +148,11 @@ impl Prepared {
     /// The GM and GS lookups of a 2-D table. On hosted targets a linear u16 table reads
     /// both side by side through the chunk path (two lanes of the same arithmetic, so the
     /// same values as two [`Reader::sample`] calls).
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     fn pair2(&self, payload: &[u8], m: [f32; 2], s: [f32; 2]) -> (f32, f32) {
         let r = &self.reader;
-        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        #[cfg(hosted)]
         if r.chunked() {
             let [[gm, gs]] = r.chunk::<2, 1, 2>(payload, &[[m[0], s[0]], [m[1], s[1]]], false);
             return (gm, gs);
@@ -175,8 +164,8 @@ impl Prepared {
     }
 
     /// (GM, GS, G) of a 3-D passing-factor table.
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     pub(crate) fn g3(
         &self,
         payload: &[u8],
@@ -188,14 +177,14 @@ impl Prepared {
             return (f32::NAN, f32::NAN, f32::NAN);
         }
         let (m, s) = g_args1(theta_i, theta_r);
-        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        #[cfg(hosted)]
         let (gm, gs) = if self.g_in_range {
             self.reader
                 .pair3_in::<true>(&self.grid, payload, m, s, sigma)
         } else {
             self.reader.pair3(&self.grid, payload, m, s, sigma)
         };
-        #[cfg(any(target_os = "none", target_family = "wasm"))]
+        #[cfg(not(hosted))]
         let (gm, gs) = self.reader.pair3(&self.grid, payload, m, s, sigma);
         let (gm, gs) = (unit01(gm), unit01(gs));
         (gm, gs, min_g(gm, gs))
@@ -233,14 +222,14 @@ impl Prepared {
         }
         match dots_args(n_l, n_v, l_v) {
             Some((m, s, (co, ci))) => {
-                #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+                #[cfg(hosted)]
                 if let Some(lane) = &self.dots {
                     let (m, s) = ([libm::sqrtf(co), m[1]], [libm::sqrtf(ci), s[1]]);
                     let z = (self.grid.dims == 3).then_some(sigma);
                     let (gm, gs) = self.reader.pair_with(lane, payload, m, s, z);
                     return min_g(unit01(gm), unit01(gs));
                 }
-                #[cfg(any(target_os = "none", target_family = "wasm"))]
+                #[cfg(not(hosted))]
                 let _ = (co, ci);
                 self.g_from_args(payload, m, s, sigma).2
             }
@@ -249,13 +238,10 @@ impl Prepared {
     }
 
     /// Channels 0 and 1 of a 2-D table.
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     pub(crate) fn two(&self, payload: &[u8], x: f32, y: f32) -> (f32, f32) {
-        #[cfg(all(
-            target_arch = "x86_64",
-            not(any(target_os = "none", target_family = "wasm"))
-        ))]
+        #[cfg(all(hosted, target_arch = "x86_64"))]
         if let Some(v) = self.fast2.ab(&self.reader, payload, 0, x, y) {
             return v;
         }
@@ -266,26 +252,20 @@ impl Prepared {
     /// [`Prepared::two`] from the table's whole bytes (header, then payload from
     /// `header_len`): the two-lane lookup reads them directly, with the payload's start in
     /// its offsets.
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     pub(crate) fn two_at(&self, bytes: &[u8], x: f32, y: f32) -> (f32, f32) {
-        #[cfg(all(
-            target_arch = "x86_64",
-            not(any(target_os = "none", target_family = "wasm"))
-        ))]
+        #[cfg(all(hosted, target_arch = "x86_64"))]
         if let Some(v) = self.fast2.ab(&self.reader, bytes, self.header_len, x, y) {
             return v;
         }
         self.two(bytes.get(self.header_len..).unwrap_or(&[]), x, y)
     }
 
-    /// Channel 0 of a 2-D one-channel table (on hosted targets, an albedo table's log axis
-    /// through the reader's inline logarithm, see `Reader::fast_ln`).
+    /// Channel 0 of a 2-D one-channel table: the lookup of [`LutView::sample2`] (the same
+    /// function, so the same bits).
     #[inline]
     pub(crate) fn two1(&self, payload: &[u8], x: f32, y: f32) -> f32 {
-        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
-        return self.reader.sample_fast::<2, 1>(&self.grid, payload, [x, y])[0];
-        #[cfg(any(target_os = "none", target_family = "wasm"))]
         self.reader.sample::<2, 1>(&self.grid, payload, [x, y])[0]
     }
 
@@ -297,15 +277,15 @@ impl Prepared {
 }
 
 /// Queries per chunk of the G batch entry points (hosted targets; see `Reader::chunk`).
-#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[cfg(hosted)]
 const CHUNK: usize = 32;
 /// Queries per chunk of the other linear batch entry points: one AVX2 register (callgrind:
 /// fewer instructions per DFG lookup than chunks of 16 or 32, whose stages the compiler
 /// splits unevenly).
-#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[cfg(hosted)]
 const CHUNK_SAMPLE: usize = 8;
 
-#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[cfg(hosted)]
 impl Prepared {
     /// G of `N` in-plane pairs of a 2-D (`z` = None) or 3-D table at one σ: [`Prepared::g2`]
     /// / [`Prepared::g3`] (`.2`) bit for bit. The table must be `chunked()`.
@@ -336,7 +316,7 @@ impl Prepared {
     /// `out[k] = G(theta_i[k], theta_r[k])` for k < n (chunks, then the scalar tail).
     #[inline(always)]
     fn g_batch(&self, payload: &[u8], ti: &[f32], tr: &[f32], z: Option<f32>, out: &mut [f32]) {
-        crate::reader::wide(
+        crate::lookup::wide(
             #[inline(always)]
             |avx2| self.g_batch_body(payload, ti, tr, z, out, avx2),
         )
@@ -381,7 +361,7 @@ impl Prepared {
         out: [&mut [f32]; C],
     ) {
         let r = &self.reader;
-        crate::reader::wide(
+        crate::lookup::wide(
             #[inline(always)]
             |avx2| {
                 self.drive_batch::<D, C, CHUNK_SAMPLE>(x, out, payload, |xs| {
@@ -425,13 +405,113 @@ impl Prepared {
             for d in 0..D {
                 xk[d] = x[d].get(k).copied().unwrap_or(f32::NAN);
             }
-            let v = self.reader.sample_fast::<D, C>(&self.grid, payload, xk);
+            let v = self.reader.sample::<D, C>(&self.grid, payload, xk);
             for c in 0..C {
                 if let Some(o) = out[c].get_mut(k) {
                     *o = v[c];
                 }
             }
             k += 1;
+        }
+    }
+}
+
+/// Queries per chunk of the Catmull–Rom batch entry points.
+#[cfg(all(hosted, not(feature = "compact")))]
+const CHUNK_CUBIC: usize = 8;
+
+/// The Catmull–Rom batch drivers (chunks of [`Reader::chunk_cubic`], then the scalar tail).
+#[cfg(all(hosted, not(feature = "compact")))]
+impl Prepared {
+    /// Channels of `D`-axis Catmull–Rom lookups over slices (chunks, then the scalar tail):
+    /// `out[c][k]` = channel c at (x[0][k], …); every slice has the same length. The table
+    /// must be `cubic_chunked()`.
+    pub(crate) fn cubic_batch<const D: usize, const C: usize>(
+        &self,
+        payload: &[u8],
+        x: [&[f32]; D],
+        out: [&mut [f32]; C],
+    ) {
+        let r = &self.reader;
+        crate::lookup::wide(
+            #[inline(always)]
+            |_| {
+                self.drive_batch::<D, C, CHUNK_CUBIC>(x, out, payload, |xs| {
+                    r.chunk_cubic::<D, C, CHUNK_CUBIC>(payload, xs)
+                })
+            },
+        );
+    }
+
+    /// G of `N` in-plane pairs of a 2-D (`z` = None) or 3-D Catmull–Rom table (`z`: the
+    /// first node and weights of σ): [`Prepared::g2`] / [`Prepared::g3`] (`.2`) bit for bit
+    /// (a NaN angle gives NaN before any lookup, as there).
+    #[inline(always)]
+    fn g_chunk_cubic<const N: usize>(
+        &self,
+        payload: &[u8],
+        ti: &[f32; N],
+        tr: &[f32; N],
+        z: Option<&(usize, [f32; 4])>,
+    ) -> [f32; N] {
+        let (m, s, nan) = g_args_n(ti, tr);
+        let r = &self.reader;
+        let (gm, gs) = match z {
+            Some(z) => (
+                r.chunk3_cubic::<N>(payload, &m, z),
+                r.chunk3_cubic::<N>(payload, &s, z),
+            ),
+            None => (
+                r.chunk_cubic::<2, 1, N>(payload, &m)[0],
+                r.chunk_cubic::<2, 1, N>(payload, &s)[0],
+            ),
+        };
+        g_of_sides(&gm, &gs, &nan)
+    }
+
+    /// `out[k] = G(theta_i[k], theta_r[k])` (at σ = `sigma` for a 3-D table, which must
+    /// not be NaN) of a Catmull–Rom table for k < `out.len()` (chunks, then the scalar
+    /// tail); the table must be `cubic_chunked()`.
+    pub(crate) fn g_batch_cubic(
+        &self,
+        payload: &[u8],
+        ti: &[f32],
+        tr: &[f32],
+        sigma: Option<f32>,
+        out: &mut [f32],
+    ) {
+        crate::lookup::wide(
+            #[inline(always)]
+            |_| self.g_batch_cubic_body(payload, ti, tr, sigma, out),
+        )
+    }
+
+    #[inline(always)]
+    fn g_batch_cubic_body(
+        &self,
+        payload: &[u8],
+        ti: &[f32],
+        tr: &[f32],
+        sigma: Option<f32>,
+        out: &mut [f32],
+    ) {
+        let z = sigma.map(|z| self.reader.lanes[2].cubic(z));
+        let mut done = 0;
+        for ((o, a), b) in out
+            .chunks_exact_mut(CHUNK_CUBIC)
+            .zip(ti.chunks_exact(CHUNK_CUBIC))
+            .zip(tr.chunks_exact(CHUNK_CUBIC))
+        {
+            if let (Some(a), Some(b)) = (a.first_chunk(), b.first_chunk()) {
+                o.copy_from_slice(&self.g_chunk_cubic::<CHUNK_CUBIC>(payload, a, b, z.as_ref()));
+                done += CHUNK_CUBIC;
+            }
+        }
+        for ((o, &a), &b) in out.iter_mut().zip(ti).zip(tr).skip(done) {
+            *o = match sigma {
+                Some(z) => self.g3(payload, a, b, z).2,
+                None => self.g2(payload, a, b).2,
+            };
         }
     }
 }
@@ -448,7 +528,7 @@ pub(crate) fn g_args(theta_i: f32, theta_r: f32) -> ([f32; 2], [f32; 2]) {
 
 /// [`g_args`] of `N` queries (`[argument][query]` for each side) and which queries have a
 /// NaN angle: the first stage of the G batch chunks.
-#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[cfg(hosted)]
 #[inline(always)]
 #[allow(clippy::type_complexity)]
 pub(crate) fn g_args_n<const N: usize>(
@@ -468,7 +548,7 @@ pub(crate) fn g_args_n<const N: usize>(
 /// G = min(GM, GS) (paper eq 13) of `N` queries from their one-sided factors, each
 /// clamped to [0, 1], and NaN for the queries with a NaN angle: the last stage of the G
 /// batch chunks ([`Prepared::g2`] / [`Prepared::g3`] per query).
-#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[cfg(hosted)]
 #[inline(always)]
 pub(crate) fn g_of_sides<const N: usize>(
     gm: &[f32; N],
@@ -488,11 +568,11 @@ pub(crate) fn g_of_sides<const N: usize>(
 /// branches (the chunk loops keep [`g_args`], which vectorises).
 #[inline(always)]
 fn g_args1(theta_i: f32, theta_r: f32) -> ([f32; 2], [f32; 2]) {
-    #[cfg(any(target_os = "none", target_family = "wasm"))]
+    #[cfg(not(hosted))]
     return g_args(theta_i, theta_r);
-    #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+    #[cfg(hosted)]
     {
-        use crate::reader::clamp_s as clamp;
+        use crate::lookup::clamp_s as clamp;
         let ti = clamp(theta_i, 0.0, FRAC_PI_2);
         let tr = clamp(theta_r, -FRAC_PI_2, FRAC_PI_2);
         let s = if tr < 0.0 { -ti } else { ti };
@@ -582,8 +662,8 @@ macro_rules! typed_table {
             pub fn view(&self) -> Result<LutView<'_>, LutError> {
                 LutView::parse_skip_checksum(self.bytes.as_ref())
             }
-            #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-            #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+            #[cfg_attr(not(hosted), inline)]
+            #[cfg_attr(hosted, inline(always))]
             fn payload(&self) -> &[u8] {
                 self.bytes.as_ref().get(self.p.header_len..).unwrap_or(&[])
             }
@@ -640,14 +720,14 @@ impl<B: AsRef<[u8]>> GTable<B> {
     }
     /// (GM, GS, G) at in-plane angles in radians, θi ∈ [0, π/2], θr ∈ [−π/2, π/2] signed
     /// (clamped; NaN gives NaN). G = min(GM, GS), each clamped to [0, 1] (paper eq 13).
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     pub fn terms(&self, theta_i: f32, theta_r: f32) -> (f32, f32, f32) {
         self.p.g2(self.payload(), theta_i, theta_r)
     }
     /// G = min(GM, GS); see [`GTable::terms`].
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     pub fn g(&self, theta_i: f32, theta_r: f32) -> f32 {
         self.terms(theta_i, theta_r).2
     }
@@ -665,12 +745,12 @@ impl<B: AsRef<[u8]>> GTable<B> {
     pub fn g_batch(&self, theta_i: &[f32], theta_r: &[f32], out: &mut [f32]) -> usize {
         let p = self.payload();
         let n = theta_i.len().min(theta_r.len()).min(out.len());
-        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        #[cfg(hosted)]
         if self.p.reader.chunked() {
             self.p.g_batch(p, theta_i, theta_r, None, &mut out[..n]);
             return n;
         }
-        #[cfg(not(any(feature = "compact", target_os = "none", target_family = "wasm")))]
+        #[cfg(all(hosted, not(feature = "compact")))]
         if self.p.reader.cubic_chunked() {
             self.p
                 .g_batch_cubic(p, theta_i, theta_r, None, &mut out[..n]);
@@ -690,14 +770,14 @@ impl<B: AsRef<[u8]>> GTable3<B> {
     }
     /// (GM, GS, G) at in-plane angles in radians and RMS slope σ (all clamped to the table's
     /// ranges; NaN gives NaN). G = min(GM, GS) (paper eq 13).
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     pub fn terms(&self, theta_i: f32, theta_r: f32, sigma: f32) -> (f32, f32, f32) {
         self.p.g3(self.payload(), theta_i, theta_r, sigma)
     }
     /// G = min(GM, GS); see [`GTable3::terms`].
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     pub fn g(&self, theta_i: f32, theta_r: f32, sigma: f32) -> f32 {
         self.terms(theta_i, theta_r, sigma).2
     }
@@ -711,7 +791,7 @@ impl<B: AsRef<[u8]>> GTable3<B> {
     pub fn g_batch(&self, theta_i: &[f32], theta_r: &[f32], sigma: f32, out: &mut [f32]) -> usize {
         let p = self.payload();
         let n = theta_i.len().min(theta_r.len()).min(out.len());
-        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        #[cfg(hosted)]
         if self.p.reader.chunked() {
             if sigma.is_nan() {
                 out[..n].fill(f32::NAN);
@@ -721,7 +801,7 @@ impl<B: AsRef<[u8]>> GTable3<B> {
             }
             return n;
         }
-        #[cfg(not(any(feature = "compact", target_os = "none", target_family = "wasm")))]
+        #[cfg(all(hosted, not(feature = "compact")))]
         if self.p.reader.cubic_chunked() {
             if sigma.is_nan() {
                 out[..n].fill(f32::NAN);
@@ -741,8 +821,8 @@ impl<B: AsRef<[u8]>> GTable3<B> {
 impl<B: AsRef<[u8]>> DfgTable<B> {
     /// (A, B) at μ = n·v and roughness (perceptual r for GGX, σ for Torrance–Sparrow tables;
     /// see the header), clamped to the table's ranges; NaN gives NaN.
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     pub fn ab(&self, mu: f32, roughness: f32) -> (f32, f32) {
         self.p.two_at(self.bytes.as_ref(), mu, roughness)
     }
@@ -751,11 +831,7 @@ impl<B: AsRef<[u8]>> DfgTable<B> {
     pub fn ab_batch(&self, mu: &[f32], roughness: &[f32], a: &mut [f32], b: &mut [f32]) -> usize {
         let p = self.payload();
         let n = mu.len().min(roughness.len()).min(a.len()).min(b.len());
-        #[cfg(all(
-            feature = "std",
-            target_arch = "x86_64",
-            not(any(target_os = "none", target_family = "wasm"))
-        ))]
+        #[cfg(all(hosted, feature = "std", target_arch = "x86_64"))]
         if self.p.fast2.batch(
             &self.p.reader,
             self.bytes.as_ref(),
@@ -811,11 +887,7 @@ impl<B: AsRef<[u8]>> AverageAlbedoTable<B> {
     }
 }
 
-#[cfg(all(
-    test,
-    feature = "std",
-    not(any(target_os = "none", target_family = "wasm"))
-))]
+#[cfg(all(hosted, test, feature = "std"))]
 mod tests {
     use super::*;
     use brdf_core::geometry::Dots;
@@ -832,7 +904,7 @@ mod tests {
     #[test]
     fn baseline_batches_equal_scalar_lookups() {
         use std::vec::Vec;
-        crate::reader::BASELINE_ONLY.store(true, core::sync::atomic::Ordering::Relaxed);
+        crate::lookup::BASELINE_ONLY.store(true, core::sync::atomic::Ordering::Relaxed);
         let n = 203;
         let special = [f32::NAN, f32::INFINITY, -f32::INFINITY, -0.1, 1.7, 0.0, 1.0];
         let xs = |seed: f32, lo: f32, hi: f32| -> Vec<f32> {
@@ -880,7 +952,7 @@ mod tests {
         t.e_avg_batch(&v, &mut o);
         let s: Vec<f32> = v.iter().map(|&r| t.e_avg(r)).collect();
         assert!(same(&o, &s), "E_avg");
-        crate::reader::BASELINE_ONLY.store(false, core::sync::atomic::Ordering::Relaxed);
+        crate::lookup::BASELINE_ONLY.store(false, core::sync::atomic::Ordering::Relaxed);
     }
 
     /// G from dot products through the cosine route (√cos θ straight from n·v, n·l) against

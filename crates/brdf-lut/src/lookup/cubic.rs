@@ -3,7 +3,7 @@
 //!
 //! `N` queries at once, in stages that are each a loop over the chunk, so that the compiler
 //! turns the arithmetic stages into packed SSE instructions (AVX2 where the processor has
-//! it, picked at run time by `reader::wide`): the axis maps
+//! it, picked at run time by `lookup::wide`): the axis maps
 //! ([`Lane::cells`]), the four Catmull–Rom weights and the first node of every axis (the
 //! cubic polynomials of docs/lut-format.md §7 with the end extrapolation folded in, chosen
 //! by selects instead of branches), the payload reads into arrays of stored numbers, and the
@@ -11,22 +11,14 @@
 //! (`Lane::cubic`, `Reader::cubic`: the same products and sums in the same order, the
 //! channel scale and offset last), so the results are the scalar lookups' bit for bit.
 
+use super::{Lane, Mode, Reader};
 use crate::header::Encoding;
-use crate::reader::{Lane, Mode, Reader};
-use crate::tables::{g_args_n, g_of_sides, Prepared};
-
-/// Queries per chunk.
-const CHUNK: usize = 8;
 
 /// First node and the four weights of `N` coordinates on a Catmull–Rom axis of n ≥ 4 nodes:
 /// `Lane::cubic` per query (weights `[tap][query]`).
 #[inline(always)]
-fn cubics<const N: usize>(l: &Lane, x: &[f32; N], fast_ln: bool) -> ([u32; N], [[f32; N]; 4]) {
-    let (i, f) = if fast_ln {
-        l.cells::<N, false, false, true>(x)
-    } else {
-        l.cells::<N, false, false, false>(x)
-    };
+fn cubics<const N: usize>(l: &Lane, x: &[f32; N]) -> ([u32; N], [[f32; N]; 4]) {
+    let (i, f) = l.cells::<N, false, false>(x);
     // n − 2, the last cell; n − 4, the first node of the far end's window.
     let (end, far) = ((l.n - 2) as u32, (l.n - 4) as u32);
     // The cubic polynomials, then the three cases of `Lane::cubic` (each with its own
@@ -84,9 +76,9 @@ impl Reader {
         x: &[[f32; N]; D],
     ) -> [[f32; N]; C] {
         let l = &self.lanes;
-        let a0 = cubics(&l[0], &x[0], self.fast_ln);
+        let a0 = cubics(&l[0], &x[0]);
         let a1 = if D > 1 {
-            cubics(&l[1], &x[1], self.fast_ln)
+            cubics(&l[1], &x[1])
         } else {
             ([0; N], [[0.0; N]; 4])
         };
@@ -198,8 +190,8 @@ impl Reader {
         w2: &(usize, [f32; 4]),
     ) -> [f32; N] {
         let l = &self.lanes;
-        let a0 = cubics(&l[0], &x[0], self.fast_ln);
-        let a1 = cubics(&l[1], &x[1], self.fast_ln);
+        let a0 = cubics(&l[0], &x[0]);
+        let a1 = cubics(&l[1], &x[1]);
         let (b2, w2) = w2;
         let mut acc = [0.0f32; N];
         let mut bad = [false; N];
@@ -233,98 +225,4 @@ fn unpack<const SH: u32, const N: usize>(q: &[u64; N]) -> [f32; N] {
         x[k] = ((q[k] >> SH) as u16) as f32;
     }
     x
-}
-
-impl Prepared {
-    /// Channels of `D`-axis Catmull–Rom lookups over slices (chunks, then the scalar tail):
-    /// `out[c][k]` = channel c at (x[0][k], …); every slice has the same length. The table
-    /// must be `cubic_chunked()`.
-    pub(crate) fn cubic_batch<const D: usize, const C: usize>(
-        &self,
-        payload: &[u8],
-        x: [&[f32]; D],
-        out: [&mut [f32]; C],
-    ) {
-        let r = &self.reader;
-        crate::reader::wide(
-            #[inline(always)]
-            |_| {
-                self.drive_batch::<D, C, CHUNK>(x, out, payload, |xs| {
-                    r.chunk_cubic::<D, C, CHUNK>(payload, xs)
-                })
-            },
-        );
-    }
-
-    /// G of `N` in-plane pairs of a 2-D (`z` = None) or 3-D Catmull–Rom table (`z`: the
-    /// first node and weights of σ): [`Prepared::g2`] / [`Prepared::g3`] (`.2`) bit for bit
-    /// (a NaN angle gives NaN before any lookup, as there).
-    #[inline(always)]
-    fn g_chunk_cubic<const N: usize>(
-        &self,
-        payload: &[u8],
-        ti: &[f32; N],
-        tr: &[f32; N],
-        z: Option<&(usize, [f32; 4])>,
-    ) -> [f32; N] {
-        let (m, s, nan) = g_args_n(ti, tr);
-        let r = &self.reader;
-        let (gm, gs) = match z {
-            Some(z) => (
-                r.chunk3_cubic::<N>(payload, &m, z),
-                r.chunk3_cubic::<N>(payload, &s, z),
-            ),
-            None => (
-                r.chunk_cubic::<2, 1, N>(payload, &m)[0],
-                r.chunk_cubic::<2, 1, N>(payload, &s)[0],
-            ),
-        };
-        g_of_sides(&gm, &gs, &nan)
-    }
-
-    /// `out[k] = G(theta_i[k], theta_r[k])` (at σ = `sigma` for a 3-D table, which must
-    /// not be NaN) of a Catmull–Rom table for k < `out.len()` (chunks, then the scalar
-    /// tail); the table must be `cubic_chunked()`.
-    pub(crate) fn g_batch_cubic(
-        &self,
-        payload: &[u8],
-        ti: &[f32],
-        tr: &[f32],
-        sigma: Option<f32>,
-        out: &mut [f32],
-    ) {
-        crate::reader::wide(
-            #[inline(always)]
-            |_| self.g_batch_cubic_body(payload, ti, tr, sigma, out),
-        )
-    }
-
-    #[inline(always)]
-    fn g_batch_cubic_body(
-        &self,
-        payload: &[u8],
-        ti: &[f32],
-        tr: &[f32],
-        sigma: Option<f32>,
-        out: &mut [f32],
-    ) {
-        let z = sigma.map(|z| self.reader.lanes[2].cubic(z));
-        let mut done = 0;
-        for ((o, a), b) in out
-            .chunks_exact_mut(CHUNK)
-            .zip(ti.chunks_exact(CHUNK))
-            .zip(tr.chunks_exact(CHUNK))
-        {
-            if let (Some(a), Some(b)) = (a.first_chunk(), b.first_chunk()) {
-                o.copy_from_slice(&self.g_chunk_cubic::<CHUNK>(payload, a, b, z.as_ref()));
-                done += CHUNK;
-            }
-        }
-        for ((o, &a), &b) in out.iter_mut().zip(ti).zip(tr).skip(done) {
-            *o = match sigma {
-                Some(z) => self.g3(payload, a, b, z).2,
-                None => self.g2(payload, a, b).2,
-            };
-        }
-    }
 }

@@ -1,3 +1,10 @@
+//! Every use of `core::arch` in the crate (hosted targets only), behind one run-time
+//! choice: [`wide`] runs a batch loop compiled for AVX2 when the processor has it (feature
+//! `std`, x86-64), else for the baseline (SSE2 on x86-64). Here are the scalar steps as
+//! single SSE instructions (`sse`), the AVX2 gathers of the chunk paths
+//! ([`gather_words`]), and the two-lane lookup of 2-D two-channel linear u16 tables
+//! ([`Fast2`], x86-64), whose batch runs eight queries per AVX2 register.
+//!
 //! The scalar lookup of a 2-D, two-channel, linear, u16 table (the split-sum speed tier)
 //! on hosted x86-64, with the two axes side by side in the lanes of one SSE register.
 //!
@@ -15,8 +22,161 @@
 //! √-warped axes (w = √(x − lo)) take this path; any other warp, encoding, interpolant or
 //! shape keeps the general reader.
 
+/// Runs `body` (a batch loop whose stages are written to vectorise) compiled for AVX2
+/// when the processor has it (with feature `std` on x86-64, detected at run time; the
+/// standard library caches the answer), else as compiled for the baseline (SSE2 on
+/// x86-64). Only the vector width changes: AVX2 has no fused multiply-add (that is FMA,
+/// which stays off, as it would round a·b + c once instead of twice), and packed add,
+/// multiply, divide, square root, min/max and conversions round exactly like their scalar
+/// forms, so the values are the same bit for bit.
+#[inline(always)]
+pub(crate) fn wide<R>(body: impl FnOnce(bool) -> R) -> R {
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    if std::is_x86_feature_detected!("avx2") && !baseline_only() {
+        // SAFETY: `avx2` only requires that the processor support AVX2, checked just above.
+        return unsafe { avx2(body) };
+    }
+    body(false)
+}
+
+/// Unit tests: the batch loops run their baseline build even where AVX2 is available.
+#[cfg(all(test, feature = "std"))]
+pub(crate) static BASELINE_ONLY: core::sync::atomic::AtomicBool =
+    core::sync::atomic::AtomicBool::new(false);
+#[cfg(all(feature = "std", target_arch = "x86_64"))]
+#[inline(always)]
+fn baseline_only() -> bool {
+    #[cfg(all(test, feature = "std"))]
+    return BASELINE_ONLY.load(core::sync::atomic::Ordering::Relaxed);
+    #[cfg(not(all(test, feature = "std")))]
+    false
+}
+
+/// `body(true)` compiled with AVX2 enabled (its stages are inlined into this function;
+/// `true` tells them that they may use AVX2 instructions, e.g. [`rows`]' gathers).
+///
+/// # Safety
+/// The processor must support AVX2.
+#[cfg(all(feature = "std", target_arch = "x86_64"))]
+#[target_feature(enable = "avx2")]
+unsafe fn avx2<R>(body: impl FnOnce(bool) -> R) -> R {
+    body(true)
+}
+
+/// Scalar steps of the lookups as single SSE instructions (x86-64, hosted targets):
+/// `sqrt_v` √x, correctly rounded like `libm::sqrtf` (IEEE 754 square root, so the same
+/// bits), but in a form the compiler can turn into packed `sqrtps` in the chunk loops
+/// (libm's is inline assembly, which it cannot); `clamp_s` [`clamp`] as one max and one min
+/// instruction (NaN stays NaN; the plain comparisons let the compiler turn a two-lane clamp
+/// into a vector compare, a mask extraction and branches); `min_s` min(t, m) = (t < m ? t :
+/// m); `trunc_small` ⌊x⌋ of x ∈ [0, 2¹⁶) as the processor's truncating conversion, without
+/// the saturation checks of `as` (callers pass no NaN).
+#[cfg(target_arch = "x86_64")]
+mod sse {
+    use core::arch::x86_64::{
+        _mm_cvtss_f32, _mm_cvttss_si32, _mm_max_ss, _mm_min_ss, _mm_set_ss, _mm_sqrt_ss,
+    };
+
+    /// Evaluates an expression of the SSE intrinsics imported above.
+    macro_rules! sse {
+        ($e:expr) => {{
+            // SAFETY: SSE is part of the x86_64 baseline, and these intrinsics only compute
+            // on registers (no memory access). They are safe functions from Rust 1.87 on;
+            // the block is for the crate's minimum Rust, 1.84.
+            #[allow(unused_unsafe)]
+            unsafe {
+                $e
+            }
+        }};
+    }
+
+    #[inline(always)]
+    pub(crate) fn sqrt_v(x: f32) -> f32 {
+        sse!(_mm_cvtss_f32(_mm_sqrt_ss(_mm_set_ss(x))))
+    }
+
+    /// maxss/minss return their second operand when either is NaN:
+    /// (lo > x ? lo : x), then (hi < y ? hi : y).
+    #[inline(always)]
+    pub(crate) fn clamp_s(x: f32, lo: f32, hi: f32) -> f32 {
+        let y = sse!(_mm_max_ss(_mm_set_ss(lo), _mm_set_ss(x)));
+        sse!(_mm_cvtss_f32(_mm_min_ss(_mm_set_ss(hi), y)))
+    }
+
+    #[inline(always)]
+    pub(crate) fn min_s(t: f32, m: f32) -> f32 {
+        sse!(_mm_cvtss_f32(_mm_min_ss(_mm_set_ss(t), _mm_set_ss(m))))
+    }
+
+    #[inline(always)]
+    pub(crate) fn trunc_small(x: f32) -> i32 {
+        sse!(_mm_cvttss_si32(_mm_set_ss(x)))
+    }
+}
+
+/// [`sse`]'s steps in portable form (the same values) on other hosted processors.
+#[cfg(not(target_arch = "x86_64"))]
+mod sse {
+    pub(crate) use crate::axis::clamp as clamp_s;
+    pub(crate) use libm::sqrtf as sqrt_v;
+
+    #[inline(always)]
+    pub(crate) fn min_s(t: f32, m: f32) -> f32 {
+        if t < m {
+            t
+        } else {
+            m
+        }
+    }
+
+    #[inline(always)]
+    pub(crate) fn trunc_small(x: f32) -> i32 {
+        x as i32
+    }
+}
+
+pub(crate) use sse::{clamp_s, min_s, sqrt_v, trunc_small};
+
+/// [`rows`]' gathers: `words[r][j][k]` = the little-endian 32-bit word at byte
+/// `idx[k] + off[r] + 4j` from `base`, eight queries per gather (`N` a multiple of 8).
+///
+/// # Safety
+/// The processor supports AVX2, and every such word lies in one allocation at `base`,
+/// with every offset below 2³¹.
+#[cfg(all(feature = "std", target_arch = "x86_64"))]
+#[target_feature(enable = "avx2")]
+#[inline]
+pub(super) unsafe fn gather_words<const N: usize, const R: usize, const W: usize>(
+    base: *const u8,
+    idx: &[u32; N],
+    off: &[u32; R],
+    words: &mut [[[u32; N]; W]; R],
+) {
+    use core::arch::x86_64::{
+        __m256i, _mm256_add_epi32, _mm256_i32gather_epi32, _mm256_loadu_si256, _mm256_set1_epi32,
+        _mm256_storeu_si256,
+    };
+    for g in (0..N).step_by(8) {
+        // SAFETY (all blocks): 8 lanes from g < N, N a multiple of 8, lie in the arrays;
+        // the gathered words lie in the allocation by the caller's contract.
+        let v = unsafe { _mm256_loadu_si256(idx.as_ptr().add(g).cast::<__m256i>()) };
+        for (wr, &o) in words.iter_mut().zip(off) {
+            for (j, w) in wr.iter_mut().enumerate() {
+                let o = _mm256_add_epi32(v, _mm256_set1_epi32((o + 4 * j as u32) as i32));
+                unsafe {
+                    let x = _mm256_i32gather_epi32::<1>(base.cast::<i32>(), o);
+                    _mm256_storeu_si256(w.as_mut_ptr().add(g).cast::<__m256i>(), x);
+                }
+            }
+        }
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
 use super::{Lane, Mode, Reader};
+#[cfg(target_arch = "x86_64")]
 use crate::header::{Encoding, Warp};
+#[cfg(target_arch = "x86_64")]
 use core::arch::x86_64::{
     __m128, __m128i, _mm_add_ps, _mm_and_ps, _mm_andnot_ps, _mm_cvtepi32_ps, _mm_cvtsi128_si32,
     _mm_cvtss_f32, _mm_cvttps_epi32, _mm_loadl_epi64, _mm_max_ps, _mm_min_ps, _mm_movehl_ps,
@@ -25,6 +185,7 @@ use core::arch::x86_64::{
     _mm_unpacklo_epi32,
 };
 
+#[cfg(target_arch = "x86_64")]
 /// Which form of the two-lane lookup a table takes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Kind {
@@ -39,6 +200,7 @@ enum Kind {
     Mixed,
 }
 
+#[cfg(target_arch = "x86_64")]
 /// The per-table constants of the `Sqrt` form: lane 0 is axis 0 (μ), lane 1 axis 1
 /// (roughness). Small (40 bytes): the C interface keeps a prepared table in a fixed-size
 /// handle.
@@ -57,6 +219,7 @@ pub(crate) struct Fast2 {
     kind: Kind,
 }
 
+#[cfg(target_arch = "x86_64")]
 /// Two constants in lanes 0 and 1 (one 8-byte load).
 #[inline(always)]
 fn pair(v: &[f32; 2]) -> __m128 {
@@ -67,6 +230,7 @@ fn pair(v: &[f32; 2]) -> __m128 {
     }
 }
 
+#[cfg(target_arch = "x86_64")]
 /// Both channels NaN: a payload too short for the block (impossible for a parsed table;
 /// the scalar reader gives NaN too). Out of line, so the fast path does not prepare it.
 #[cold]
@@ -75,6 +239,7 @@ fn short() -> (f32, f32) {
     (f32::NAN, f32::NAN)
 }
 
+#[cfg(target_arch = "x86_64")]
 impl Fast2 {
     /// The form and constants of the two-lane lookup for `reader`'s table.
     pub(crate) fn new(reader: &Reader, dims: usize, channels: usize) -> Self {
@@ -168,7 +333,7 @@ impl Fast2 {
         let Some(limit) = self.limit(data, base) else {
             return false;
         };
-        crate::reader::wide(
+        wide(
             #[inline(always)]
             // SAFETY: `avx2` is true only where the processor has AVX2 (`wide`'s check).
             |avx2| avx2 && unsafe { self.batch_avx2(reader, data, base, limit, x, y, [a, b]) },
@@ -345,6 +510,7 @@ impl Fast2 {
     }
 }
 
+#[cfg(target_arch = "x86_64")]
 /// Eight lookups at once: [`Fast2::batch`]'s AVX2 body.
 #[cfg(feature = "std")]
 mod wide8 {
@@ -470,14 +636,15 @@ mod wide8 {
     }
 }
 
+#[cfg(target_arch = "x86_64")]
 #[cfg(all(test, feature = "std"))]
 mod tests {
     extern crate std;
     use super::*;
     use crate::header::{Axis, Interpolation, Placement, TableKind};
     use crate::tables::Prepared;
-    use crate::view::LutView;
     use crate::write;
+    use crate::LutView;
     use std::vec::Vec;
 
     fn same(a: (f32, f32), b: [f32; 2]) -> bool {

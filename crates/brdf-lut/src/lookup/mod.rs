@@ -22,27 +22,37 @@
 //! linear interpolation nests v = v₀ + f (v₁ − v₀) from axis 0 outward; Catmull–Rom sums
 //! Σ_j w1_j Σ_i w0_i v_ij per plane and Σ_k w2_k · plane_k over σ. A Catmull–Rom axis with
 //! 2 or 3 nodes has no contiguous 4-tap window; such (unusual) tables are read by the
-//! per-tap general path of [`Grid`](crate::view::Grid), which gives the same values up to
+//! per-tap general path of [`Grid`], which gives the same values up to
 //! f32 summation order.
 
 use crate::axis::clamp;
 use crate::f16::f16_to_f32;
 use crate::header::{Axis, Encoding, Header, Interpolation, Placement, Warp, MAX_CHANNELS};
-use crate::view::Grid;
 
-/// The two-lane scalar lookup of 2-D two-channel linear u16 tables (hosted x86-64).
-#[cfg(all(
-    target_arch = "x86_64",
-    not(any(target_os = "none", target_family = "wasm"))
-))]
-#[path = "fast2.rs"]
-pub(crate) mod fast2;
+/// Chunked Catmull–Rom lookups for the batch entry points.
+#[cfg(all(hosted, not(feature = "compact")))]
+mod cubic;
+mod grid;
+/// All `core::arch` code (hosted targets).
+#[cfg(hosted)]
+pub(crate) mod simd;
+
+pub(crate) use grid::Grid;
+pub use grid::Values;
+#[cfg(all(hosted, feature = "std", target_arch = "x86_64"))]
+use simd::gather_words;
+#[cfg(all(hosted, test, feature = "std"))]
+pub(crate) use simd::BASELINE_ONLY;
+#[cfg(hosted)]
+pub(crate) use simd::{clamp_s, wide};
+#[cfg(hosted)]
+use simd::{min_s, sqrt_v, trunc_small};
 
 /// cos x for x ∈ [0, π/2] as sin(π/2 − x) by its Taylor series to r¹¹ (truncation < 1e-9,
 /// relative accuracy kept near π/2 where √cos x is steep). Only for the table warp, where an
 /// error of a few 1e-8 moves the interpolation point by < 1e-4 of a cell.
-#[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-#[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+#[cfg_attr(not(hosted), inline)]
+#[cfg_attr(hosted, inline(always))]
 fn cos_quadrant(x: f32) -> f32 {
     let r = core::f32::consts::FRAC_PI_2 - x;
     let r2 = r * r;
@@ -64,8 +74,8 @@ fn nonneg(c: f32) -> f32 {
 }
 
 /// The warp's monotone part w(x) (x already clamped to the axis range).
-#[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-#[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+#[cfg_attr(not(hosted), inline)]
+#[cfg_attr(hosted, inline(always))]
 fn warp_w(warp: Warp, lo: f32, x: f32) -> f32 {
     match warp {
         Warp::Linear => x,
@@ -81,7 +91,7 @@ fn warp_w(warp: Warp, lo: f32, x: f32) -> f32 {
 /// [`warp_w`] for queries on hosted targets: the warps of the speed tiers (linear, √, √cos:
 /// a few instructions) inline, `ln` and `cos` out of line, so that every lookup variant does
 /// not carry copies of them.
-#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[cfg(hosted)]
 #[inline(always)]
 fn warp_q(warp: Warp, lo: f32, x: f32) -> f32 {
     match warp {
@@ -91,14 +101,14 @@ fn warp_q(warp: Warp, lo: f32, x: f32) -> f32 {
         _ => warp_far(warp, lo, x),
     }
 }
-#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[cfg(hosted)]
 #[inline(never)]
 fn warp_far(warp: Warp, lo: f32, x: f32) -> f32 {
     warp_w(warp, lo, x)
 }
 
 // Devices: one copy of the warp (code size has a budget there).
-#[cfg(any(target_os = "none", target_family = "wasm"))]
+#[cfg(not(hosted))]
 use warp_w as warp_q;
 
 /// One axis: physical coordinate → fractional node index.
@@ -112,10 +122,10 @@ pub(crate) struct Lane {
     /// n − 1.
     last: f32,
     /// n − 2, the last cell.
-    #[cfg(any(target_os = "none", target_family = "wasm"))]
+    #[cfg(not(hosted))]
     last_cell: i32,
     /// n − 2 as f32 (hosted targets: the node is found in f32, see [`Lane::cell`]).
-    #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+    #[cfg(hosted)]
     last_cell_f: f32,
 
     /// Values (nodes × channels) between neighbouring nodes of this axis.
@@ -161,9 +171,9 @@ impl Lane {
             a,
             b,
             last: nf - 1.0,
-            #[cfg(any(target_os = "none", target_family = "wasm"))]
+            #[cfg(not(hosted))]
             last_cell: axis.count as i32 - 2,
-            #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+            #[cfg(hosted)]
             last_cell_f: (axis.count as i32 - 2) as f32,
 
             stride,
@@ -174,7 +184,7 @@ impl Lane {
     /// For a √cos-warped axis: the same lane taking the warped value w = √cos x instead of
     /// x (a linear lane w ↦ a·w + b over [√cos hi, √cos lo]); `None` for other warps.
     /// The node index equals this lane's up to the rounding of the caller's √cos x.
-    #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+    #[cfg(hosted)]
     fn prewarped(&self) -> Option<Lane> {
         if self.warp != Warp::SqrtCos {
             return None;
@@ -199,9 +209,9 @@ impl Lane {
         a: 0.0,
         b: 0.0,
         last: 0.0,
-        #[cfg(any(target_os = "none", target_family = "wasm"))]
+        #[cfg(not(hosted))]
         last_cell: 0,
-        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        #[cfg(hosted)]
         last_cell_f: 0.0,
 
         stride: 0,
@@ -209,8 +219,8 @@ impl Lane {
     };
 
     /// The fractional node index of x (x not NaN).
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     pub(crate) fn index(&self, x: f32) -> f32 {
         let x = clamp(x, self.lo, self.hi);
         clamp(
@@ -221,30 +231,30 @@ impl Lane {
     }
 
     /// Node i ≤ n − 2 and the fraction f ∈ [0, 1] of x.
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     fn cell(&self, x: f32) -> (usize, f32) {
         let t = self.index(x);
         // t ∈ [0, n − 1] with n ≤ 65536: ⌊min(t, n − 2)⌋ = min(⌊t⌋, n − 2) (n − 2 is an
         // integer) by the truncating conversion (t ≥ 0), without saturation checks. NaN
         // takes node n − 2 (and f = NaN).
         // (As u32: the node's zero extension to usize is free.)
-        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        #[cfg(hosted)]
         let i = trunc_small(if t < self.last_cell_f {
             t
         } else {
             self.last_cell_f
         }) as u32;
         // Devices: the form whose code size the firmware budget was measured with.
-        #[cfg(any(target_os = "none", target_family = "wasm"))]
+        #[cfg(not(hosted))]
         let i = (t as i32).min(self.last_cell).max(0);
         (i as usize, t - i as f32)
     }
 
     /// First node and the four Catmull–Rom weights (docs/lut-format.md §7) of x on an axis
     /// of n ≥ 4 nodes, the end extrapolation folded in.
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     pub(crate) fn cubic(&self, x: f32) -> (usize, [f32; 4]) {
         self.cubic_with(|l| l.cell(x))
     }
@@ -286,8 +296,8 @@ struct F16;
 struct F32;
 impl Store for U16 {
     const BYTES: usize = 2;
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     fn at(b: &[u8], k: usize) -> f32 {
         match b.get(2 * k..2 * k + 2) {
             Some(&[b0, b1]) => u16::from_le_bytes([b0, b1]) as f32,
@@ -297,8 +307,8 @@ impl Store for U16 {
 }
 impl Store for F16 {
     const BYTES: usize = 2;
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     fn at(b: &[u8], k: usize) -> f32 {
         match b.get(2 * k..2 * k + 2) {
             Some(&[b0, b1]) => f16_to_f32(u16::from_le_bytes([b0, b1])),
@@ -308,8 +318,8 @@ impl Store for F16 {
 }
 impl Store for F32 {
     const BYTES: usize = 4;
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     fn at(b: &[u8], k: usize) -> f32 {
         match b.get(4 * k..4 * k + 4) {
             Some(&[b0, b1, b2, b3]) => f32::from_le_bytes([b0, b1, b2, b3]),
@@ -335,10 +345,6 @@ pub(crate) struct Reader {
     /// Per channel: value = offset + scale × stored (u16: scale already divided by 65535).
     pub(crate) scale: [f32; MAX_CHANNELS],
     pub(crate) offset: [f32; MAX_CHANNELS],
-    /// Catmull–Rom lookups read log axes with [`ln_fast`] (hosted targets; see
-    /// [`Reader::fast_ln`]).
-    #[cfg(not(any(target_os = "none", target_family = "wasm")))]
-    pub(crate) fast_ln: bool,
 }
 
 impl Reader {
@@ -378,8 +384,6 @@ impl Reader {
             mode,
             scale,
             offset,
-            #[cfg(not(any(target_os = "none", target_family = "wasm")))]
-            fast_ln: false,
         })
     }
 
@@ -389,42 +393,24 @@ impl Reader {
     /// Hosted targets test for the speed tiers' case (linear, u16) first and always inline
     /// it; the other cases follow, inlined or not as the optimiser decides (the same
     /// arithmetic either way).
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     pub(crate) fn sample<const D: usize, const C: usize>(
         &self,
         grid: &Grid,
         data: &[u8],
         x: [f32; D],
     ) -> [f32; C] {
-        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        #[cfg(hosted)]
         if self.mode == Mode::Linear && self.encoding == Encoding::Unorm16 {
             return self.finish(self.linear::<U16, D, C>(data, x));
         }
         self.sample_any(grid, data, x)
     }
 
-    /// [`Reader::sample`], with the log axes of a Catmull–Rom u16 table read through
-    /// [`ln_fast`] if [`Reader::fast_ln`] was called (the typed albedo tables' scalar
-    /// lookup, and the scalar tail of their batches). A separate entry so that the other
-    /// lookups' code stays as it was.
-    #[cfg(not(any(target_os = "none", target_family = "wasm")))]
-    #[inline]
-    pub(crate) fn sample_fast<const D: usize, const C: usize>(
-        &self,
-        grid: &Grid,
-        data: &[u8],
-        x: [f32; D],
-    ) -> [f32; C] {
-        if self.fast_ln && self.mode == Mode::Cubic && self.encoding == Encoding::Unorm16 {
-            return self.finish(self.cubic::<U16, D, C, true>(data, x));
-        }
-        self.sample(grid, data, x)
-    }
-
     /// Channel scale and offset applied to values in stored units.
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     fn finish<const C: usize>(&self, raw: [f32; C]) -> [f32; C] {
         let mut out = [0.0; C];
         for c in 0..C {
@@ -443,15 +429,15 @@ impl Reader {
     ) -> [f32; C] {
         let raw = match (self.mode, self.encoding) {
             (Mode::Linear, Encoding::Unorm16) => self.linear::<U16, D, C>(data, x),
-            (Mode::Cubic, Encoding::Unorm16) => self.cubic::<U16, D, C, false>(data, x),
+            (Mode::Cubic, Encoding::Unorm16) => self.cubic::<U16, D, C>(data, x),
             #[cfg(not(feature = "compact"))]
             (Mode::Linear, Encoding::F16) => self.linear::<F16, D, C>(data, x),
             #[cfg(not(feature = "compact"))]
             (Mode::Linear, Encoding::F32) => self.linear::<F32, D, C>(data, x),
             #[cfg(not(feature = "compact"))]
-            (Mode::Cubic, Encoding::F16) => self.cubic::<F16, D, C, false>(data, x),
+            (Mode::Cubic, Encoding::F16) => self.cubic::<F16, D, C>(data, x),
             #[cfg(not(feature = "compact"))]
-            (Mode::Cubic, Encoding::F32) => self.cubic::<F32, D, C, false>(data, x),
+            (Mode::Cubic, Encoding::F32) => self.cubic::<F32, D, C>(data, x),
             // Short Catmull–Rom axes (and, with feature `compact`, float payloads).
             _ => {
                 let v = grid.sample(data, &x);
@@ -465,8 +451,8 @@ impl Reader {
 
     /// Two one-channel 3-D lookups that share the last coordinate (the two one-sided factors
     /// of G over σ): the σ taps are computed once. Equal to two [`Reader::sample`] calls.
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     pub(crate) fn pair3(
         &self,
         grid: &Grid,
@@ -480,8 +466,8 @@ impl Reader {
 
     /// [`Reader::pair3`]; `IN_RANGE`: a and b lie in the ranges of axes 0 and 1 already
     /// (hosted targets skip their clamp; the same values).
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     pub(crate) fn pair3_in<const IN_RANGE: bool>(
         &self,
         grid: &Grid,
@@ -490,7 +476,7 @@ impl Reader {
         b: [f32; 2],
         z: f32,
     ) -> (f32, f32) {
-        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        #[cfg(hosted)]
         if self.chunked() {
             // Both sides side by side (the same arithmetic as `pair3_linear`).
             let [va, vb] = self.chunk3_in::<2, IN_RANGE>(
@@ -532,8 +518,8 @@ impl Reader {
         )
     }
 
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     fn pair3_linear<S: Store>(&self, data: &[u8], a: [f32; 2], b: [f32; 2], z: f32) -> (f32, f32) {
         let l = &self.lanes;
         let (k, f2) = l[2].cell(z);
@@ -541,9 +527,9 @@ impl Reader {
             let (i0, f0) = l[0].cell(x[0]);
             let (i1, f1) = l[1].cell(x[1]);
             let at = i0 + i1 * l[1].stride + k * l[2].stride;
-            #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+            #[cfg(hosted)]
             let plane = |at: usize| Self::plane::<S, 1>(data, at, l[1].stride, f0, f1)[0];
-            #[cfg(any(target_os = "none", target_family = "wasm"))]
+            #[cfg(not(hosted))]
             let plane = |at: usize| {
                 let lo = Self::row::<S, 1>(data, at, f0);
                 let hi = Self::row::<S, 1>(data, at + l[1].stride, f0);
@@ -555,8 +541,8 @@ impl Reader {
         (one(a), one(b))
     }
 
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     fn pair3_cubic<S: Store>(&self, data: &[u8], a: [f32; 2], b: [f32; 2], z: f32) -> (f32, f32) {
         let l = &self.lanes;
         let (b2, w2) = l[2].cubic(z);
@@ -588,8 +574,8 @@ impl Reader {
     }
 
     /// Two neighbouring nodes (all channels) starting at value index `at`.
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     fn pair<S: Store, const C: usize>(data: &[u8], at: usize) -> Option<([f32; C], [f32; C])> {
         let p = data.get(at * S::BYTES..(at + 2 * C) * S::BYTES)?;
         let (mut a, mut b) = ([0.0; C], [0.0; C]);
@@ -601,8 +587,8 @@ impl Reader {
     }
 
     /// Linear along axis 0 in the row starting at value index `at`.
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     fn row<S: Store, const C: usize>(data: &[u8], at: usize, f: f32) -> [f32; C] {
         match Self::pair::<S, C>(data, at) {
             Some((a, b)) => {
@@ -618,7 +604,7 @@ impl Reader {
 
     /// Bilinear in the plane of the 2 × 2 nodes starting at value index `at`, rows `s` values
     /// apart: one bounds-checked block of the payload for both rows.
-    #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+    #[cfg(hosted)]
     #[inline(always)]
     fn plane<S: Store, const C: usize>(
         data: &[u8],
@@ -645,8 +631,8 @@ impl Reader {
         v
     }
 
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     fn lerp<const C: usize>(a: [f32; C], b: [f32; C], f: f32) -> [f32; C] {
         let mut v = [0.0; C];
         for c in 0..C {
@@ -656,8 +642,8 @@ impl Reader {
     }
 
     /// (Bi/tri)linear in stored units.
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
     fn linear<S: Store, const D: usize, const C: usize>(
         &self,
         data: &[u8],
@@ -670,11 +656,11 @@ impl Reader {
         }
         let (i1, f1) = l[1].cell(x[1]);
         let at = i0 * C + i1 * l[1].stride;
-        #[cfg(not(any(target_os = "none", target_family = "wasm")))]
+        #[cfg(hosted)]
         let plane = |at: usize| Self::plane::<S, C>(data, at, l[1].stride, f0, f1);
         // Devices: one bounds check per row (the form the firmware budget was measured
         // with; the same values).
-        #[cfg(any(target_os = "none", target_family = "wasm"))]
+        #[cfg(not(hosted))]
         let plane = |at: usize| {
             let lo = Self::row::<S, C>(data, at, f0);
             let hi = Self::row::<S, C>(data, at + l[1].stride, f0);
@@ -689,16 +675,15 @@ impl Reader {
     }
 
     /// Catmull–Rom in stored units.
-    #[cfg_attr(any(target_os = "none", target_family = "wasm"), inline)]
-    #[cfg_attr(not(any(target_os = "none", target_family = "wasm")), inline(always))]
-    fn cubic<S: Store, const D: usize, const C: usize, const FAST_LN: bool>(
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
+    fn cubic<S: Store, const D: usize, const C: usize>(
         &self,
         data: &[u8],
         x: [f32; D],
     ) -> [f32; C] {
         let l = &self.lanes;
-        // `FAST_LN`: log axes through `ln_fast` (hosted targets; see `Reader::fast_ln`).
-        let (b0, w0) = l[0].cubic_mode::<FAST_LN>(x[0]);
+        let (b0, w0) = l[0].cubic(x[0]);
         let row = |at: usize| -> [f32; C] {
             let Some(p) = data.get(at * S::BYTES..(at + 4 * C) * S::BYTES) else {
                 return [f32::NAN; C];
@@ -714,7 +699,7 @@ impl Reader {
         if D == 1 {
             return row(b0 * C);
         }
-        let (b1, w1) = l[1].cubic_mode::<FAST_LN>(x[1]);
+        let (b1, w1) = l[1].cubic(x[1]);
         let patch = |at: usize| -> [f32; C] {
             let mut acc = [0.0; C];
             for (j, wj) in w1.iter().enumerate() {
@@ -729,7 +714,7 @@ impl Reader {
         if D == 2 {
             return patch(at);
         }
-        let (b2, w2) = l[2].cubic_mode::<FAST_LN>(x[2]);
+        let (b2, w2) = l[2].cubic(x[2]);
         let mut acc = [0.0; C];
         for (k, &wk) in w2.iter().enumerate() {
             if wk != 0.0 {
@@ -743,15 +728,6 @@ impl Reader {
     }
 }
 
-#[cfg(any(target_os = "none", target_family = "wasm"))]
-impl Lane {
-    /// [`Lane::cubic`] (devices have no `FAST_LN` reading).
-    #[inline(always)]
-    fn cubic_mode<const FAST_LN: bool>(&self, x: f32) -> (usize, [f32; 4]) {
-        self.cubic(x)
-    }
-}
-
 /// Chunked lookups for the batch entry points (hosted targets): `N` queries at once, in
 /// stages that are each a loop over the chunk (coordinate maps, then the payload reads, then
 /// the blend), so that the compiler turns the arithmetic stages into packed instructions:
@@ -760,7 +736,7 @@ impl Lane {
 /// [`rows`]). Every query goes through exactly the scalar path's operations
 /// ([`Lane::cell`], [`Reader::plane`], the channel scale and offset), so the results are
 /// the scalar lookups' bit for bit.
-#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[cfg(hosted)]
 impl Lane {
     /// [`Lane::cell`], with ln x of a log axis by [`ln_fast`] (inline, a few 1e-8 from
     /// libm's: the node index moves by far less than 1e-4 of a cell). For the σ lane of
@@ -776,45 +752,12 @@ impl Lane {
         (i as usize, t - i as f32)
     }
 
-    /// [`Lane::cubic`]; `FAST_LN`: with a log axis read as in [`Lane::cell_with`].
-    #[inline(always)]
-    pub(crate) fn cubic_mode<const FAST_LN: bool>(&self, x: f32) -> (usize, [f32; 4]) {
-        if !FAST_LN {
-            return self.cubic(x);
-        }
-        self.cubic_with(|l| l.cell_with(x, true))
-    }
-
-    /// [`Lane::cell`], with a log axis (lower end a normal f32) read with [`ln_fast`] if
-    /// `fast_ln` (see [`Reader::fast_ln`]): the same steps as [`Lane::cells`] with
-    /// `FAST_LN` for one coordinate.
-    #[inline(always)]
-    pub(crate) fn cell_with(&self, x: f32, fast_ln: bool) -> (usize, f32) {
-        if !(fast_ln && self.warp == Warp::Log && self.lo >= f32::MIN_POSITIVE) {
-            return self.cell(x);
-        }
-        self.cell_fast_ln(x)
-    }
-
-    #[inline(always)]
-    fn cell_fast_ln(&self, x: f32) -> (usize, f32) {
-        let x = clamp(x, self.lo, self.hi);
-        let t = clamp(self.a * ln_lane(x) + self.b, 0.0, self.last);
-        let i = trunc_small(min_s(t, self.last_cell_f));
-        (i as usize, t - i as f32)
-    }
-
     /// [`Lane::cell`] of `N` coordinates; `IN_RANGE`: the caller guarantees x ∈ [lo, hi]
     /// (the clamp would change nothing and is skipped); `MINMAX`: for N ≤ 2, the index
     /// clamp as scalar max/min instructions (the same values; which form the compiler turns
     /// into less code depends on the caller; longer chunks keep the vectorising form).
     #[inline(always)]
-    pub(crate) fn cells<
-        const N: usize,
-        const IN_RANGE: bool,
-        const MINMAX: bool,
-        const FAST_LN: bool,
-    >(
+    pub(crate) fn cells<const N: usize, const IN_RANGE: bool, const MINMAX: bool>(
         &self,
         x: &[f32; N],
     ) -> ([u32; N], [f32; N]) {
@@ -838,11 +781,6 @@ impl Lane {
                 }
                 for w in &mut w {
                     *w = sqrt_v(*w);
-                }
-            }
-            Warp::Log if FAST_LN && self.lo >= f32::MIN_POSITIVE => {
-                for w in &mut w {
-                    *w = ln_lane(*w);
                 }
             }
             _ => {
@@ -885,16 +823,8 @@ impl Lane {
     }
 }
 
-#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[cfg(hosted)]
 impl Reader {
-    /// Catmull–Rom lookups through [`Reader::sample_fast`] and the chunk paths read every
-    /// log axis whose lower end is a normal f32 with [`ln_fast`]: inline and vectorising, about a third of libm's
-    /// `logf` instructions, and within 1.5e-7 + 2.5e-7·|ln x| of ln x, which moves the
-    /// node index by a·(that) (for the 64-node μ axes over [sin 1°, 1]: < 2e-5 of a cell).
-    pub(crate) fn fast_ln(&mut self) {
-        self.fast_ln = true;
-    }
-
     /// Whether [`Reader::chunk`] applies (linear u16 tables); otherwise callers loop over
     /// the scalar lookup.
     #[inline(always)]
@@ -969,9 +899,9 @@ impl Reader {
         avx2: bool,
     ) -> [[f32; N]; C] {
         let l = &self.lanes;
-        let (i0, f0) = l0.cells::<N, IN_RANGE, MINMAX, false>(&x[0]);
+        let (i0, f0) = l0.cells::<N, IN_RANGE, MINMAX>(&x[0]);
         let (i1, f1) = if D > 1 {
-            l[1].cells::<N, IN_RANGE, MINMAX, false>(&x[1])
+            l[1].cells::<N, IN_RANGE, MINMAX>(&x[1])
         } else {
             ([0; N], [0.0; N])
         };
@@ -1073,8 +1003,8 @@ impl Reader {
     ) -> [f32; N] {
         let l = &self.lanes;
         let (k2, f2) = l[2].cell_ln(z);
-        let (i0, mut f0) = l0.cells::<N, IN_RANGE, true, false>(&x[0]);
-        let (i1, f1) = l[1].cells::<N, IN_RANGE, true, false>(&x[1]);
+        let (i0, mut f0) = l0.cells::<N, IN_RANGE, true>(&x[0]);
+        let (i1, f1) = l[1].cells::<N, IN_RANGE, true>(&x[1]);
         let (s1, s2) = (l[1].stride * 2, l[2].stride * 2);
         let mut q = [[0u32; N]; 8];
         if N > 2 {
@@ -1136,145 +1066,12 @@ impl Reader {
     }
 }
 
-/// Runs `body` (a batch loop whose stages are written to vectorise) compiled for AVX2
-/// when the processor has it (with feature `std` on x86-64, detected at run time; the
-/// standard library caches the answer), else as compiled for the baseline (SSE2 on
-/// x86-64). Only the vector width changes: AVX2 has no fused multiply-add (that is FMA,
-/// which stays off, as it would round a·b + c once instead of twice), and packed add,
-/// multiply, divide, square root, min/max and conversions round exactly like their scalar
-/// forms, so the values are the same bit for bit.
-#[cfg(not(any(target_os = "none", target_family = "wasm")))]
-#[inline(always)]
-pub(crate) fn wide<R>(body: impl FnOnce(bool) -> R) -> R {
-    #[cfg(all(feature = "std", target_arch = "x86_64"))]
-    if std::is_x86_feature_detected!("avx2") && !baseline_only() {
-        // SAFETY: `avx2` only requires that the processor support AVX2, checked just above.
-        return unsafe { avx2(body) };
-    }
-    body(false)
-}
-
-/// Unit tests: the batch loops run their baseline build even where AVX2 is available.
-#[cfg(all(test, feature = "std"))]
-pub(crate) static BASELINE_ONLY: core::sync::atomic::AtomicBool =
-    core::sync::atomic::AtomicBool::new(false);
-#[cfg(all(
-    feature = "std",
-    target_arch = "x86_64",
-    not(any(target_os = "none", target_family = "wasm"))
-))]
-#[inline(always)]
-fn baseline_only() -> bool {
-    #[cfg(all(test, feature = "std"))]
-    return BASELINE_ONLY.load(core::sync::atomic::Ordering::Relaxed);
-    #[cfg(not(all(test, feature = "std")))]
-    false
-}
-
-/// `body(true)` compiled with AVX2 enabled (its stages are inlined into this function;
-/// `true` tells them that they may use AVX2 instructions, e.g. [`rows`]' gathers).
-///
-/// # Safety
-/// The processor must support AVX2.
-#[cfg(all(
-    feature = "std",
-    target_arch = "x86_64",
-    not(any(target_os = "none", target_family = "wasm"))
-))]
-#[target_feature(enable = "avx2")]
-unsafe fn avx2<R>(body: impl FnOnce(bool) -> R) -> R {
-    body(true)
-}
-
-/// Scalar steps of the lookups as single SSE instructions (x86-64, hosted targets):
-/// `sqrt_v` √x, correctly rounded like `libm::sqrtf` (IEEE 754 square root, so the same
-/// bits), but in a form the compiler can turn into packed `sqrtps` in the chunk loops
-/// (libm's is inline assembly, which it cannot); `clamp_s` [`clamp`] as one max and one min
-/// instruction (NaN stays NaN; the plain comparisons let the compiler turn a two-lane clamp
-/// into a vector compare, a mask extraction and branches); `min_s` min(t, m) = (t < m ? t :
-/// m); `trunc_small` ⌊x⌋ of x ∈ [0, 2¹⁶) as the processor's truncating conversion, without
-/// the saturation checks of `as` (callers pass no NaN).
-#[cfg(all(
-    target_arch = "x86_64",
-    not(any(target_os = "none", target_family = "wasm"))
-))]
-mod sse {
-    use core::arch::x86_64::{
-        _mm_cvtss_f32, _mm_cvttss_si32, _mm_max_ss, _mm_min_ss, _mm_set_ss, _mm_sqrt_ss,
-    };
-
-    /// Evaluates an expression of the SSE intrinsics imported above.
-    macro_rules! sse {
-        ($e:expr) => {{
-            // SAFETY: SSE is part of the x86_64 baseline, and these intrinsics only compute
-            // on registers (no memory access). They are safe functions from Rust 1.87 on;
-            // the block is for the crate's minimum Rust, 1.84.
-            #[allow(unused_unsafe)]
-            unsafe {
-                $e
-            }
-        }};
-    }
-
-    #[inline(always)]
-    pub(crate) fn sqrt_v(x: f32) -> f32 {
-        sse!(_mm_cvtss_f32(_mm_sqrt_ss(_mm_set_ss(x))))
-    }
-
-    /// maxss/minss return their second operand when either is NaN:
-    /// (lo > x ? lo : x), then (hi < y ? hi : y).
-    #[inline(always)]
-    pub(crate) fn clamp_s(x: f32, lo: f32, hi: f32) -> f32 {
-        let y = sse!(_mm_max_ss(_mm_set_ss(lo), _mm_set_ss(x)));
-        sse!(_mm_cvtss_f32(_mm_min_ss(_mm_set_ss(hi), y)))
-    }
-
-    #[inline(always)]
-    pub(crate) fn min_s(t: f32, m: f32) -> f32 {
-        sse!(_mm_cvtss_f32(_mm_min_ss(_mm_set_ss(t), _mm_set_ss(m))))
-    }
-
-    #[inline(always)]
-    pub(crate) fn trunc_small(x: f32) -> i32 {
-        sse!(_mm_cvttss_si32(_mm_set_ss(x)))
-    }
-}
-
-/// [`sse`]'s steps in portable form (the same values) on other hosted processors.
-#[cfg(all(
-    not(target_arch = "x86_64"),
-    not(any(target_os = "none", target_family = "wasm"))
-))]
-mod sse {
-    pub(crate) use crate::axis::clamp as clamp_s;
-    pub(crate) use libm::sqrtf as sqrt_v;
-
-    #[inline(always)]
-    pub(crate) fn min_s(t: f32, m: f32) -> f32 {
-        if t < m {
-            t
-        } else {
-            m
-        }
-    }
-
-    #[inline(always)]
-    pub(crate) fn trunc_small(x: f32) -> i32 {
-        x as i32
-    }
-}
-
-#[cfg(not(any(target_os = "none", target_family = "wasm")))]
-pub(crate) use sse::clamp_s;
-#[cfg(not(any(target_os = "none", target_family = "wasm")))]
-use sse::{min_s, sqrt_v, trunc_small};
-
 /// ln x for a normal positive finite f32 x: x = 2ᵏ m with m ∈ [√½, √2), then
 /// ln m = 2 atanh s = 2s (1 + s²/3 + s⁴/5 + s⁶/7 + …) with s = (m − 1)/(m + 1), |s| ≤ 0.1716
 /// (series truncation < 2.9e-8; with the f32 rounding the error stays below
 /// 1.5e-7 + 6e-8 |ln x|). Not correctly rounded like libm's `logf`, but inline and about
 /// a third of its instructions.
-#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[cfg(hosted)]
 #[inline(always)]
 pub(crate) fn ln_fast(x: f32) -> f32 {
     // The bits of √½: adding 1.0's bits minus these carries into the exponent exactly when
@@ -1290,26 +1087,13 @@ pub(crate) fn ln_fast(x: f32) -> f32 {
     k as f32 * core::f32::consts::LN_2 + s * p
 }
 
-/// [`ln_fast`] of a coordinate already clamped to a log axis' range [lo, hi] with lo a
-/// normal positive f32 (so x is one, or NaN, which stays NaN).
-#[cfg(not(any(target_os = "none", target_family = "wasm")))]
-#[inline(always)]
-fn ln_lane(x: f32) -> f32 {
-    let y = ln_fast(x);
-    if x.is_nan() {
-        x
-    } else {
-        y
-    }
-}
-
 /// The payload rows of `N` queries: word j of row r of query k is the little-endian 32-bit
 /// word at byte `at[k] + off[r] + 4j` of `data` (`[row][word][query]`), and `bad[k]` is NaN
 /// for a query whose rows lie past the payload (impossible for a parsed table: its words
 /// are then 0) and 0 otherwise. `avx2`: the caller runs compiled for AVX2 (see [`wide`]),
 /// so the words are read by gathers, eight queries at a time, after one bounds check per
 /// query in vector form.
-#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[cfg(hosted)]
 #[inline(always)]
 #[allow(clippy::type_complexity)]
 fn rows<const N: usize, const R: usize, const W: usize>(
@@ -1357,48 +1141,9 @@ fn rows<const N: usize, const R: usize, const W: usize>(
     (words, bad)
 }
 
-/// [`rows`]' gathers: `words[r][j][k]` = the little-endian 32-bit word at byte
-/// `idx[k] + off[r] + 4j` from `base`, eight queries per gather (`N` a multiple of 8).
-///
-/// # Safety
-/// The processor supports AVX2, and every such word lies in one allocation at `base`,
-/// with every offset below 2³¹.
-#[cfg(all(
-    feature = "std",
-    target_arch = "x86_64",
-    not(any(target_os = "none", target_family = "wasm"))
-))]
-#[target_feature(enable = "avx2")]
-#[inline]
-unsafe fn gather_words<const N: usize, const R: usize, const W: usize>(
-    base: *const u8,
-    idx: &[u32; N],
-    off: &[u32; R],
-    words: &mut [[[u32; N]; W]; R],
-) {
-    use core::arch::x86_64::{
-        __m256i, _mm256_add_epi32, _mm256_i32gather_epi32, _mm256_loadu_si256, _mm256_set1_epi32,
-        _mm256_storeu_si256,
-    };
-    for g in (0..N).step_by(8) {
-        // SAFETY (all blocks): 8 lanes from g < N, N a multiple of 8, lie in the arrays;
-        // the gathered words lie in the allocation by the caller's contract.
-        let v = unsafe { _mm256_loadu_si256(idx.as_ptr().add(g).cast::<__m256i>()) };
-        for (wr, &o) in words.iter_mut().zip(off) {
-            for (j, w) in wr.iter_mut().enumerate() {
-                let o = _mm256_add_epi32(v, _mm256_set1_epi32((o + 4 * j as u32) as i32));
-                unsafe {
-                    let x = _mm256_i32gather_epi32::<1>(base.cast::<i32>(), o);
-                    _mm256_storeu_si256(w.as_mut_ptr().add(g).cast::<__m256i>(), x);
-                }
-            }
-        }
-    }
-}
-
 /// The little-endian 32-bit word at byte `at` of `b` (0 past the end; callers pass rows
 /// that hold it).
-#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[cfg(hosted)]
 #[inline(always)]
 fn u32_at(b: &[u8], at: usize) -> u32 {
     match b.get(at..at + 4) {
@@ -1408,7 +1153,7 @@ fn u32_at(b: &[u8], at: usize) -> u32 {
 }
 
 /// Stored u16 number `k` of `b` (0 past the end; callers pass rows that hold it).
-#[cfg(not(any(target_os = "none", target_family = "wasm")))]
+#[cfg(hosted)]
 #[inline(always)]
 fn u16_at(b: &[u8], k: usize) -> u16 {
     match b.get(2 * k..2 * k + 2) {
@@ -1417,7 +1162,7 @@ fn u16_at(b: &[u8], k: usize) -> u16 {
     }
 }
 
-#[cfg(all(test, not(any(target_os = "none", target_family = "wasm"))))]
+#[cfg(all(test, hosted))]
 mod tests {
     use super::*;
 
@@ -1459,9 +1204,9 @@ mod tests {
         };
         let lane = Lane::new(&axis, 1).unwrap();
         assert!(lane.cell(f32::NAN).1.is_nan());
-        let (_, f) = lane.cells::<2, false, false, false>(&[f32::NAN, 0.5]);
+        let (_, f) = lane.cells::<2, false, false>(&[f32::NAN, 0.5]);
         assert!(f[0].is_nan() && !f[1].is_nan());
-        let (_, f) = lane.cells::<16, false, false, false>(&[f32::NAN; 16]);
+        let (_, f) = lane.cells::<16, false, false>(&[f32::NAN; 16]);
         assert!(f.iter().all(|f| f.is_nan()));
     }
 
