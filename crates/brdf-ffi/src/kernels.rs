@@ -440,7 +440,7 @@ macro_rules! typed_abi {
         }
 
         #[doc = concat!(" G = min(GM, GS) ∈ [0, 1] from in-plane angles; see `", stringify!($mg_terms), "` (NaN for")]
-        /// NaN angles or a bad handle.
+        /// NaN angles or a bad handle).
         #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
         #[no_mangle]
         pub unsafe extern "C" fn $mg_g(g: *const $MG, theta_i: $t, theta_r: $t) -> $t {

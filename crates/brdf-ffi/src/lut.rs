@@ -394,7 +394,8 @@ pub unsafe extern "C" fn brdf_dfg_table_ab(
     roughness: f32,
 ) -> BrdfDfgF32 {
     // SAFETY: `t` is null or a readable handle (the caller's contract).
-    let (a, b) = unsafe { BrdfDfgTable::get(t) }.map_or((f32::NAN, f32::NAN), |t| t.ab(mu, roughness));
+    let (a, b) =
+        unsafe { BrdfDfgTable::get(t) }.map_or((f32::NAN, f32::NAN), |t| t.ab(mu, roughness));
     BrdfDfgF32 { a, b }
 }
 

@@ -36,8 +36,21 @@ pub fn generate_header(root: &Path) -> Result<String> {
 fn expand_ffi(root: &Path) -> Result<String> {
     let out = Command::new(cargo())
         .current_dir(root)
-        .args(["rustc", "-p", "brdf-ffi", "--lib", "--profile=check", "--locked"])
-        .args(["--quiet", "--", "-Zunpretty=expanded", "--cfg", "brdf_header"])
+        .args([
+            "rustc",
+            "-p",
+            "brdf-ffi",
+            "--lib",
+            "--profile=check",
+            "--locked",
+        ])
+        .args([
+            "--quiet",
+            "--",
+            "-Zunpretty=expanded",
+            "--cfg",
+            "brdf_header",
+        ])
         .env("RUSTC_BOOTSTRAP", "1")
         .env("CARGO_TARGET_DIR", target_base(root).join("cffi-expand"))
         .output()
@@ -178,7 +191,12 @@ pub(crate) fn build_host_lib(root: &Path, base: &Path) -> Result<PathBuf> {
 }
 
 /// Builds `examples/c` with `make` into `out`: the device ELF and the two host programs.
-pub(crate) fn make_examples(root: &Path, out: &Path, device_lib: &Path, host_dir: &Path) -> Result<()> {
+pub(crate) fn make_examples(
+    root: &Path,
+    out: &Path,
+    device_lib: &Path,
+    host_dir: &Path,
+) -> Result<()> {
     let st = Command::new("make")
         .arg("-B")
         .arg("-C")

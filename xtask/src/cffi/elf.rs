@@ -291,4 +291,3 @@ fn readme_sizes(path: &Path, s: &Sizes, stack: Option<u64>, update: bool) -> Res
         stale.join("\n  ")
     )
 }
-

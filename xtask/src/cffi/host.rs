@@ -136,7 +136,10 @@ fn mg_terms<T: Scalar, H, R: Vals>(
 ) -> Result<Vec<Val>> {
     let (s, c, ti, tr) = (p.f()?, p.u()?, p.f()?, p.f()?);
     // SAFETY: `h` is a live handle on `with_handle`'s stack, filled by a successful init.
-    let r = with_handle(|h| unsafe { init(h, s, c) }, |h| unsafe { terms(h, ti, tr) })?;
+    let r = with_handle(
+        |h| unsafe { init(h, s, c) },
+        |h| unsafe { terms(h, ti, tr) },
+    )?;
     Ok(r.vals())
 }
 
@@ -167,13 +170,16 @@ fn ts<T: Scalar, H>(mut p: Args, f: TsFns<H, T>) -> Result<Vec<Val>> {
     let (ks, al) = (p.f()?, p.f()?);
     let (x, y, z, nh) = (p.f()?, p.f()?, p.f()?, p.f()?);
     // SAFETY: as in `mg_terms`.
-    let r = with_handle(|h| unsafe { (f.init)(h, s, g, fr, fp, ks, al) }, |h| unsafe {
-        [
-            (f.eval)(h, x, y, z),
-            (f.specular)(h, x, y, z),
-            (f.eval_nh)(h, x, y, z, nh),
-        ]
-    })?;
+    let r = with_handle(
+        |h| unsafe { (f.init)(h, s, g, fr, fp, ks, al) },
+        |h| unsafe {
+            [
+                (f.eval)(h, x, y, z),
+                (f.specular)(h, x, y, z),
+                (f.eval_nh)(h, x, y, z, nh),
+            ]
+        },
+    )?;
     Ok(r.iter().map(|v| v.val()).collect())
 }
 

@@ -97,7 +97,12 @@ fn compare(out: &Output, tables: &host::HostTables) -> Result<Vec<Row>> {
         let want = host::host_values(tables, &r.kernel, &args)
             .with_context(|| format!("recomputing {}", r.line))?;
         if vals.len() != want.len() {
-            bail!("{}: {} values, the host has {}", r.line, vals.len(), want.len());
+            bail!(
+                "{}: {} values, the host has {}",
+                r.line,
+                vals.len(),
+                want.len()
+            );
         }
         for (k, (d, h)) in vals.into_iter().zip(want).enumerate() {
             rows.push(Row::new(&r.kernel, format!("{} [{k}]", r.line), d, h, 0.0));
@@ -107,9 +112,19 @@ fn compare(out: &Output, tables: &host::HostTables) -> Result<Vec<Row>> {
 }
 
 /// Reads one run's output and compares it; its errors go to `errors`.
-fn judge(root: &Path, name: &str, run: &RunOut, errors: &mut Vec<String>) -> Result<(Output, Vec<Row>)> {
-    let out = protocol::parse(&run.stdout, "BRDF-C").with_context(|| format!("parsing the {name} output"))?;
-    let abi: u32 = out.banner.first().context("BRDF-C line without ABI")?.parse()?;
+fn judge(
+    root: &Path,
+    name: &str,
+    run: &RunOut,
+    errors: &mut Vec<String>,
+) -> Result<(Output, Vec<Row>)> {
+    let out = protocol::parse(&run.stdout, "BRDF-C")
+        .with_context(|| format!("parsing the {name} output"))?;
+    let abi: u32 = out
+        .banner
+        .first()
+        .context("BRDF-C line without ABI")?
+        .parse()?;
     if abi != BRDF_ABI_VERSION {
         bail!("{name}: the C program reports ABI {abi}, the library {BRDF_ABI_VERSION}");
     }
@@ -117,7 +132,12 @@ fn judge(root: &Path, name: &str, run: &RunOut, errors: &mut Vec<String>) -> Res
     let tables = host::HostTables::load(root, &out.tables)?;
     let rows = compare(&out, &tables)?;
     for r in rows.iter().filter(|r| !r.pass) {
-        errors.push(format!("{name}: {} is {}, the host's Rust value {}", r.label, r.device.hex(), r.host.hex()));
+        errors.push(format!(
+            "{name}: {} is {}, the host's Rust value {}",
+            r.label,
+            r.device.hex(),
+            r.host.hex()
+        ));
     }
     Ok((out, rows))
 }
@@ -152,7 +172,9 @@ pub fn run(a: Args) -> Result<()> {
     }
     let counts: Vec<usize> = judged.iter().map(|j| j.0.results.len()).collect();
     if counts.iter().any(|&c| c != counts[0]) {
-        errors.push(format!("the device and host runs printed different numbers of results: {counts:?}"));
+        errors.push(format!(
+            "the device and host runs printed different numbers of results: {counts:?}"
+        ));
     }
     let (dev_out, dev_rows) = &judged[0];
     println!("C on the Cortex-M4F (QEMU) vs the host's Rust:");
@@ -167,7 +189,10 @@ pub fn run(a: Args) -> Result<()> {
         t_qemu.as_secs_f64()
     );
     if !errors.is_empty() {
-        eprintln!("---- device output ----\n{}{}", runs[0].1.stdout, runs[0].1.stderr);
+        eprintln!(
+            "---- device output ----\n{}{}",
+            runs[0].1.stdout, runs[0].1.stderr
+        );
         bail!("cffi: {}", errors.join("\n  "));
     }
     println!(

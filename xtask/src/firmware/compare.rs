@@ -146,7 +146,11 @@ pub(crate) fn compare(out: &Output, tables: &HostTables, micromath: bool) -> Res
             .collect::<Result<Vec<_>>>()?;
         let fw = parse_num(value)?;
         let host = host_value(tables, &r.kernel, &args)?;
-        let tol = if micromath { micromath_tol(&r.kernel) } else { 0.0 };
+        let tol = if micromath {
+            micromath_tol(&r.kernel)
+        } else {
+            0.0
+        };
         let shown: Vec<String> = args.iter().map(|x| format!("{x}")).collect();
         let label = format!("{}({})", r.kernel, shown.join(", "));
         let (fw, host) = (Val::F32(fw.to_bits()), Val::F32(host.to_bits()));
@@ -191,7 +195,11 @@ mod tests {
         let host = host_value(&tables, "g_direct", &args).unwrap();
         assert!(host > 0.0 && host <= 1.0);
         let off = f32::from_bits(host.to_bits() - 1);
-        let rows = compare(&output(vec![res(&args, host), res(&args, off)]), &tables, false);
+        let rows = compare(
+            &output(vec![res(&args, host), res(&args, off)]),
+            &tables,
+            false,
+        );
         let rows = rows.unwrap();
         assert!(rows[0].pass && rows[0].ulps == 0);
         assert!(!rows[1].pass && rows[1].ulps == 1);

@@ -247,7 +247,10 @@ pub(crate) fn print_rows(rows: &[Row], verbose: bool, required: impl Fn(&str) ->
     println!("|---|---:|---:|---:|---:|---|---|");
     for (k, (n, same, ulps, rel, ok)) in &per {
         let verdict = if *ok { "pass" } else { "FAIL" };
-        println!("| {k} | {n} | {same} | {ulps} | {rel:.2e} | {} | {verdict} |", required(k));
+        println!(
+            "| {k} | {n} | {same} | {ulps} | {rel:.2e} | {} | {verdict} |",
+            required(k)
+        );
     }
 }
 
@@ -259,10 +262,7 @@ mod tests {
     fn ulp_distance_counts_representable_steps() {
         let f = |x: f32| Val::F32(x.to_bits());
         assert_eq!(ulp_distance(f(1.0), f(1.0)), 0);
-        assert_eq!(
-            ulp_distance(f(1.0), Val::F32(1.0f32.to_bits() + 3)),
-            3
-        );
+        assert_eq!(ulp_distance(f(1.0), Val::F32(1.0f32.to_bits() + 3)), 3);
         // Across zero: −min_positive .. +min_positive is 2 steps apart through ±0.
         assert_eq!(ulp_distance(Val::F32(1 | 1 << 31), Val::F32(1)), 2);
         assert_eq!(

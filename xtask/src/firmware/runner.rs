@@ -167,5 +167,4 @@ mod tests {
         assert_eq!(locked_version(&lock, "micromath"), None);
         std::fs::remove_dir_all(&dir).unwrap();
     }
-
 }

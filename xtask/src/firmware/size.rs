@@ -251,7 +251,12 @@ pub(crate) fn elf_symbols(elf: &Path) -> Result<Vec<Symbol>> {
             continue;
         };
         let (ty, name) = (ty.to_string(), tidy(raw));
-        syms.push(Symbol { addr, size, ty, name });
+        syms.push(Symbol {
+            addr,
+            size,
+            ty,
+            name,
+        });
     }
     Ok(syms)
 }
@@ -290,8 +295,8 @@ pub(crate) fn sizes(elf: &Path) -> Result<Sizes> {
     kernels.sort_by(|a, b| b.1.cmp(&a.1).then_with(|| a.0.cmp(&b.0)));
     kernels.truncate(12);
     let sections: BTreeMap<String, u64> = with_addr.into_iter().map(|(k, v)| (k, v.0)).collect();
-    let text_ro = sections.get(".text").copied().unwrap_or(0)
-        + sections.get(".rodata").copied().unwrap_or(0);
+    let text_ro =
+        sections.get(".text").copied().unwrap_or(0) + sections.get(".rodata").copied().unwrap_or(0);
     Ok(Sizes {
         sections,
         groups,
