@@ -1,6 +1,6 @@
 //! Kernel exports: the modified G, Blinn's and Smith's G, the Torrance–Sparrow and GGX
-//! BRDFs and their directional albedo, each in `f32` and `f64` (one generic brdf-core source,
-//! two instantiations; the two blocks below differ only in the scalar type).
+//! BRDFs and their directional albedo, each in `f32` and `f64`: one definition (the
+//! `typed_abi!` macro below, over generic helpers) instantiated for each scalar type.
 //!
 //! Conventions (docs/conventions.md): local frame with z the normal, both directions
 //! pointing away from the surface, `wi` toward the light and `wo` toward the viewer; the
@@ -242,866 +242,477 @@ fn finite3<T: Real>(a: T, b: T, c: T) -> bool {
     a.is_finite() && b.is_finite() && c.is_finite()
 }
 
-// ---------------------------------------------------------------------------------------
-// f32
-
-/// GM, GS and G = min(GM, GS) of the modified G (paper eqs 11–13), each in [0, 1]; all NaN
-/// for bad input.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct BrdfGTermsF32 {
-    /// Masking, the viewing side (eq 11).
-    pub gm: f32,
-    /// Shadowing, the light's side (eq 12).
-    pub gs: f32,
-    /// G = min(GM, GS) (eq 13).
-    pub g: f32,
-}
-
-/// A 3-vector in the local shading frame (z = normal).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct BrdfVec3F32 {
-    /// x (tangent).
-    pub x: f32,
-    /// y (bitangent).
-    pub y: f32,
-    /// z (normal).
-    pub z: f32,
-}
-
-/// An RGB triple (per-channel values, e.g. a BRDF in 1/sr or a reflectance).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct BrdfRgbF32 {
-    /// Red.
-    pub r: f32,
-    /// Green.
-    pub g: f32,
-    /// Blue.
-    pub b: f32,
-}
-
-/// A prepared modified G for one surface (σ, convention). Fill it with
-/// `brdf_modified_g_init_f32`; the fields are private to the library.
-#[repr(C)]
-pub struct BrdfModifiedGF32 {
-    tag: u64,
-    storage: [u64; BRDF_MODIFIED_G_WORDS],
-}
-handle!(BrdfModifiedGF32, ModifiedG<f32>, TAG_MODIFIED_G_F32);
-
-/// A prepared Torrance–Sparrow BRDF. Fill it with `brdf_torrance_sparrow_init_f32`; the
-/// fields are private to the library.
-#[repr(C)]
-pub struct BrdfTorranceSparrowF32 {
-    tag: u64,
-    storage: [u64; BRDF_TORRANCE_SPARROW_WORDS],
-}
-handle!(BrdfTorranceSparrowF32, TorranceSparrow<f32>, TAG_TS_F32);
-
-/// A prepared GGX BRDF. Fill it with `brdf_ggx_init_f32`; the fields are private to the
-/// library.
-#[repr(C)]
-pub struct BrdfGgxF32 {
-    tag: u64,
-    storage: [u64; BRDF_GGX_WORDS],
-}
-handle!(BrdfGgxF32, Ggx<f32>, TAG_GGX_F32);
-
-const NAN_TERMS_F32: BrdfGTermsF32 = BrdfGTermsF32 {
-    gm: f32::NAN,
-    gs: f32::NAN,
-    g: f32::NAN,
-};
-
-fn terms_f32(t: masking::GTerms<f32>) -> BrdfGTermsF32 {
-    BrdfGTermsF32 {
-        gm: t.gm,
-        gs: t.gs,
-        g: t.g,
+/// `f` of a prepared Torrance–Sparrow BRDF at the dot products `d`; NaN for a missing handle
+/// or a non-finite dot product.
+fn ts_dots<T: Real>(
+    ts: Option<&TorranceSparrow<T>>,
+    d: [T; 3],
+    f: impl Fn(&TorranceSparrow<T>, Dots<T>) -> T,
+) -> T {
+    match ts {
+        Some(t) if finite3(d[0], d[1], d[2]) => f(t, Dots::new(d[0], d[1], d[2])),
+        _ => T::NAN,
     }
 }
 
-/// Prepares the modified G of the 2015 Acta Physica Sinica paper (eqs 6–13) for RMS slope
-/// `sigma` (finite, > 0; accuracy specified for σ ∈ [0.05, 1]) and `convention`
-/// (`BRDF_CONVENTION_*`). Returns `BRDF_STATUS_OK`, `BRDF_STATUS_NULL_POINTER` (`out` null)
-/// or `BRDF_STATUS_INVALID_ARGUMENT` (σ NaN, infinite or ≤ 0, unknown convention); on error
-/// `*out` is left not initialised.
-#[no_mangle]
-pub unsafe extern "C" fn brdf_modified_g_init_f32(
-    out: *mut BrdfModifiedGF32,
-    sigma: f32,
-    convention: BrdfConvention,
+/// The body of every `*_init` export: refuses a null `out`, clears its tag, builds the value
+/// and stores it (the tag is written last, so a failed init leaves the handle refused).
+///
+/// # Safety
+/// `out` is null or valid for writes of one `H`, 8-byte aligned; `clear` and `put` are the
+/// handle's own functions, which need exactly that.
+unsafe fn init<H, V>(
+    out: *mut H,
+    clear: unsafe fn(*mut H),
+    put: unsafe fn(*mut H, V),
+    new: impl FnOnce() -> Result<V, BrdfStatus>,
 ) -> BrdfStatus {
     if out.is_null() {
         return BRDF_STATUS_NULL_POINTER;
     }
-    BrdfModifiedGF32::clear(out);
-    match modified_new(sigma, convention) {
-        Ok(g) => {
-            BrdfModifiedGF32::put(out, g);
+    // SAFETY: `out` is non-null and valid for writes (this function's contract).
+    unsafe { clear(out) };
+    match new() {
+        Ok(v) => {
+            // SAFETY: as above.
+            unsafe { put(out, v) };
             BRDF_STATUS_OK
         }
         Err(s) => s,
     }
 }
 
-/// GM, GS and G from the paper's in-plane angles in radians: θi ∈ [0, π/2], θr ∈ [−π/2, π/2]
-/// signed (out-of-range and infinite angles are clamped to those ranges). NaN angles, a null
-/// or uninitialised handle give all NaN.
-#[no_mangle]
-pub unsafe extern "C" fn brdf_modified_g_terms_f32(
-    g: *const BrdfModifiedGF32,
-    theta_i: f32,
-    theta_r: f32,
-) -> BrdfGTermsF32 {
-    match BrdfModifiedGF32::get(g) {
-        Some(m) => terms_f32(m.terms(theta_i, theta_r)),
-        None => NAN_TERMS_F32,
-    }
-}
-
-/// G = min(GM, GS) ∈ [0, 1] from in-plane angles; see `brdf_modified_g_terms_f32` (NaN for
-/// NaN angles or a bad handle).
-#[no_mangle]
-pub unsafe extern "C" fn brdf_modified_g_f32(
-    g: *const BrdfModifiedGF32,
-    theta_i: f32,
-    theta_r: f32,
-) -> f32 {
-    brdf_modified_g_terms_f32(g, theta_i, theta_r).g
-}
-
-/// GM, GS and G from the dot products n·wi, n·wo, wi·wo of unit vectors (the reciprocal
-/// 3-D extension; with the printed convention the pair is folded into its plane). A direction
-/// at or below the horizon (n·w ≤ 0) gives 0; a non-finite dot product, a null or
-/// uninitialised handle give all NaN.
-#[no_mangle]
-pub unsafe extern "C" fn brdf_modified_g_terms_dots_f32(
-    g: *const BrdfModifiedGF32,
-    n_i: f32,
-    n_o: f32,
-    i_o: f32,
-) -> BrdfGTermsF32 {
-    match BrdfModifiedGF32::get(g) {
-        Some(m) if finite3(n_i, n_o, i_o) => terms_f32(m.terms_dots(Dots::new(n_i, n_o, i_o))),
-        _ => NAN_TERMS_F32,
-    }
-}
-
-/// G ∈ [0, 1] from dot products; see `brdf_modified_g_terms_dots_f32`.
-#[no_mangle]
-pub unsafe extern "C" fn brdf_modified_g_dots_f32(
-    g: *const BrdfModifiedGF32,
-    n_i: f32,
-    n_o: f32,
-    i_o: f32,
-) -> f32 {
-    brdf_modified_g_terms_dots_f32(g, n_i, n_o, i_o).g
-}
-
-/// `out[k] = brdf_modified_g_dots_f32(g, n_i[k], n_o[k], i_o[k])` for k < n. Returns
-/// `BRDF_STATUS_NOT_INITIALISED` (bad handle; nothing written), `BRDF_STATUS_NULL_POINTER`
-/// (an array null with n > 0; nothing written), `BRDF_STATUS_BAD_LENGTH` (n too large) or
-/// `BRDF_STATUS_OK`. `out` may alias an input.
-#[no_mangle]
-pub unsafe extern "C" fn brdf_modified_g_dots_batch_f32(
-    g: *const BrdfModifiedGF32,
-    n_i: *const f32,
-    n_o: *const f32,
-    i_o: *const f32,
-    out: *mut f32,
+/// The body of the three-input batch exports: checks the arrays (nothing is written on an
+/// error), then `out[k] = f(a[k], b[k], c[k])`, each element read before it is written.
+///
+/// # Safety
+/// Each pointer is null or valid for `n` reads (`a`, `b`, `c`) or writes (`out`) of `T`;
+/// `out` may alias an input.
+unsafe fn map3<T: Copy>(
+    a: *const T,
+    b: *const T,
+    c: *const T,
+    out: *mut T,
     n: usize,
+    f: impl Fn(T, T, T) -> T,
 ) -> BrdfStatus {
-    let Some(m) = BrdfModifiedGF32::get(g) else {
-        return BRDF_STATUS_NOT_INITIALISED;
-    };
-    let s = crate::check_arrays(
-        &[n_i.is_null(), n_o.is_null(), i_o.is_null(), out.is_null()],
-        n,
-        4,
-    );
+    let nulls = [a.is_null(), b.is_null(), c.is_null(), out.is_null()];
+    let s = crate::check_arrays(&nulls, n, core::mem::size_of::<T>());
     if s != BRDF_STATUS_OK {
         return s;
     }
     for k in 0..n {
-        let (a, b, c) = (rd(n_i, k), rd(n_o, k), rd(i_o, k));
-        let v = if finite3(a, b, c) {
-            m.g_dots(Dots::new(a, b, c))
-        } else {
-            f32::NAN
-        };
-        wr(out, k, v);
+        // SAFETY: the arrays are non-null (checked) and hold `n` elements (the contract).
+        unsafe { wr(out, k, f(rd(a, k), rd(b, k), rd(c, k))) };
     }
     BRDF_STATUS_OK
-}
-
-/// Blinn's V-groove G (paper eq 4) ∈ [0, 1] from in-plane angles in radians (clamped like
-/// `brdf_modified_g_terms_f32`); NaN in, NaN out.
-#[no_mangle]
-pub extern "C" fn brdf_g_blinn_f32(theta_i: f32, theta_r: f32) -> f32 {
-    masking::g_blinn(theta_i, theta_r)
-}
-
-/// Blinn's V-groove G ∈ [0, 1] from n·wi, n·wo, wi·wo of unit vectors; 0 when a direction is
-/// at or below the horizon; NaN when a dot product is not finite.
-#[no_mangle]
-pub extern "C" fn brdf_g_blinn_dots_f32(n_i: f32, n_o: f32, i_o: f32) -> f32 {
-    if !finite3(n_i, n_o, i_o) {
-        return f32::NAN;
-    }
-    masking::g_blinn_dots(Dots::new(n_i, n_o, i_o))
-}
-
-/// One-sided Smith masking G1 = 1/(1 + Λ) ∈ [0, 1] at cos θ = n·w (≤ 0 gives 0), for
-/// `distribution` (`BRDF_SMITH_BECKMANN` with Beckmann m, `BRDF_SMITH_GGX` with α as
-/// `roughness`). NaN for NaN cos θ, roughness NaN, infinite or ≤ 0, or an unknown
-/// distribution.
-#[no_mangle]
-pub extern "C" fn brdf_g1_smith_f32(
-    distribution: BrdfSmithDistribution,
-    cos_theta: f32,
-    roughness: f32,
-) -> f32 {
-    g1_smith(distribution, cos_theta, roughness)
-}
-
-/// Smith's G ∈ [0, 1] for the pair n·wi = `cos_i`, n·wo = `cos_o` (either ≤ 0 gives 0), in
-/// `form` (`BRDF_SMITH_FORM_*`); `distribution` and `roughness` as for `brdf_g1_smith_f32`.
-/// NaN for NaN input, bad roughness or an unknown distribution or form.
-#[no_mangle]
-pub extern "C" fn brdf_g_smith_f32(
-    distribution: BrdfSmithDistribution,
-    form: BrdfSmithForm,
-    cos_i: f32,
-    cos_o: f32,
-    roughness: f32,
-) -> f32 {
-    g_smith(distribution, form, cos_i, cos_o, roughness)
-}
-
-/// Prepares the Torrance–Sparrow BRDF of the paper (eq 3):
-/// f = k_s D F G / (4 (n·wi)(n·wo)) + ρ_d/π, D Beckmann with m = √2σ, F chosen by `fresnel`
-/// (`BRDF_FRESNEL_*`) with parameter `fresnel_param` (R0 ∈ [0, 1] or η > 0; ignored for
-/// `BRDF_FRESNEL_ONE`), G by `g_term` (`BRDF_GEOMETRIC_*`). σ finite > 0, k_s ∈ [0, ∞)
-/// finite, ρ_d = `albedo` ∈ [0, 1]. Returns `BRDF_STATUS_OK`, `BRDF_STATUS_NULL_POINTER` or
-/// `BRDF_STATUS_INVALID_ARGUMENT` (any parameter out of range, NaN, infinite, or an unknown
-/// choice); on error `*out` is left not initialised.
-#[no_mangle]
-pub unsafe extern "C" fn brdf_torrance_sparrow_init_f32(
-    out: *mut BrdfTorranceSparrowF32,
-    sigma: f32,
-    g_term: BrdfGeometricTerm,
-    fresnel: BrdfFresnel,
-    fresnel_param: f32,
-    ks: f32,
-    albedo: f32,
-) -> BrdfStatus {
-    if out.is_null() {
-        return BRDF_STATUS_NULL_POINTER;
-    }
-    BrdfTorranceSparrowF32::clear(out);
-    match ts_new(sigma, g_term, fresnel, fresnel_param, ks, albedo) {
-        Ok(t) => {
-            BrdfTorranceSparrowF32::put(out, t);
-            BRDF_STATUS_OK
-        }
-        Err(s) => s,
-    }
-}
-
-/// The Torrance–Sparrow BRDF in 1/sr (specular + ρ_d/π) from n·wi, n·wo, wi·wo of unit
-/// vectors; 0 when a direction is at or below the horizon; NaN for a non-finite dot product
-/// or a null or uninitialised handle.
-#[no_mangle]
-pub unsafe extern "C" fn brdf_torrance_sparrow_eval_f32(
-    ts: *const BrdfTorranceSparrowF32,
-    n_i: f32,
-    n_o: f32,
-    i_o: f32,
-) -> f32 {
-    match BrdfTorranceSparrowF32::get(ts) {
-        Some(t) if finite3(n_i, n_o, i_o) => t.eval_dots(Dots::new(n_i, n_o, i_o)),
-        _ => f32::NAN,
-    }
-}
-
-/// `brdf_torrance_sparrow_eval_f32` with n·h as well, h = normalize(wi + wo) as a shader
-/// has it. Exact where the three dot products alone are not: for a near-mirror pair near
-/// the horizon 2 + 2 wi·wo cancels, and |wi + wo| (hence h, D and the BRDF) is then
-/// recovered from n·h instead (`Dots::with_n_h`). Bad input as for
-/// `brdf_torrance_sparrow_eval_f32`; a non-finite n·h gives NaN.
-#[no_mangle]
-pub unsafe extern "C" fn brdf_torrance_sparrow_eval_nh_f32(
-    ts: *const BrdfTorranceSparrowF32,
-    n_i: f32,
-    n_o: f32,
-    i_o: f32,
-    n_h: f32,
-) -> f32 {
-    match BrdfTorranceSparrowF32::get(ts) {
-        Some(t) if finite3(n_i, n_o, i_o) && n_h.is_finite() => {
-            t.eval_dots(Dots::with_n_h(n_i, n_o, i_o, n_h))
-        }
-        _ => f32::NAN,
-    }
-}
-
-/// The specular lobe k_s D F G / (4 (n·wi)(n·wo)) alone, in 1/sr; bad input as for
-/// `brdf_torrance_sparrow_eval_f32`.
-#[no_mangle]
-pub unsafe extern "C" fn brdf_torrance_sparrow_specular_f32(
-    ts: *const BrdfTorranceSparrowF32,
-    n_i: f32,
-    n_o: f32,
-    i_o: f32,
-) -> f32 {
-    match BrdfTorranceSparrowF32::get(ts) {
-        Some(t) if finite3(n_i, n_o, i_o) => t.eval_specular(Dots::new(n_i, n_o, i_o)),
-        _ => f32::NAN,
-    }
-}
-
-/// `out[k] = brdf_torrance_sparrow_eval_f32(ts, n_i[k], n_o[k], i_o[k])` for k < n; status
-/// codes as for `brdf_modified_g_dots_batch_f32`.
-#[no_mangle]
-pub unsafe extern "C" fn brdf_torrance_sparrow_eval_batch_f32(
-    ts: *const BrdfTorranceSparrowF32,
-    n_i: *const f32,
-    n_o: *const f32,
-    i_o: *const f32,
-    out: *mut f32,
-    n: usize,
-) -> BrdfStatus {
-    if BrdfTorranceSparrowF32::get(ts).is_none() {
-        return BRDF_STATUS_NOT_INITIALISED;
-    }
-    let s = crate::check_arrays(
-        &[n_i.is_null(), n_o.is_null(), i_o.is_null(), out.is_null()],
-        n,
-        4,
-    );
-    if s != BRDF_STATUS_OK {
-        return s;
-    }
-    for k in 0..n {
-        let v = brdf_torrance_sparrow_eval_f32(ts, rd(n_i, k), rd(n_o, k), rd(i_o, k));
-        wr(out, k, v);
-    }
-    BRDF_STATUS_OK
-}
-
-/// Directional albedo R(μ) = ∫ f cos θi dωi over the upper hemisphere (including ρ_d), for
-/// a viewer at μ = n·wo ∈ (0, 1] (values above 1 count as 1), by brdf-core's fixed
-/// quadrature (about 4·10⁵ BRDF evaluations: slow on a microcontroller). μ ≤ 0 gives 0; NaN
-/// μ, a null or uninitialised handle give NaN.
-#[no_mangle]
-pub unsafe extern "C" fn brdf_torrance_sparrow_albedo_f32(
-    ts: *const BrdfTorranceSparrowF32,
-    mu: f32,
-) -> f32 {
-    match BrdfTorranceSparrowF32::get(ts) {
-        Some(t) => ts_albedo(t, mu),
-        None => f32::NAN,
-    }
-}
-
-/// Prepares the GGX (Trowbridge–Reitz) BRDF f = D F G / (4 (n·wi)(n·wo)) with per-channel
-/// Schlick F (F0 = `f0`, each in [0, 1]) and Smith masking in `smith_form`
-/// (`BRDF_SMITH_FORM_*`); α ∈ [1e-4, 1e4]. Returns `BRDF_STATUS_OK`,
-/// `BRDF_STATUS_NULL_POINTER` or `BRDF_STATUS_INVALID_ARGUMENT`; on error `*out` is left not
-/// initialised.
-#[no_mangle]
-pub unsafe extern "C" fn brdf_ggx_init_f32(
-    out: *mut BrdfGgxF32,
-    f0: BrdfRgbF32,
-    alpha: f32,
-    smith_form: BrdfSmithForm,
-) -> BrdfStatus {
-    if out.is_null() {
-        return BRDF_STATUS_NULL_POINTER;
-    }
-    BrdfGgxF32::clear(out);
-    match ggx_new(Rgb::new(f0.r, f0.g, f0.b), alpha, smith_form) {
-        Ok(g) => {
-            BrdfGgxF32::put(out, g);
-            BRDF_STATUS_OK
-        }
-        Err(s) => s,
-    }
-}
-
-/// The GGX BRDF in 1/sr per channel for unit local-frame directions `wi` (toward the light)
-/// and `wo` (toward the viewer); not normalised here. 0 when either is at or below the
-/// horizon; all NaN for a non-finite component or a null or uninitialised handle.
-#[no_mangle]
-pub unsafe extern "C" fn brdf_ggx_eval_f32(
-    g: *const BrdfGgxF32,
-    wi: BrdfVec3F32,
-    wo: BrdfVec3F32,
-) -> BrdfRgbF32 {
-    let nan = BrdfRgbF32 {
-        r: f32::NAN,
-        g: f32::NAN,
-        b: f32::NAN,
-    };
-    match BrdfGgxF32::get(g) {
-        Some(m) if finite3(wi.x, wi.y, wi.z) && finite3(wo.x, wo.y, wo.z) => {
-            let c = m.eval(Vec3::new(wi.x, wi.y, wi.z), Vec3::new(wo.x, wo.y, wo.z));
-            BrdfRgbF32 {
-                r: c.r,
-                g: c.g,
-                b: c.b,
-            }
-        }
-        _ => nan,
-    }
-}
-
-/// Directional albedo per channel of the GGX BRDF for a viewer at μ = n·wo; arguments and
-/// bad input as for `brdf_torrance_sparrow_albedo_f32`.
-#[no_mangle]
-pub unsafe extern "C" fn brdf_ggx_albedo_f32(g: *const BrdfGgxF32, mu: f32) -> BrdfRgbF32 {
-    let c = match BrdfGgxF32::get(g) {
-        Some(m) => ggx_albedo(m, mu),
-        None => Rgb::splat(f32::NAN),
-    };
-    BrdfRgbF32 {
-        r: c.r,
-        g: c.g,
-        b: c.b,
-    }
 }
 
 // ---------------------------------------------------------------------------------------
-// f64 (the f32 block with the scalar type replaced)
+// The typed exports, written once and instantiated for `f32` and `f64` below. The C names
+// are passed in (macro_rules cannot build identifiers); the doc text names the sibling
+// functions through them, so both instantiations read as the hand-written halves did.
 
-/// GM, GS and G = min(GM, GS) of the modified G (paper eqs 11–13), each in [0, 1]; all NaN
-/// for bad input.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct BrdfGTermsF64 {
-    /// Masking, the viewing side (eq 11).
-    pub gm: f64,
-    /// Shadowing, the light's side (eq 12).
-    pub gs: f64,
-    /// G = min(GM, GS) (eq 13).
-    pub g: f64,
-}
-
-/// A 3-vector in the local shading frame (z = normal).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct BrdfVec3F64 {
-    /// x (tangent).
-    pub x: f64,
-    /// y (bitangent).
-    pub y: f64,
-    /// z (normal).
-    pub z: f64,
-}
-
-/// An RGB triple (per-channel values, e.g. a BRDF in 1/sr or a reflectance).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct BrdfRgbF64 {
-    /// Red.
-    pub r: f64,
-    /// Green.
-    pub g: f64,
-    /// Blue.
-    pub b: f64,
-}
-
-/// A prepared modified G for one surface (σ, convention). Fill it with
-/// `brdf_modified_g_init_f64`; the fields are private to the library.
-#[repr(C)]
-pub struct BrdfModifiedGF64 {
-    tag: u64,
-    storage: [u64; BRDF_MODIFIED_G_WORDS],
-}
-handle!(BrdfModifiedGF64, ModifiedG<f64>, TAG_MODIFIED_G_F64);
-
-/// A prepared Torrance–Sparrow BRDF. Fill it with `brdf_torrance_sparrow_init_f64`; the
-/// fields are private to the library.
-#[repr(C)]
-pub struct BrdfTorranceSparrowF64 {
-    tag: u64,
-    storage: [u64; BRDF_TORRANCE_SPARROW_WORDS],
-}
-handle!(BrdfTorranceSparrowF64, TorranceSparrow<f64>, TAG_TS_F64);
-
-/// A prepared GGX BRDF. Fill it with `brdf_ggx_init_f64`; the fields are private to the
-/// library.
-#[repr(C)]
-pub struct BrdfGgxF64 {
-    tag: u64,
-    storage: [u64; BRDF_GGX_WORDS],
-}
-handle!(BrdfGgxF64, Ggx<f64>, TAG_GGX_F64);
-
-const NAN_TERMS_F64: BrdfGTermsF64 = BrdfGTermsF64 {
-    gm: f64::NAN,
-    gs: f64::NAN,
-    g: f64::NAN,
-};
-
-fn terms_f64(t: masking::GTerms<f64>) -> BrdfGTermsF64 {
-    BrdfGTermsF64 {
-        gm: t.gm,
-        gs: t.gs,
-        g: t.g,
-    }
-}
-
-/// Prepares the modified G of the 2015 Acta Physica Sinica paper (eqs 6–13) for RMS slope
-/// `sigma` (finite, > 0; accuracy specified for σ ∈ [0.05, 1]) and `convention`
-/// (`BRDF_CONVENTION_*`). Returns `BRDF_STATUS_OK`, `BRDF_STATUS_NULL_POINTER` (`out` null)
-/// or `BRDF_STATUS_INVALID_ARGUMENT` (σ NaN, infinite or ≤ 0, unknown convention); on error
-/// `*out` is left not initialised.
-#[no_mangle]
-pub unsafe extern "C" fn brdf_modified_g_init_f64(
-    out: *mut BrdfModifiedGF64,
-    sigma: f64,
-    convention: BrdfConvention,
-) -> BrdfStatus {
-    if out.is_null() {
-        return BRDF_STATUS_NULL_POINTER;
-    }
-    BrdfModifiedGF64::clear(out);
-    match modified_new(sigma, convention) {
-        Ok(g) => {
-            BrdfModifiedGF64::put(out, g);
-            BRDF_STATUS_OK
+/// Emits the structs, handles and exports of one scalar type `$t`.
+macro_rules! typed_abi {
+    (
+        $t:ident;
+        $Terms:ident, $Vec3:ident, $Rgb:ident;
+        $MG:ident = $tag_mg:ident, $TS:ident = $tag_ts:ident, $Ggx:ident = $tag_ggx:ident;
+        $mg_init:ident, $mg_terms:ident, $mg_g:ident, $mg_terms_dots:ident, $mg_dots:ident,
+        $mg_batch:ident, $blinn:ident, $blinn_dots:ident, $g1_smith:ident, $g_smith:ident,
+        $ts_init:ident, $ts_eval:ident, $ts_eval_nh:ident, $ts_specular:ident, $ts_batch:ident,
+        $ts_albedo:ident, $ggx_init:ident, $ggx_eval:ident, $ggx_albedo:ident $(,)?
+    ) => {
+        /// GM, GS and G = min(GM, GS) of the modified G (paper eqs 11–13), each in [0, 1]; all NaN
+        /// for bad input.
+        #[repr(C)]
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct $Terms {
+            /// Masking, the viewing side (eq 11).
+            pub gm: $t,
+            /// Shadowing, the light's side (eq 12).
+            pub gs: $t,
+            /// G = min(GM, GS) (eq 13).
+            pub g: $t,
         }
-        Err(s) => s,
-    }
-}
 
-/// GM, GS and G from the paper's in-plane angles in radians: θi ∈ [0, π/2], θr ∈ [−π/2, π/2]
-/// signed (out-of-range and infinite angles are clamped to those ranges). NaN angles, a null
-/// or uninitialised handle give all NaN.
-#[no_mangle]
-pub unsafe extern "C" fn brdf_modified_g_terms_f64(
-    g: *const BrdfModifiedGF64,
-    theta_i: f64,
-    theta_r: f64,
-) -> BrdfGTermsF64 {
-    match BrdfModifiedGF64::get(g) {
-        Some(m) => terms_f64(m.terms(theta_i, theta_r)),
-        None => NAN_TERMS_F64,
-    }
-}
-
-/// G = min(GM, GS) ∈ [0, 1] from in-plane angles; see `brdf_modified_g_terms_f64` (NaN for
-/// NaN angles or a bad handle).
-#[no_mangle]
-pub unsafe extern "C" fn brdf_modified_g_f64(
-    g: *const BrdfModifiedGF64,
-    theta_i: f64,
-    theta_r: f64,
-) -> f64 {
-    brdf_modified_g_terms_f64(g, theta_i, theta_r).g
-}
-
-/// GM, GS and G from the dot products n·wi, n·wo, wi·wo of unit vectors (the reciprocal
-/// 3-D extension; with the printed convention the pair is folded into its plane). A direction
-/// at or below the horizon (n·w ≤ 0) gives 0; a non-finite dot product, a null or
-/// uninitialised handle give all NaN.
-#[no_mangle]
-pub unsafe extern "C" fn brdf_modified_g_terms_dots_f64(
-    g: *const BrdfModifiedGF64,
-    n_i: f64,
-    n_o: f64,
-    i_o: f64,
-) -> BrdfGTermsF64 {
-    match BrdfModifiedGF64::get(g) {
-        Some(m) if finite3(n_i, n_o, i_o) => terms_f64(m.terms_dots(Dots::new(n_i, n_o, i_o))),
-        _ => NAN_TERMS_F64,
-    }
-}
-
-/// G ∈ [0, 1] from dot products; see `brdf_modified_g_terms_dots_f64`.
-#[no_mangle]
-pub unsafe extern "C" fn brdf_modified_g_dots_f64(
-    g: *const BrdfModifiedGF64,
-    n_i: f64,
-    n_o: f64,
-    i_o: f64,
-) -> f64 {
-    brdf_modified_g_terms_dots_f64(g, n_i, n_o, i_o).g
-}
-
-/// `out[k] = brdf_modified_g_dots_f64(g, n_i[k], n_o[k], i_o[k])` for k < n. Returns
-/// `BRDF_STATUS_NOT_INITIALISED` (bad handle; nothing written), `BRDF_STATUS_NULL_POINTER`
-/// (an array null with n > 0; nothing written), `BRDF_STATUS_BAD_LENGTH` (n too large) or
-/// `BRDF_STATUS_OK`. `out` may alias an input.
-#[no_mangle]
-pub unsafe extern "C" fn brdf_modified_g_dots_batch_f64(
-    g: *const BrdfModifiedGF64,
-    n_i: *const f64,
-    n_o: *const f64,
-    i_o: *const f64,
-    out: *mut f64,
-    n: usize,
-) -> BrdfStatus {
-    let Some(m) = BrdfModifiedGF64::get(g) else {
-        return BRDF_STATUS_NOT_INITIALISED;
-    };
-    let s = crate::check_arrays(
-        &[n_i.is_null(), n_o.is_null(), i_o.is_null(), out.is_null()],
-        n,
-        4,
-    );
-    if s != BRDF_STATUS_OK {
-        return s;
-    }
-    for k in 0..n {
-        let (a, b, c) = (rd(n_i, k), rd(n_o, k), rd(i_o, k));
-        let v = if finite3(a, b, c) {
-            m.g_dots(Dots::new(a, b, c))
-        } else {
-            f64::NAN
-        };
-        wr(out, k, v);
-    }
-    BRDF_STATUS_OK
-}
-
-/// Blinn's V-groove G (paper eq 4) ∈ [0, 1] from in-plane angles in radians (clamped like
-/// `brdf_modified_g_terms_f64`); NaN in, NaN out.
-#[no_mangle]
-pub extern "C" fn brdf_g_blinn_f64(theta_i: f64, theta_r: f64) -> f64 {
-    masking::g_blinn(theta_i, theta_r)
-}
-
-/// Blinn's V-groove G ∈ [0, 1] from n·wi, n·wo, wi·wo of unit vectors; 0 when a direction is
-/// at or below the horizon; NaN when a dot product is not finite.
-#[no_mangle]
-pub extern "C" fn brdf_g_blinn_dots_f64(n_i: f64, n_o: f64, i_o: f64) -> f64 {
-    if !finite3(n_i, n_o, i_o) {
-        return f64::NAN;
-    }
-    masking::g_blinn_dots(Dots::new(n_i, n_o, i_o))
-}
-
-/// One-sided Smith masking G1 = 1/(1 + Λ) ∈ [0, 1] at cos θ = n·w (≤ 0 gives 0), for
-/// `distribution` (`BRDF_SMITH_BECKMANN` with Beckmann m, `BRDF_SMITH_GGX` with α as
-/// `roughness`). NaN for NaN cos θ, roughness NaN, infinite or ≤ 0, or an unknown
-/// distribution.
-#[no_mangle]
-pub extern "C" fn brdf_g1_smith_f64(
-    distribution: BrdfSmithDistribution,
-    cos_theta: f64,
-    roughness: f64,
-) -> f64 {
-    g1_smith(distribution, cos_theta, roughness)
-}
-
-/// Smith's G ∈ [0, 1] for the pair n·wi = `cos_i`, n·wo = `cos_o` (either ≤ 0 gives 0), in
-/// `form` (`BRDF_SMITH_FORM_*`); `distribution` and `roughness` as for `brdf_g1_smith_f64`.
-/// NaN for NaN input, bad roughness or an unknown distribution or form.
-#[no_mangle]
-pub extern "C" fn brdf_g_smith_f64(
-    distribution: BrdfSmithDistribution,
-    form: BrdfSmithForm,
-    cos_i: f64,
-    cos_o: f64,
-    roughness: f64,
-) -> f64 {
-    g_smith(distribution, form, cos_i, cos_o, roughness)
-}
-
-/// Prepares the Torrance–Sparrow BRDF of the paper (eq 3):
-/// f = k_s D F G / (4 (n·wi)(n·wo)) + ρ_d/π, D Beckmann with m = √2σ, F chosen by `fresnel`
-/// (`BRDF_FRESNEL_*`) with parameter `fresnel_param` (R0 ∈ [0, 1] or η > 0; ignored for
-/// `BRDF_FRESNEL_ONE`), G by `g_term` (`BRDF_GEOMETRIC_*`). σ finite > 0, k_s ∈ [0, ∞)
-/// finite, ρ_d = `albedo` ∈ [0, 1]. Returns `BRDF_STATUS_OK`, `BRDF_STATUS_NULL_POINTER` or
-/// `BRDF_STATUS_INVALID_ARGUMENT` (any parameter out of range, NaN, infinite, or an unknown
-/// choice); on error `*out` is left not initialised.
-#[no_mangle]
-pub unsafe extern "C" fn brdf_torrance_sparrow_init_f64(
-    out: *mut BrdfTorranceSparrowF64,
-    sigma: f64,
-    g_term: BrdfGeometricTerm,
-    fresnel: BrdfFresnel,
-    fresnel_param: f64,
-    ks: f64,
-    albedo: f64,
-) -> BrdfStatus {
-    if out.is_null() {
-        return BRDF_STATUS_NULL_POINTER;
-    }
-    BrdfTorranceSparrowF64::clear(out);
-    match ts_new(sigma, g_term, fresnel, fresnel_param, ks, albedo) {
-        Ok(t) => {
-            BrdfTorranceSparrowF64::put(out, t);
-            BRDF_STATUS_OK
+        /// A 3-vector in the local shading frame (z = normal).
+        #[repr(C)]
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct $Vec3 {
+            /// x (tangent).
+            pub x: $t,
+            /// y (bitangent).
+            pub y: $t,
+            /// z (normal).
+            pub z: $t,
         }
-        Err(s) => s,
-    }
-}
 
-/// The Torrance–Sparrow BRDF in 1/sr (specular + ρ_d/π) from n·wi, n·wo, wi·wo of unit
-/// vectors; 0 when a direction is at or below the horizon; NaN for a non-finite dot product
-/// or a null or uninitialised handle.
-#[no_mangle]
-pub unsafe extern "C" fn brdf_torrance_sparrow_eval_f64(
-    ts: *const BrdfTorranceSparrowF64,
-    n_i: f64,
-    n_o: f64,
-    i_o: f64,
-) -> f64 {
-    match BrdfTorranceSparrowF64::get(ts) {
-        Some(t) if finite3(n_i, n_o, i_o) => t.eval_dots(Dots::new(n_i, n_o, i_o)),
-        _ => f64::NAN,
-    }
-}
-
-/// `brdf_torrance_sparrow_eval_f64` with n·h as well, h = normalize(wi + wo) as a shader
-/// has it. Exact where the three dot products alone are not: for a near-mirror pair near
-/// the horizon 2 + 2 wi·wo cancels, and |wi + wo| (hence h, D and the BRDF) is then
-/// recovered from n·h instead (`Dots::with_n_h`). Bad input as for
-/// `brdf_torrance_sparrow_eval_f64`; a non-finite n·h gives NaN.
-#[no_mangle]
-pub unsafe extern "C" fn brdf_torrance_sparrow_eval_nh_f64(
-    ts: *const BrdfTorranceSparrowF64,
-    n_i: f64,
-    n_o: f64,
-    i_o: f64,
-    n_h: f64,
-) -> f64 {
-    match BrdfTorranceSparrowF64::get(ts) {
-        Some(t) if finite3(n_i, n_o, i_o) && n_h.is_finite() => {
-            t.eval_dots(Dots::with_n_h(n_i, n_o, i_o, n_h))
+        /// An RGB triple (per-channel values, e.g. a BRDF in 1/sr or a reflectance).
+        #[repr(C)]
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct $Rgb {
+            /// Red.
+            pub r: $t,
+            /// Green.
+            pub g: $t,
+            /// Blue.
+            pub b: $t,
         }
-        _ => f64::NAN,
-    }
-}
 
-/// The specular lobe k_s D F G / (4 (n·wi)(n·wo)) alone, in 1/sr; bad input as for
-/// `brdf_torrance_sparrow_eval_f64`.
-#[no_mangle]
-pub unsafe extern "C" fn brdf_torrance_sparrow_specular_f64(
-    ts: *const BrdfTorranceSparrowF64,
-    n_i: f64,
-    n_o: f64,
-    i_o: f64,
-) -> f64 {
-    match BrdfTorranceSparrowF64::get(ts) {
-        Some(t) if finite3(n_i, n_o, i_o) => t.eval_specular(Dots::new(n_i, n_o, i_o)),
-        _ => f64::NAN,
-    }
-}
-
-/// `out[k] = brdf_torrance_sparrow_eval_f64(ts, n_i[k], n_o[k], i_o[k])` for k < n; status
-/// codes as for `brdf_modified_g_dots_batch_f64`.
-#[no_mangle]
-pub unsafe extern "C" fn brdf_torrance_sparrow_eval_batch_f64(
-    ts: *const BrdfTorranceSparrowF64,
-    n_i: *const f64,
-    n_o: *const f64,
-    i_o: *const f64,
-    out: *mut f64,
-    n: usize,
-) -> BrdfStatus {
-    if BrdfTorranceSparrowF64::get(ts).is_none() {
-        return BRDF_STATUS_NOT_INITIALISED;
-    }
-    let s = crate::check_arrays(
-        &[n_i.is_null(), n_o.is_null(), i_o.is_null(), out.is_null()],
-        n,
-        4,
-    );
-    if s != BRDF_STATUS_OK {
-        return s;
-    }
-    for k in 0..n {
-        let v = brdf_torrance_sparrow_eval_f64(ts, rd(n_i, k), rd(n_o, k), rd(i_o, k));
-        wr(out, k, v);
-    }
-    BRDF_STATUS_OK
-}
-
-/// Directional albedo R(μ) = ∫ f cos θi dωi over the upper hemisphere (including ρ_d), for
-/// a viewer at μ = n·wo ∈ (0, 1] (values above 1 count as 1), by brdf-core's fixed
-/// quadrature (about 4·10⁵ BRDF evaluations: slow on a microcontroller). μ ≤ 0 gives 0; NaN
-/// μ, a null or uninitialised handle give NaN.
-#[no_mangle]
-pub unsafe extern "C" fn brdf_torrance_sparrow_albedo_f64(
-    ts: *const BrdfTorranceSparrowF64,
-    mu: f64,
-) -> f64 {
-    match BrdfTorranceSparrowF64::get(ts) {
-        Some(t) => ts_albedo(t, mu),
-        None => f64::NAN,
-    }
-}
-
-/// Prepares the GGX (Trowbridge–Reitz) BRDF f = D F G / (4 (n·wi)(n·wo)) with per-channel
-/// Schlick F (F0 = `f0`, each in [0, 1]) and Smith masking in `smith_form`
-/// (`BRDF_SMITH_FORM_*`); α ∈ [1e-4, 1e4]. Returns `BRDF_STATUS_OK`,
-/// `BRDF_STATUS_NULL_POINTER` or `BRDF_STATUS_INVALID_ARGUMENT`; on error `*out` is left not
-/// initialised.
-#[no_mangle]
-pub unsafe extern "C" fn brdf_ggx_init_f64(
-    out: *mut BrdfGgxF64,
-    f0: BrdfRgbF64,
-    alpha: f64,
-    smith_form: BrdfSmithForm,
-) -> BrdfStatus {
-    if out.is_null() {
-        return BRDF_STATUS_NULL_POINTER;
-    }
-    BrdfGgxF64::clear(out);
-    match ggx_new(Rgb::new(f0.r, f0.g, f0.b), alpha, smith_form) {
-        Ok(g) => {
-            BrdfGgxF64::put(out, g);
-            BRDF_STATUS_OK
+        /// A prepared modified G for one surface (σ, convention). Fill it with
+        #[doc = concat!(" `", stringify!($mg_init), "`; the fields are private to the library.")]
+        #[repr(C)]
+        pub struct $MG {
+            tag: u64,
+            storage: [u64; BRDF_MODIFIED_G_WORDS],
         }
-        Err(s) => s,
-    }
-}
+        handle!($MG, ModifiedG<$t>, $tag_mg);
 
-/// The GGX BRDF in 1/sr per channel for unit local-frame directions `wi` (toward the light)
-/// and `wo` (toward the viewer); not normalised here. 0 when either is at or below the
-/// horizon; all NaN for a non-finite component or a null or uninitialised handle.
-#[no_mangle]
-pub unsafe extern "C" fn brdf_ggx_eval_f64(
-    g: *const BrdfGgxF64,
-    wi: BrdfVec3F64,
-    wo: BrdfVec3F64,
-) -> BrdfRgbF64 {
-    let nan = BrdfRgbF64 {
-        r: f64::NAN,
-        g: f64::NAN,
-        b: f64::NAN,
-    };
-    match BrdfGgxF64::get(g) {
-        Some(m) if finite3(wi.x, wi.y, wi.z) && finite3(wo.x, wo.y, wo.z) => {
-            let c = m.eval(Vec3::new(wi.x, wi.y, wi.z), Vec3::new(wo.x, wo.y, wo.z));
-            BrdfRgbF64 {
-                r: c.r,
-                g: c.g,
-                b: c.b,
+        #[doc = concat!(" A prepared Torrance–Sparrow BRDF. Fill it with `", stringify!($ts_init), "`; the")]
+        /// fields are private to the library.
+        #[repr(C)]
+        pub struct $TS {
+            tag: u64,
+            storage: [u64; BRDF_TORRANCE_SPARROW_WORDS],
+        }
+        handle!($TS, TorranceSparrow<$t>, $tag_ts);
+
+        #[doc = concat!(" A prepared GGX BRDF. Fill it with `", stringify!($ggx_init), "`; the fields are private to the")]
+        /// library.
+        #[repr(C)]
+        pub struct $Ggx {
+            tag: u64,
+            storage: [u64; BRDF_GGX_WORDS],
+        }
+        handle!($Ggx, Ggx<$t>, $tag_ggx);
+
+        impl From<masking::GTerms<$t>> for $Terms {
+            fn from(t: masking::GTerms<$t>) -> Self {
+                Self { gm: t.gm, gs: t.gs, g: t.g }
             }
         }
-        _ => nan,
-    }
+
+        impl $Terms {
+            const NAN: Self = Self { gm: <$t>::NAN, gs: <$t>::NAN, g: <$t>::NAN };
+        }
+
+        impl From<Rgb<$t>> for $Rgb {
+            fn from(c: Rgb<$t>) -> Self {
+                Self { r: c.r, g: c.g, b: c.b }
+            }
+        }
+
+        impl From<$Vec3> for Vec3<$t> {
+            fn from(v: $Vec3) -> Self {
+                Vec3::new(v.x, v.y, v.z)
+            }
+        }
+
+        /// Prepares the modified G of the 2015 Acta Physica Sinica paper (eqs 6–13) for RMS slope
+        /// `sigma` (finite, > 0; accuracy specified for σ ∈ [0.05, 1]) and `convention`
+        /// (`BRDF_CONVENTION_*`). Returns `BRDF_STATUS_OK`, `BRDF_STATUS_NULL_POINTER` (`out` null)
+        /// or `BRDF_STATUS_INVALID_ARGUMENT` (σ NaN, infinite or ≤ 0, unknown convention); on error
+        /// `*out` is left not initialised.
+        #[cfg_attr(not(brdf_header), doc = crate::safety!(init))]
+        #[no_mangle]
+        pub unsafe extern "C" fn $mg_init(
+            out: *mut $MG,
+            sigma: $t,
+            convention: BrdfConvention,
+        ) -> BrdfStatus {
+            // SAFETY: the caller's contract for `out` is the one `init` needs.
+            unsafe { init(out, $MG::clear, $MG::put, || modified_new(sigma, convention)) }
+        }
+
+        /// GM, GS and G from the paper's in-plane angles in radians: θi ∈ [0, π/2], θr ∈ [−π/2, π/2]
+        /// signed (out-of-range and infinite angles are clamped to those ranges). NaN angles, a null
+        /// or uninitialised handle give all NaN.
+        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
+        #[no_mangle]
+        pub unsafe extern "C" fn $mg_terms(g: *const $MG, theta_i: $t, theta_r: $t) -> $Terms {
+            // SAFETY: `g` is null or a readable handle (the caller's contract).
+            match unsafe { $MG::get(g) } {
+                Some(m) => m.terms(theta_i, theta_r).into(),
+                None => $Terms::NAN,
+            }
+        }
+
+        #[doc = concat!(" G = min(GM, GS) ∈ [0, 1] from in-plane angles; see `", stringify!($mg_terms), "` (NaN for")]
+        /// NaN angles or a bad handle).
+        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
+        #[no_mangle]
+        pub unsafe extern "C" fn $mg_g(g: *const $MG, theta_i: $t, theta_r: $t) -> $t {
+            // SAFETY: the caller's contract, passed on unchanged.
+            unsafe { $mg_terms(g, theta_i, theta_r) }.g
+        }
+
+        /// GM, GS and G from the dot products n·wi, n·wo, wi·wo of unit vectors (the reciprocal
+        /// 3-D extension; with the printed convention the pair is folded into its plane). A direction
+        /// at or below the horizon (n·w ≤ 0) gives 0; a non-finite dot product, a null or
+        /// uninitialised handle give all NaN.
+        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
+        #[no_mangle]
+        pub unsafe extern "C" fn $mg_terms_dots(
+            g: *const $MG,
+            n_i: $t,
+            n_o: $t,
+            i_o: $t,
+        ) -> $Terms {
+            // SAFETY: `g` is null or a readable handle (the caller's contract).
+            match unsafe { $MG::get(g) } {
+                Some(m) if finite3(n_i, n_o, i_o) => m.terms_dots(Dots::new(n_i, n_o, i_o)).into(),
+                _ => $Terms::NAN,
+            }
+        }
+
+        #[doc = concat!(" G ∈ [0, 1] from dot products; see `", stringify!($mg_terms_dots), "`.")]
+        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
+        #[no_mangle]
+        pub unsafe extern "C" fn $mg_dots(g: *const $MG, n_i: $t, n_o: $t, i_o: $t) -> $t {
+            // SAFETY: the caller's contract, passed on unchanged.
+            unsafe { $mg_terms_dots(g, n_i, n_o, i_o) }.g
+        }
+
+        #[doc = concat!(" `out[k] = ", stringify!($mg_dots), "(g, n_i[k], n_o[k], i_o[k])` for k < n. Returns")]
+        /// `BRDF_STATUS_NOT_INITIALISED` (bad handle; nothing written), `BRDF_STATUS_NULL_POINTER`
+        /// (an array null with n > 0; nothing written), `BRDF_STATUS_BAD_LENGTH` (n too large) or
+        /// `BRDF_STATUS_OK`. `out` may alias an input.
+        #[cfg_attr(not(brdf_header), doc = crate::safety!(batch))]
+        #[no_mangle]
+        pub unsafe extern "C" fn $mg_batch(
+            g: *const $MG,
+            n_i: *const $t,
+            n_o: *const $t,
+            i_o: *const $t,
+            out: *mut $t,
+            n: usize,
+        ) -> BrdfStatus {
+            // SAFETY: `g` is null or a readable handle (the caller's contract).
+            let Some(m) = (unsafe { $MG::get(g) }) else {
+                return BRDF_STATUS_NOT_INITIALISED;
+            };
+            let eval = |a, b, c| if finite3(a, b, c) { m.g_dots(Dots::new(a, b, c)) } else { <$t>::NAN };
+            // SAFETY: each array is null or holds `n` elements (the caller's contract).
+            unsafe { map3(n_i, n_o, i_o, out, n, eval) }
+        }
+
+        /// Blinn's V-groove G (paper eq 4) ∈ [0, 1] from in-plane angles in radians (clamped like
+        #[doc = concat!(" `", stringify!($mg_terms), "`); NaN in, NaN out.")]
+        #[no_mangle]
+        pub extern "C" fn $blinn(theta_i: $t, theta_r: $t) -> $t {
+            masking::g_blinn(theta_i, theta_r)
+        }
+
+        /// Blinn's V-groove G ∈ [0, 1] from n·wi, n·wo, wi·wo of unit vectors; 0 when a direction is
+        /// at or below the horizon; NaN when a dot product is not finite.
+        #[no_mangle]
+        pub extern "C" fn $blinn_dots(n_i: $t, n_o: $t, i_o: $t) -> $t {
+            if !finite3(n_i, n_o, i_o) {
+                return <$t>::NAN;
+            }
+            masking::g_blinn_dots(Dots::new(n_i, n_o, i_o))
+        }
+
+        /// One-sided Smith masking G1 = 1/(1 + Λ) ∈ [0, 1] at cos θ = n·w (≤ 0 gives 0), for
+        /// `distribution` (`BRDF_SMITH_BECKMANN` with Beckmann m, `BRDF_SMITH_GGX` with α as
+        /// `roughness`). NaN for NaN cos θ, roughness NaN, infinite or ≤ 0, or an unknown
+        /// distribution.
+        #[no_mangle]
+        pub extern "C" fn $g1_smith(
+            distribution: BrdfSmithDistribution,
+            cos_theta: $t,
+            roughness: $t,
+        ) -> $t {
+            g1_smith(distribution, cos_theta, roughness)
+        }
+
+        /// Smith's G ∈ [0, 1] for the pair n·wi = `cos_i`, n·wo = `cos_o` (either ≤ 0 gives 0), in
+        #[doc = concat!(" `form` (`BRDF_SMITH_FORM_*`); `distribution` and `roughness` as for `", stringify!($g1_smith), "`.")]
+        /// NaN for NaN input, bad roughness or an unknown distribution or form.
+        #[no_mangle]
+        pub extern "C" fn $g_smith(
+            distribution: BrdfSmithDistribution,
+            form: BrdfSmithForm,
+            cos_i: $t,
+            cos_o: $t,
+            roughness: $t,
+        ) -> $t {
+            g_smith(distribution, form, cos_i, cos_o, roughness)
+        }
+
+        /// Prepares the Torrance–Sparrow BRDF of the paper (eq 3):
+        /// f = k_s D F G / (4 (n·wi)(n·wo)) + ρ_d/π, D Beckmann with m = √2σ, F chosen by `fresnel`
+        /// (`BRDF_FRESNEL_*`) with parameter `fresnel_param` (R0 ∈ [0, 1] or η > 0; ignored for
+        /// `BRDF_FRESNEL_ONE`), G by `g_term` (`BRDF_GEOMETRIC_*`). σ finite > 0, k_s ∈ [0, ∞)
+        /// finite, ρ_d = `albedo` ∈ [0, 1]. Returns `BRDF_STATUS_OK`, `BRDF_STATUS_NULL_POINTER` or
+        /// `BRDF_STATUS_INVALID_ARGUMENT` (any parameter out of range, NaN, infinite, or an unknown
+        /// choice); on error `*out` is left not initialised.
+        #[cfg_attr(not(brdf_header), doc = crate::safety!(init))]
+        #[no_mangle]
+        pub unsafe extern "C" fn $ts_init(
+            out: *mut $TS,
+            sigma: $t,
+            g_term: BrdfGeometricTerm,
+            fresnel: BrdfFresnel,
+            fresnel_param: $t,
+            ks: $t,
+            albedo: $t,
+        ) -> BrdfStatus {
+            let new = || ts_new(sigma, g_term, fresnel, fresnel_param, ks, albedo);
+            // SAFETY: the caller's contract for `out` is the one `init` needs.
+            unsafe { init(out, $TS::clear, $TS::put, new) }
+        }
+
+        /// The Torrance–Sparrow BRDF in 1/sr (specular + ρ_d/π) from n·wi, n·wo, wi·wo of unit
+        /// vectors; 0 when a direction is at or below the horizon; NaN for a non-finite dot product
+        /// or a null or uninitialised handle.
+        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
+        #[no_mangle]
+        pub unsafe extern "C" fn $ts_eval(ts: *const $TS, n_i: $t, n_o: $t, i_o: $t) -> $t {
+            // SAFETY: `ts` is null or a readable handle (the caller's contract).
+            ts_dots(unsafe { $TS::get(ts) }, [n_i, n_o, i_o], TorranceSparrow::eval_dots)
+        }
+
+        #[doc = concat!(" `", stringify!($ts_eval), "` with n·h as well, h = normalize(wi + wo) as a shader")]
+        /// has it. Exact where the three dot products alone are not: for a near-mirror pair near
+        /// the horizon 2 + 2 wi·wo cancels, and |wi + wo| (hence h, D and the BRDF) is then
+        /// recovered from n·h instead (`Dots::with_n_h`). Bad input as for
+        #[doc = concat!(" `", stringify!($ts_eval), "`; a non-finite n·h gives NaN.")]
+        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
+        #[no_mangle]
+        pub unsafe extern "C" fn $ts_eval_nh(
+            ts: *const $TS,
+            n_i: $t,
+            n_o: $t,
+            i_o: $t,
+            n_h: $t,
+        ) -> $t {
+            // SAFETY: `ts` is null or a readable handle (the caller's contract).
+            match unsafe { $TS::get(ts) } {
+                Some(t) if finite3(n_i, n_o, i_o) && n_h.is_finite() => {
+                    t.eval_dots(Dots::with_n_h(n_i, n_o, i_o, n_h))
+                }
+                _ => <$t>::NAN,
+            }
+        }
+
+        /// The specular lobe k_s D F G / (4 (n·wi)(n·wo)) alone, in 1/sr; bad input as for
+        #[doc = concat!(" `", stringify!($ts_eval), "`.")]
+        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
+        #[no_mangle]
+        pub unsafe extern "C" fn $ts_specular(ts: *const $TS, n_i: $t, n_o: $t, i_o: $t) -> $t {
+            // SAFETY: `ts` is null or a readable handle (the caller's contract).
+            ts_dots(unsafe { $TS::get(ts) }, [n_i, n_o, i_o], TorranceSparrow::eval_specular)
+        }
+
+        #[doc = concat!(" `out[k] = ", stringify!($ts_eval), "(ts, n_i[k], n_o[k], i_o[k])` for k < n; status")]
+        #[doc = concat!(" codes as for `", stringify!($mg_batch), "`.")]
+        #[cfg_attr(not(brdf_header), doc = crate::safety!(batch))]
+        #[no_mangle]
+        pub unsafe extern "C" fn $ts_batch(
+            ts: *const $TS,
+            n_i: *const $t,
+            n_o: *const $t,
+            i_o: *const $t,
+            out: *mut $t,
+            n: usize,
+        ) -> BrdfStatus {
+            // SAFETY: `ts` is null or a readable handle (the caller's contract).
+            let Some(t) = (unsafe { $TS::get(ts) }) else {
+                return BRDF_STATUS_NOT_INITIALISED;
+            };
+            let eval = |a, b, c| if finite3(a, b, c) { t.eval_dots(Dots::new(a, b, c)) } else { <$t>::NAN };
+            // SAFETY: each array is null or holds `n` elements (the caller's contract).
+            unsafe { map3(n_i, n_o, i_o, out, n, eval) }
+        }
+
+        /// Directional albedo R(μ) = ∫ f cos θi dωi over the upper hemisphere (including ρ_d), for
+        /// a viewer at μ = n·wo ∈ (0, 1] (values above 1 count as 1), by brdf-core's fixed
+        /// quadrature (about 4·10⁵ BRDF evaluations: slow on a microcontroller). μ ≤ 0 gives 0; NaN
+        /// μ, a null or uninitialised handle give NaN.
+        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
+        #[no_mangle]
+        pub unsafe extern "C" fn $ts_albedo(ts: *const $TS, mu: $t) -> $t {
+            // SAFETY: `ts` is null or a readable handle (the caller's contract).
+            match unsafe { $TS::get(ts) } {
+                Some(t) => ts_albedo(t, mu),
+                None => <$t>::NAN,
+            }
+        }
+
+        /// Prepares the GGX (Trowbridge–Reitz) BRDF f = D F G / (4 (n·wi)(n·wo)) with per-channel
+        /// Schlick F (F0 = `f0`, each in [0, 1]) and Smith masking in `smith_form`
+        /// (`BRDF_SMITH_FORM_*`); α ∈ [1e-4, 1e4]. Returns `BRDF_STATUS_OK`,
+        /// `BRDF_STATUS_NULL_POINTER` or `BRDF_STATUS_INVALID_ARGUMENT`; on error `*out` is left not
+        /// initialised.
+        #[cfg_attr(not(brdf_header), doc = crate::safety!(init))]
+        #[no_mangle]
+        pub unsafe extern "C" fn $ggx_init(
+            out: *mut $Ggx,
+            f0: $Rgb,
+            alpha: $t,
+            smith_form: BrdfSmithForm,
+        ) -> BrdfStatus {
+            let new = || ggx_new(Rgb::new(f0.r, f0.g, f0.b), alpha, smith_form);
+            // SAFETY: the caller's contract for `out` is the one `init` needs.
+            unsafe { init(out, $Ggx::clear, $Ggx::put, new) }
+        }
+
+        /// The GGX BRDF in 1/sr per channel for unit local-frame directions `wi` (toward the light)
+        /// and `wo` (toward the viewer); not normalised here. 0 when either is at or below the
+        /// horizon; all NaN for a non-finite component or a null or uninitialised handle.
+        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
+        #[no_mangle]
+        pub unsafe extern "C" fn $ggx_eval(g: *const $Ggx, wi: $Vec3, wo: $Vec3) -> $Rgb {
+            // SAFETY: `g` is null or a readable handle (the caller's contract).
+            let c = match unsafe { $Ggx::get(g) } {
+                Some(m) if finite3(wi.x, wi.y, wi.z) && finite3(wo.x, wo.y, wo.z) => {
+                    m.eval(wi.into(), wo.into())
+                }
+                _ => Rgb::splat(<$t>::NAN),
+            };
+            c.into()
+        }
+
+        /// Directional albedo per channel of the GGX BRDF for a viewer at μ = n·wo; arguments and
+        #[doc = concat!(" bad input as for `", stringify!($ts_albedo), "`.")]
+        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
+        #[no_mangle]
+        pub unsafe extern "C" fn $ggx_albedo(g: *const $Ggx, mu: $t) -> $Rgb {
+            // SAFETY: `g` is null or a readable handle (the caller's contract).
+            let c = match unsafe { $Ggx::get(g) } {
+                Some(m) => ggx_albedo(m, mu),
+                None => Rgb::splat(<$t>::NAN),
+            };
+            c.into()
+        }
+    };
 }
 
-/// Directional albedo per channel of the GGX BRDF for a viewer at μ = n·wo; arguments and
-/// bad input as for `brdf_torrance_sparrow_albedo_f64`.
-#[no_mangle]
-pub unsafe extern "C" fn brdf_ggx_albedo_f64(g: *const BrdfGgxF64, mu: f64) -> BrdfRgbF64 {
-    let c = match BrdfGgxF64::get(g) {
-        Some(m) => ggx_albedo(m, mu),
-        None => Rgb::splat(f64::NAN),
-    };
-    BrdfRgbF64 {
-        r: c.r,
-        g: c.g,
-        b: c.b,
-    }
+typed_abi! {
+    f32; BrdfGTermsF32, BrdfVec3F32, BrdfRgbF32;
+    BrdfModifiedGF32 = TAG_MODIFIED_G_F32, BrdfTorranceSparrowF32 = TAG_TS_F32,
+    BrdfGgxF32 = TAG_GGX_F32;
+    brdf_modified_g_init_f32, brdf_modified_g_terms_f32, brdf_modified_g_f32,
+    brdf_modified_g_terms_dots_f32, brdf_modified_g_dots_f32, brdf_modified_g_dots_batch_f32,
+    brdf_g_blinn_f32, brdf_g_blinn_dots_f32, brdf_g1_smith_f32, brdf_g_smith_f32,
+    brdf_torrance_sparrow_init_f32, brdf_torrance_sparrow_eval_f32,
+    brdf_torrance_sparrow_eval_nh_f32, brdf_torrance_sparrow_specular_f32,
+    brdf_torrance_sparrow_eval_batch_f32, brdf_torrance_sparrow_albedo_f32,
+    brdf_ggx_init_f32, brdf_ggx_eval_f32, brdf_ggx_albedo_f32,
+}
+
+typed_abi! {
+    f64; BrdfGTermsF64, BrdfVec3F64, BrdfRgbF64;
+    BrdfModifiedGF64 = TAG_MODIFIED_G_F64, BrdfTorranceSparrowF64 = TAG_TS_F64,
+    BrdfGgxF64 = TAG_GGX_F64;
+    brdf_modified_g_init_f64, brdf_modified_g_terms_f64, brdf_modified_g_f64,
+    brdf_modified_g_terms_dots_f64, brdf_modified_g_dots_f64, brdf_modified_g_dots_batch_f64,
+    brdf_g_blinn_f64, brdf_g_blinn_dots_f64, brdf_g1_smith_f64, brdf_g_smith_f64,
+    brdf_torrance_sparrow_init_f64, brdf_torrance_sparrow_eval_f64,
+    brdf_torrance_sparrow_eval_nh_f64, brdf_torrance_sparrow_specular_f64,
+    brdf_torrance_sparrow_eval_batch_f64, brdf_torrance_sparrow_albedo_f64,
+    brdf_ggx_init_f64, brdf_ggx_eval_f64, brdf_ggx_albedo_f64,
 }

@@ -28,9 +28,60 @@
 //! values through them).
 #![cfg_attr(target_os = "none", no_std)]
 #![deny(missing_docs)]
-// Every export checks its pointers before use; the safety contract is in each doc comment.
-#![allow(clippy::missing_safety_doc)]
+#![deny(unsafe_op_in_unsafe_fn)]
+#![deny(clippy::undocumented_unsafe_blocks)]
+#![deny(clippy::missing_safety_doc)]
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
+// The header expansion (`--cfg brdf_header`) drops the `# Safety` docs, the only users of
+// `safety!`.
+#![cfg_attr(brdf_header, allow(unused_macros, unused_imports))]
+
+/// The `# Safety` section of an export's documentation, by what the export's pointers must
+/// be. It is attached as `#[cfg_attr(not(brdf_header), doc = safety!(..))]`: Rust readers
+/// see it, while the C header (generated with `--cfg brdf_header`, see `cargo xtask cffi`)
+/// keeps its C-facing text, whose handle and buffer rules (the header's preamble) say the
+/// same. Every check the exports make (null pointers, tags, lengths) is in addition to this
+/// contract, not a replacement for it.
+macro_rules! safety {
+    (@handle) => {
+        "A handle pointer is null or points to a readable, 8-byte-aligned handle of its type \
+         whose bytes are initialised: filled by its init or parse function, or any other \
+         bytes (a handle that was never filled is refused by its tag, not read further)."
+    };
+    (@arrays) => {
+        "Each array pointer is null or valid for `n` reads (inputs) or writes (outputs) of \
+         its element type; outputs may alias inputs."
+    };
+    (init) => {
+        "\n# Safety\n\n`out` is null or valid for writes of one handle of its type, 8-byte \
+         aligned (its previous content does not matter)."
+    };
+    (query) => {
+        concat!("\n# Safety\n\n", $crate::safety!(@handle))
+    };
+    (batch) => {
+        concat!(
+            "\n# Safety\n\n",
+            $crate::safety!(@handle),
+            "\n\n",
+            $crate::safety!(@arrays)
+        )
+    };
+    (parse) => {
+        concat!(
+            $crate::safety!(init),
+            " `bytes` is null or valid for `len` reads, and those bytes stay alive and \
+             unchanged for as long as the handle is used."
+        )
+    };
+    (range) => {
+        concat!(
+            $crate::safety!(query),
+            " `lo` and `hi` are each null or valid for writing one `float`."
+        )
+    };
+}
+pub(crate) use safety;
 
 pub mod kernels;
 pub mod lut;
@@ -108,7 +159,8 @@ pub extern "C" fn brdf_status_str(status: BrdfStatus) -> *const core::ffi::c_cha
 /// first, so a handle is valid only after a complete store.
 ///
 /// # Safety
-/// `tag` and `storage` must be valid for writes (they are fields of one handle).
+/// `tag` and `storage` must be valid for writes (they are fields of one handle, 8-byte
+/// aligned).
 #[inline]
 pub(crate) unsafe fn store<T, const W: usize>(
     tag: *mut u64,
@@ -126,9 +178,13 @@ pub(crate) unsafe fn store<T, const W: usize>(
             "handle storage under-aligned"
         );
     }
-    tag.write(0);
-    storage.cast::<T>().write(value);
-    tag.write(t);
+    // SAFETY: both pointers are valid for writes (the contract); `T` fits the storage words
+    // in size and alignment (checked at compile time above).
+    unsafe {
+        tag.write(0);
+        storage.cast::<T>().write(value);
+        tag.write(t);
+    }
 }
 
 /// Reads a handle: `None` for a null pointer or a tag other than `t`.
@@ -152,10 +208,13 @@ pub(crate) unsafe fn load<'a, T, const W: usize>(
             "handle storage under-aligned"
         );
     }
-    if tag.is_null() || storage.is_null() || tag.read() != t {
+    // SAFETY: `tag` is non-null (checked first) and points into a live handle (the contract).
+    if tag.is_null() || storage.is_null() || unsafe { tag.read() } != t {
         return None;
     }
-    Some(&*storage.cast::<T>())
+    // SAFETY: the tag says `store` wrote a `T` there (the contract); `T` fits the storage in
+    // size and alignment (checked at compile time above).
+    Some(unsafe { &*storage.cast::<T>() })
 }
 
 /// Implements `put`/`get` for a handle struct with fields `tag: u64` and
@@ -163,36 +222,50 @@ pub(crate) unsafe fn load<'a, T, const W: usize>(
 macro_rules! handle {
     ($h:ty, $inner:ty, $tag:expr) => {
         impl $h {
+            /// Stores `v` and then the tag.
+            ///
             /// # Safety
             /// `h` non-null and valid for writes.
             #[inline]
             pub(crate) unsafe fn put(h: *mut Self, v: $inner) {
-                $crate::store(
-                    core::ptr::addr_of_mut!((*h).tag),
-                    core::ptr::addr_of_mut!((*h).storage),
-                    v,
-                    $tag,
-                )
+                // SAFETY: `h` is valid for writes (the contract), so are its two fields.
+                unsafe {
+                    $crate::store(
+                        core::ptr::addr_of_mut!((*h).tag),
+                        core::ptr::addr_of_mut!((*h).storage),
+                        v,
+                        $tag,
+                    )
+                }
             }
+            /// The stored value, `None` for a null handle or a tag other than this type's.
+            ///
             /// # Safety
-            /// `h` null or pointing to a live handle.
+            /// `h` null or pointing to a live, initialised handle.
             #[inline]
             pub(crate) unsafe fn get<'a>(h: *const Self) -> Option<&'a $inner> {
                 if h.is_null() {
                     return None;
                 }
-                $crate::load(
-                    core::ptr::addr_of!((*h).tag),
-                    core::ptr::addr_of!((*h).storage),
-                    $tag,
-                )
+                // SAFETY: `h` is non-null and points to a live handle (the contract); only
+                // `put` writes this type's tag, after a complete store of `$inner`.
+                unsafe {
+                    $crate::load(
+                        core::ptr::addr_of!((*h).tag),
+                        core::ptr::addr_of!((*h).storage),
+                        $tag,
+                    )
+                }
             }
+            /// Clears the tag: the handle is refused until the next `put`.
+            ///
             /// # Safety
             /// `h` null or valid for writes.
             #[inline]
             pub(crate) unsafe fn clear(h: *mut Self) {
                 if !h.is_null() {
-                    core::ptr::addr_of_mut!((*h).tag).write(0);
+                    // SAFETY: `h` is non-null and valid for writes (the contract).
+                    unsafe { core::ptr::addr_of_mut!((*h).tag).write(0) };
                 }
             }
         }
@@ -206,7 +279,8 @@ pub(crate) use handle;
 /// `p` valid for `i + 1` reads.
 #[inline]
 pub(crate) unsafe fn rd<T: Copy>(p: *const T, i: usize) -> T {
-    p.add(i).read_unaligned()
+    // SAFETY: element `i` is in bounds of the caller's array (the contract).
+    unsafe { p.add(i).read_unaligned() }
 }
 
 /// Writes element `i` of a caller array.
@@ -215,7 +289,8 @@ pub(crate) unsafe fn rd<T: Copy>(p: *const T, i: usize) -> T {
 /// `p` valid for `i + 1` writes.
 #[inline]
 pub(crate) unsafe fn wr<T>(p: *mut T, i: usize, v: T) {
-    p.add(i).write_unaligned(v)
+    // SAFETY: element `i` is in bounds of the caller's array (the contract).
+    unsafe { p.add(i).write_unaligned(v) }
 }
 
 /// Checks the arrays of a batch call: each pointer non-null unless `n == 0`, and `n`

@@ -119,7 +119,9 @@ unsafe fn bytes<'a>(p: *const u8, len: usize) -> Result<&'a [u8], BrdfStatus> {
     if len > isize::MAX as usize {
         return Err(BRDF_STATUS_BAD_LENGTH);
     }
-    Ok(core::slice::from_raw_parts(p, len))
+    // SAFETY: `p` is non-null, `len` fits `isize` (both checked) and `p` is valid for `len`
+    // reads for as long as the handle is used (the contract).
+    Ok(unsafe { core::slice::from_raw_parts(p, len) })
 }
 
 /// Shared body of the `*_parse` functions.
@@ -129,14 +131,17 @@ macro_rules! parse_into {
         if out.is_null() {
             return BRDF_STATUS_NULL_POINTER;
         }
-        <$h>::clear(out);
-        let b = match bytes($p, $len) {
+        // SAFETY: `out` is non-null and valid for writes (the export's contract).
+        unsafe { <$h>::clear(out) };
+        // SAFETY: the buffer's contract is the export's.
+        let b = match unsafe { bytes($p, $len) } {
             Ok(b) => b,
             Err(s) => return s,
         };
         match $inner::parse(b) {
             Ok(t) => {
-                <$h>::put(out, t);
+                // SAFETY: as for `clear` above.
+                unsafe { <$h>::put(out, t) };
                 BRDF_STATUS_OK
             }
             Err(e) => status(e),
@@ -150,6 +155,7 @@ macro_rules! parse_into {
 /// `BRDF_STATUS_BAD_LENGTH`, a `BRDF_STATUS_TABLE_*` code for a corrupt table, or
 /// `BRDF_STATUS_TABLE_WRONG_KIND` for a valid table of another kind; on error `*out` is left
 /// not initialised.
+#[cfg_attr(not(brdf_header), doc = crate::safety!(parse))]
 #[no_mangle]
 pub unsafe extern "C" fn brdf_g_table_parse(
     out: *mut BrdfGTable,
@@ -160,36 +166,43 @@ pub unsafe extern "C" fn brdf_g_table_parse(
 }
 
 /// The table's σ; NaN when the header does not record it or the handle is bad.
+#[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
 #[no_mangle]
 pub unsafe extern "C" fn brdf_g_table_sigma(t: *const BrdfGTable) -> f32 {
-    BrdfGTable::get(t).map_or(f32::NAN, |t| t.sigma())
+    // SAFETY: `t` is null or a readable handle (the caller's contract).
+    unsafe { BrdfGTable::get(t) }.map_or(f32::NAN, |t| t.sigma())
 }
 
 /// GM, GS and G = min(GM, GS) ∈ [0, 1] at in-plane angles in radians (θi ∈ [0, π/2],
 /// θr ∈ [−π/2, π/2] signed; clamped), interpolated in the table. All NaN for a NaN angle or a
 /// null or uninitialised handle.
+#[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
 #[no_mangle]
 pub unsafe extern "C" fn brdf_g_table_terms(
     t: *const BrdfGTable,
     theta_i: f32,
     theta_r: f32,
 ) -> BrdfGTermsF32 {
-    let (gm, gs, g) = BrdfGTable::get(t).map_or((f32::NAN, f32::NAN, f32::NAN), |t| {
+    // SAFETY: `t` is null or a readable handle (the caller's contract).
+    let (gm, gs, g) = unsafe { BrdfGTable::get(t) }.map_or((f32::NAN, f32::NAN, f32::NAN), |t| {
         t.terms(theta_i, theta_r)
     });
     BrdfGTermsF32 { gm, gs, g }
 }
 
 /// G ∈ [0, 1] from the table; see `brdf_g_table_terms`.
+#[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
 #[no_mangle]
 pub unsafe extern "C" fn brdf_g_table_g(t: *const BrdfGTable, theta_i: f32, theta_r: f32) -> f32 {
-    BrdfGTable::get(t).map_or(f32::NAN, |t| t.g(theta_i, theta_r))
+    // SAFETY: `t` is null or a readable handle (the caller's contract).
+    unsafe { BrdfGTable::get(t) }.map_or(f32::NAN, |t| t.g(theta_i, theta_r))
 }
 
 /// G ∈ [0, 1] from the dot products n·wi, n·wo, wi·wo of unit vectors (the reciprocal 3-D
 /// extension of the modified G, as `brdf_modified_g_dots_f32`), interpolated in the table.
 /// A direction at or below the horizon gives 0; NaN for a non-finite dot product or a bad
 /// handle.
+#[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
 #[no_mangle]
 pub unsafe extern "C" fn brdf_g_table_g_dots(
     t: *const BrdfGTable,
@@ -197,7 +210,8 @@ pub unsafe extern "C" fn brdf_g_table_g_dots(
     n_o: f32,
     i_o: f32,
 ) -> f32 {
-    match BrdfGTable::get(t) {
+    // SAFETY: `t` is null or a readable handle (the caller's contract).
+    match unsafe { BrdfGTable::get(t) } {
         Some(t) if n_i.is_finite() && n_o.is_finite() && i_o.is_finite() => t.g_dots(n_i, n_o, i_o),
         _ => f32::NAN,
     }
@@ -207,6 +221,7 @@ pub unsafe extern "C" fn brdf_g_table_g_dots(
 /// `BRDF_STATUS_NOT_INITIALISED` (bad handle), `BRDF_STATUS_NULL_POINTER` (an array null with
 /// n > 0), `BRDF_STATUS_BAD_LENGTH` (n too large) — writing nothing — or `BRDF_STATUS_OK`.
 /// `out` may alias an input.
+#[cfg_attr(not(brdf_header), doc = crate::safety!(batch))]
 #[no_mangle]
 pub unsafe extern "C" fn brdf_g_table_g_batch(
     t: *const BrdfGTable,
@@ -215,20 +230,25 @@ pub unsafe extern "C" fn brdf_g_table_g_batch(
     out: *mut f32,
     n: usize,
 ) -> BrdfStatus {
-    let Some(t) = BrdfGTable::get(t) else {
+    // SAFETY: `t` is null or a readable handle (the caller's contract).
+    let Some(t) = (unsafe { BrdfGTable::get(t) }) else {
         return BRDF_STATUS_NOT_INITIALISED;
     };
     let s = crate::check_arrays(&[theta_i.is_null(), theta_r.is_null(), out.is_null()], n, 4);
     if s != BRDF_STATUS_OK {
         return s;
     }
-    for k in 0..n {
-        wr(out, k, t.g(rd(theta_i, k), rd(theta_r, k)));
+    // SAFETY: the arrays are non-null (checked) and hold `n` elements (the contract).
+    unsafe {
+        for k in 0..n {
+            wr(out, k, t.g(rd(theta_i, k), rd(theta_r, k)));
+        }
     }
     BRDF_STATUS_OK
 }
 
 /// Parses a modified-G table over σ (3-D); contract as for `brdf_g_table_parse`.
+#[cfg_attr(not(brdf_header), doc = crate::safety!(parse))]
 #[no_mangle]
 pub unsafe extern "C" fn brdf_g_table3_parse(
     out: *mut BrdfGTable3,
@@ -241,26 +261,32 @@ pub unsafe extern "C" fn brdf_g_table3_parse(
 /// Writes the table's σ range to `*lo` and `*hi` (queries outside it are clamped). Returns
 /// `BRDF_STATUS_OK`, `BRDF_STATUS_NULL_POINTER` (`lo` or `hi` null) or
 /// `BRDF_STATUS_NOT_INITIALISED`.
+#[cfg_attr(not(brdf_header), doc = crate::safety!(range))]
 #[no_mangle]
 pub unsafe extern "C" fn brdf_g_table3_sigma_range(
     t: *const BrdfGTable3,
     lo: *mut f32,
     hi: *mut f32,
 ) -> BrdfStatus {
-    let Some(t) = BrdfGTable3::get(t) else {
+    // SAFETY: `t` is null or a readable handle (the caller's contract).
+    let Some(t) = (unsafe { BrdfGTable3::get(t) }) else {
         return BRDF_STATUS_NOT_INITIALISED;
     };
     if lo.is_null() || hi.is_null() {
         return BRDF_STATUS_NULL_POINTER;
     }
     let (a, b) = t.sigma_range();
-    lo.write_unaligned(a);
-    hi.write_unaligned(b);
+    // SAFETY: both are non-null (checked) and valid for one write (the contract).
+    unsafe {
+        lo.write_unaligned(a);
+        hi.write_unaligned(b);
+    }
     BRDF_STATUS_OK
 }
 
 /// GM, GS and G ∈ [0, 1] at in-plane angles (radians, clamped) and RMS slope σ (clamped to
 /// the table's range). All NaN for NaN input or a bad handle.
+#[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
 #[no_mangle]
 pub unsafe extern "C" fn brdf_g_table3_terms(
     t: *const BrdfGTable3,
@@ -268,13 +294,15 @@ pub unsafe extern "C" fn brdf_g_table3_terms(
     theta_r: f32,
     sigma: f32,
 ) -> BrdfGTermsF32 {
-    let (gm, gs, g) = BrdfGTable3::get(t).map_or((f32::NAN, f32::NAN, f32::NAN), |t| {
+    // SAFETY: `t` is null or a readable handle (the caller's contract).
+    let (gm, gs, g) = unsafe { BrdfGTable3::get(t) }.map_or((f32::NAN, f32::NAN, f32::NAN), |t| {
         t.terms(theta_i, theta_r, sigma)
     });
     BrdfGTermsF32 { gm, gs, g }
 }
 
 /// G ∈ [0, 1] from the 3-D table; see `brdf_g_table3_terms`.
+#[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
 #[no_mangle]
 pub unsafe extern "C" fn brdf_g_table3_g(
     t: *const BrdfGTable3,
@@ -282,11 +310,13 @@ pub unsafe extern "C" fn brdf_g_table3_g(
     theta_r: f32,
     sigma: f32,
 ) -> f32 {
-    BrdfGTable3::get(t).map_or(f32::NAN, |t| t.g(theta_i, theta_r, sigma))
+    // SAFETY: `t` is null or a readable handle (the caller's contract).
+    unsafe { BrdfGTable3::get(t) }.map_or(f32::NAN, |t| t.g(theta_i, theta_r, sigma))
 }
 
 /// G ∈ [0, 1] from dot products (see `brdf_g_table_g_dots`) at RMS slope σ (clamped to the
 /// table's range); NaN for non-finite input or a bad handle.
+#[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
 #[no_mangle]
 pub unsafe extern "C" fn brdf_g_table3_g_dots(
     t: *const BrdfGTable3,
@@ -295,7 +325,8 @@ pub unsafe extern "C" fn brdf_g_table3_g_dots(
     i_o: f32,
     sigma: f32,
 ) -> f32 {
-    match BrdfGTable3::get(t) {
+    // SAFETY: `t` is null or a readable handle (the caller's contract).
+    match unsafe { BrdfGTable3::get(t) } {
         Some(t) if n_i.is_finite() && n_o.is_finite() && i_o.is_finite() && !sigma.is_nan() => {
             t.g_dots(n_i, n_o, i_o, sigma)
         }
@@ -305,6 +336,7 @@ pub unsafe extern "C" fn brdf_g_table3_g_dots(
 
 /// `out[k] = brdf_g_table3_g(t, theta_i[k], theta_r[k], sigma[k])` for k < n; status codes
 /// as for `brdf_g_table_g_batch`.
+#[cfg_attr(not(brdf_header), doc = crate::safety!(batch))]
 #[no_mangle]
 pub unsafe extern "C" fn brdf_g_table3_g_batch(
     t: *const BrdfGTable3,
@@ -314,7 +346,8 @@ pub unsafe extern "C" fn brdf_g_table3_g_batch(
     out: *mut f32,
     n: usize,
 ) -> BrdfStatus {
-    let Some(t) = BrdfGTable3::get(t) else {
+    // SAFETY: `t` is null or a readable handle (the caller's contract).
+    let Some(t) = (unsafe { BrdfGTable3::get(t) }) else {
         return BRDF_STATUS_NOT_INITIALISED;
     };
     let s = crate::check_arrays(
@@ -330,13 +363,17 @@ pub unsafe extern "C" fn brdf_g_table3_g_batch(
     if s != BRDF_STATUS_OK {
         return s;
     }
-    for k in 0..n {
-        wr(out, k, t.g(rd(theta_i, k), rd(theta_r, k), rd(sigma, k)));
+    // SAFETY: the arrays are non-null (checked) and hold `n` elements (the contract).
+    unsafe {
+        for k in 0..n {
+            wr(out, k, t.g(rd(theta_i, k), rd(theta_r, k), rd(sigma, k)));
+        }
     }
     BRDF_STATUS_OK
 }
 
 /// Parses a split-sum table; contract as for `brdf_g_table_parse`.
+#[cfg_attr(not(brdf_header), doc = crate::safety!(parse))]
 #[no_mangle]
 pub unsafe extern "C" fn brdf_dfg_table_parse(
     out: *mut BrdfDfgTable,
@@ -349,18 +386,22 @@ pub unsafe extern "C" fn brdf_dfg_table_parse(
 /// (A, B) at μ = n·v ∈ [0, 1] and roughness (perceptual r for GGX tables, σ for
 /// Torrance–Sparrow tables; the table's header says which), both clamped to the table's
 /// axes. Both NaN for NaN input or a bad handle.
+#[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
 #[no_mangle]
 pub unsafe extern "C" fn brdf_dfg_table_ab(
     t: *const BrdfDfgTable,
     mu: f32,
     roughness: f32,
 ) -> BrdfDfgF32 {
-    let (a, b) = BrdfDfgTable::get(t).map_or((f32::NAN, f32::NAN), |t| t.ab(mu, roughness));
+    // SAFETY: `t` is null or a readable handle (the caller's contract).
+    let (a, b) =
+        unsafe { BrdfDfgTable::get(t) }.map_or((f32::NAN, f32::NAN), |t| t.ab(mu, roughness));
     BrdfDfgF32 { a, b }
 }
 
 /// `a_out[k], b_out[k] = brdf_dfg_table_ab(t, mu[k], roughness[k])` for k < n; status codes
 /// as for `brdf_g_table_g_batch`. Outputs may alias inputs (not each other).
+#[cfg_attr(not(brdf_header), doc = crate::safety!(batch))]
 #[no_mangle]
 pub unsafe extern "C" fn brdf_dfg_table_ab_batch(
     t: *const BrdfDfgTable,
@@ -370,7 +411,8 @@ pub unsafe extern "C" fn brdf_dfg_table_ab_batch(
     b_out: *mut f32,
     n: usize,
 ) -> BrdfStatus {
-    let Some(t) = BrdfDfgTable::get(t) else {
+    // SAFETY: `t` is null or a readable handle (the caller's contract).
+    let Some(t) = (unsafe { BrdfDfgTable::get(t) }) else {
         return BRDF_STATUS_NOT_INITIALISED;
     };
     let s = crate::check_arrays(
@@ -386,15 +428,19 @@ pub unsafe extern "C" fn brdf_dfg_table_ab_batch(
     if s != BRDF_STATUS_OK {
         return s;
     }
-    for k in 0..n {
-        let (a, b) = t.ab(rd(mu, k), rd(roughness, k));
-        wr(a_out, k, a);
-        wr(b_out, k, b);
+    // SAFETY: the arrays are non-null (checked) and hold `n` elements (the contract).
+    unsafe {
+        for k in 0..n {
+            let (a, b) = t.ab(rd(mu, k), rd(roughness, k));
+            wr(a_out, k, a);
+            wr(b_out, k, b);
+        }
     }
     BRDF_STATUS_OK
 }
 
 /// Parses a directional-albedo table E(μ, r); contract as for `brdf_g_table_parse`.
+#[cfg_attr(not(brdf_header), doc = crate::safety!(parse))]
 #[no_mangle]
 pub unsafe extern "C" fn brdf_albedo_table_parse(
     out: *mut BrdfAlbedoTable,
@@ -406,17 +452,20 @@ pub unsafe extern "C" fn brdf_albedo_table_parse(
 
 /// E(μ, r) ∈ [0, 1] (F = 1) at μ = n·v and roughness, clamped to the table's axes; NaN for
 /// NaN input or a bad handle.
+#[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
 #[no_mangle]
 pub unsafe extern "C" fn brdf_albedo_table_e(
     t: *const BrdfAlbedoTable,
     mu: f32,
     roughness: f32,
 ) -> f32 {
-    BrdfAlbedoTable::get(t).map_or(f32::NAN, |t| t.e(mu, roughness))
+    // SAFETY: `t` is null or a readable handle (the caller's contract).
+    unsafe { BrdfAlbedoTable::get(t) }.map_or(f32::NAN, |t| t.e(mu, roughness))
 }
 
 /// `out[k] = brdf_albedo_table_e(t, mu[k], roughness[k])` for k < n; status codes as for
 /// `brdf_g_table_g_batch`.
+#[cfg_attr(not(brdf_header), doc = crate::safety!(batch))]
 #[no_mangle]
 pub unsafe extern "C" fn brdf_albedo_table_e_batch(
     t: *const BrdfAlbedoTable,
@@ -425,20 +474,25 @@ pub unsafe extern "C" fn brdf_albedo_table_e_batch(
     out: *mut f32,
     n: usize,
 ) -> BrdfStatus {
-    let Some(t) = BrdfAlbedoTable::get(t) else {
+    // SAFETY: `t` is null or a readable handle (the caller's contract).
+    let Some(t) = (unsafe { BrdfAlbedoTable::get(t) }) else {
         return BRDF_STATUS_NOT_INITIALISED;
     };
     let s = crate::check_arrays(&[mu.is_null(), roughness.is_null(), out.is_null()], n, 4);
     if s != BRDF_STATUS_OK {
         return s;
     }
-    for k in 0..n {
-        wr(out, k, t.e(rd(mu, k), rd(roughness, k)));
+    // SAFETY: the arrays are non-null (checked) and hold `n` elements (the contract).
+    unsafe {
+        for k in 0..n {
+            wr(out, k, t.e(rd(mu, k), rd(roughness, k)));
+        }
     }
     BRDF_STATUS_OK
 }
 
 /// Parses an average-albedo table E_avg(r); contract as for `brdf_g_table_parse`.
+#[cfg_attr(not(brdf_header), doc = crate::safety!(parse))]
 #[no_mangle]
 pub unsafe extern "C" fn brdf_average_albedo_table_parse(
     out: *mut BrdfAverageAlbedoTable,
@@ -450,16 +504,19 @@ pub unsafe extern "C" fn brdf_average_albedo_table_parse(
 
 /// E_avg(r) = 2∫₀¹ E(μ, r) μ dμ at roughness r, clamped to the table's axis; NaN for NaN
 /// input or a bad handle.
+#[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
 #[no_mangle]
 pub unsafe extern "C" fn brdf_average_albedo_table_e_avg(
     t: *const BrdfAverageAlbedoTable,
     roughness: f32,
 ) -> f32 {
-    BrdfAverageAlbedoTable::get(t).map_or(f32::NAN, |t| t.e_avg(roughness))
+    // SAFETY: `t` is null or a readable handle (the caller's contract).
+    unsafe { BrdfAverageAlbedoTable::get(t) }.map_or(f32::NAN, |t| t.e_avg(roughness))
 }
 
 /// `out[k] = brdf_average_albedo_table_e_avg(t, roughness[k])` for k < n; status codes as
 /// for `brdf_g_table_g_batch`.
+#[cfg_attr(not(brdf_header), doc = crate::safety!(batch))]
 #[no_mangle]
 pub unsafe extern "C" fn brdf_average_albedo_table_e_avg_batch(
     t: *const BrdfAverageAlbedoTable,
@@ -467,15 +524,19 @@ pub unsafe extern "C" fn brdf_average_albedo_table_e_avg_batch(
     out: *mut f32,
     n: usize,
 ) -> BrdfStatus {
-    let Some(t) = BrdfAverageAlbedoTable::get(t) else {
+    // SAFETY: `t` is null or a readable handle (the caller's contract).
+    let Some(t) = (unsafe { BrdfAverageAlbedoTable::get(t) }) else {
         return BRDF_STATUS_NOT_INITIALISED;
     };
     let s = crate::check_arrays(&[roughness.is_null(), out.is_null()], n, 4);
     if s != BRDF_STATUS_OK {
         return s;
     }
-    for k in 0..n {
-        wr(out, k, t.e_avg(rd(roughness, k)));
+    // SAFETY: the arrays are non-null (checked) and hold `n` elements (the contract).
+    unsafe {
+        for k in 0..n {
+            wr(out, k, t.e_avg(rd(roughness, k)));
+        }
     }
     BRDF_STATUS_OK
 }

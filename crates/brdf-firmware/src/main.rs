@@ -8,10 +8,10 @@
 #![no_std]
 #![no_main]
 
-mod kernels;
 mod report;
 mod stack;
 
+use brdf_firmware_kernels as kernels;
 use core::hint::black_box;
 use cortex_m_rt::{entry, exception, ExceptionFrame};
 use cortex_m_semihosting::{debug, hprintln};
@@ -95,110 +95,118 @@ fn rel_diff(a: f32, b: f32) -> f32 {
     }
 }
 
-#[entry]
-fn main() -> ! {
-    stack::paint();
-    report::banner(if cfg!(feature = "micromath") {
-        "micromath"
-    } else {
-        "libm"
-    });
-    let mut results = 0u32;
-    let mut failed = 0u32;
-    let mut tally = |ok: bool| {
-        if !ok {
-            failed += 1;
-        }
-    };
+/// The counts `END` reports: results printed and self-checks failed.
+#[derive(Default)]
+struct Tally {
+    results: u32,
+    failed: u32,
+}
 
-    // Direct G from in-plane angles.
+impl Tally {
+    /// Prints one result line.
+    fn result(&mut self, kernel: &str, args: &[f32], value: f32) {
+        report::result(kernel, args, value);
+        self.results += 1;
+    }
+    /// Prints one self-check line and counts a failure.
+    fn check(&mut self, name: &str, ok: bool, detail: core::fmt::Arguments<'_>) {
+        if !report::check(name, ok, detail) {
+            self.failed += 1;
+        }
+    }
+}
+
+/// Direct G from in-plane angles: range and normal incidence.
+fn direct_g(t: &mut Tally) {
     let mut g_in_range = true;
     for &s in &SIGMAS {
         for &(ti, tr) in &ANGLES {
             let (ti, tr) = (ti * DEG, tr * DEG);
             let g = kernels::g_direct(black_box(s), black_box(ti), black_box(tr));
-            report::result("g_direct", &[s, ti, tr], g);
-            results += 1;
+            t.result("g_direct", &[s, ti, tr], g);
             g_in_range &= (0.0..=1.0).contains(&g);
         }
     }
-    tally(report::check(
+    t.check(
         "g_direct_range",
         g_in_range,
         format_args!("every G in [0, 1]"),
-    ));
+    );
     let g0 = kernels::g_direct(black_box(0.3), black_box(0.0), black_box(0.0));
-    tally(report::check(
+    t.check(
         "g_normal_incidence",
         g0 == 1.0,
         format_args!("G(0, 0) = {} (expected exactly 1)", g0),
-    ));
+    );
+}
 
-    // G from the embedded table, against the direct G at the same σ: within the table's own
-    // measured interpolation error (header, max over random points) with a 2× margin.
-    match kernels::g_table(black_box(&TABLE_G[..])) {
-        None => tally(report::check(
+/// G from the embedded table, against the direct G at the same σ: within the table's own
+/// measured interpolation error (header, max over random points) with a 2× margin.
+fn table_g(t: &mut Tally) {
+    let Some(table) = kernels::g_table(black_box(&TABLE_G[..])) else {
+        t.check(
             "g_table_parse",
             false,
             format_args!("{} did not validate", TABLE_G_FILE),
-        )),
-        Some(t) => {
-            // The header again (the table keeps only what lookups need); cannot fail for
-            // bytes that just validated, NaN limits make the check fail if it ever did.
-            let (checksum, max_abs) = t.view().map_or((0, f32::NAN), |v| {
-                (v.header().checksum, v.header().error.max_abs)
-            });
-            report::table(TABLE_G_FILE, TABLE_G.len(), checksum);
-            let sigma_ok = t.sigma() == TABLE_G_SIGMA;
-            // With micromath the direct G itself is off by up to ~1.5e-2 (see the xtask's
-            // tolerances) while the table lookup uses libm: allow that too.
-            let direct_err = if cfg!(feature = "micromath") {
-                2.5e-2
-            } else {
-                1e-5
-            };
-            let bound = 2.0 * max_abs + direct_err;
-            let mut worst = 0.0f32;
-            for &(ti, tr) in &ANGLES {
-                let (ti, tr) = (ti * DEG, tr * DEG);
-                let g = kernels::g_lut(&t, black_box(ti), black_box(tr));
-                report::result("g_lut", &[TABLE_G_SIGMA, ti, tr], g);
-                results += 1;
-                let direct = kernels::g_direct(black_box(TABLE_G_SIGMA), ti, tr);
-                worst = worst.max((g - direct).abs());
-            }
-            tally(report::check(
-                "g_lut_vs_direct",
-                sigma_ok && worst <= bound,
-                format_args!(
-                    "table sigma {}; max |G_lut - G_direct| = {:e} (limit 2 x header max_abs + {:e} = {:e})",
-                    t.sigma(),
-                    worst,
-                    direct_err,
-                    bound
-                ),
-            ));
-        }
+        );
+        return;
+    };
+    // The header again (the table keeps only what lookups need); cannot fail for bytes that
+    // just validated, NaN limits make the check fail if it ever did.
+    let (checksum, max_abs) = table.view().map_or((0, f32::NAN), |v| {
+        (v.header().checksum, v.header().error.max_abs)
+    });
+    report::table(TABLE_G_FILE, TABLE_G.len(), checksum);
+    let sigma_ok = table.sigma() == TABLE_G_SIGMA;
+    // With micromath the direct G itself is off by up to ~1.5e-2 (see the xtask's
+    // tolerances) while the table lookup uses libm: allow that too.
+    let direct_err = if cfg!(feature = "micromath") {
+        2.5e-2
+    } else {
+        1e-5
+    };
+    let bound = 2.0 * max_abs + direct_err;
+    let mut worst = 0.0f32;
+    for &(ti, tr) in &ANGLES {
+        let (ti, tr) = (ti * DEG, tr * DEG);
+        let g = kernels::g_lut(&table, black_box(ti), black_box(tr));
+        t.result("g_lut", &[TABLE_G_SIGMA, ti, tr], g);
+        let direct = kernels::g_direct(black_box(TABLE_G_SIGMA), ti, tr);
+        worst = worst.max((g - direct).abs());
     }
+    t.check(
+        "g_lut_vs_direct",
+        sigma_ok && worst <= bound,
+        format_args!(
+            "table sigma {}; max |G_lut - G_direct| = {:e} (limit 2 x header max_abs + {:e} = {:e})",
+            table.sigma(),
+            worst,
+            direct_err,
+            bound
+        ),
+    );
+}
 
-    // G from dot products, and its reciprocity (swapping wi and wo must not change it).
+/// G from dot products, and its reciprocity (swapping wi and wo must not change it).
+fn dots_g(t: &mut Tally) {
     let mut g_recip = true;
     for &s in &SIGMAS {
         for &(a, b, c) in &DOTS {
             let g = kernels::g_dots(black_box(s), black_box(a), black_box(b), black_box(c));
-            report::result("g_dots", &[s, a, b, c], g);
-            results += 1;
+            t.result("g_dots", &[s, a, b, c], g);
             let swapped = kernels::g_dots(black_box(s), black_box(b), black_box(a), black_box(c));
             g_recip &= g.to_bits() == swapped.to_bits() && (0.0..=1.0).contains(&g);
         }
     }
-    tally(report::check(
+    t.check(
         "g_dots_reciprocity",
         g_recip,
         format_args!("G(wi, wo) == G(wo, wi) bit for bit, in [0, 1]"),
-    ));
+    );
+}
 
-    // Torrance–Sparrow BRDF, reciprocity and non-negativity.
+/// Torrance–Sparrow BRDF, reciprocity and non-negativity.
+fn torrance_sparrow(t: &mut Tally) {
     let mut worst = 0.0f32;
     let mut ts_ok = true;
     for &s in &SIGMAS[..3] {
@@ -211,24 +219,25 @@ fn main() -> ! {
                 black_box(b),
                 black_box(c),
             );
-            report::result("ts", &[s, TS_R0, TS_ALBEDO, a, b, c], f);
-            results += 1;
+            t.result("ts", &[s, TS_R0, TS_ALBEDO, a, b, c], f);
             let swapped = kernels::torrance_sparrow(s, TS_R0, TS_ALBEDO, b, a, c);
             worst = worst.max(rel_diff(f, swapped));
             ts_ok &= f.is_finite() && f >= TS_ALBEDO / core::f32::consts::PI * 0.999_999;
         }
     }
-    tally(report::check(
+    t.check(
         "ts_reciprocity",
         ts_ok && worst <= 1e-6,
         format_args!(
             "max rel |f(wi,wo) - f(wo,wi)| = {:e} (limit 1e-6); f >= albedo/pi",
             worst
         ),
-    ));
+    );
+}
 
-    // Ashikhmin–Shirley (anisotropic): reciprocity, and a quarter turn about the normal
-    // (x → y) must change the value when nu ≠ nv (it would not for an isotropic model).
+/// Ashikhmin–Shirley (anisotropic): reciprocity, and a quarter turn about the normal
+/// (x → y) must change the value when nu ≠ nv (it would not for an isotropic model).
+fn ashikhmin_shirley(t: &mut Tally) {
     let mut worst = 0.0f32;
     let mut aniso_seen = false;
     let mut as_ok = true;
@@ -245,8 +254,7 @@ fn main() -> ! {
             let mut args = [AS_RS, AS_RD, nu, nv, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
             args[4..7].copy_from_slice(&wi);
             args[7..].copy_from_slice(&wo);
-            report::result("ashikhmin_shirley", &args, f);
-            results += 1;
+            t.result("ashikhmin_shirley", &args, f);
             let swapped = kernels::ashikhmin_shirley(AS_RS, AS_RD, nu, nv, wo, wi);
             worst = worst.max(rel_diff(f, swapped));
             let turn = |w: [f32; 3]| [-w[1], w[0], w[2]];
@@ -255,18 +263,33 @@ fn main() -> ! {
             as_ok &= f.is_finite() && f >= 0.0;
         }
     }
-    tally(report::check(
+    t.check(
         "ashikhmin_shirley",
         as_ok && worst <= 1e-6 && aniso_seen,
         format_args!(
             "max rel |f(wi,wo) - f(wo,wi)| = {:e} (limit 1e-6); f >= 0; anisotropic: {}",
             worst, aniso_seen
         ),
-    ));
+    );
+}
 
+#[entry]
+fn main() -> ! {
+    stack::paint();
+    report::banner(if cfg!(feature = "micromath") {
+        "micromath"
+    } else {
+        "libm"
+    });
+    let mut t = Tally::default();
+    direct_g(&mut t);
+    table_g(&mut t);
+    dots_g(&mut t);
+    torrance_sparrow(&mut t);
+    ashikhmin_shirley(&mut t);
     let peak = stack::peak_bytes();
-    report::end(peak, results, failed);
-    debug::exit(if failed == 0 {
+    report::end(peak, t.results, t.failed);
+    debug::exit(if t.failed == 0 {
         debug::EXIT_SUCCESS
     } else {
         debug::EXIT_FAILURE

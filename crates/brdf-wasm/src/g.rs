@@ -139,7 +139,8 @@ pub extern "C" fn brdf_g_dots(kind: u32, sigma: f32, n_i: f32, n_o: f32, i_o: f3
 /// [`BAD_PARAM`] / [`BAD_BUFFER`] (nothing written).
 ///
 /// # Safety
-/// Each pointer must be valid for n f32.
+/// Each pointer that passes the null and alignment checks must be valid for n f32 (reads
+/// for `theta_i`, `theta_r`, writes for `out`).
 #[no_mangle]
 pub unsafe extern "C" fn brdf_g_batch(
     kind: u32,
@@ -155,9 +156,13 @@ pub unsafe extern "C" fn brdf_g_batch(
     let Some(g) = PreparedG::new(kind, sigma) else {
         return BAD_PARAM;
     };
-    for k in 0..n as usize {
-        let v = g.in_plane(*theta_i.add(k), *theta_r.add(k));
-        *out.add(k) = v;
+    // SAFETY: the pointers are non-null and aligned (checked) and valid for n f32 (the
+    // contract); element k is read before it is written, so `out` may be an input.
+    unsafe {
+        for k in 0..n as usize {
+            let v = g.in_plane(*theta_i.add(k), *theta_r.add(k));
+            *out.add(k) = v;
+        }
     }
     n as i32
 }
@@ -166,7 +171,8 @@ pub unsafe extern "C" fn brdf_g_batch(
 /// Returns n, or a negative status (nothing written).
 ///
 /// # Safety
-/// `dots` must be valid for 3n f32 and `out` for n f32.
+/// `dots` must be valid for reads of 3n f32 and `out` for writes of n f32, when they pass
+/// the null and alignment checks.
 #[no_mangle]
 pub unsafe extern "C" fn brdf_g_dots_batch(
     kind: u32,
@@ -181,10 +187,14 @@ pub unsafe extern "C" fn brdf_g_dots_batch(
     let Some(g) = PreparedG::new(kind, sigma) else {
         return BAD_PARAM;
     };
-    for k in 0..n as usize {
-        let p = dots.add(3 * k);
-        let v = g.dots(Dots::new(*p, *p.add(1), *p.add(2)));
-        *out.add(k) = v;
+    // SAFETY: both pointers are non-null and aligned (checked) and valid for 3n and n f32
+    // (the contract); row k is read before element k is written.
+    unsafe {
+        for k in 0..n as usize {
+            let p = dots.add(3 * k);
+            let v = g.dots(Dots::new(*p, *p.add(1), *p.add(2)));
+            *out.add(k) = v;
+        }
     }
     n as i32
 }
@@ -202,9 +212,11 @@ mod tests {
         assert!(brdf_g_dots(9, 0.3, 1.0, 1.0, 1.0).is_nan());
         let x = [0.1f32; 4];
         let mut out = [7.0f32; 4];
+        // SAFETY: the pointers are to live local arrays of the lengths the call states.
         let s = unsafe { brdf_g_batch(4, -0.3, x.as_ptr(), x.as_ptr(), out.as_mut_ptr(), 4) };
         assert_eq!(s, BAD_PARAM);
         assert_eq!(out, [7.0; 4], "nothing written on error");
+        // SAFETY: the pointers are to live local arrays of the lengths the call states.
         let s = unsafe { brdf_g_batch(4, 0.3, core::ptr::null(), x.as_ptr(), out.as_mut_ptr(), 4) };
         assert_eq!(s, BAD_BUFFER);
     }
@@ -258,6 +270,7 @@ mod tests {
         let mut tr: [f32; 5] = [-1.5, -0.2, 0.4, 1.0, 1.57];
         let want: [f32; 5] = core::array::from_fn(|k| brdf_g(4, 0.3, ti[k], tr[k]));
         let p = tr.as_mut_ptr();
+        // SAFETY: the pointers are to live local arrays of the lengths the call states.
         let s = unsafe { brdf_g_batch(4, 0.3, ti.as_ptr(), p, p, 5) };
         assert_eq!(s, 5);
         assert_eq!(tr, want);

@@ -25,6 +25,8 @@
 //! The module is single-threaded: the static buffers are shared by every call.
 #![cfg_attr(target_arch = "wasm32", no_std)]
 #![deny(missing_debug_implementations)]
+#![deny(unsafe_op_in_unsafe_fn)]
+#![deny(clippy::undocumented_unsafe_blocks)]
 
 pub mod g;
 pub mod lut;

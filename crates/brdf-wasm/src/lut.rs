@@ -44,8 +44,8 @@ static LAST_ERROR: AtomicU32 = AtomicU32::new(0);
 /// ever leaves a method).
 struct LayoutCell<T>(UnsafeCell<Option<TableLayout<T>>>);
 
-// The module is single-threaded; on the host, callers (tests) serialise access themselves,
-// as for the slots' buffers.
+// SAFETY: the module is single-threaded; on the host, callers (tests) serialise access
+// themselves, as for the slots' buffers; the contents are only copied in and out.
 unsafe impl<T> Sync for LayoutCell<T> {}
 
 impl<T> LayoutCell<T> {
@@ -77,7 +77,9 @@ fn slot(slot: u32) -> Option<(*mut u8, usize)> {
 /// The host must not write the slot while the returned slice is in use (the module is
 /// single-threaded, so this holds within one export call).
 unsafe fn bytes<'a, const N: usize>(buf: &StaticBuf<N>, len: usize) -> &'a [u8] {
-    core::slice::from_raw_parts(buf.ptr(), len.min(N))
+    // SAFETY: the slot holds N initialised bytes (zeroed statics) at a stable address, and
+    // nothing writes them while the slice lives (the contract).
+    unsafe { core::slice::from_raw_parts(buf.ptr(), len.min(N)) }
 }
 
 fn error_code(e: LutError) -> u32 {
@@ -206,7 +208,8 @@ pub extern "C" fn brdf_g_lut_sigma_range(hi: u32) -> f32 {
 /// Batch [`brdf_g_lut`] for one σ. Returns n, [`NO_LUT`] or [`BAD_BUFFER`].
 ///
 /// # Safety
-/// Each pointer valid for n f32.
+/// Each pointer that passes the null and alignment checks must be valid for n f32 (reads
+/// for `theta_i`, `theta_r`, writes for `out`).
 #[no_mangle]
 pub unsafe extern "C" fn brdf_g_lut_batch(
     sigma: f32,
@@ -219,9 +222,13 @@ pub unsafe extern "C" fn brdf_g_lut_batch(
         return BAD_BUFFER;
     }
     with_g3(|t| {
-        for k in 0..n as usize {
-            let v = t.g(*theta_i.add(k), *theta_r.add(k), sigma);
-            *out.add(k) = v;
+        // SAFETY: the pointers are non-null and aligned (checked) and valid for n f32 (the
+        // contract); element k is read before it is written.
+        unsafe {
+            for k in 0..n as usize {
+                let v = t.g(*theta_i.add(k), *theta_r.add(k), sigma);
+                *out.add(k) = v;
+            }
         }
         n as i32
     })
@@ -245,7 +252,7 @@ pub extern "C" fn brdf_g_lut_fixed_sigma() -> f32 {
 /// written to `out[0..2]`. Returns 0, [`NO_LUT`] or [`BAD_BUFFER`].
 ///
 /// # Safety
-/// `out` valid for 2 f32.
+/// `out`, when it passes the null and alignment checks, must be valid for writes of 2 f32.
 #[no_mangle]
 pub unsafe extern "C" fn brdf_dfg(mu: f32, roughness: f32, out: *mut f32) -> i32 {
     if !usable(out.cast_const()) {
@@ -253,8 +260,11 @@ pub unsafe extern "C" fn brdf_dfg(mu: f32, roughness: f32, out: *mut f32) -> i32
     }
     with_dfg(|t| {
         let (a, b) = t.ab(mu, roughness);
-        *out = a;
-        *out.add(1) = b;
+        // SAFETY: `out` is non-null and aligned (checked) and valid for 2 f32 (the contract).
+        unsafe {
+            *out = a;
+            *out.add(1) = b;
+        }
         OK
     })
     .unwrap_or(NO_LUT)
@@ -263,7 +273,8 @@ pub unsafe extern "C" fn brdf_dfg(mu: f32, roughness: f32, out: *mut f32) -> i32
 /// Batch [`brdf_dfg`]: `out` gets n pairs (A, B). Returns n, [`NO_LUT`] or [`BAD_BUFFER`].
 ///
 /// # Safety
-/// `mu`, `roughness` valid for n f32, `out` for 2n f32.
+/// When they pass the null and alignment checks, `mu` and `roughness` must be valid for
+/// reads of n f32 and `out` for writes of 2n f32.
 #[no_mangle]
 pub unsafe extern "C" fn brdf_dfg_batch(
     mu: *const f32,
@@ -275,10 +286,14 @@ pub unsafe extern "C" fn brdf_dfg_batch(
         return BAD_BUFFER;
     }
     with_dfg(|t| {
-        for k in 0..n as usize {
-            let (a, b) = t.ab(*mu.add(k), *roughness.add(k));
-            *out.add(2 * k) = a;
-            *out.add(2 * k + 1) = b;
+        // SAFETY: the pointers are non-null and aligned (checked) and valid for n, n and 2n
+        // f32 (the contract); the inputs of row k are read before its outputs are written.
+        unsafe {
+            for k in 0..n as usize {
+                let (a, b) = t.ab(*mu.add(k), *roughness.add(k));
+                *out.add(2 * k) = a;
+                *out.add(2 * k + 1) = b;
+            }
         }
         n as i32
     })
@@ -299,6 +314,8 @@ mod tests {
     fn put(s: u32, bytes: &[u8]) -> i32 {
         let cap = brdf_lut_capacity(s) as usize;
         let n = bytes.len().min(cap);
+        // SAFETY: `n` is at most the slot's capacity and the source's length; no other
+        // reference to the slot is live during the copy.
         unsafe { core::ptr::copy_nonoverlapping(bytes.as_ptr(), brdf_lut_ptr(s), n) };
         brdf_lut_load(s, bytes.len() as u32)
     }
@@ -310,6 +327,7 @@ mod tests {
         let dfg = asset("dfg_ggx.blut");
         assert!(brdf_g_lut(0.3, 0.5, 0.5).is_nan(), "no table yet");
         let mut ab = [0.0f32; 2];
+        // SAFETY: the pointers are to live local arrays of the lengths the call states.
         assert_eq!(unsafe { brdf_dfg(0.5, 0.5, ab.as_mut_ptr()) }, NO_LUT);
 
         assert_eq!(put(0, &g3), OK);
@@ -343,6 +361,7 @@ mod tests {
         assert_eq!(put(0, b"BLUT"), BAD_LUT);
 
         assert_eq!(put(2, &dfg), OK);
+        // SAFETY: the pointers are to live local arrays of the lengths the call states.
         assert_eq!(unsafe { brdf_dfg(0.5, 0.5, ab.as_mut_ptr()) }, OK);
         let (a, b) = DfgTable::parse(&dfg).unwrap().ab(0.5, 0.5);
         assert_eq!(ab, [a, b]);
@@ -356,6 +375,8 @@ mod tests {
         let (t3, t5) = (GTable::parse(&s3).unwrap(), GTable::parse(&s5).unwrap());
         assert_eq!(put(1, &s3), OK);
         assert_eq!(brdf_g_lut_fixed(0.4, -1.1), t3.g(0.4, -1.1));
+        // SAFETY: slot 1's buffer is larger than these tables (their `put` above succeeded),
+        // and no other reference to it is live during the copy.
         let write = |bytes: &[u8]| unsafe {
             core::ptr::copy_nonoverlapping(bytes.as_ptr(), brdf_lut_ptr(1), bytes.len())
         };

@@ -13,7 +13,8 @@ pub const SCRATCH_LEN: usize = (1 << 20) + (1 << 16);
 #[repr(C, align(16))]
 pub struct StaticBuf<const N: usize>(UnsafeCell<[u8; N]>);
 
-// The module is single-threaded; on the host, callers (tests) serialise access themselves.
+// SAFETY: the module is single-threaded; on the host, callers (tests) serialise access
+// themselves, and the contents are only reached through raw pointers.
 unsafe impl<const N: usize> Sync for StaticBuf<N> {}
 
 impl<const N: usize> core::fmt::Debug for StaticBuf<N> {

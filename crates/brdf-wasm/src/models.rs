@@ -103,13 +103,15 @@ pub extern "C" fn brdf_model_param(id: u32, k: u32, field: u32) -> f32 {
 /// Reads model `id`'s parameter array.
 ///
 /// # Safety
-/// `params` must be valid for the model's parameter count.
+/// `params`, when it passes the null and alignment checks, must be valid for reads of the
+/// model's parameter count of f32, not written while this runs.
 unsafe fn build(id: u32, params: *const f32) -> Option<Model> {
     let n = MODELS.get(id as usize)?.slots();
     if !usable(params) {
         return None;
     }
-    Model::new(id, core::slice::from_raw_parts(params, n))
+    // SAFETY: `params` is non-null and aligned (checked) and valid for `n` f32 (the contract).
+    Model::new(id, unsafe { core::slice::from_raw_parts(params, n) })
 }
 
 /// f(wi, wo) of model `id` with parameters at `params`, for local-frame unit directions:
@@ -117,8 +119,9 @@ unsafe fn build(id: u32, params: *const f32) -> Option<Model> {
 /// bad parameters) / [`BAD_BUFFER`] with nothing written.
 ///
 /// # Safety
-/// `params` must be valid for the model's parameter count (see `brdf_model_param_count`),
-/// `out` for 3 f32.
+/// When they pass the null and alignment checks, `params` must be valid for reads of the
+/// model's parameter count of f32 (see `brdf_model_param_count`) and `out` for writes of
+/// 3 f32.
 #[no_mangle]
 #[allow(clippy::too_many_arguments)]
 pub unsafe extern "C" fn brdf_eval(
@@ -135,12 +138,14 @@ pub unsafe extern "C" fn brdf_eval(
     if !usable(out.cast_const()) {
         return BAD_BUFFER;
     }
-    let Some(m) = build(id, params) else {
+    // SAFETY: `params` is as `build` needs (the contract).
+    let Some(m) = (unsafe { build(id, params) }) else {
         return BAD_PARAM;
     };
     let v = m.eval(Vec3::new(wi_x, wi_y, wi_z), Vec3::new(wo_x, wo_y, wo_z));
     for (c, x) in v.iter().enumerate() {
-        *out.add(c) = *x;
+        // SAFETY: `out` is non-null and aligned (checked) and valid for 3 f32 (the contract).
+        unsafe { *out.add(c) = *x };
     }
     0
 }
@@ -150,7 +155,8 @@ pub unsafe extern "C" fn brdf_eval(
 /// Returns n, or [`BAD_PARAM`] / [`BAD_BUFFER`] (nothing written).
 ///
 /// # Safety
-/// `params` valid for the parameter count, `dirs` for 6n f32, `out` for 3n f32.
+/// When they pass the null and alignment checks, `params` must be valid for reads of the
+/// parameter count of f32, `dirs` for reads of 6n f32 and `out` for writes of 3n f32.
 #[no_mangle]
 pub unsafe extern "C" fn brdf_eval_batch(
     id: u32,
@@ -162,17 +168,23 @@ pub unsafe extern "C" fn brdf_eval_batch(
     if n > MAX_BATCH || !usable(dirs) || !usable(out.cast_const()) {
         return BAD_BUFFER;
     }
-    let Some(m) = build(id, params) else {
+    // SAFETY: `params` is as `build` needs (the contract).
+    let Some(m) = (unsafe { build(id, params) }) else {
         return BAD_PARAM;
     };
-    for k in 0..n as usize {
-        let r = dirs.add(6 * k);
-        let v = m.eval(
-            Vec3::new(*r, *r.add(1), *r.add(2)),
-            Vec3::new(*r.add(3), *r.add(4), *r.add(5)),
-        );
-        for (c, x) in v.iter().enumerate() {
-            *out.add(3 * k + c) = *x;
+    // SAFETY: `dirs` and `out` are non-null and aligned (checked) and valid for 6n and 3n f32
+    // (the contract); row k of `dirs` is read before row k of `out` is written, and that
+    // row of `out` only overlaps rows of `dirs` already read.
+    unsafe {
+        for k in 0..n as usize {
+            let r = dirs.add(6 * k);
+            let v = m.eval(
+                Vec3::new(*r, *r.add(1), *r.add(2)),
+                Vec3::new(*r.add(3), *r.add(4), *r.add(5)),
+            );
+            for (c, x) in v.iter().enumerate() {
+                *out.add(3 * k + c) = *x;
+            }
         }
     }
     n as i32
@@ -274,6 +286,7 @@ mod tests {
             q[k] = bad;
             assert!(Model::new(0, &q).is_none(), "param {k} = {bad}");
             let mut out = [7.0f32; 3];
+            // SAFETY: the pointers are to live local arrays of the lengths the call states.
             let s = unsafe {
                 brdf_eval(
                     0,
@@ -290,6 +303,7 @@ mod tests {
             assert_eq!((s, out), (BAD_PARAM, [7.0; 3]));
         }
         let mut out = [7.0f32; 3];
+        // SAFETY: the pointers are to live local arrays of the lengths the call states.
         let s = unsafe {
             brdf_eval(
                 0,
@@ -311,6 +325,7 @@ mod tests {
     fn lambertian_limit() {
         let q = [0.3f32, 4.0, 0.04, 0.0, 0.8];
         let mut v = [7.0f32; 3];
+        // SAFETY: the pointers are to live local arrays of the lengths the call states.
         let s = unsafe {
             brdf_eval(
                 0,
@@ -325,6 +340,7 @@ mod tests {
             )
         };
         assert_eq!((s, v), (0, [0.0; 3]), "wo on the horizon");
+        // SAFETY: the pointers are to live local arrays of the lengths the call states.
         unsafe { brdf_eval(0, q.as_ptr(), v.as_mut_ptr(), 0.6, 0.0, 0.8, 0.0, 0.6, 0.8) };
         for c in v {
             assert!((c - 0.8 / core::f32::consts::PI).abs() < 1e-7);
@@ -346,6 +362,7 @@ mod tests {
 
     #[test]
     fn names_are_exported() {
+        // SAFETY: the pointers are to live local arrays of the lengths the call states.
         let s = |id, k| unsafe {
             core::str::from_utf8(core::slice::from_raw_parts(
                 brdf_model_str_ptr(id, k),

@@ -82,7 +82,9 @@ pub fn pixel(m: &Model, size: u32, px: u32, py: u32) -> [u8; 4] {
 /// or parameters, [`BAD_BUFFER`] for a null `out` or size outside 1..=512.
 ///
 /// # Safety
-/// `params` valid for the model's parameter count, `out` for size² × 4 bytes.
+/// When they pass the null and alignment checks, `params` must be valid for reads of the
+/// model's parameter count of f32 and `out` for writes of size² × 4 bytes; they must not
+/// overlap.
 #[no_mangle]
 pub unsafe extern "C" fn brdf_render_sphere(
     id: u32,
@@ -96,15 +98,22 @@ pub unsafe extern "C" fn brdf_render_sphere(
     let Some(spec) = MODELS.get(id as usize) else {
         return BAD_PARAM;
     };
-    let Some(m) = Model::new(id, core::slice::from_raw_parts(params, spec.slots())) else {
+    // SAFETY: `params` is non-null and aligned (checked) and valid for the model's
+    // parameter count (the contract); the slice is dropped before `out` is written.
+    let params = unsafe { core::slice::from_raw_parts(params, spec.slots()) };
+    let Some(m) = Model::new(id, params) else {
         return BAD_PARAM;
     };
     for py in 0..size {
         for px in 0..size {
             let rgba = pixel(&m, size, px, py);
-            let o = out.add(4 * (py * size + px) as usize);
-            for (c, v) in rgba.iter().enumerate() {
-                *o.add(c) = *v;
+            // SAFETY: `out` is non-null (checked) and valid for size² × 4 bytes (the
+            // contract); pixel (px, py) is in bounds since both are below `size`.
+            unsafe {
+                let o = out.add(4 * (py * size + px) as usize);
+                for (c, v) in rgba.iter().enumerate() {
+                    *o.add(c) = *v;
+                }
             }
         }
     }
@@ -165,12 +174,16 @@ mod tests {
     fn bad_arguments() {
         let q = [0.3f32, 4.0, 0.04, 1.0, 0.5];
         let mut img = [0u8; 16];
+        // SAFETY: the pointers are to live local arrays of the lengths the call states.
         let s = unsafe { brdf_render_sphere(0, q.as_ptr(), 0, img.as_mut_ptr()) };
         assert_eq!(s, BAD_BUFFER);
+        // SAFETY: the pointers are to live local arrays of the lengths the call states.
         let s = unsafe { brdf_render_sphere(0, q.as_ptr(), 513, img.as_mut_ptr()) };
         assert_eq!(s, BAD_BUFFER);
+        // SAFETY: the pointers are to live local arrays of the lengths the call states.
         let s = unsafe { brdf_render_sphere(5, q.as_ptr(), 2, img.as_mut_ptr()) };
         assert_eq!(s, BAD_PARAM);
+        // SAFETY: the pointers are to live local arrays of the lengths the call states.
         let s = unsafe { brdf_render_sphere(0, q.as_ptr(), 2, img.as_mut_ptr()) };
         assert_eq!(s, 0);
         // 2×2: every pixel centre is at r² = 0.5, inside.

@@ -1,16 +1,14 @@
-//! Host recomputation of every value the firmware printed (the firmware's own `kernels.rs`,
-//! compiled for the host) and the comparison: bit for bit with libm, within a per-kernel
-//! relative tolerance with micromath.
+//! The firmware's side of the comparison: reads its numbers (`bits/decimal`) and tables,
+//! recomputes every value it printed with the firmware's own kernels compiled for the host
+//! (crate `brdf-firmware-kernels`), and compares them through [`super::protocol::Row`]: bit
+//! for bit with libm, within a per-kernel relative tolerance with micromath.
 
-use super::runner::{Res, TableRef};
+use super::protocol::{self, Output, Row, Val};
 use anyhow::{bail, Context, Result};
-use std::collections::BTreeMap;
 use std::path::Path;
 
 /// The firmware's kernels, compiled for the host: the very source the device runs.
-#[path = "../../../crates/brdf-firmware/src/kernels.rs"]
-#[allow(dead_code)]
-mod fw_kernels;
+use brdf_firmware_kernels as fw_kernels;
 
 /// Largest relative difference accepted between the micromath firmware and the host's libm
 /// `f32`, per kernel: |fw − host| ≤ tol · max(|host|, 1e-3). Set a little above the largest
@@ -32,15 +30,21 @@ pub(crate) fn micromath_tol(kernel: &str) -> f64 {
     }
 }
 
-pub(crate) struct Row {
-    pub(crate) kernel: String,
-    pub(crate) label: String,
-    pub(crate) fw: f32,
-    pub(crate) host: f32,
-    /// |fw − host| in units in the last place of the host value.
-    pub(crate) ulps: u64,
-    pub(crate) rel: f64,
-    pub(crate) pass: bool,
+/// Parses `bits/decimal`, and checks that the device's decimal text reads back to the same
+/// bits (this exercises core::fmt's float printing on the target).
+pub(crate) fn parse_num(tok: &str) -> Result<f32> {
+    let (hex, dec) = tok
+        .split_once('/')
+        .with_context(|| format!("number {tok:?} is not bits/decimal"))?;
+    let bits = u32::from_str_radix(hex, 16).with_context(|| format!("bad hex in {tok:?}"))?;
+    let v = f32::from_bits(bits);
+    let d: f32 = dec
+        .parse()
+        .with_context(|| format!("bad decimal in {tok:?}"))?;
+    if d.to_bits() != bits && !(d.is_nan() && v.is_nan()) {
+        bail!("decimal {dec} does not read back to bits {hex}");
+    }
+    Ok(v)
 }
 
 /// The host's copy of the embedded G table (the same file from `assets/`).
@@ -49,29 +53,27 @@ pub(crate) struct HostTables {
 }
 
 impl HostTables {
-    /// Loads every table the firmware named and checks its length and stored CRC-32.
-    pub(crate) fn load(root: &Path, refs: &[TableRef]) -> Result<Self> {
+    /// Loads every table a `TABLE <file> <bytes> <crc32>` line names and checks its length
+    /// and stored CRC-32.
+    pub(crate) fn load(root: &Path, tables: &[Vec<String>]) -> Result<Self> {
         let mut g = None;
-        for r in refs {
-            if r.file.contains('/') || r.file.contains("..") {
-                bail!("table name {:?} must be a plain file name", r.file);
-            }
-            let path = root.join("assets").join(&r.file);
-            let bytes =
-                std::fs::read(&path).with_context(|| format!("reading {}", path.display()))?;
+        for words in tables {
+            let [file, len, crc] = &words[..] else {
+                bail!("TABLE line needs <file> <bytes> <crc32>: {words:?}");
+            };
+            let len: usize = len.parse().with_context(|| format!("bad length {len:?}"))?;
+            let crc = u32::from_str_radix(crc, 16).with_context(|| format!("bad CRC {crc:?}"))?;
+            let bytes = protocol::asset(root, file)?;
             let t = brdf_lut::GTable::parse(&bytes)
-                .map_err(|e| anyhow::anyhow!("{}: {e:?}", path.display()))?;
-            let crc = t.view().map_or(0, |v| v.header().checksum);
-            if bytes.len() != r.len || crc != r.crc {
+                .map_err(|e| anyhow::anyhow!("assets/{file}: {e:?}"))?;
+            let stored = t.view().map_or(0, |v| v.header().checksum);
+            if bytes.len() != len || stored != crc {
                 bail!(
-                    "{}: host file has {} bytes, CRC {crc:08x}; firmware embeds {} bytes, CRC {:08x}",
-                    r.file,
-                    bytes.len(),
-                    r.len,
-                    r.crc
+                    "{file}: host file has {} bytes, CRC {stored:08x}; firmware embeds {len} bytes, CRC {crc:08x}",
+                    bytes.len()
                 );
             }
-            g = Some((r.file.clone(), bytes));
+            g = Some((file.clone(), bytes));
         }
         Ok(Self { g })
     }
@@ -129,136 +131,84 @@ pub(crate) fn host_value(tables: &HostTables, kernel: &str, a: &[f32]) -> Result
     })
 }
 
-/// Distance in representable f32 values (0 for identical bits; both must be finite).
-pub(crate) fn ulp_distance(a: f32, b: f32) -> u64 {
-    fn key(x: f32) -> i64 {
-        let b = x.to_bits() as i32;
-        (if b < 0 { i32::MIN - b } else { b }) as i64
-    }
-    (key(a) - key(b)).unsigned_abs()
-}
-
-pub(crate) fn compare(results: &[Res], tables: &HostTables, micromath: bool) -> Result<Vec<Row>> {
-    let mut rows = Vec::with_capacity(results.len());
-    for r in results {
-        let host = host_value(tables, &r.kernel, &r.args)?;
-        let fw = r.value;
-        let (ulps, rel) = if fw.is_finite() && host.is_finite() {
-            let d = (fw as f64 - host as f64).abs();
-            (ulp_distance(fw, host), d / (host.abs() as f64).max(1e-3))
-        } else {
-            (u64::MAX, f64::INFINITY)
+/// Every printed value against the host's: bit for bit (libm) or within
+/// [`micromath_tol`] (micromath).
+pub(crate) fn compare(out: &Output, tables: &HostTables, micromath: bool) -> Result<Vec<Row>> {
+    let mut rows = Vec::with_capacity(out.results.len());
+    for r in &out.results {
+        let [value] = &r.values[..] else {
+            bail!("R line must end with '= <value>': {}", r.line);
         };
-        let bit_exact = fw.to_bits() == host.to_bits() || (fw.is_nan() && host.is_nan());
-        let pass = if micromath {
-            bit_exact || rel <= micromath_tol(&r.kernel)
+        let args = r
+            .args
+            .iter()
+            .map(|t| parse_num(t))
+            .collect::<Result<Vec<_>>>()?;
+        let fw = parse_num(value)?;
+        let host = host_value(tables, &r.kernel, &args)?;
+        let tol = if micromath {
+            micromath_tol(&r.kernel)
         } else {
-            bit_exact
+            0.0
         };
-        let args: Vec<String> = r.args.iter().map(|x| format!("{x}")).collect();
-        rows.push(Row {
-            kernel: r.kernel.clone(),
-            label: format!("{}({})", r.kernel, args.join(", ")),
-            fw,
-            host,
-            ulps: if bit_exact { 0 } else { ulps },
-            rel: if bit_exact { 0.0 } else { rel },
-            pass,
-        });
+        let shown: Vec<String> = args.iter().map(|x| format!("{x}")).collect();
+        let label = format!("{}({})", r.kernel, shown.join(", "));
+        let (fw, host) = (Val::F32(fw.to_bits()), Val::F32(host.to_bits()));
+        rows.push(Row::new(&r.kernel, label, fw, host, tol));
     }
     Ok(rows)
-}
-
-pub(crate) fn print_comparison(rows: &[Row], verbose: bool, micromath: bool) {
-    if verbose {
-        println!(
-            "{:<64} {:>21} {:>21} {:>10} {:>8}",
-            "value", "firmware", "host (f32, libm)", "rel diff", "ulps"
-        );
-        for r in rows {
-            println!(
-                "{:<64} {:08x} {:<12} {:08x} {:<12} {:>10.2e} {:>8}{}",
-                r.label,
-                r.fw.to_bits(),
-                r.fw,
-                r.host.to_bits(),
-                r.host,
-                r.rel,
-                r.ulps,
-                if r.pass { "" } else { "  MISMATCH" }
-            );
-        }
-    }
-    // Summary per kernel.
-    let mut per: BTreeMap<&str, (usize, usize, u64, f64)> = BTreeMap::new();
-    for r in rows {
-        let e = per.entry(r.kernel.as_str()).or_default();
-        e.0 += 1;
-        e.1 += usize::from(r.fw.to_bits() == r.host.to_bits());
-        e.2 = e.2.max(r.ulps);
-        e.3 = e.3.max(r.rel);
-    }
-    println!("| kernel | values | bit-identical | max ulps | max rel. diff | required | verdict |");
-    println!("|---|---:|---:|---:|---:|---|---|");
-    for (k, (n, same, ulps, rel)) in &per {
-        let ok = rows.iter().filter(|r| r.kernel == *k).all(|r| r.pass);
-        let req = if micromath {
-            format!("rel ≤ {:.1e}", micromath_tol(k))
-        } else {
-            "bit-exact".into()
-        };
-        println!(
-            "| {k} | {n} | {same} | {ulps} | {rel:.2e} | {req} | {} |",
-            if ok { "pass" } else { "FAIL" }
-        );
-    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::firmware::runner::Res;
+    use crate::firmware::protocol::RawResult;
+
+    fn output(results: Vec<RawResult>) -> Output {
+        Output {
+            results,
+            ..Output::default()
+        }
+    }
+
+    fn res(args: &[f32], value: f32) -> RawResult {
+        let num = |x: &f32| format!("{:08x}/{x}", x.to_bits());
+        RawResult {
+            kernel: "g_direct".into(),
+            args: args.iter().map(num).collect(),
+            values: vec![num(&value)],
+            line: String::new(),
+        }
+    }
 
     #[test]
-    fn ulp_distance_counts_representable_steps() {
-        assert_eq!(ulp_distance(1.0, 1.0), 0);
-        assert_eq!(ulp_distance(1.0, f32::from_bits(1.0f32.to_bits() + 3)), 3);
-        // Across zero: −min_positive .. +min_positive is 2 steps apart through ±0.
-        let tiny = f32::from_bits(1);
-        assert_eq!(ulp_distance(-tiny, tiny), 2);
+    fn parse_num_rejects_inconsistent_decimal() {
+        assert_eq!(parse_num("3e99999a/0.3").unwrap(), 0.3f32);
+        assert!(parse_num("3e99999a/0.31").is_err());
+        assert!(parse_num("zz/0.3").is_err());
     }
 
     #[test]
     fn compare_flags_a_one_ulp_difference_only_in_the_bit_exact_mode() {
         let tables = HostTables { g: None };
-        let args = vec![0.3f32, 0.5, -0.7];
+        let args = [0.3f32, 0.5, -0.7];
         let host = host_value(&tables, "g_direct", &args).unwrap();
         assert!(host > 0.0 && host <= 1.0);
-        let same = Res {
-            kernel: "g_direct".into(),
-            args: args.clone(),
-            value: host,
-        };
-        let off = Res {
-            kernel: "g_direct".into(),
-            args,
-            value: f32::from_bits(host.to_bits() - 1),
-        };
-        let rows = compare(&[same, off], &tables, false).unwrap();
+        let off = f32::from_bits(host.to_bits() - 1);
+        let rows = compare(
+            &output(vec![res(&args, host), res(&args, off)]),
+            &tables,
+            false,
+        );
+        let rows = rows.unwrap();
         assert!(rows[0].pass && rows[0].ulps == 0);
         assert!(!rows[1].pass && rows[1].ulps == 1);
-        let off_mm = Res {
-            kernel: "g_direct".into(),
-            args: vec![0.3, 0.5, -0.7],
-            value: f32::from_bits(host.to_bits() - 1),
-        };
-        assert!(compare(&[off_mm], &tables, true).unwrap()[0].pass);
-        // An unknown kernel or a wrong argument count is an error, not a pass.
-        let bad = Res {
-            kernel: "g_direct".into(),
-            args: vec![0.3],
-            value: 1.0,
-        };
-        assert!(compare(&[bad], &tables, false).is_err());
+        let mm = compare(&output(vec![res(&args, off)]), &tables, true).unwrap();
+        assert!(mm[0].pass);
+        // A wrong argument count or a malformed number is an error, not a pass.
+        assert!(compare(&output(vec![res(&args[..1], 1.0)]), &tables, false).is_err());
+        let mut bad = res(&args, host);
+        bad.values = vec!["3f800000/2".into()];
+        assert!(compare(&output(vec![bad]), &tables, false).is_err());
     }
 }

@@ -1,26 +1,30 @@
 //! `cargo xtask firmware [--micromath]`: builds `crates/brdf-firmware` for the Cortex-M4F,
 //! runs it on QEMU's `mps2-an386` under a timeout, recomputes every value it printed with the
-//! host's `f32` brdf-core (the same `kernels.rs` source, compiled for the host), compares
+//! host's `f32` brdf-core (the same `brdf-firmware-kernels` source, compiled for the host), compares
 //! them (bit for bit with libm; within a per-kernel tolerance with micromath) and reports
 //! flash and RAM from `llvm-size`/`llvm-nm`, with the kernels' code separated from the
 //! formatting code. Fails when a value differs, a device self-check fails or QEMU times out,
 //! and with `--enforce-budget` also when the libm kernels exceed [`KERNEL_FLASH_BUDGET`].
 //!
-//! Parts: [`runner`] (QEMU install, firmware build, run under a timeout, output protocol),
-//! [`compare`] (host recomputation, ULP comparison), [`size`] (flash/RAM report).
+//! Parts: [`runner`] (QEMU install, firmware build, runs under a timeout), [`protocol`] (the
+//! output lines, run errors and value comparison, shared with `cargo xtask cffi`),
+//! [`compare`] (the firmware's numbers and the host recomputation), [`size`] (flash/RAM
+//! report, its `llvm-size`/`llvm-nm` reading shared with `cargo xtask cffi`).
 //!
 //! QEMU comes from `.ci/install-qemu.sh` (unpacks Debian's qemu-system-arm into
 //! `.cache/qemu` without touching the installed qemu-utils).
 
 pub mod compare;
+pub mod protocol;
 pub mod runner;
 pub mod size;
 
 use anyhow::{bail, Result};
-use compare::{compare, print_comparison, HostTables};
-use runner::{build, ensure_qemu, locked_version, parse, run_qemu, QEMU_TIMEOUT_S};
-use size::{print_sizes, sizes, KERNEL_FLASH_BUDGET};
-use std::path::{Path, PathBuf};
+use compare::{compare, micromath_tol, HostTables};
+use protocol::print_rows;
+use runner::{build, ensure_qemu, locked_version, repo_root, run_qemu};
+use size::{print_sizes, sizes, Sizes, KERNEL_FLASH_BUDGET};
+use std::path::Path;
 use std::time::Instant;
 
 #[derive(clap::Args)]
@@ -40,11 +44,20 @@ pub struct FirmwareArgs {
     pub update_readme: bool,
 }
 
-fn repo_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .parent()
-        .expect("xtask lives in the repo root")
-        .to_path_buf()
+/// Notes a math crate whose version differs between the host's and the firmware's
+/// Cargo.lock (the bit-exact comparison assumes the same code on both sides).
+fn note_lock_differences(root: &Path) {
+    for krate in ["libm", "micromath"] {
+        let host = locked_version(&root.join("Cargo.lock"), krate);
+        let fw = locked_version(&root.join("crates/brdf-firmware/Cargo.lock"), krate);
+        if host != fw {
+            println!(
+                "note: {krate} is {} on the host and {} in the firmware's Cargo.lock",
+                host.as_deref().unwrap_or("absent"),
+                fw.as_deref().unwrap_or("absent")
+            );
+        }
+    }
 }
 
 pub fn run(a: FirmwareArgs) -> Result<()> {
@@ -58,36 +71,31 @@ pub fn run(a: FirmwareArgs) -> Result<()> {
 
     // 2. Build (the firmware has its own Cargo.lock: its math crates must match the host's
     // for the bit-exact comparison to mean what it says).
-    for krate in ["libm", "micromath"] {
-        let host = locked_version(&root.join("Cargo.lock"), krate);
-        let fw = locked_version(&root.join("crates/brdf-firmware/Cargo.lock"), krate);
-        if host != fw {
-            println!(
-                "note: {krate} is {} on the host and {} in the firmware's Cargo.lock",
-                host.as_deref().unwrap_or("absent"),
-                fw.as_deref().unwrap_or("absent")
-            );
-        }
-    }
+    note_lock_differences(&root);
     let t = Instant::now();
     let elf = build(&root, a.micromath)?;
     let t_build = t.elapsed();
 
     // 3. Run under a timeout.
     let t = Instant::now();
-    let out = run_qemu(&qemu, &elf)?;
+    let run = run_qemu(&qemu, &elf)?;
     let t_run = t.elapsed();
 
     // 4. Parse and compare.
-    let parsed = parse(&out.stdout)?;
-    let tables = HostTables::load(&root, &parsed.tables)?;
-    let cmp = compare(&parsed.results, &tables, a.micromath)?;
-    print_comparison(&cmp, a.verbose, a.micromath);
+    let out = protocol::parse(&run.stdout, "BRDF-FW")?;
+    let tables = HostTables::load(&root, &out.tables)?;
+    let rows = compare(&out, &tables, a.micromath)?;
+    print_rows(&rows, a.verbose, |k| {
+        if a.micromath {
+            format!("rel ≤ {:.1e}", micromath_tol(k))
+        } else {
+            "bit-exact".into()
+        }
+    });
 
     // 5. Sizes.
     let sizes = sizes(&elf)?;
-    print_sizes(&sizes, parsed.stack, math);
-
+    print_sizes(&sizes, out.stack, math);
     println!(
         "firmware[{math}]: QEMU check {:.2} s, build {:.1} s, run {:.2} s (QEMU wall clock)",
         t_install.as_secs_f64(),
@@ -96,40 +104,37 @@ pub fn run(a: FirmwareArgs) -> Result<()> {
     );
 
     // 6. Verdict.
-    let mut errors = Vec::new();
-    if out.timed_out {
-        errors.push(format!("QEMU timed out after {QEMU_TIMEOUT_S} s"));
-    } else if out.status != Some(0) {
-        errors.push(format!("firmware exited with status {:?}", out.status));
-    }
-    if !parsed.ended {
-        errors.push("no END line (firmware crashed or was cut off)".into());
-    }
-    if let Some(n) = parsed.declared_results {
-        if n as usize != parsed.results.len() {
-            errors.push(format!(
-                "END declares {n} results, {} parsed",
-                parsed.results.len()
-            ));
-        }
-    }
-    if parsed.results.is_empty() {
-        errors.push("no results printed".into());
-    }
-    for c in parsed.checks.iter().filter(|c| !c.ok) {
-        errors.push(format!("device self-check failed: {}", c.line));
-    }
-    let bad: Vec<_> = cmp.iter().filter(|r| !r.pass).collect();
-    for r in &bad {
+    let mut errors = protocol::run_errors("firmware", &run, &out);
+    for r in rows.iter().filter(|r| !r.pass) {
         errors.push(format!(
-            "mismatch: {} fw={:08x} ({}) host={:08x} ({})",
+            "mismatch: {} fw={} host={} (rel {:.2e})",
             r.label,
-            r.fw.to_bits(),
-            r.fw,
-            r.host.to_bits(),
-            r.host
+            r.device.hex(),
+            r.host.hex(),
+            r.rel
         ));
     }
+    errors.extend(size_errors(&root, &a, &sizes)?);
+    if !errors.is_empty() {
+        eprintln!("---- firmware output ----\n{}{}", run.stdout, run.stderr);
+        bail!("firmware[{math}]: {}", errors.join("; "));
+    }
+    println!(
+        "firmware[{math}]: OK: {} values compared ({}), {} device checks passed",
+        rows.len(),
+        if a.micromath {
+            "within the per-kernel micromath tolerances"
+        } else {
+            "bit-exact"
+        },
+        out.checks.len()
+    );
+    Ok(())
+}
+
+/// The flash budget, the README's figures (libm build) and the no-heap rule.
+fn size_errors(root: &Path, a: &FirmwareArgs, sizes: &Sizes) -> Result<Vec<String>> {
+    let mut errors = Vec::new();
     if a.enforce_budget && !a.micromath && sizes.kernels_flash() > KERNEL_FLASH_BUDGET {
         errors.push(format!(
             "kernels use {} B of flash, over the {} B budget",
@@ -138,45 +143,37 @@ pub fn run(a: FirmwareArgs) -> Result<()> {
         ));
     }
     if !a.micromath {
-        let path = root.join("README.md");
-        let readme = std::fs::read_to_string(&path)?;
-        let measured = (sizes.kernels_flash(), sizes.static_ram());
-        match size::readme_sizes(&readme) {
-            None => errors.push("README.md has no \"B of flash with libm\" / \"B of static RAM\" figures".into()),
-            Some(claimed) if claimed == measured => {}
-            Some(claimed) if a.update_readme => {
-                let text = size::readme_with_sizes(&readme, measured.0, measured.1)
-                    .expect("the figures were just found");
-                let tmp = path.with_extension("md.tmp");
-                std::fs::write(&tmp, text)?;
-                std::fs::rename(&tmp, &path)?;
-                println!(
-                    "README.md: kernel flash {} → {} B, static RAM {} → {} B",
-                    claimed.0, measured.0, claimed.1, measured.1
-                );
-            }
-            Some(claimed) => errors.push(format!(
-                "README.md says the kernels take {} B of flash and {} B of static RAM; measured {} B and {} B (run `cargo xtask firmware --update-readme`)",
-                claimed.0, claimed.1, measured.0, measured.1
-            )),
+        if let Some(e) = readme_error(root, a.update_readme, sizes)? {
+            errors.push(e);
         }
     }
     if sizes.has_allocator {
         errors.push("an allocator symbol is linked in (the firmware must not use a heap)".into());
     }
-    if !errors.is_empty() {
-        eprintln!("---- firmware output ----\n{}{}", out.stdout, out.stderr);
-        bail!("firmware[{math}]: {}", errors.join("; "));
-    }
-    println!(
-        "firmware[{math}]: OK: {} values compared ({}), {} device checks passed",
-        cmp.len(),
-        if a.micromath {
-            "within the per-kernel micromath tolerances"
-        } else {
-            "bit-exact"
-        },
-        parsed.checks.len()
-    );
-    Ok(())
+    Ok(errors)
+}
+
+/// Checks (or with `update`, rewrites) the README's kernel-flash and static-RAM figures.
+fn readme_error(root: &Path, update: bool, sizes: &Sizes) -> Result<Option<String>> {
+    let path = root.join("README.md");
+    let readme = std::fs::read_to_string(&path)?;
+    let measured = (sizes.kernels_flash(), sizes.static_ram());
+    Ok(match size::readme_sizes(&readme) {
+        None => Some("README.md has no \"B of flash with libm\" / \"B of static RAM\" figures".into()),
+        Some(claimed) if claimed == measured => None,
+        Some(claimed) if update => {
+            let text = size::readme_with_sizes(&readme, measured.0, measured.1)
+                .expect("the figures were just found");
+            crate::fsio::replace(&path, text.as_bytes())?;
+            println!(
+                "README.md: kernel flash {} → {} B, static RAM {} → {} B",
+                claimed.0, measured.0, claimed.1, measured.1
+            );
+            None
+        }
+        Some(claimed) => Some(format!(
+            "README.md says the kernels take {} B of flash and {} B of static RAM; measured {} B and {} B (run `cargo xtask firmware --update-readme`)",
+            claimed.0, claimed.1, measured.0, measured.1
+        )),
+    })
 }

@@ -1,6 +1,6 @@
-//! QEMU and the firmware run: installs QEMU (`.ci/install-qemu.sh`), builds the firmware for
-//! the Cortex-M4F, runs an ELF on `mps2-an386` under a timeout with semihosting, and parses
-//! the line protocol the firmware prints (`crates/brdf-firmware/src/report.rs`).
+//! Running programs for the firmware and C runners: installs QEMU (`.ci/install-qemu.sh`),
+//! builds the firmware for the Cortex-M4F, runs an ELF on `mps2-an386` with semihosting and
+//! a host program, each under a timeout. What they print is read by [`super::protocol`].
 
 use anyhow::{bail, Context, Result};
 use std::path::{Path, PathBuf};
@@ -8,6 +8,14 @@ use std::process::Command;
 
 /// Wall-clock limit for one QEMU run.
 pub const QEMU_TIMEOUT_S: u32 = 60;
+
+/// The repository root (xtask lives in it).
+pub(crate) fn repo_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("xtask lives in the repo root")
+        .to_path_buf()
+}
 
 pub(crate) fn ensure_qemu(root: &Path) -> Result<PathBuf> {
     let script = root.join(".ci/install-qemu.sh");
@@ -79,14 +87,44 @@ pub(crate) fn build(root: &Path, micromath: bool) -> Result<PathBuf> {
     Ok(tdir.join("thumbv7em-none-eabihf/release/brdf-firmware"))
 }
 
-pub(crate) struct QemuOut {
+/// A finished (or timed-out) run.
+pub(crate) struct RunOut {
     pub(crate) stdout: String,
     pub(crate) stderr: String,
     pub(crate) status: Option<i32>,
     pub(crate) timed_out: bool,
+    /// The limit it ran under, seconds.
+    pub(crate) timeout_s: u32,
 }
 
-pub(crate) fn run_qemu(qemu: &Path, elf: &Path) -> Result<QemuOut> {
+/// Runs `cmd` under timeout(1) with a wall-clock limit of `timeout_s` seconds.
+pub(crate) fn run_timed(cmd: &mut Command, timeout_s: u32) -> Result<RunOut> {
+    let mut t = Command::new("timeout");
+    t.args(["--kill-after=5", &timeout_s.to_string()])
+        .arg(cmd.get_program())
+        .args(cmd.get_args());
+    for (k, v) in cmd.get_envs() {
+        match v {
+            Some(v) => t.env(k, v),
+            None => t.env_remove(k),
+        };
+    }
+    let out = t
+        .output()
+        .with_context(|| format!("running {}", cmd.get_program().to_string_lossy()))?;
+    let status = out.status.code();
+    Ok(RunOut {
+        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
+        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
+        status,
+        // timeout(1) exits 124 on expiry (137 if it had to SIGKILL).
+        timed_out: matches!(status, Some(124) | Some(137)),
+        timeout_s,
+    })
+}
+
+/// Runs `elf` on QEMU's `mps2-an386` (Cortex-M4F) with semihosting on stdout.
+pub(crate) fn run_qemu(qemu: &Path, elf: &Path) -> Result<RunOut> {
     // Libraries unpacked beside an unpacked QEMU (see install-qemu.sh).
     let mut ld = String::new();
     let unpacked = !qemu.starts_with("/usr") && !qemu.starts_with("/bin");
@@ -102,151 +140,13 @@ pub(crate) fn run_qemu(qemu: &Path, elf: &Path) -> Result<QemuOut> {
     if let Ok(old) = std::env::var("LD_LIBRARY_PATH") {
         ld.push_str(&old);
     }
-    let out = Command::new("timeout")
-        .args(["--kill-after=5", &QEMU_TIMEOUT_S.to_string()])
-        .arg(qemu)
-        .args([
-            "-machine",
-            "mps2-an386",
-            "-cpu",
-            "cortex-m4",
-            "-nographic",
-            "-monitor",
-            "none",
-            "-serial",
-            "none",
-            "-semihosting-config",
-            "enable=on,target=native",
-            "-kernel",
-        ])
+    let mut cmd = Command::new(qemu);
+    cmd.args(["-machine", "mps2-an386", "-cpu", "cortex-m4", "-nographic"])
+        .args(["-monitor", "none", "-serial", "none"])
+        .args(["-semihosting-config", "enable=on,target=native", "-kernel"])
         .arg(elf)
-        .env("LD_LIBRARY_PATH", ld.trim_end_matches(':'))
-        .output()
-        .context("running timeout/qemu-system-arm")?;
-    let status = out.status.code();
-    Ok(QemuOut {
-        stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
-        stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
-        status,
-        // timeout(1) exits 124 on expiry (137 if it had to SIGKILL).
-        timed_out: matches!(status, Some(124) | Some(137)),
-    })
-}
-
-// ---------------------------------------------------------------------------------------
-// Parsing the protocol (crates/brdf-firmware/src/report.rs)
-
-pub(crate) struct Res {
-    pub(crate) kernel: String,
-    pub(crate) args: Vec<f32>,
-    pub(crate) value: f32,
-}
-
-pub(crate) struct Check {
-    pub(crate) ok: bool,
-    pub(crate) line: String,
-}
-
-/// A `TABLE` line: an embedded table the host must load from `assets/`.
-pub(crate) struct TableRef {
-    pub(crate) file: String,
-    pub(crate) len: usize,
-    pub(crate) crc: u32,
-}
-
-pub(crate) struct Parsed {
-    pub(crate) tables: Vec<TableRef>,
-    pub(crate) results: Vec<Res>,
-    pub(crate) checks: Vec<Check>,
-    pub(crate) stack: Option<u64>,
-    pub(crate) declared_results: Option<u32>,
-    pub(crate) ended: bool,
-}
-
-/// Parses `bits/decimal`, and checks that the device's decimal text reads back to the same
-/// bits (this exercises core::fmt's float printing on the target).
-pub(crate) fn parse_num(tok: &str) -> Result<f32> {
-    let (hex, dec) = tok
-        .split_once('/')
-        .with_context(|| format!("number {tok:?} is not bits/decimal"))?;
-    let bits = u32::from_str_radix(hex, 16).with_context(|| format!("bad hex in {tok:?}"))?;
-    let v = f32::from_bits(bits);
-    let d: f32 = dec
-        .parse()
-        .with_context(|| format!("bad decimal in {tok:?}"))?;
-    if d.to_bits() != bits && !(d.is_nan() && v.is_nan()) {
-        bail!("decimal {dec} does not read back to bits {hex}");
-    }
-    Ok(v)
-}
-
-pub(crate) fn parse(stdout: &str) -> Result<Parsed> {
-    let mut p = Parsed {
-        tables: Vec::new(),
-        results: Vec::new(),
-        checks: Vec::new(),
-        stack: None,
-        declared_results: None,
-        ended: false,
-    };
-    let mut banner = false;
-    for line in stdout.lines() {
-        let mut it = line.split_whitespace();
-        match it.next() {
-            Some("BRDF-FW") => banner = true,
-            Some("TABLE") => {
-                let (Some(file), Some(len), Some(crc)) = (it.next(), it.next(), it.next()) else {
-                    bail!("TABLE line needs <file> <bytes> <crc32>: {line}");
-                };
-                p.tables.push(TableRef {
-                    file: file.to_string(),
-                    len: len
-                        .parse()
-                        .with_context(|| format!("bad length in {line}"))?,
-                    crc: u32::from_str_radix(crc, 16)
-                        .with_context(|| format!("bad CRC in {line}"))?,
-                });
-            }
-            Some("R") => {
-                let kernel = it.next().context("R line without kernel")?.to_string();
-                let toks: Vec<&str> = it.collect();
-                let eq = toks
-                    .iter()
-                    .position(|t| *t == "=")
-                    .with_context(|| format!("R line without '=': {line}"))?;
-                if eq + 2 != toks.len() {
-                    bail!("R line must end with '= <value>': {line}");
-                }
-                let args = toks[..eq]
-                    .iter()
-                    .map(|t| parse_num(t))
-                    .collect::<Result<Vec<_>>>()?;
-                let value = parse_num(toks[eq + 1])?;
-                p.results.push(Res {
-                    kernel,
-                    args,
-                    value,
-                });
-            }
-            Some("CHECK") => {
-                let _name = it.next();
-                p.checks.push(Check {
-                    ok: it.next() == Some("ok"),
-                    line: line.to_string(),
-                });
-            }
-            Some("STACK") => p.stack = it.next().and_then(|s| s.parse().ok()),
-            Some("END") => {
-                p.ended = true;
-                p.declared_results = it.next().and_then(|s| s.parse().ok());
-            }
-            _ => {}
-        }
-    }
-    if !banner {
-        bail!("no BRDF-FW banner in the firmware output:\n{stdout}");
-    }
-    Ok(p)
+        .env("LD_LIBRARY_PATH", ld.trim_end_matches(':'));
+    run_timed(&mut cmd, QEMU_TIMEOUT_S)
 }
 
 #[cfg(test)]
@@ -266,12 +166,5 @@ mod tests {
         assert_eq!(locked_version(&lock, "libm").as_deref(), Some("0.2.16"));
         assert_eq!(locked_version(&lock, "micromath"), None);
         std::fs::remove_dir_all(&dir).unwrap();
-    }
-
-    #[test]
-    fn parse_num_rejects_inconsistent_decimal() {
-        assert_eq!(parse_num("3e99999a/0.3").unwrap(), 0.3f32);
-        assert!(parse_num("3e99999a/0.31").is_err());
-        assert!(parse_num("zz/0.3").is_err());
     }
 }

@@ -93,7 +93,7 @@ pub(crate) fn classify(name: &str) -> Group {
         || has("heapless::")
     {
         Group::KernelLut
-    } else if has("brdf_core::") || has("brdf_firmware::kernels::") {
+    } else if has("brdf_core::") || has("brdf_firmware_kernels::") {
         Group::KernelG
     } else if has("libm::")
         || has("micromath::")
@@ -194,50 +194,54 @@ pub(crate) fn llvm_tool(name: &str) -> Result<PathBuf> {
         .with_context(|| format!("{name} not found (apt-get install llvm)"))
 }
 
-pub(crate) fn sizes(elf: &Path) -> Result<Sizes> {
-    let out = Command::new(llvm_tool("llvm-size")?)
-        .arg("-A")
+/// Stdout of an LLVM binary tool run on `elf`.
+fn tool_output(tool: &str, args: &[&str], elf: &Path) -> Result<String> {
+    let out = Command::new(llvm_tool(tool)?)
+        .args(args)
         .arg(elf)
         .output()
-        .context("running llvm-size")?;
+        .with_context(|| format!("running {tool}"))?;
     if !out.status.success() {
-        bail!("llvm-size failed: {}", String::from_utf8_lossy(&out.stderr));
+        bail!("{tool} failed: {}", String::from_utf8_lossy(&out.stderr));
     }
+    Ok(String::from_utf8_lossy(&out.stdout).into_owned())
+}
+
+/// The ELF's sections from `llvm-size -A`: name → (size, address), in bytes.
+pub(crate) fn elf_sections(elf: &Path) -> Result<BTreeMap<String, (u64, u64)>> {
     let mut sections = BTreeMap::new();
-    // (name, start, end) of the allocated flash sections, to attribute symbols by address.
-    let mut ranges: Vec<(String, u64, u64)> = Vec::new();
-    for l in String::from_utf8_lossy(&out.stdout).lines() {
+    for l in tool_output("llvm-size", &["-A"], elf)?.lines() {
         let f: Vec<&str> = l.split_whitespace().collect();
         if f.len() == 3 && f[0].starts_with('.') {
             if let (Ok(n), Ok(addr)) = (f[1].parse::<u64>(), f[2].parse::<u64>()) {
-                sections.insert(f[0].to_string(), n);
-                if f[0] == ".text" || f[0] == ".rodata" {
-                    ranges.push((f[0].to_string(), addr, addr + n));
-                }
+                sections.insert(f[0].to_string(), (n, addr));
             }
         }
     }
-    let out = Command::new(llvm_tool("llvm-nm")?)
-        .args([
-            "--print-size",
-            "--size-sort",
-            "--demangle",
-            "--defined-only",
-        ])
-        .arg(elf)
-        .output()
-        .context("running llvm-nm")?;
-    if !out.status.success() {
-        bail!("llvm-nm failed: {}", String::from_utf8_lossy(&out.stderr));
-    }
-    let mut groups: BTreeMap<Group, (u64, u64)> = BTreeMap::new();
-    let mut kernels: Vec<(String, u64)> = Vec::new();
-    let mut has_allocator = false;
-    let (mut text_attr, mut ro_attr) = (0u64, 0u64);
-    for l in String::from_utf8_lossy(&out.stdout).lines() {
+    Ok(sections)
+}
+
+/// A defined, sized symbol from `llvm-nm` (name demangled and tidied).
+pub(crate) struct Symbol {
+    pub(crate) addr: u64,
+    pub(crate) size: u64,
+    /// nm's type letter (`t`/`T` code, `r`/`R` read-only data, `d`/`D` data, …).
+    pub(crate) ty: String,
+    pub(crate) name: String,
+}
+
+/// The ELF's defined symbols that have a size.
+pub(crate) fn elf_symbols(elf: &Path) -> Result<Vec<Symbol>> {
+    let text = tool_output(
+        "llvm-nm",
+        &["--print-size", "--demangle", "--defined-only"],
+        elf,
+    )?;
+    let mut syms = Vec::new();
+    for l in text.lines() {
         // "<addr> <size> <type> <name…>"
         let mut it = l.splitn(4, ' ');
-        let (Some(addr), Some(size), Some(_ty), Some(raw)) =
+        let (Some(addr), Some(size), Some(ty), Some(raw)) =
             (it.next(), it.next(), it.next(), it.next())
         else {
             continue;
@@ -246,35 +250,57 @@ pub(crate) fn sizes(elf: &Path) -> Result<Sizes> {
         else {
             continue;
         };
-        let name = tidy(raw);
-        if name.contains("__rust_alloc") || name.contains("__rg_alloc") {
+        let (ty, name) = (ty.to_string(), tidy(raw));
+        syms.push(Symbol {
+            addr,
+            size,
+            ty,
+            name,
+        });
+    }
+    Ok(syms)
+}
+
+pub(crate) fn sizes(elf: &Path) -> Result<Sizes> {
+    let with_addr = elf_sections(elf)?;
+    // (name, start, end) of the allocated flash sections, to attribute symbols by address.
+    let ranges: Vec<(&str, u64, u64)> = [".text", ".rodata"]
+        .into_iter()
+        .filter_map(|n| with_addr.get(n).map(|&(len, a)| (n, a, a + len)))
+        .collect();
+    let mut groups: BTreeMap<Group, (u64, u64)> = BTreeMap::new();
+    let mut kernels: Vec<(String, u64)> = Vec::new();
+    let mut has_allocator = false;
+    let mut attributed = 0u64;
+    for sym in elf_symbols(elf)? {
+        if sym.name.contains("__rust_alloc") || sym.name.contains("__rg_alloc") {
             has_allocator = true;
         }
-        let addr = addr & !1; // Thumb bit
+        let addr = sym.addr & !1; // Thumb bit
         let Some((sec, _, _)) = ranges.iter().find(|(_, lo, hi)| (*lo..*hi).contains(&addr)) else {
             continue; // vector table, RAM, debug info
         };
-        let g = classify(&name);
+        let g = classify(&sym.name);
         let e = groups.entry(g).or_default();
-        if sec == ".text" {
-            e.0 += size;
-            text_attr += size;
+        if *sec == ".text" {
+            e.0 += sym.size;
         } else {
-            e.1 += size;
-            ro_attr += size;
+            e.1 += sym.size;
         }
+        attributed += sym.size;
         if g.is_kernel() || g == Group::Aniso {
-            kernels.push((name, size));
+            kernels.push((sym.name, sym.size));
         }
     }
     kernels.sort_by(|a, b| b.1.cmp(&a.1).then_with(|| a.0.cmp(&b.0)));
     kernels.truncate(12);
+    let sections: BTreeMap<String, u64> = with_addr.into_iter().map(|(k, v)| (k, v.0)).collect();
     let text_ro =
         sections.get(".text").copied().unwrap_or(0) + sections.get(".rodata").copied().unwrap_or(0);
     Ok(Sizes {
         sections,
         groups,
-        unattributed: text_ro.saturating_sub(text_attr + ro_attr),
+        unattributed: text_ro.saturating_sub(attributed),
         top_kernels: kernels,
         has_allocator,
     })
@@ -375,9 +401,11 @@ mod tests {
         assert_eq!(classify("__aeabi_dmul"), Group::KernelMath);
         assert_eq!(classify("libm::math::powf::powf"), Group::Aniso);
         assert_eq!(
-            classify("brdf_firmware::kernels::ashikhmin_shirley"),
+            classify("brdf_firmware_kernels::ashikhmin_shirley"),
             Group::Aniso
         );
+        assert_eq!(classify("brdf_firmware_kernels::g_dots"), Group::KernelG);
+        assert_eq!(classify("brdf_firmware_kernels::g_lut"), Group::KernelLut);
         assert_eq!(
             classify("core::fmt::float::float_to_decimal_common_shortest"),
             Group::Formatting

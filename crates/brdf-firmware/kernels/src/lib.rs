@@ -1,19 +1,21 @@
-//! The brdf-core kernels this firmware runs, each behind one non-inlined function taking and
-//! returning plain `f32`s.
+//! The brdf-core kernels the Cortex-M4F firmware (`crates/brdf-firmware`) runs, each behind
+//! one non-inlined function taking and returning plain `f32`s.
 //!
-//! Keeping every call into brdf-core in this module (and out of `main`) lets
-//! `cargo xtask firmware` attribute flash to "kernels" (symbols of `brdf_core`, `libm`,
-//! `micromath` and this module) separately from the formatting code (`core::fmt`,
-//! semihosting) by symbol name. Invalid parameters give NaN, never a panic.
+//! A library of its own so that the device and the host run the very same source: the
+//! firmware links it for the device, and `cargo xtask firmware` links it on the host to
+//! recompute every value the device printed. Keeping every call into brdf-core in this crate
+//! (and out of the firmware's `main`) lets the size report attribute flash to "kernels"
+//! (symbols of `brdf_core`, `libm`, `micromath` and this crate) separately from the
+//! formatting code (`core::fmt`, semihosting) by symbol name. Invalid parameters give NaN,
+//! never a panic.
 //!
 //! With the `micromath` feature the kernels compute in [`brdf_core::real::Micro`] (micromath
 //! where it keeps a kernel within 2e-2 of libm, libm elsewhere); otherwise in `f32` with libm.
 //! The functions' signatures are plain `f32` either way.
 
-// `cargo xtask firmware` includes this file to compute the host's values, in a crate without
-// the `micromath` feature: there the libm `f32` branch is the one wanted.
+#![no_std]
 // In the libm build `F` is `f32` and the conversions are the identity.
-#![allow(unexpected_cfgs, clippy::useless_conversion)]
+#![allow(clippy::useless_conversion)]
 
 /// The scalar the kernels compute in.
 #[cfg(feature = "micromath")]
