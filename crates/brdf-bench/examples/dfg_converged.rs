@@ -10,8 +10,8 @@
 //! `--stride s` computes every s-th roughness row only (timing on a sample of rows);
 //! `--threads t` splits the rows over t threads (interleaved, so each gets a similar mix);
 //! `--fixed k` times `dfg_ggx::<f64, OuterRule, InnerRule>` on k texels spread over the grid;
-//! `--out FILE` writes the table as raw little-endian f64 [j][i][A, B] (for
-//! `peer/dfg_mc_peer.py --reference FILE`; needs stride 1).
+//! `--out FILE` writes the computed rows as raw little-endian f64 [row][i][A, B] (for
+//! `peer/dfg_mc_peer.py --stride s --reference FILE`).
 
 use brdf_core::split_sum::converged::DfgGgxRow;
 use brdf_core::split_sum::{dfg_ggx, InnerRule, OuterRule};
@@ -120,10 +120,10 @@ fn main() {
         );
     }
     if let Some(path) = a.out {
-        assert_eq!(a.stride, 1, "--out needs the whole table");
-        let mut table = vec![[0f64; 2]; a.size * a.size];
+        let mut table = vec![[0f64; 2]; js.len() * a.size];
         for (j, vals) in parts.into_iter().flat_map(|p| p.0) {
-            table[j * a.size..(j + 1) * a.size].copy_from_slice(&vals);
+            let k = j / a.stride;
+            table[k * a.size..(k + 1) * a.size].copy_from_slice(&vals);
         }
         let bytes: Vec<u8> = table
             .iter()

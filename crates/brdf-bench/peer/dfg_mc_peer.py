@@ -16,10 +16,11 @@ Per texel (mu = n.v, perceptual roughness r, alpha = r^2) and for the k-th point
 Texel centres of a size x size table: mu = (i + 0.5)/size, r = (j + 0.5)/size (the Khronos
 lut_ggx.png axes: x = n.v, y = roughness).
 
-Usage: dfg_mc_peer.py [--size 1024] [--samples 1024] [--chunk 256]
+Usage: dfg_mc_peer.py [--size 1024] [--samples 1024] [--chunk 4] [--stride 1]
                       [--reference converged.f64]
-The reference file is the converged table as raw little-endian f64, row-major
-[r row j][mu column i][A, B] (what `cargo run --release -p brdf-bench --example
+`--stride s` computes the roughness rows j = 0, s, 2s, ... only. The reference file is the
+converged table of the same rows as raw little-endian f64, row-major
+[r row][mu column i][A, B] (what `cargo run --release -p brdf-bench --example
 dfg_converged -- --out FILE` writes). Prints one JSON object: the wall time per texel in
 microseconds (texels computed in chunks of `--chunk` roughness rows, the timer around the
 whole table), and with a reference the max and median |error| over both channels, overall
@@ -84,24 +85,27 @@ def main():
     ap.add_argument("--size", type=int, default=1024)
     ap.add_argument("--samples", type=int, default=1024)
     ap.add_argument("--chunk", type=int, default=4, help="roughness rows per vectorised chunk")
+    ap.add_argument("--stride", type=int, default=1, help="every s-th roughness row only")
     ap.add_argument("--reference", default=None)
     args = ap.parse_args()
     n = args.size
     centres = (np.arange(n, dtype=np.float64) + 0.5) / n
     u1, u2 = hammersley(args.samples)
-    out = np.empty((n, n, 2))
+    rows = centres[:: args.stride]
+    out = np.empty((len(rows), n, 2))
     t0 = time.perf_counter()
-    for j in range(0, n, args.chunk):
-        out[j : j + args.chunk] = dfg_rows(centres, centres[j : j + args.chunk], u1, u2)
+    for j in range(0, len(rows), args.chunk):
+        out[j : j + args.chunk] = dfg_rows(centres, rows[j : j + args.chunk], u1, u2)
     dt = time.perf_counter() - t0
     res = {
         "size": n,
+        "rows": len(rows),
         "samples": args.samples,
         "seconds": dt,
-        "us_per_texel": dt / (n * n) * 1e6,
+        "us_per_texel": dt / (len(rows) * n) * 1e6,
     }
     if args.reference:
-        ref = np.fromfile(args.reference, dtype="<f8").reshape(n, n, 2)
+        ref = np.fromfile(args.reference, dtype="<f8").reshape(len(rows), n, 2)
         err = np.abs(out - ref)
         g = err[:, : min(4, n), :]
         res.update(
