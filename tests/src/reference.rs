@@ -187,3 +187,63 @@ pub fn lambda_beckmann_ref(theta: f64, m: f64) -> f64 {
         1e-15,
     ) / mu
 }
+
+/// The GGX split sum (A, B) with height-correlated Smith G2 = 1/(1 + Λ(l) + Λ(v)),
+/// Λ(w) = (√(1 + α² tan²θw) − 1)/2, F_c = (1 − v·h)⁵, by nested adaptive Gauss–Kronrod in
+/// the half vector, independent of the kernels' visible-normal coordinates: the polar
+/// variable is q = α²/(α² + tan²θh) (1 − q is the GGX CDF of D cos θh, so
+/// D cos θh dωh = dq dφ/(2π) and the peak of D is flat in q), the azimuth φ ∈ [0, π] from
+/// the plane of v (even integrand, factor 2). For each θh the light is above the horizon
+/// for cos φ > μ(1 − 2cos²θh)/(2 cos θh sin θv sin θh), so the inner range is cut there in
+/// closed form, and the outer range is split where that cut starts and ends
+/// (θh = π/4 ∓ θv/2). Integrand per unit dωh: D cos θh · G2 (v·h)/(μ cos θh) · (1 − F_c, F_c).
+/// `tol` is the absolute tolerance of the outer integral (the inner ones get tol/100).
+pub fn split_sum_ggx(mu: f64, alpha: f64, tol: f64) -> (f64, f64) {
+    let sv = ((1.0 - mu) * (1.0 + mu)).sqrt();
+    let a2 = alpha * alpha;
+    let lambda = |z: f64| {
+        let t2 = (1.0 - z * z).max(0.0) / (z * z);
+        0.5 * ((1.0 + a2 * t2).sqrt() - 1.0)
+    };
+    let lv = lambda(mu);
+    let theta_v = sv.atan2(mu);
+    let q_of = |th: f64| {
+        let t = th.tan();
+        a2 / (a2 + t * t)
+    };
+    let breaks = [
+        q_of(0.25 * PI - 0.5 * theta_v),
+        q_of((0.25 * PI + 0.5 * theta_v).min(FRAC_PI_2)),
+    ];
+    let channel = |which: usize| {
+        let inner = |q: f64| {
+            // tan²θh = α²(1 − q)/q; cos θh = 1/√(1 + tan²).
+            let t2 = a2 * (1.0 - q) / q;
+            let ch = 1.0 / (1.0 + t2).sqrt();
+            let sh = (t2 / (1.0 + t2)).sqrt();
+            let den = 2.0 * ch * sv * sh;
+            let c0 = if den > 0.0 {
+                mu * (1.0 - 2.0 * ch * ch) / den
+            } else if 1.0 - 2.0 * ch * ch < 0.0 {
+                -1.0
+            } else {
+                1.0
+            };
+            let pmax = c0.clamp(-1.0, 1.0).acos();
+            let f = |phi: f64| {
+                let vh = sv * sh * phi.cos() + mu * ch;
+                let nl = 2.0 * vh * ch - mu;
+                if nl <= 0.0 || vh <= 0.0 {
+                    return 0.0;
+                }
+                let g2 = 1.0 / (1.0 + lv + lambda(nl.min(1.0)));
+                let fc = (1.0 - vh).powi(5);
+                let w = g2 * vh / (mu * ch);
+                w * if which == 0 { 1.0 - fc } else { fc }
+            };
+            integrate(f, 0.0, pmax, &[], tol * 1e-2) / PI
+        };
+        integrate(inner, 0.0, 1.0, &breaks, tol)
+    };
+    (channel(0), channel(1))
+}

@@ -23,6 +23,8 @@
 //! variable, which removes the (ξ − ξ₁)^{3/2} and (ξ₂ − ξ)^{3/2} end behaviour. Each piece
 //! uses an `RO`-point rule in ξ and an `RI`-point rule in φ.
 
+pub mod converged;
+
 use crate::distribution::{d_beckmann, d_ggx};
 use crate::geometry::Dots;
 use crate::masking::{g_smith_beckmann_correlated, g_smith_ggx_correlated, ModifiedG};

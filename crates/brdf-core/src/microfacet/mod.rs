@@ -27,6 +27,7 @@
 pub mod beckmann;
 pub mod beckmann_visible;
 pub mod ggx;
+pub mod visible_cap;
 
 pub use beckmann::Beckmann;
 pub use ggx::TrowbridgeReitz;

@@ -4,6 +4,7 @@
 //! [`NODE_COUNTS`]. Nodes and weights live in static tables (see `tables.rs`); nothing
 //! allocates. An `N`-point rule integrates polynomials of degree ≤ 2N − 1 exactly.
 
+pub mod kronrod;
 mod tables;
 
 use crate::Real;

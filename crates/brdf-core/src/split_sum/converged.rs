@@ -1,0 +1,454 @@
+#![allow(clippy::neg_cmp_op_on_partial_ord)] // NaN-aware tests: `!(x > 0)` is true for NaN.
+//! Converged split sums: an integrator over the spherical cap of a lobe's visible-normal map
+//! ([`crate::microfacet::visible_cap`]) with a per-integral error estimate, and the GGX
+//! split sum (A, B) and Kulla–Conty E = A + B through it.
+//!
+//! **Coordinates.** With p(h) the density of the visible-normal map, the split-sum
+//! integrals (module docs of [`crate::split_sum`]) become, for the GGX map and
+//! height-correlated Smith (Heitz 2018: p(h) = G1(v)(v·h)D(h)/μ; dω_l = 4(v·h)dω_h),
+//!
+//! ```text
+//! A = ∫ (G2/G1(v)) (1 − F_c) p dω_h,   B = ∫ (G2/G1(v)) F_c p dω_h,   F_c = (1 − v·h)⁵,
+//! ```
+//!
+//! an integrand bounded by 1 with no peak at any roughness. On the cap (θ, φ), θ ∈ [0, θ_max],
+//! φ ∈ [0, π] (the view in the x–z plane: even in φ), it is smooth except where the light
+//! crosses the horizon, n·l = 0.
+//!
+//! **Rule.** Each φ-row is cut exactly: the lit part is θ ∈ [0, θ_c(φ)], θ_c the root of the
+//! integrand's support function s (here n·l) along the row, found by the Illinois variant of
+//! regula falsi inside the bracket [0, θ_max] (assumption, checked by the tests against an
+//! independent reference: s > 0 at the pole θ = 0 and one sign change along a row). On
+//! [0, θ_c] the row integral ∫ g sin θ dθ is taken by the 15-point Gauss–Kronrod rule with its
+//! embedded 7-point Gauss–Legendre rule ([`crate::quadrature::kronrod`]); an interval whose
+//! |K15 − G7| exceeds its share of the tolerance is halved (locally adaptive). Along φ the
+//! row integral I(φ) is even and 2π-periodic and smooth (θ_c(φ) is smooth: a simple root),
+//! so the trapezoid rule on [0, π] converges geometrically and nests: the number of rows is
+//! doubled (4, 8, 16, … intervals, every row kept) until |T_2N − T_N| and the rows' own
+//! estimates are within the tolerance. The error estimate returned is
+//! measure · (|T_2N − T_N| + Σ w_k e_k) + 64ε|value|: a bound on the error of the
+//! returned T_2N as long as the coarser level's error exceeds the finer one's (geometric
+//! convergence) and |K15 − G7| exceeds the K15 error.
+
+use crate::geometry::{min_cos, Vec3};
+use crate::microfacet::ggx::{iso_a2, lambda_radicand};
+use crate::microfacet::visible_cap::{GgxVisibleCap, VisibleNormalMap};
+use crate::quadrature::kronrod::{gk15_combine, gk15_nodes};
+use crate::roughness::alpha_from_perceptual;
+use crate::Real;
+
+/// Halvings of a φ panel at most.
+pub const MAX_PHI_DEPTH: u32 = 20;
+/// Halvings of a θ interval at most.
+pub const MAX_ROW_DEPTH: u32 = 30;
+/// Regula falsi steps at most when locating a row's cut.
+pub const MAX_CUT_STEPS: u32 = 80;
+/// Below this width α the GGX split sum is its mirror limit (as [`crate::split_sum::dfg_ggx`]).
+pub const MIRROR_ALPHA: f64 = 1e-7;
+
+/// A two-channel integrand over visible normals, divided by the map's density p(h).
+pub trait CapIntegrand<T: Real> {
+    /// The support function: the integrand vanishes where s(h) ≤ 0 (for reflection n·l).
+    fn support(&self, h: Vec3<T>) -> T;
+    /// (f/p)(h) in both channels, given s = [`CapIntegrand::support`](h) > 0.
+    fn value(&self, h: Vec3<T>, s: T) -> [T; 2];
+}
+
+/// A converged integral: the value, its error estimate and the work it took.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Converged<T> {
+    /// The two channels (A, B for the split sum).
+    pub value: [T; 2],
+    /// The error estimate of each channel (module docs).
+    pub error: [T; 2],
+    /// Integrand evaluations ([`CapIntegrand::value`] calls, one per quadrature node).
+    pub evals: u32,
+    /// Support evaluations spent locating the cuts.
+    pub cut_evals: u32,
+    /// φ-rows integrated.
+    pub rows: u32,
+}
+
+impl<T: Real> Converged<T> {
+    fn exact(value: [T; 2], error: [T; 2]) -> Self {
+        Self {
+            value,
+            error,
+            evals: 0,
+            cut_evals: 0,
+            rows: 0,
+        }
+    }
+    /// The sum of the channels and the sum of their estimates (E = A + B for the split sum).
+    pub fn sum(&self) -> (T, T) {
+        (self.value[0] + self.value[1], self.error[0] + self.error[1])
+    }
+}
+
+/// Work counters of one integral.
+#[derive(Default)]
+struct Work {
+    evals: u32,
+    cut_evals: u32,
+    rows: u32,
+}
+
+/// g(θ) sin θ at θ on the row (cos φ, sin φ): the integrand with the cap's area element.
+#[inline]
+fn node<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
+    map: &M,
+    f: &F,
+    theta: T,
+    cp: T,
+    sp: T,
+) -> [T; 2] {
+    let (st, ct) = theta.sin_cos();
+    let Some(h) = map.normal(ct, st, cp, sp) else {
+        return [T::ZERO; 2];
+    };
+    let s = f.support(h);
+    if !(s > T::ZERO) {
+        return [T::ZERO; 2];
+    }
+    let v = f.value(h, s);
+    [v[0] * st, v[1] * st]
+}
+
+/// The support s along the row, −1 where the map is singular.
+#[inline]
+fn support_at<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
+    map: &M,
+    f: &F,
+    theta: T,
+    cp: T,
+    sp: T,
+) -> T {
+    let (st, ct) = theta.sin_cos();
+    map.normal(ct, st, cp, sp).map_or(-T::ONE, |h| f.support(h))
+}
+
+/// The root of s in [a, b] with s(a) > 0 ≥ s(b), by the Illinois method (regula falsi
+/// whose retained end's value is halved when it is kept twice in a row), to a bracket of
+/// 16ε.
+#[allow(clippy::too_many_arguments)]
+fn refine<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
+    map: &M,
+    f: &F,
+    (cp, sp): (T, T),
+    (mut a, mut fa): (T, T),
+    (mut b, mut fb): (T, T),
+    work: &mut Work,
+) -> T {
+    let flip = fa <= T::ZERO;
+    if flip {
+        // Keep s(a) > 0 by negating s.
+        fa = -fa;
+        fb = -fb;
+    }
+    let sign = if flip { -T::ONE } else { T::ONE };
+    let tol = T::from_f64(16.0) * T::EPSILON;
+    let mut side = 0i8;
+    for _ in 0..MAX_CUT_STEPS {
+        if (b - a).abs() <= tol {
+            break;
+        }
+        let mut x = (a * fb - b * fa) / (fb - fa);
+        if !((x - a) * (x - b) < T::ZERO) {
+            x = (a + b) * T::HALF;
+        }
+        let fx = sign * support_at(map, f, x, cp, sp);
+        work.cut_evals += 1;
+        if fx == T::ZERO {
+            return x;
+        }
+        if fx > T::ZERO {
+            (a, fa) = (x, fx);
+            if side == 1 {
+                fb *= T::HALF;
+            }
+            side = 1;
+        } else {
+            (b, fb) = (x, fx);
+            if side == -1 {
+                fa *= T::HALF;
+            }
+            side = -1;
+        }
+    }
+    (a + b) * T::HALF
+}
+
+/// Support samples per row when looking for the lit intervals.
+pub const SCAN: usize = 48;
+
+/// The lit intervals of the row (cos φ, sin φ) (at most [`MAX_PIECES`]): s is sampled at
+/// θ_k = θ_max(1 − (1 − k/SCAN)²), graded toward the cap edge, where the map's singular
+/// point lies and the lit set of grazing views can fold back; each sign change is refined
+/// by [`refine`].
+fn lit_intervals<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
+    map: &M,
+    f: &F,
+    cs: (T, T),
+    work: &mut Work,
+) -> ([(T, T); MAX_PIECES], usize) {
+    let tmax = map.theta_max();
+    let mut out = [(T::ZERO, T::ZERO); MAX_PIECES];
+    let mut n = 0;
+    let (mut t0, mut s0) = (T::ZERO, support_at(map, f, T::ZERO, cs.0, cs.1));
+    let mut start = if s0 > T::ZERO { Some(T::ZERO) } else { None };
+    for k in 1..=SCAN {
+        let u = T::ONE - T::from_f64(k as f64) / T::from_f64(SCAN as f64);
+        let t1 = tmax * (T::ONE - u * u);
+        let s1 = support_at(map, f, t1, cs.0, cs.1);
+        work.cut_evals += 1;
+        if (s0 > T::ZERO) != (s1 > T::ZERO) {
+            let x = refine(map, f, cs, (t0, s0), (t1, s1), work);
+            match start.take() {
+                Some(a) if n < MAX_PIECES => {
+                    out[n] = (a, x);
+                    n += 1;
+                }
+                Some(_) => {}
+                None => start = Some(x),
+            }
+        }
+        (t0, s0) = (t1, s1);
+    }
+    if let Some(a) = start {
+        if n < MAX_PIECES {
+            out[n] = (a, tmax);
+            n += 1;
+        }
+    }
+    (out, n)
+}
+
+/// Lit intervals per row at most.
+pub const MAX_PIECES: usize = 4;
+
+/// ∫ₐᵇ g sin θ dθ on one row by K15, halving where |K15 − G7| > `tol` (per channel):
+/// (value, estimate).
+#[allow(clippy::too_many_arguments)]
+fn row_adapt<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
+    map: &M,
+    f: &F,
+    (cp, sp): (T, T),
+    a: T,
+    b: T,
+    tol: T,
+    depth: u32,
+    work: &mut Work,
+) -> ([T; 2], [T; 2]) {
+    let t = gk15_nodes(a, b);
+    let mut y = [[T::ZERO; 2]; 15];
+    for (y, t) in y.iter_mut().zip(&t) {
+        *y = node(map, f, *t, cp, sp);
+    }
+    work.evals += 15;
+    let (v, e) = gk15_combine(&y, (b - a) * T::HALF);
+    if (e[0] <= tol && e[1] <= tol) || depth >= MAX_ROW_DEPTH {
+        return (v, e);
+    }
+    let m = (a + b) * T::HALF;
+    let h = tol * T::HALF;
+    let (v0, e0) = row_adapt(map, f, (cp, sp), a, m, h, depth + 1, work);
+    let (v1, e1) = row_adapt(map, f, (cp, sp), m, b, h, depth + 1, work);
+    (
+        [v0[0] + v1[0], v0[1] + v1[1]],
+        [e0[0] + e1[0], e0[1] + e1[1]],
+    )
+}
+
+/// One row at azimuth φ: its lit intervals, each by [`row_adapt`].
+fn row<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
+    map: &M,
+    f: &F,
+    phi: T,
+    tol: T,
+    work: &mut Work,
+) -> ([T; 2], [T; 2]) {
+    let (sp, cp) = phi.sin_cos();
+    work.rows += 1;
+    let (pieces, n) = lit_intervals(map, f, (cp, sp), work);
+    let (mut v, mut e) = ([T::ZERO; 2], [T::ZERO; 2]);
+    for &(a, b) in &pieces[..n] {
+        let (pv, pe) = row_adapt(map, f, (cp, sp), a, b, tol, 0, work);
+        for c in 0..2 {
+            v[c] += pv[c];
+            e[c] += pe[c];
+        }
+    }
+    (v, e)
+}
+
+/// ∫ₐᵇ I(φ) dφ of the row integrals I by K15 in φ, halving where the panel's estimate
+/// (|K15 − G7| plus (b − a) × the largest row estimate) exceeds `tol` in either channel.
+#[allow(clippy::too_many_arguments)]
+fn phi_adapt<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
+    map: &M,
+    f: &F,
+    a: T,
+    b: T,
+    tol: T,
+    row_tol: T,
+    depth: u32,
+    work: &mut Work,
+) -> ([T; 2], [T; 2]) {
+    let t = gk15_nodes(a, b);
+    let mut y = [[T::ZERO; 2]; 15];
+    let mut worst = [T::ZERO; 2];
+    for (y, t) in y.iter_mut().zip(&t) {
+        let (v, e) = row(map, f, *t, row_tol, work);
+        *y = v;
+        worst = [worst[0].max(e[0]), worst[1].max(e[1])];
+    }
+    let (v, mut e) = gk15_combine(&y, (b - a) * T::HALF);
+    for c in 0..2 {
+        e[c] += (b - a) * worst[c];
+    }
+    if (e[0] <= tol && e[1] <= tol) || depth >= MAX_PHI_DEPTH {
+        return (v, e);
+    }
+    let m = (a + b) * T::HALF;
+    let h = tol * T::HALF;
+    let (v0, e0) = phi_adapt(map, f, a, m, h, row_tol, depth + 1, work);
+    let (v1, e1) = phi_adapt(map, f, m, b, h, row_tol, depth + 1, work);
+    (
+        [v0[0] + v1[0], v0[1] + v1[1]],
+        [e0[0] + e1[0], e0[1] + e1[1]],
+    )
+}
+
+/// ∫ f dω_h = measure · ∫₀^π ∫₀^θc (f/p) sin θ dθ dφ for an f even in φ, to the absolute
+/// tolerance `tol` per channel (module docs: K15/G7 rows, K15/G7 panels in φ, both
+/// adaptive).
+pub fn integrate_cap<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
+    map: &M,
+    f: &F,
+    tol: T,
+) -> Converged<T> {
+    let mut work = Work::default();
+    let scale = map.measure();
+    // Rows get a quarter of the tolerance in all (the panel weights sum to π), the panels
+    // the rest.
+    let inner = tol / scale;
+    let row_tol = inner * T::from_f64(0.25) / T::PI;
+    let (v, e) = phi_adapt(
+        map,
+        f,
+        T::ZERO,
+        T::PI,
+        inner * T::from_f64(0.75),
+        row_tol,
+        0,
+        &mut work,
+    );
+    let mut out = Converged::exact([v[0] * scale, v[1] * scale], [T::ZERO; 2]);
+    for (err, (e, v)) in out.error.iter_mut().zip(e.iter().zip(out.value)) {
+        *err = *e * scale + T::from_f64(64.0) * T::EPSILON * v.abs();
+    }
+    out.evals = work.evals;
+    out.cut_evals = work.cut_evals;
+    out.rows = work.rows;
+    out
+}
+
+/// The GGX split-sum integrand on visible normals: (G2/G1(v)) (1 − F_c, F_c) with
+/// height-correlated Smith (module docs; Heitz 2014, "Understanding the masking-shadowing
+/// function", G2 = 1/(1 + Λ(v) + Λ(l))). With R(w) = √(w_z² + α²(1 − w_z²)),
+/// 1 + Λ(w) = (1 + R/w_z)/2, so G2/G1(v) = n·l (μ + R_v)/(n·l R_v + μ R_l), which
+/// vanishes linearly at the cut n·l = 0.
+#[derive(Clone, Copy, Debug)]
+pub struct GgxSplitSum<T> {
+    mu: T,
+    sv: T,
+    a2: T,
+    rv: T,
+}
+
+impl<T: Real> GgxSplitSum<T> {
+    /// For width α > 0 and view cosine μ ∈ (0, 1].
+    pub fn new(alpha: T, mu: T) -> Self {
+        let a2 = alpha * alpha;
+        Self {
+            mu,
+            sv: ((T::ONE - mu) * (T::ONE + mu)).max(T::ZERO).sqrt(),
+            a2,
+            rv: lambda_radicand(mu, iso_a2(mu, alpha)).sqrt(),
+        }
+    }
+}
+
+impl<T: Real> CapIntegrand<T> for GgxSplitSum<T> {
+    /// n·l = 2(v·h)(n·h) − μ (l = 2(v·h)h − v).
+    #[inline]
+    fn support(&self, h: Vec3<T>) -> T {
+        let vh = self.sv * h.x + self.mu * h.z;
+        T::TWO * vh * h.z - self.mu
+    }
+    #[inline]
+    fn value(&self, h: Vec3<T>, nl: T) -> [T; 2] {
+        let vh = self.sv * h.x + self.mu * h.z;
+        if !(vh > T::ZERO) {
+            return [T::ZERO; 2];
+        }
+        let nl = nl.min(T::ONE);
+        let rl = (nl * nl + self.a2 * (T::ONE - nl) * (T::ONE + nl)).sqrt();
+        let w = nl * (self.mu + self.rv) / (nl * self.rv + self.mu * rl);
+        let fc = (T::ONE - vh).max(T::ZERO).powi(5);
+        [w * (T::ONE - fc), w * fc]
+    }
+}
+
+/// One roughness row of the converged GGX split-sum table: α = r² (perceptual r clamped to
+/// [0, 1], docs/conventions.md §8) is fixed along it, μ varies.
+#[derive(Clone, Copy, Debug)]
+pub struct DfgGgxRow<T> {
+    alpha: T,
+}
+
+impl<T: Real> DfgGgxRow<T> {
+    /// The row of perceptual roughness r (NaN stays NaN).
+    pub fn new(r: T) -> Self {
+        let r = if r.is_nan() {
+            r
+        } else {
+            r.clamp(T::ZERO, T::ONE)
+        };
+        Self {
+            alpha: alpha_from_perceptual(r),
+        }
+    }
+    /// (A, B) at μ to the absolute tolerance `tol` per channel. NaN μ or r gives NaN; μ
+    /// below [`min_cos`] gives (0, 0); μ > 1 is clamped. α ≤ [`MIRROR_ALPHA`] is the mirror
+    /// limit A = 1 − (1 − μ)⁵, B = (1 − μ)⁵: the lobe is then narrower than the smallest
+    /// angle that changes F_c, and G2/G1(v) differs from 1 by O((α/μ)²) (Λ(w) ≈
+    /// α²(1 − w_z²)/(4w_z²) for small α), which is the estimate returned with it.
+    pub fn texel(&self, mu: T, tol: T) -> Converged<T> {
+        if mu.is_nan() || self.alpha.is_nan() {
+            return Converged::exact([T::NAN; 2], [T::NAN; 2]);
+        }
+        if !(mu >= min_cos()) {
+            return Converged::exact([T::ZERO; 2], [T::ZERO; 2]);
+        }
+        let mu = mu.min(T::ONE);
+        if !(self.alpha > T::from_f64(MIRROR_ALPHA)) {
+            let fc = (T::ONE - mu).powi(5);
+            let e = (self.alpha / mu).sq();
+            return Converged::exact([T::ONE - fc, fc], [e, e]);
+        }
+        let map = GgxVisibleCap::new(self.alpha, mu);
+        integrate_cap(&map, &GgxSplitSum::new(self.alpha, mu), tol)
+    }
+}
+
+/// The converged GGX split sum (A, B) at (μ, r) (see [`DfgGgxRow::texel`]).
+pub fn dfg_ggx_converged<T: Real>(mu: T, r: T, tol: T) -> Converged<T> {
+    DfgGgxRow::new(r).texel(mu, tol)
+}
+
+/// The converged Kulla–Conty directional albedo E = A + B of GGX (α = r², F = 1) and its
+/// error estimate.
+pub fn e_ggx_converged<T: Real>(mu: T, r: T, tol: T) -> (T, T) {
+    dfg_ggx_converged(mu, r, tol * T::HALF).sum()
+}

@@ -1,0 +1,114 @@
+//! The converged split sums (`brdf_core::split_sum::converged`: visible-normal spherical cap,
+//! exact horizon cut per row, adaptive K15/G7 in θ and φ) against an independent reference:
+//! nested adaptive Gauss–Kronrod over the half vector in the GGX CDF variable with the cut
+//! in closed form (`brdf_tests::reference::split_sum_ggx`, tolerance 1e-11).
+//!
+//! Points: texel centres of a 1024² table (μ = (i + ½)/1024, r = (j + ½)/1024), the
+//! grazing columns i = 0…3 and μ = cos 89°, a seeded random sample, r → 0 and r = 1.
+//! Checked (asserted): every channel within ½ LSB of 16 bits (7.6e-6) of the reference.
+//! Reported (printed, not asserted): the points where the returned estimate is below the
+//! observed error less the reference's own uncertainty
+//! (1e-9: the outer tolerance 1e-11 is on a sum of |K15 − G7| terms, which bound the
+//! reference's error by orders of magnitude; 1e-9 leaves a wide margin for the inner
+//! integrals' rounding).
+
+use brdf_core::split_sum::converged::{dfg_ggx_converged, Converged};
+use brdf_tests::reference::split_sum_ggx;
+use rand::{Rng, SeedableRng};
+
+/// Tolerance asked of the integrator per channel (the estimate is checked, not assumed).
+const TOL: f64 = 1e-6;
+/// ½ LSB of a 16-bit UNORM channel.
+const HALF_LSB: f64 = 0.5 / 65535.0;
+/// The reference's own uncertainty allowed when checking the estimate (module docs).
+const REF_UNCERTAINTY: f64 = 1e-9;
+const SIZE: f64 = 1024.0;
+
+fn centre(k: usize) -> f64 {
+    (k as f64 + 0.5) / SIZE
+}
+
+/// Stats of one set: (max |error|, max error/estimate, exceptions, evals mean, evals max).
+fn check(name: &str, pts: &[(f64, f64)]) {
+    let (mut worst, mut ratio, mut bad, mut sum, mut max) = (0f64, 0f64, 0usize, 0u64, 0u32);
+    for &(mu, r) in pts {
+        let c: Converged<f64> = dfg_ggx_converged(mu, r, TOL);
+        let want = if r == 0.0 {
+            let fc = (1.0 - mu).powi(5);
+            (1.0 - fc, fc)
+        } else {
+            split_sum_ggx(mu, r * r, 1e-11)
+        };
+        for (ch, w) in [want.0, want.1].into_iter().enumerate() {
+            let err = (c.value[ch] - w).abs();
+            worst = worst.max(err);
+            ratio = ratio.max(err / c.error[ch]);
+            if err > c.error[ch] + REF_UNCERTAINTY {
+                bad += 1;
+                eprintln!(
+                    "{name}: estimate {:.2e} < error {err:.2e} at mu {mu} r {r} ch {ch}",
+                    c.error[ch]
+                );
+            }
+            assert!(
+                err <= HALF_LSB,
+                "{name}: mu {mu} r {r} ch {ch}: {} vs {w}",
+                c.value[ch]
+            );
+        }
+        sum += c.evals as u64;
+        max = max.max(c.evals);
+    }
+    println!(
+        "{name}: {} points, max |error| {worst:.2e}, max error/estimate {ratio:.2e}, \
+         estimate exceptions {bad}, evals/texel mean {:.0} max {max}",
+        pts.len(),
+        sum as f64 / pts.len() as f64
+    );
+    // The estimate's exceptions are reported (printed above and counted), not asserted:
+    // at small r (α ≈ 0.004–0.03) a few points exceed their estimate by up to ~20× while
+    // staying far inside ½ LSB (see the report of issue 22's numerical core).
+}
+
+#[test]
+fn grazing_columns_within_half_lsb() {
+    let mut pts = Vec::new();
+    for j in (0..1024).step_by(32).chain([1, 2, 3, 1023]) {
+        for mu in [
+            centre(0),
+            centre(1),
+            centre(2),
+            centre(3),
+            89f64.to_radians().cos(),
+        ] {
+            pts.push((mu, centre(j)));
+        }
+    }
+    check("grazing", &pts);
+}
+
+#[test]
+fn random_texels_within_half_lsb() {
+    let mut rng = rand_pcg::Pcg64::seed_from_u64(22);
+    let pts: Vec<(f64, f64)> = (0..2000)
+        .map(|_| {
+            (
+                centre(rng.random_range(0..1024)),
+                centre(rng.random_range(0..1024)),
+            )
+        })
+        .collect();
+    check("random 2000", &pts);
+}
+
+#[test]
+fn narrow_and_widest_lobes() {
+    let mus = [centre(0), centre(3), 0.05, 0.3, 0.7, 1.0];
+    let mut pts = Vec::new();
+    for mu in mus {
+        for r in [0.0, centre(0), centre(10), 0.03, 1.0, centre(1023)] {
+            pts.push((mu, r));
+        }
+    }
+    check("r -> 0 and r = 1", &pts);
+}
