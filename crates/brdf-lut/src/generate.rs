@@ -25,9 +25,23 @@
 //! m = √2 σ; undefined for GGX, whose slope variance is infinite). The axis is named
 //! `roughness`, `alpha`/`m` or `sigma` in the file accordingly.
 
-use crate::write::{self, ErrorAccumulator};
+//!
+//! This module is the only code that computes table node values: the default asset set
+//! ([`default_set`]), `cargo xtask lut generate`, the engine textures (through
+//! [`evaluate`]) and `lut verify` (through [`measure`]) all build a [`Spec`] and call it.
+//! The kinds it knows are one list ([`Kind::def`], `generate/kinds.rs`).
+
+mod defaults;
+mod kinds;
+mod measure;
+
+pub use defaults::{default_set, Asset, DEFAULT_SET_TOOL};
+pub use kinds::{Check, KindDef, Role};
+pub use measure::measure;
+
+use crate::write;
 use crate::{
-    Axis, Convention, Encoding, ErrorStats, Generator, Header, Interpolation, List, LutView, Model,
+    Axis, Convention, Encoding, ErrorStats, Generator, Header, Interpolation, List, Model,
     Placement, TableKind, Warp, MAX_AXIS_COUNT,
 };
 use brdf_core::geometry::Dots;
@@ -35,10 +49,8 @@ use brdf_core::masking::{
     g_blinn_dots, g_smith_beckmann_correlated, g_smith_beckmann_separable, g_smith_ggx_correlated,
     g_smith_ggx_separable, ModifiedG,
 };
-use brdf_core::quadrature::{GaussLegendre, DEFAULT_NODES};
-use brdf_core::split_sum::{e_avg, split_sum, InnerRule, Ndf, OuterRule};
+use brdf_core::split_sum::{split_sum, InnerRule, Ndf, OuterRule};
 use core::f64::consts::{FRAC_PI_2, SQRT_2};
-use rand::{Rng, SeedableRng};
 use std::fmt;
 use std::format;
 use std::string::{String, ToString};
@@ -48,14 +60,15 @@ use std::vec::Vec;
 /// cos 89°: the default smallest μ of split-sum and albedo tables.
 pub const MU_MIN: f64 = 0.017_452_406_437_283_5;
 
-/// The largest table this generator builds (nodes × channels); larger requests are refused
-/// before any work.
-pub const MAX_GENERATED_VALUES: u64 = 1 << 24;
+/// The largest table this generator builds (nodes × channels: a 4096² two-channel engine
+/// texture); larger requests are refused before any work. The values are held as f64
+/// (256 MiB at this limit).
+pub const MAX_GENERATED_VALUES: u64 = 1 << 25;
 
-/// The generator's name in the headers.
+/// The generator's name in the headers of tables built to order.
 pub const TOOL: &str = "brdf-lut generate";
 
-/// What the table holds.
+/// What the table holds (each kind's axes, channels and kernel: [`Kind::def`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Kind {
     /// The modified G's passing factor F(θ, φ) for one σ (2 axes: theta, phi).
@@ -123,7 +136,21 @@ pub struct AxisSpec {
     pub placement: Placement,
 }
 
-/// A table to build.
+impl AxisSpec {
+    /// `count` nodes from `lo` to `hi` inclusive (endpoint placement).
+    pub fn endpoint(count: u32, lo: f64, hi: f64, warp: Warp) -> Self {
+        AxisSpec {
+            count,
+            lo,
+            hi,
+            warp,
+            placement: Placement::Endpoint,
+        }
+    }
+}
+
+/// A table to build: the one description shared by the library, the command line and TOML
+/// files (`cargo xtask lut generate`) and the default asset set.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Spec {
     /// What the table holds.
@@ -144,6 +171,8 @@ pub struct Spec {
     pub samples: u32,
     /// Seed of the error measurement.
     pub seed: u64,
+    /// The generator's name recorded in the header ([`TOOL`] unless set).
+    pub tool: String,
 }
 
 /// Why a spec cannot be built; each names the real problem.
@@ -186,22 +215,12 @@ pub struct Generated {
     pub error: ErrorStats,
 }
 
-fn ax(count: u32, lo: f64, hi: f64, warp: Warp) -> AxisSpec {
-    AxisSpec {
-        count,
-        lo,
-        hi,
-        warp,
-        placement: Placement::Endpoint,
-    }
-}
-
 impl Spec {
     /// A spec with the default grid of `kind` for this model (the default roughness
     /// parameterisation: σ for Torrance–Sparrow and the G tables, perceptual r otherwise).
     pub fn new(kind: Kind, distribution: Distribution, masking: Masking) -> Self {
         let roughness = if distribution == Distribution::TorranceSparrow
-            || matches!(kind, Kind::GPerSigma { .. } | Kind::GOverSigma)
+            || kind.def().check == Check::ModifiedG
         {
             Roughness::Sigma
         } else {
@@ -217,6 +236,7 @@ impl Spec {
             interpolation: Interpolation::CatmullRom,
             samples: 2_000,
             seed: 0x5EED_0001,
+            tool: TOOL.to_string(),
         };
         s.axes = s.default_axes();
         s
@@ -224,39 +244,34 @@ impl Spec {
 
     /// The default axes of this kind and roughness parameterisation.
     pub fn default_axes(&self) -> Vec<AxisSpec> {
-        // The modified G needs a width > 0.
-        let r0 = if self.masking == Masking::Modified {
-            0.05
-        } else {
-            0.0
-        };
-        let rough = |n| match self.roughness {
-            Roughness::Perceptual | Roughness::Alpha => ax(n, r0, 1.0, Warp::Linear),
-            Roughness::Sigma => ax(n, 0.05, 1.0, Warp::Log),
-        };
-        let theta = |n| ax(n, 0.0, FRAC_PI_2, Warp::SqrtCos);
-        let phi = |n| ax(n, -FRAC_PI_2, FRAC_PI_2, Warp::Linear);
-        match self.kind {
-            Kind::GPerSigma { .. } => vec![theta(128), phi(126)],
-            Kind::GOverSigma => vec![theta(64), phi(64), ax(31, 0.05, 1.0, Warp::Log)],
-            Kind::SplitSum | Kind::Albedo => vec![ax(64, MU_MIN, 1.0, Warp::Log), rough(64)],
-            Kind::AverageAlbedo => vec![rough(32)],
-        }
+        let def = self.kind.def();
+        def.axes
+            .iter()
+            .map(|&(role, n)| role.default_axis(self, n))
+            .collect()
     }
 
     /// The axis names of this kind, in order.
     pub fn axis_names(&self) -> Vec<&'static str> {
-        let rough = match (self.roughness, self.distribution) {
+        let def = self.kind.def();
+        def.axes.iter().map(|&(role, _)| role.name(self)).collect()
+    }
+
+    /// The name of the roughness axis in this parameterisation.
+    fn roughness_name(&self) -> &'static str {
+        match (self.roughness, self.distribution) {
             (Roughness::Perceptual, _) => "roughness",
             (Roughness::Alpha, Distribution::Ggx) => "alpha",
             (Roughness::Alpha, _) => "m",
             (Roughness::Sigma, _) => "sigma",
-        };
+        }
+    }
+
+    /// σ of a per-σ G table.
+    fn fixed_sigma(&self) -> Option<f64> {
         match self.kind {
-            Kind::GPerSigma { .. } => vec!["theta", "phi"],
-            Kind::GOverSigma => vec!["theta", "phi", "sigma"],
-            Kind::SplitSum | Kind::Albedo => vec!["mu", rough],
-            Kind::AverageAlbedo => vec![rough],
+            Kind::GPerSigma { sigma } => Some(sigma),
+            _ => None,
         }
     }
 
@@ -264,7 +279,7 @@ impl Spec {
     pub fn model(&self) -> Result<Model, GenError> {
         use Distribution as D;
         use Masking as M;
-        if matches!(self.kind, Kind::GPerSigma { .. } | Kind::GOverSigma) {
+        if self.kind.def().check == Check::ModifiedG {
             return Ok(Model::ModifiedG);
         }
         Ok(match (self.distribution, self.masking) {
@@ -297,8 +312,27 @@ impl Spec {
                 self.axes.len()
             ));
         }
-        let g_table = matches!(self.kind, Kind::GPerSigma { .. } | Kind::GOverSigma);
-        if g_table {
+        self.validate_model()?;
+        let mut values: u64 = self.kind.def().channels.len() as u64;
+        for (a, &(role, _)) in self.axes.iter().zip(self.kind.def().axes) {
+            self.validate_axis(a, role)?;
+            values = values.saturating_mul(a.count as u64);
+        }
+        if values > MAX_GENERATED_VALUES {
+            return invalid(format!(
+                "{values} values (nodes × channels) is more than this generator builds \
+                 ({MAX_GENERATED_VALUES})"
+            ));
+        }
+        if self.samples == 0 {
+            return invalid("the error measurement needs at least 1 sample");
+        }
+        Ok(())
+    }
+
+    /// The model options: G tables are the modified G over σ; GGX has no σ.
+    fn validate_model(&self) -> Result<(), GenError> {
+        if self.kind.def().check == Check::ModifiedG {
             if self.masking != Masking::Modified {
                 return invalid(
                     "G tables hold the modified G's passing factor: choose the modified G \
@@ -317,114 +351,74 @@ impl Spec {
                  perceptual or alpha parameterisation",
             );
         }
-        if let Kind::GPerSigma { sigma } = self.kind {
+        if let Some(sigma) = self.fixed_sigma() {
             if !(sigma.is_finite() && sigma > 0.0) {
                 return invalid(format!("σ of a per-σ G table must be > 0 (got {sigma})"));
             }
         }
-        let mut values: u64 = self.channels().len() as u64;
-        for (a, name) in self.axes.iter().zip(&names) {
-            if a.count < 2 {
-                return invalid(format!(
-                    "axis {name}: {} node(s); an axis needs at least 2 nodes",
-                    a.count
-                ));
-            }
-            if a.count > MAX_AXIS_COUNT {
-                return invalid(format!(
-                    "axis {name}: {} nodes; the format allows at most {MAX_AXIS_COUNT}",
-                    a.count
-                ));
-            }
-            values = values.saturating_mul(a.count as u64);
-            if !(a.lo.is_finite() && a.hi.is_finite()) {
-                return invalid(format!("axis {name}: the range must be finite"));
-            }
-            if a.lo >= a.hi {
-                return invalid(format!(
-                    "axis {name}: the range [{}, {}] is empty; lo must be below hi",
-                    a.lo, a.hi
-                ));
-            }
-            let (min, max, what) = self.domain(name);
-            if a.lo < min || a.hi > max {
-                return invalid(format!(
-                    "axis {name}: [{}, {}] leaves the domain {what} [{min}, {max}]",
-                    a.lo, a.hi
-                ));
-            }
-            match a.warp {
-                Warp::Log if a.lo <= 0.0 => {
-                    return invalid(format!(
-                        "axis {name}: a log warp needs lo > 0 (got {})",
-                        a.lo
-                    ))
-                }
-                Warp::Cos if a.hi > core::f64::consts::PI || a.lo < 0.0 => {
-                    return invalid(format!("axis {name}: a cos warp needs an angle in [0, π]"))
-                }
-                Warp::SqrtCos if a.hi > FRAC_PI_2 || a.lo < 0.0 => {
-                    return invalid(format!(
-                        "axis {name}: a sqrt-cos warp needs an angle in [0, π/2]"
-                    ))
-                }
-                _ => {}
-            }
-        }
-        if values > MAX_GENERATED_VALUES {
-            return invalid(format!(
-                "{values} values (nodes × channels) is more than this generator builds \
-                 ({MAX_GENERATED_VALUES})"
-            ));
-        }
-        if self.samples == 0 {
-            return invalid("the error measurement needs at least 1 sample");
-        }
         Ok(())
     }
 
-    /// The admissible range of an axis, and its description.
-    fn domain(&self, name: &str) -> (f64, f64, &'static str) {
-        let sigma_min = if self.masking == Masking::Modified {
-            f64::MIN_POSITIVE
-        } else {
-            0.0
-        };
-        match name {
-            "theta" => (0.0, FRAC_PI_2, "θ (radians)"),
-            "phi" => (-FRAC_PI_2, FRAC_PI_2, "φ (radians)"),
-            "mu" => (0.0, 1.0, "μ = cos θ"),
-            "roughness" => (sigma_min, 1.0, "perceptual r (the modified G needs r > 0)"),
-            "sigma" => (sigma_min, 4.0, "σ (the modified G needs σ > 0)"),
-            _ => (
-                sigma_min,
-                4.0,
-                "width α or m (the modified G needs a width > 0)",
-            ),
+    /// One axis: node count, range within the role's domain, warp.
+    fn validate_axis(&self, a: &AxisSpec, role: Role) -> Result<(), GenError> {
+        let name = role.name(self);
+        if a.count < 2 {
+            return invalid(format!(
+                "axis {name}: {} node(s); an axis needs at least 2 nodes",
+                a.count
+            ));
+        }
+        if a.count > MAX_AXIS_COUNT {
+            return invalid(format!(
+                "axis {name}: {} nodes; the format allows at most {MAX_AXIS_COUNT}",
+                a.count
+            ));
+        }
+        if !(a.lo.is_finite() && a.hi.is_finite()) {
+            return invalid(format!("axis {name}: the range must be finite"));
+        }
+        if a.lo >= a.hi {
+            return invalid(format!(
+                "axis {name}: the range [{}, {}] is empty; lo must be below hi",
+                a.lo, a.hi
+            ));
+        }
+        let (min, max, what) = role.domain(self);
+        if a.lo < min || a.hi > max {
+            return invalid(format!(
+                "axis {name}: [{}, {}] leaves the domain {what} [{min}, {max}]",
+                a.lo, a.hi
+            ));
+        }
+        match a.warp {
+            Warp::Log if a.lo <= 0.0 => invalid(format!(
+                "axis {name}: a log warp needs lo > 0 (got {})",
+                a.lo
+            )),
+            Warp::Cos if a.hi > core::f64::consts::PI || a.lo < 0.0 => {
+                invalid(format!("axis {name}: a cos warp needs an angle in [0, π]"))
+            }
+            Warp::SqrtCos if a.hi > FRAC_PI_2 || a.lo < 0.0 => invalid(format!(
+                "axis {name}: a sqrt-cos warp needs an angle in [0, π/2]"
+            )),
+            _ => Ok(()),
         }
     }
 
-    fn channels(&self) -> Vec<&'static str> {
-        match self.kind {
-            Kind::GPerSigma { .. } | Kind::GOverSigma => vec!["F"],
-            Kind::SplitSum => vec!["A", "B"],
-            Kind::Albedo => vec!["E"],
-            Kind::AverageAlbedo => vec!["Eavg"],
-        }
-    }
-
-    /// The distribution width (GGX α, Beckmann m) of a roughness-axis value.
-    fn width(&self, x: f64) -> f64 {
+    /// The distribution width (GGX α, Beckmann m) and the RMS slope σ (m/√2; NaN-free only
+    /// where defined) of a roughness-axis value. σ is the axis value itself when the axis is
+    /// σ, so the modified G sees exactly the tabulated σ.
+    fn width_sigma(&self, x: f64) -> (f64, f64) {
         match self.roughness {
-            Roughness::Perceptual => x * x,
-            Roughness::Alpha => x,
-            Roughness::Sigma => SQRT_2 * x,
+            Roughness::Perceptual => (x * x, x * x / SQRT_2),
+            Roughness::Alpha => (x, x / SQRT_2),
+            Roughness::Sigma => (SQRT_2 * x, x),
         }
     }
 
     /// The split sum (A, B) at μ for roughness-axis value `x`.
     fn ab(&self, mu: f64, x: f64) -> (f64, f64) {
-        let w = self.width(x);
+        let (w, sigma) = self.width_sigma(x);
         if w <= 1e-7 && self.masking != Masking::Modified {
             // Mirror limit: D → δ, G → 1: A = 1 − (1 − μ)⁵, B = (1 − μ)⁵.
             if mu <= 0.0 {
@@ -451,7 +445,7 @@ impl Spec {
                 ss(mu, ndf, &|d| g_smith_beckmann_correlated(d.n_i, d.n_o, w))
             }
             (_, Masking::VCavity) => ss(mu, ndf, &g_blinn_dots),
-            (_, Masking::Modified) => match ModifiedG::<f64>::new(w / SQRT_2) {
+            (_, Masking::Modified) => match ModifiedG::<f64>::new(sigma) {
                 Ok(g) => ss(mu, ndf, &|d| g.g_dots(d)),
                 Err(_) => (f64::NAN, f64::NAN),
             },
@@ -460,22 +454,10 @@ impl Spec {
 
     /// The direct f64 kernel at a point of the table's domain: one value per channel.
     pub fn value(&self, x: &[f64]) -> Vec<f64> {
-        match self.kind {
-            Kind::GPerSigma { sigma } => vec![passing(sigma, x[0], x[1])],
-            Kind::GOverSigma => vec![passing(x[2], x[0], x[1])],
-            Kind::SplitSum => {
-                let (a, b) = self.ab(x[0], x[1]);
-                vec![a, b]
-            }
-            Kind::Albedo => {
-                let (a, b) = self.ab(x[0], x[1]);
-                vec![a + b]
-            }
-            Kind::AverageAlbedo => vec![e_avg::<f64, GaussLegendre<24>>(|mu| {
-                let (a, b) = self.ab(mu, x[0]);
-                a + b
-            })],
-        }
+        let def = self.kind.def();
+        let mut out = vec![0.0; def.channels.len()];
+        (def.value)(self, x, &mut out);
+        out
     }
 
     fn header_axes(&self) -> Vec<Axis<'static>> {
@@ -495,9 +477,9 @@ impl Spec {
 }
 
 impl Spec {
-    /// The spec a table's header describes (its kind, model, roughness axis, grid, encoding
-    /// and error-measurement settings), so a file can be re-measured or rebuilt; `None` for a
-    /// header this generator cannot describe.
+    /// The spec a table's header describes (its kind, model, roughness axis, grid, encoding,
+    /// error-measurement settings and tool), so a file can be re-measured or rebuilt; `None`
+    /// for a header this generator cannot describe.
     pub fn from_header(h: &Header<'_>) -> Option<Spec> {
         use Distribution as D;
         use Masking as M;
@@ -522,33 +504,25 @@ impl Spec {
             Model::TorranceSparrowVCavity => (D::TorranceSparrow, M::VCavity),
         };
         let roughness = match h.axes.last().map(|a| a.name) {
-            _ if matches!(kind, Kind::GPerSigma { .. } | Kind::GOverSigma) => Roughness::Sigma,
+            _ if kind.def().check == Check::ModifiedG => Roughness::Sigma,
             Some("roughness") => Roughness::Perceptual,
             Some("alpha") | Some("m") => Roughness::Alpha,
             Some("sigma") => Roughness::Sigma,
             _ => return None,
         };
-        let spec = Spec {
-            kind,
-            distribution,
-            masking,
-            roughness,
-            axes: h
-                .axes
-                .iter()
-                .map(|a| AxisSpec {
-                    count: a.count,
-                    lo: a.lo,
-                    hi: a.hi,
-                    warp: a.warp,
-                    placement: a.placement,
-                })
-                .collect(),
-            encoding: h.encoding,
-            interpolation: h.interpolation,
-            samples: h.error.samples.max(1),
-            seed: h.error.seed,
-        };
+        let mut spec = Spec::new(kind, distribution, masking);
+        spec.roughness = roughness;
+        spec.axes = h
+            .axes
+            .iter()
+            .map(|a| AxisSpec {
+                placement: a.placement,
+                ..AxisSpec::endpoint(a.count, a.lo, a.hi, a.warp)
+            })
+            .collect();
+        (spec.encoding, spec.interpolation) = (h.encoding, h.interpolation);
+        (spec.samples, spec.seed) = (h.error.samples.max(1), h.error.seed);
+        spec.tool = h.generator.tool.to_string();
         let names = spec.axis_names();
         if h.axes.iter().zip(&names).any(|(a, n)| a.name != *n) {
             return None;
@@ -565,127 +539,76 @@ fn passing(sigma: f64, theta: f64, phi: f64) -> f64 {
         .unwrap_or(f64::NAN)
 }
 
-/// Builds the table: validates, computes every node (on all cores; `progress(k)` is called
-/// with the number of nodes just finished), quantises, measures the error at `samples`
-/// random points and encodes. Deterministic: the same spec gives the same bytes.
-pub fn generate(spec: &Spec, progress: &(dyn Fn(u64) + Sync)) -> Result<Generated, GenError> {
-    spec.validate()?;
-    let axes = spec.header_axes();
-    let total: usize = axes.iter().map(|a| a.count as usize).product();
-    let coords = |flat: usize| -> Vec<f64> {
-        let mut r = flat;
-        axes.iter()
-            .map(|a| {
-                let i = (r % a.count as usize) as u32;
-                r /= a.count as usize;
-                a.node(i)
-            })
-            .collect()
-    };
+/// Calls `f(k, chunk)` for every `len`-long chunk `k` of `out`, on all cores; each worker
+/// takes one contiguous run of chunks, so results land in order whatever the thread count.
+pub(crate) fn par_chunks<T: Send>(out: &mut [T], len: usize, f: &(dyn Fn(usize, &mut [T]) + Sync)) {
+    let len = len.max(1);
+    let chunks = out.len().div_ceil(len);
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let chunk = total.div_ceil(threads).max(1);
-    let mut values: Vec<Vec<f64>> = vec![Vec::new(); total];
+    let per = chunks.div_ceil(threads).max(1);
     std::thread::scope(|s| {
-        for (c, part) in values.chunks_mut(chunk).enumerate() {
-            let coords = &coords;
+        for (t, block) in out.chunks_mut(per * len).enumerate() {
             s.spawn(move || {
-                for (k, v) in part.iter_mut().enumerate() {
-                    *v = spec.value(&coords(c * chunk + k));
-                    progress(1);
+                for (j, c) in block.chunks_mut(len).enumerate() {
+                    f(t * per + j, c);
                 }
             });
         }
     });
-    let mut flat = Vec::with_capacity(total * spec.channels().len());
-    for (k, v) in values.iter().enumerate() {
-        if v.iter().any(|x| !x.is_finite()) {
-            return Err(GenError::NonFinite { at: coords(k) });
+}
+
+/// Validates the spec and computes every node's values on all cores: node-major (axis 0
+/// fastest), channels interleaved (`values[node × C + c]`). `progress(k)` is called with
+/// the number of nodes just finished. A non-finite value is an error naming its node.
+pub fn evaluate(spec: &Spec, progress: &(dyn Fn(u64) + Sync)) -> Result<Vec<f64>, GenError> {
+    spec.validate()?;
+    let axes = spec.header_axes();
+    let def = spec.kind.def();
+    let nc = def.channels.len();
+    let total: usize = axes.iter().map(|a| a.count as usize).product();
+    // Rows along axis 0, so a worker's unit of work shares everything but the fastest axis.
+    let row = axes[0].count as usize * nc;
+    let mut flat = vec![0.0; total * nc];
+    par_chunks(&mut flat, row, &|r, v| {
+        for (i, out) in v.chunks_mut(nc).enumerate() {
+            (def.value)(spec, &write::node_coords(&axes, r * (row / nc) + i), out);
         }
-        flat.extend_from_slice(v);
+        progress((row / nc) as u64);
+    });
+    if let Some(k) = flat.iter().position(|x| !x.is_finite()) {
+        return Err(GenError::NonFinite {
+            at: write::node_coords(&axes, k / nc).to_vec(),
+        });
     }
-    let mut nodes = List::new();
-    let counts: &[u16] = match spec.kind {
-        Kind::GPerSigma { .. } | Kind::GOverSigma => &[DEFAULT_NODES as u16],
-        Kind::AverageAlbedo => &[24, 32, 16],
-        _ => &[32, 16],
-    };
-    for &c in counts {
-        let _ = nodes.push(c);
-    }
-    let channels = spec.channels();
+    Ok(flat)
+}
+
+/// Builds the table: validates, computes every node ([`evaluate`]), quantises, measures the
+/// error at `samples` random points ([`measure`]) and encodes. Deterministic: the same spec
+/// gives the same bytes.
+pub fn generate(spec: &Spec, progress: &(dyn Fn(u64) + Sync)) -> Result<Generated, GenError> {
+    let values = evaluate(spec, progress)?;
+    let axes = spec.header_axes();
+    let def = spec.kind.def();
     let ws = write::Spec {
-        kind: match spec.kind {
-            Kind::GPerSigma { .. } | Kind::GOverSigma => TableKind::PassingFactor,
-            Kind::SplitSum => TableKind::SplitSum,
-            Kind::Albedo => TableKind::DirectionalAlbedo,
-            Kind::AverageAlbedo => TableKind::AverageAlbedo,
-        },
+        kind: def.table,
         axes: &axes,
-        channels: &channels,
+        channels: def.channels,
         encoding: spec.encoding,
         interpolation: spec.interpolation,
         generator: Generator {
             model: spec.model()?,
             convention: Convention::Reciprocal,
-            sigma: match spec.kind {
-                Kind::GPerSigma { sigma } => Some(sigma),
-                _ => None,
-            },
-            nodes,
-            tool: TOOL,
+            sigma: spec.fixed_sigma(),
+            nodes: List::from_slice(def.nodes).unwrap_or_default(),
+            tool: &spec.tool,
         },
     };
     let mut error = ErrorStats::default();
-    let bytes = write::build(&ws, &flat, |view| {
-        error = measure(spec, view, &axes);
+    let bytes = write::build(&ws, &values, |view| {
+        error = measure(spec, view, &view.header().axes);
         error
     })
     .map_err(|e| GenError::Encode(e.to_string()))?;
     Ok(Generated { bytes, error })
-}
-
-/// Max and RMS |table − direct kernel| over all channels at `spec.samples` random points
-/// (seeded) between each axis's first and last node (beyond them the reader clamps).
-pub fn measure(spec: &Spec, view: &LutView<'_>, axes: &[Axis<'_>]) -> ErrorStats {
-    let mut rng = rand_pcg::Pcg64::seed_from_u64(spec.seed);
-    let ranges: Vec<(f64, f64)> = axes
-        .iter()
-        .map(|a| {
-            let (p, q) = (a.node(0), a.node(a.count - 1));
-            (p.min(q), p.max(q))
-        })
-        .collect();
-    let pts: Vec<Vec<f32>> = (0..spec.samples)
-        .map(|_| {
-            ranges
-                .iter()
-                .map(|&(lo, hi)| rng.random_range(lo..=hi) as f32)
-                .collect()
-        })
-        .collect();
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let chunk = pts.len().div_ceil(threads).max(1);
-    let mut errs: Vec<Vec<f64>> = vec![Vec::new(); pts.len()];
-    std::thread::scope(|s| {
-        for (part, ps) in errs.chunks_mut(chunk).zip(pts.chunks(chunk)) {
-            s.spawn(move || {
-                for (e, p) in part.iter_mut().zip(ps) {
-                    // The direct kernel at the f32 point the table sees.
-                    let x: Vec<f64> = p.iter().map(|&v| v as f64).collect();
-                    let d = spec.value(&x);
-                    let t = view.sample(p);
-                    *e = d
-                        .iter()
-                        .zip(t.iter())
-                        .map(|(a, &b)| (b as f64 - a).abs())
-                        .collect();
-                }
-            });
-        }
-    });
-    let mut acc = ErrorAccumulator::default();
-    for &x in errs.iter().flatten() {
-        acc.add(x);
-    }
-    acc.finish(spec.samples, spec.seed)
 }

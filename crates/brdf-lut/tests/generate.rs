@@ -1,8 +1,10 @@
 //! `brdf_lut::generate`: tables built to order, checked against independent values (the
-//! committed assets, made by the xtask generator's own code path; closed forms; the
-//! brdf-core kernels; an inequality between the two Smith forms) and the option errors.
+//! committed assets; closed forms; the brdf-core kernels, called directly; an inequality
+//! between the two Smith forms) and the option errors.
 
-use brdf_lut::generate::{generate, Distribution, GenError, Kind, Masking, Roughness, Spec};
+use brdf_lut::generate::{
+    default_set, generate, Distribution, GenError, Kind, Masking, Roughness, Spec,
+};
 use brdf_lut::Lut;
 use brdf_lut::{Encoding, Interpolation, LutView, Placement, Warp};
 
@@ -51,6 +53,48 @@ fn ggx_split_sum_matches_the_committed_asset() {
     }
     // A 64 x 64 cubic table is accurate to well below 1e-3 (the asset records ~1e-4).
     assert!(t.error.max_abs < 1e-3, "{:?}", t.error);
+}
+
+/// The default set's cheaper tables (E_avg of both models, the linear per-σ G table), rebuilt
+/// from `default_set()`, are byte-identical to the committed files: node values, quadrature
+/// record, tool name and the measured error in the header all reproduce. (`cargo xtask lut
+/// --check` compares the whole set.)
+#[test]
+fn default_set_reproduces_committed_bytes() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets");
+    let picked: Vec<_> = default_set()
+        .into_iter()
+        .filter(|a| a.file.starts_with("kc_eavg_") || a.file == "g_modified_sigma0.3_linear.blut")
+        .collect();
+    assert_eq!(picked.len(), 3);
+    for a in picked {
+        let fresh = generate(&a.spec, &|_| {}).unwrap().bytes;
+        let committed = std::fs::read(dir.join(&a.file)).unwrap();
+        assert!(
+            fresh == committed,
+            "{} differs from the committed file",
+            a.file
+        );
+    }
+}
+
+/// Texel-centre nodes through the generator are the dedicated f64 kernel `dfg_ggx` at the
+/// texel centres (i + ½)/n, bit for bit: the engine textures' values.
+#[test]
+fn texel_centre_split_sum_is_the_dedicated_kernel() {
+    use brdf_core::split_sum::{dfg_ggx, InnerRule, OuterRule};
+    let n = 6u32;
+    let mut s = Spec::new(Kind::SplitSum, Distribution::Ggx, Masking::SmithCorrelated);
+    for a in s.axes.iter_mut() {
+        (a.count, a.lo, a.hi, a.warp) = (n, 0.0, 1.0, Warp::Linear);
+        a.placement = Placement::TexelCentre;
+    }
+    let v = brdf_lut::generate::evaluate(&s, &|_| {}).unwrap();
+    for k in 0..(n * n) as usize {
+        let c = |i: usize| (i as f64 + 0.5) / n as f64;
+        let (a, b) = dfg_ggx::<f64, OuterRule, InnerRule>(c(k % n as usize), c(k / n as usize));
+        assert_eq!((v[2 * k], v[2 * k + 1]), (a, b), "texel {k}");
+    }
 }
 
 /// The per-σ G table for σ = 0.3 on the committed asset's grid: same node values.

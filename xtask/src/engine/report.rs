@@ -3,7 +3,7 @@
 //! centres, bilinear, clamp to edge), against the f64 integral at the same random points.
 //! Writes docs/engines.md.
 
-use super::{generate, integral, Target};
+use super::{generate, integral, Engine as Target};
 use anyhow::{anyhow, bail, Context, Result};
 use half::f16;
 use rand::{Rng, SeedableRng};

@@ -2,7 +2,7 @@
 //! table at 64² with its GLSL function, and random (μ, r) points with the f64 integral and
 //! the error bound the GPU sample must meet.
 
-use super::{centre, compute_grid, integral, report, write_set, OutFile};
+use super::{centre, compute_grid, integral, report, write_set, File as OutFile};
 use anyhow::{bail, Context, Result};
 use rand::{Rng, SeedableRng};
 use rayon::prelude::*;
@@ -15,8 +15,8 @@ pub const POINTS: usize = 2048;
 
 /// Writes `dir/lut_ggx.png`, `dir/lut_ggx.glsl`, … and `dir/points.json`.
 pub fn prepare(dir: &Path) -> Result<()> {
-    let grid = compute_grid(N, true);
-    let files = super::encode::files(super::Target::Khronos, &grid)?;
+    let grid = compute_grid(N, true)?;
+    let files = brdf_engine_assets::khronos(&grid)?;
     let exact = report::Table {
         n: N,
         a: grid.a.clone(),

@@ -1,24 +1,14 @@
-//! Generation and verification of the tables.
+//! `cargo xtask lut`: the default asset set ([`brdf_lut::generate::default_set`]), built by
+//! the library generator, written together (or compared with the committed files).
 
-use super::assets::{self, Spec};
 use super::GenArgs;
-use anyhow::{bail, Context, Result};
-use brdf_core::masking::ModifiedG;
-use brdf_lut::write::{self, ErrorAccumulator};
-use brdf_lut::{
-    Convention, Encoding, ErrorStats, GTable, GTable3, Generator, List, LutView, TableKind,
-};
+use anyhow::{anyhow, bail, Context, Result};
+use brdf_lut::generate::{self, Asset, Spec};
+use brdf_lut::{Encoding, ErrorStats, LutView};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use rand::{Rng, SeedableRng};
-use rayon::prelude::*;
 use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
-
-/// The generator's name in the headers (no version number: regenerating must not change
-/// bytes when only the crate version changes).
-pub const TOOL: &str = "brdf-kernels xtask lut";
-/// Seed of the generator's error measurement.
-pub const SEED: u64 = 0x5EED_0001;
 
 pub struct Row {
     pub file: String,
@@ -43,8 +33,10 @@ fn progress(len: u64, msg: String) -> ProgressBar {
     pb
 }
 
-fn apply_overrides(specs: &mut [Spec], g: &GenArgs) -> Result<()> {
-    for s in specs.iter_mut() {
+/// `--res` and `--encoding` applied to every selected asset.
+fn apply_overrides(assets: &mut [Asset], g: &GenArgs) -> Result<()> {
+    for a in assets.iter_mut() {
+        let s = &mut a.spec;
         if let Some(res) = &g.res {
             let n: Vec<u32> = res
                 .split('x')
@@ -55,12 +47,12 @@ fn apply_overrides(specs: &mut [Spec], g: &GenArgs) -> Result<()> {
                 bail!(
                     "--res `{res}` has {} numbers, {} has {} axes",
                     n.len(),
-                    s.file,
+                    a.file,
                     s.axes.len()
                 );
             }
-            for (a, &c) in s.axes.iter_mut().zip(&n) {
-                a.count = c;
+            for (x, &c) in s.axes.iter_mut().zip(&n) {
+                x.count = c;
             }
         }
         if let Some(e) = &g.encoding {
@@ -75,49 +67,55 @@ fn apply_overrides(specs: &mut [Spec], g: &GenArgs) -> Result<()> {
     Ok(())
 }
 
-/// `cargo xtask lut [generate]`.
-pub fn generate(g: GenArgs) -> Result<()> {
-    let mut specs = assets::default_set();
+/// The selected default assets, with the overrides applied.
+fn selection(g: &GenArgs) -> Result<Vec<Asset>> {
+    let mut assets = generate::default_set();
     if let Some(only) = &g.only {
-        specs.retain(|s| s.file.contains(only.as_str()));
-        if specs.is_empty() {
+        assets.retain(|a| a.file.contains(only.as_str()));
+        if assets.is_empty() {
             bail!("--only `{only}` matches no asset");
         }
     }
-    apply_overrides(&mut specs, &g)?;
+    apply_overrides(&mut assets, g)?;
     if let Some(e) = g.max_error {
         if !(e.is_finite() && e > 0.0) {
             bail!("--max-error must be a positive number (got {e})");
         }
     }
+    Ok(assets)
+}
+
+/// `cargo xtask lut [generate]`.
+pub fn generate(g: GenArgs) -> Result<()> {
+    let assets = selection(&g)?;
     let check_dir = if g.check {
         Some(tempfile::tempdir().context("creating a temporary folder")?)
     } else {
         None
     };
     let (out, policy) = write_target(&g, check_dir.as_ref().map(|d| d.path()))?;
-    let paths: Vec<std::path::PathBuf> = specs.iter().map(|s| out.join(&s.file)).collect();
+    let paths: Vec<PathBuf> = assets.iter().map(|a| out.join(&a.file)).collect();
     crate::fsio::check(
         &paths.iter().map(|p| p.as_path()).collect::<Vec<_>>(),
         &policy,
     )?;
-    let mut files = Vec::new();
     let t0 = Instant::now();
+    let mut files = Vec::new();
     let mut rows = Vec::new();
-    for s in &specs {
+    for a in &assets {
         let t = Instant::now();
-        let bytes = build(s)?;
+        let bytes = build(a)?;
         let stats = LutView::parse(&bytes)
             .context("generated file does not parse")?
             .header()
             .error;
         rows.push(Row {
-            file: s.file.clone(),
+            file: a.file.clone(),
             bytes: bytes.len(),
             stats,
             secs: Some(t.elapsed().as_secs_f64()),
         });
-        files.push((out.join(&s.file), bytes));
+        files.push((out.join(&a.file), bytes));
     }
     if let Some(lim) = g.max_error {
         let over: Vec<String> = rows
@@ -138,37 +136,35 @@ pub fn generate(g: GenArgs) -> Result<()> {
     println!("total generation time {:.1} s", t0.elapsed().as_secs_f64());
     if g.check {
         let committed = g.out.clone().unwrap_or_else(super::assets_dir);
-        let mut bad = Vec::new();
-        for s in &specs {
-            let a = &files
-                .iter()
-                .find(|f| f.0 == out.join(&s.file))
-                .expect("written")
-                .1;
-            match std::fs::read(committed.join(&s.file)) {
-                Ok(b) if *a == b => {}
-                Ok(_) => bad.push(format!("{} differs", s.file)),
-                Err(_) => bad.push(format!(
-                    "{} is missing from {}",
-                    s.file,
-                    committed.display()
-                )),
-            }
-        }
-        if !bad.is_empty() {
-            bail!(
-                "committed assets do not match a fresh generation:\n  {}",
-                bad.join("\n  ")
-            );
-        }
-        println!(
-            "check: {} assets byte-identical to {}",
-            specs.len(),
-            committed.display()
-        );
-    } else {
-        println!("wrote {} files to {}", specs.len(), out.display());
+        return compare(&files, &committed);
     }
+    println!("wrote {} files to {}", assets.len(), out.display());
+    Ok(())
+}
+
+/// `--check`: every fresh file byte for byte against the committed one of the same name.
+fn compare(files: &[(PathBuf, Vec<u8>)], committed: &Path) -> Result<()> {
+    let mut bad = Vec::new();
+    for (path, fresh) in files {
+        let name = path.file_name().unwrap_or_default();
+        let shown = name.to_string_lossy();
+        match std::fs::read(committed.join(name)) {
+            Ok(b) if *fresh == b => {}
+            Ok(_) => bad.push(format!("{shown} differs")),
+            Err(_) => bad.push(format!("{shown} is missing from {}", committed.display())),
+        }
+    }
+    if !bad.is_empty() {
+        bail!(
+            "committed assets do not match a fresh generation:\n  {}",
+            bad.join("\n  ")
+        );
+    }
+    println!(
+        "check: {} assets byte-identical to {}",
+        files.len(),
+        committed.display()
+    );
     Ok(())
 }
 
@@ -176,10 +172,7 @@ pub fn generate(g: GenArgs) -> Result<()> {
 /// the files in assets/ (its home, under version control); anything else (`--res`,
 /// `--encoding`) needs `--out` outside assets/, and replaces existing files only with
 /// `--force`.
-fn write_target(
-    g: &GenArgs,
-    check_dir: Option<&std::path::Path>,
-) -> Result<(std::path::PathBuf, crate::fsio::Policy)> {
+fn write_target(g: &GenArgs, check_dir: Option<&Path>) -> Result<(PathBuf, crate::fsio::Policy)> {
     use crate::fsio::Policy;
     if let Some(d) = check_dir {
         return Ok((d.to_path_buf(), Policy::default()));
@@ -211,143 +204,31 @@ fn write_target(
     Ok((out, Policy::new(g.force, &[])))
 }
 
-/// Quadrature node counts the direct kernels use, recorded in the header.
-fn quadrature_nodes(kind: TableKind) -> List<u16, { brdf_lut::MAX_GENERATOR_NODES }> {
-    let counts: &[u16] = match kind {
-        TableKind::PassingFactor => &[brdf_core::quadrature::DEFAULT_NODES as u16],
-        TableKind::AverageAlbedo => &[24, 32, 16, 4],
-        _ => &[32, 16, 4],
-    };
-    List::from_slice(counts).unwrap_or_default()
-}
-
-/// Computes the nodes and hands them to the library writer, which quantises them, measures
-/// the error (with [`measure`]) and encodes the file.
-pub fn build(s: &Spec) -> Result<Vec<u8>> {
-    let spec = write::Spec {
-        kind: s.kind,
-        axes: &s.axes,
-        channels: &s.channels,
-        encoding: s.encoding,
-        interpolation: s.interpolation,
-        generator: Generator {
-            model: s.model,
-            convention: Convention::Reciprocal,
-            sigma: s.sigma,
-            nodes: quadrature_nodes(s.kind),
-            tool: TOOL,
-        },
-    };
-    let total = spec.nodes();
-    let pb = progress(total as u64, s.file.clone());
-    let values: Vec<f64> = (0..total)
-        .into_par_iter()
-        .flat_map_iter(|k| {
-            let v = assets::node_value(s.kind, s.model, s.sigma, &write::node_coords(&s.axes, k));
-            pb.inc(1);
-            v
-        })
-        .collect();
+/// One asset through the library generator, with a progress bar over its nodes.
+fn build(a: &Asset) -> Result<Vec<u8>> {
+    let total: u64 = a.spec.axes.iter().map(|x| x.count as u64).product();
+    let pb = progress(total, a.file.clone());
+    let res = generate::generate(&a.spec, &|k| pb.inc(k));
     pb.finish_and_clear();
-    write::build(&spec, &values, |view| measure(view, s.samples, SEED, true))
-        .map_err(|e| anyhow::anyhow!("{}: {e}", s.file))
+    Ok(res.map_err(|e| anyhow!("{}: {e}", a.file))?.bytes)
 }
 
-/// Max and RMS |table − direct kernel| at `n` random points (seeded), over all channels.
-/// Passing-factor tables are measured on G = min(GM, GS) at random (θi, θr[, σ]).
-pub fn measure(view: &LutView<'_>, n: u32, seed: u64, bar: bool) -> ErrorStats {
+/// Max and RMS |table − direct kernel| at `n` random points (seeded), measured by the
+/// library with the spec the table's header describes (NaN when it describes none).
+pub fn measure(view: &LutView<'_>, n: u32, seed: u64) -> ErrorStats {
     let h = view.header();
-    let mut rng = rand_pcg::Pcg64::seed_from_u64(seed);
-    let kind = h.kind;
-    let dims = h.axes.len();
-    // Uniform in [lo, hi]; a range rand cannot sample (empty, or a span that overflows) gives
-    // its lower end instead of a panic. A parsed header's ranges are finite, increasing and
-    // finite in f32, so this only guards the tool.
-    let uniform = |rng: &mut rand_pcg::Pcg64, lo: f64, hi: f64| -> f64 {
-        if lo < hi && (hi - lo).is_finite() {
-            rng.random_range(lo..=hi)
-        } else {
-            lo
+    match Spec::from_header(h) {
+        Some(mut spec) => {
+            (spec.samples, spec.seed) = (n, seed);
+            generate::measure(&spec, view, &h.axes)
         }
-    };
-    let pts: Vec<Vec<f64>> = (0..n)
-        .map(|_| {
-            if kind == TableKind::PassingFactor {
-                let mut p = vec![
-                    uniform(&mut rng, 0.0, std::f64::consts::FRAC_PI_2),
-                    uniform(
-                        &mut rng,
-                        -std::f64::consts::FRAC_PI_2,
-                        std::f64::consts::FRAC_PI_2,
-                    ),
-                ];
-                if dims == 3 {
-                    p.push(uniform(&mut rng, h.axes[2].lo, h.axes[2].hi));
-                }
-                p
-            } else {
-                h.axes
-                    .iter()
-                    .map(|a| {
-                        let (lo, hi) = assets::verify_range(kind, a);
-                        uniform(&mut rng, lo, hi)
-                    })
-                    .collect()
-            }
-        })
-        .collect();
-    let pb = progress(if bar { n as u64 } else { 0 }, "  verifying".into());
-    if !bar {
-        pb.set_draw_target(ProgressDrawTarget::hidden());
+        None => ErrorStats {
+            max_abs: f32::NAN,
+            rms: f32::NAN,
+            samples: n,
+            seed,
+        },
     }
-    let g2 = if kind == TableKind::PassingFactor && dims == 2 {
-        GTable::from_view(*view).ok()
-    } else {
-        None
-    };
-    let g3 = if kind == TableKind::PassingFactor && dims == 3 {
-        GTable3::from_view(*view).ok()
-    } else {
-        None
-    };
-    let errs: Vec<Vec<f64>> = pts
-        .par_iter()
-        .map(|p| {
-            let e = if kind == TableKind::PassingFactor {
-                let s = h
-                    .generator
-                    .sigma
-                    .unwrap_or_else(|| p.get(2).copied().unwrap_or(0.3));
-                let direct = ModifiedG::<f64>::new(s)
-                    .map(|g| g.g(p[0], p[1]))
-                    .unwrap_or(f64::NAN);
-                let t = match (&g2, &g3) {
-                    (Some(t), _) => t.g(p[0] as f32, p[1] as f32) as f64,
-                    (_, Some(t)) => t.g(p[0] as f32, p[1] as f32, s as f32) as f64,
-                    _ => f64::NAN,
-                };
-                vec![(t - direct).abs()]
-            } else {
-                let x: Vec<f32> = p.iter().map(|&v| v as f32).collect();
-                // Evaluate the direct kernel at the f32-rounded point the table sees.
-                let xd: Vec<f64> = x.iter().map(|&v| v as f64).collect();
-                let d = assets::node_value(kind, h.generator.model, h.generator.sigma, &xd);
-                let t = view.sample(&x);
-                d.iter()
-                    .zip(t.iter())
-                    .map(|(a, &b)| (b as f64 - a).abs())
-                    .collect()
-            };
-            pb.inc(1);
-            e
-        })
-        .collect();
-    pb.finish_and_clear();
-    let mut acc = ErrorAccumulator::default();
-    for &x in errs.iter().flatten() {
-        acc.add(x);
-    }
-    acc.finish(n, seed)
 }
 
 pub fn print_table(rows: &[Row]) {

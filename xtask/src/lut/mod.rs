@@ -1,7 +1,6 @@
 //! `cargo xtask lut`: LUT generation (default), verification, inspection and export.
 //! Format, readers and writer: the `brdf-lut` crate (`docs/lut-format.md`).
 
-mod assets;
 mod export;
 mod export_shaders;
 mod gen;
@@ -137,16 +136,8 @@ fn verify(files: Vec<PathBuf>, samples: Option<u32>, seed: u64, tolerance: f64) 
         let recorded = lut.header().error;
         let n = samples.unwrap_or(recorded.samples.clamp(1, MAX_VERIFY_SAMPLES));
         let view = lut.view()?;
-        let h = view.header();
-        // Tables built to order are measured with the kernels that built them (their
-        // roughness axis may be α, m or σ, their G separable or V-cavity).
-        let st = match brdf_lut::generate::Spec::from_header(h) {
-            Some(mut spec) if h.generator.tool == brdf_lut::generate::TOOL => {
-                (spec.samples, spec.seed) = (n, seed);
-                brdf_lut::generate::measure(&spec, &view, &h.axes)
-            }
-            _ => gen::measure(&view, n, seed, false),
-        };
+        // Every table is measured with the kernels its header names (library generator).
+        let st = gen::measure(&view, n, seed);
         let name = f.file_name().map_or_else(
             || f.display().to_string(),
             |s| s.to_string_lossy().into_owned(),

@@ -2,18 +2,23 @@
 //! (n·v, r) clamped to [0, 1] is the texture coordinate itself (texel-centre placement), the
 //! axes in the engine's order, and the channels decoded to (A, B).
 
-use super::Target;
+use crate::Engine;
 
+/// The sampling functions of one engine table.
 pub struct Functions {
+    /// The function name (the same in both languages).
     pub name: &'static str,
+    /// GLSL ES 3.00 source.
     pub glsl: String,
+    /// WGSL source.
     pub wgsl: String,
 }
 
-pub fn functions(t: Target) -> Functions {
+/// The GLSL and WGSL functions that sample engine `t`'s table.
+pub fn functions(t: Engine) -> Functions {
     // (function name, file, uv expression in terms of `x` = (n·v, r), channel decode)
     let (name, file, uv_glsl, uv_wgsl, dec_glsl, dec_wgsl, note) = match t {
-        Target::Khronos => (
+        Engine::Khronos => (
             "dfg_khronos",
             "lut_ggx.png (or lut_ggx_16bit.png)",
             "x",
@@ -22,7 +27,7 @@ pub fn functions(t: Target) -> Functions {
             "t.rg",
             "R = A, G = B; PNG uploaded without a vertical flip (first row at t = 0)",
         ),
-        Target::Bevy => (
+        Engine::Bevy => (
             "dfg_bevy",
             "dfg.ktx2",
             "x",
@@ -31,7 +36,7 @@ pub fn functions(t: Target) -> Functions {
             "t.rg",
             "R = A, G = B; KTX2 row 0 at t = 0",
         ),
-        Target::Filament => (
+        Engine::Filament => (
             "dfg_filament",
             "dfg_multiscatter.dds",
             "x",
@@ -40,7 +45,7 @@ pub fn functions(t: Target) -> Functions {
             "vec2<f32>(t.g - t.r, t.r)",
             "R = B, G = A + B; last stored DDS row at t = 0 (as Filament loads it)",
         ),
-        Target::Threejs => (
+        Engine::Threejs => (
             "dfg_threejs",
             "dfg_lut.bin",
             "x.yx",
@@ -49,7 +54,7 @@ pub fn functions(t: Target) -> Functions {
             "t.rg",
             "RG16F (A, B); memory row = n·v, so uv = (roughness, n·v)",
         ),
-        Target::Exr => (
+        Engine::Exr => (
             "dfg_exr",
             "dfg_ggx.exr",
             "x",
@@ -58,7 +63,6 @@ pub fn functions(t: Target) -> Functions {
             "t.rg",
             "R = A, G = B; row 0 (top of the data window) at t = 0",
         ),
-        Target::All | Target::Report => unreachable!("not a single engine target"),
     };
     let head = format!(
         "// Split-sum pair (A, B) for GGX with height-correlated Smith, alpha = r * r (r =\n\

@@ -1,0 +1,176 @@
+//! The one list of table kinds. Everything the generator knows about a kind — its name on
+//! the command line and in TOML files, its BLUT kind code, its axes (with their default
+//! grids and admissible domains), its channels, the quadrature it records, how its error is
+//! measured and the f64 kernel at a node — is in its entry of [`Kind::def`]. A new kind is
+//! a new `Kind` variant and its entry there.
+
+use super::{passing, AxisSpec, Kind, Masking, Roughness, Spec, MU_MIN};
+use crate::{TableKind, Warp};
+use brdf_core::quadrature::{GaussLegendre, DEFAULT_NODES};
+use brdf_core::split_sum::{e_avg, OUTER_PANELS};
+use core::f64::consts::FRAC_PI_2;
+
+/// What an axis holds: its name, default range and warp, and admissible domain follow.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Role {
+    /// An incidence angle θ in radians, [0, π/2] (sqrt-cos warp by default).
+    Theta,
+    /// The neighbouring facet's angle φ in radians, [−π/2, π/2].
+    Phi,
+    /// μ = cos θ of the view direction, [cos 89°, 1] (log warp by default).
+    Mu,
+    /// The model's roughness in the spec's [`Roughness`] parameterisation.
+    Roughness,
+    /// The RMS slope σ of the modified G's Gaussian slopes, [0.05, 1] (log warp by default).
+    Sigma,
+}
+
+/// How a table's error is measured at random points.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Check {
+    /// |table − kernel| per channel at random points of the axes' ranges.
+    Values,
+    /// The passing-factor tables: |G_table − G| of the modified G = min(GM, GS) at random
+    /// (θi from the theta range, θr from the phi range[, σ]): the error a G lookup makes.
+    ModifiedG,
+}
+
+/// One kind's entry in the list.
+pub struct KindDef {
+    /// Its name on the command line and in TOML files.
+    pub name: &'static str,
+    /// Its BLUT kind code.
+    pub table: TableKind,
+    /// Its axes, fastest first, each with its default node count.
+    pub axes: &'static [(Role, u32)],
+    /// Its channels, in payload order.
+    pub channels: &'static [&'static str],
+    /// The quadrature node counts recorded in the header.
+    pub nodes: &'static [u16],
+    /// How its error is measured.
+    pub check: Check,
+    /// The f64 kernel at a point `x` (one coordinate per axis): one value per channel.
+    pub value: fn(&Spec, &[f64], &mut [f64]),
+}
+
+const SPLIT_NODES: &[u16] = &[32, 16, OUTER_PANELS as u16];
+const G_NODES: &[u16] = &[DEFAULT_NODES as u16];
+
+impl Kind {
+    /// This kind's entry in the one list of kinds.
+    pub fn def(&self) -> &'static KindDef {
+        use Role::*;
+        match self {
+            Kind::GPerSigma { .. } => &KindDef {
+                name: "g-per-sigma",
+                table: TableKind::PassingFactor,
+                axes: &[(Theta, 128), (Phi, 126)],
+                channels: &["F"],
+                nodes: G_NODES,
+                check: Check::ModifiedG,
+                value: |s, x, out| {
+                    out[0] = passing(s.fixed_sigma().unwrap_or(f64::NAN), x[0], x[1])
+                },
+            },
+            Kind::GOverSigma => &KindDef {
+                name: "g-over-sigma",
+                table: TableKind::PassingFactor,
+                axes: &[(Theta, 64), (Phi, 64), (Sigma, 31)],
+                channels: &["F"],
+                nodes: G_NODES,
+                check: Check::ModifiedG,
+                value: |_, x, out| out[0] = passing(x[2], x[0], x[1]),
+            },
+            Kind::SplitSum => &KindDef {
+                name: "split-sum",
+                table: TableKind::SplitSum,
+                axes: &[(Mu, 64), (Roughness, 64)],
+                channels: &["A", "B"],
+                nodes: SPLIT_NODES,
+                check: Check::Values,
+                value: |s, x, out| (out[0], out[1]) = s.ab(x[0], x[1]),
+            },
+            Kind::Albedo => &KindDef {
+                name: "e",
+                table: TableKind::DirectionalAlbedo,
+                axes: &[(Mu, 64), (Roughness, 64)],
+                channels: &["E"],
+                nodes: SPLIT_NODES,
+                check: Check::Values,
+                value: |s, x, out| {
+                    let (a, b) = s.ab(x[0], x[1]);
+                    out[0] = a + b;
+                },
+            },
+            Kind::AverageAlbedo => &KindDef {
+                name: "e-avg",
+                table: TableKind::AverageAlbedo,
+                axes: &[(Roughness, 32)],
+                channels: &["Eavg"],
+                nodes: &[24, 32, 16, OUTER_PANELS as u16],
+                check: Check::Values,
+                value: |s, x, out| {
+                    out[0] = e_avg::<f64, GaussLegendre<24>>(|mu| {
+                        let (a, b) = s.ab(mu, x[0]);
+                        a + b
+                    })
+                },
+            },
+        }
+    }
+}
+
+impl Role {
+    /// The axis name in the file.
+    pub fn name(self, s: &Spec) -> &'static str {
+        match self {
+            Role::Theta => "theta",
+            Role::Phi => "phi",
+            Role::Mu => "mu",
+            Role::Sigma => "sigma",
+            Role::Roughness => s.roughness_name(),
+        }
+    }
+
+    /// The default range and warp of `count` endpoint nodes.
+    pub fn default_axis(self, s: &Spec, count: u32) -> AxisSpec {
+        let (lo, hi, warp) = match self {
+            Role::Theta => (0.0, FRAC_PI_2, Warp::SqrtCos),
+            Role::Phi => (-FRAC_PI_2, FRAC_PI_2, Warp::Linear),
+            Role::Mu => (MU_MIN, 1.0, Warp::Log),
+            Role::Sigma => (0.05, 1.0, Warp::Log),
+            Role::Roughness => match s.roughness {
+                Roughness::Sigma => (0.05, 1.0, Warp::Log),
+                // The modified G needs a width > 0.
+                _ if s.masking == Masking::Modified => (0.05, 1.0, Warp::Linear),
+                _ => (0.0, 1.0, Warp::Linear),
+            },
+        };
+        AxisSpec::endpoint(count, lo, hi, warp)
+    }
+
+    /// The admissible range of the axis, and its description.
+    pub fn domain(self, s: &Spec) -> (f64, f64, &'static str) {
+        let width_min = if s.masking == Masking::Modified {
+            f64::MIN_POSITIVE
+        } else {
+            0.0
+        };
+        match (self, s.roughness) {
+            (Role::Theta, _) => (0.0, FRAC_PI_2, "θ (radians)"),
+            (Role::Phi, _) => (-FRAC_PI_2, FRAC_PI_2, "φ (radians)"),
+            (Role::Mu, _) => (0.0, 1.0, "μ = cos θ"),
+            (Role::Sigma, _) | (Role::Roughness, Roughness::Sigma) => {
+                (width_min, 4.0, "σ (the modified G needs σ > 0)")
+            }
+            (Role::Roughness, Roughness::Perceptual) => {
+                (width_min, 1.0, "perceptual r (the modified G needs r > 0)")
+            }
+            (Role::Roughness, Roughness::Alpha) => (
+                width_min,
+                4.0,
+                "width α or m (the modified G needs a width > 0)",
+            ),
+        }
+    }
+}
