@@ -28,6 +28,7 @@ mod error;
 mod f16;
 mod header;
 mod kernel;
+pub mod limits;
 mod reader;
 mod tables;
 mod view;
