@@ -48,7 +48,7 @@ fn reencode<'a>(bytes: &'a [u8], edit: impl FnOnce(&mut Header<'a>)) -> Vec<u8> 
     let v = LutView::parse(bytes).unwrap();
     let mut h = *v.header();
     edit(&mut h);
-    let mut out = vec![0u8; bytes.len() + 64];
+    let mut out = vec![0u8; bytes.len() + 4096];
     let n = brdf_lut::encode_into(&h, v.payload(), &mut out).unwrap();
     out.truncate(n);
     out
