@@ -23,7 +23,7 @@ pub const MAX_NODES_PER_AXIS: u32 = MAX_AXIS_COUNT;
 pub const MAX_BUILD_VALUES: u64 = 1 << 24;
 /// Largest estimated work of one `lut generate` (nodes and error measurement), in seconds
 /// of one core ([`cost_per_point_us`]); the wall time is this over the number of cores.
-pub const MAX_GENERATE_SECONDS: u64 = 3_600;
+pub const MAX_GENERATE_SECONDS: u64 = 600;
 /// Largest estimated work of `lut verify` on one table, in seconds of one core: a header
 /// that records more points than this allows is verified at as many as it allows.
 pub const MAX_VERIFY_SECONDS: u64 = 20;
