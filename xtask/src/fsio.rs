@@ -5,8 +5,11 @@
 //! - each output is first written to a temporary file in its own folder, flushed and synced,
 //!   and only then renamed over the target, so a crash or a full disk leaves the previous file
 //!   intact and no partial file behind;
+//! - every output path is resolved by one function, [`resolve`] (folders that do not exist
+//!   yet, `..`, `.`, symbolic links), and the file is written where it resolves to;
 //! - an output that is one of the command's inputs (same path, another spelling of it, a hard
-//!   or symbolic link to it) is refused, `--force` or not;
+//!   or symbolic link to it: compared by resolved path and by device and inode) is refused,
+//!   `--force` or not;
 //! - an existing output is replaced only with `--force` ([`Policy::force`]);
 //! - a protected folder (the committed `assets/`) is written only when the policy says so;
 //! - outputs written together (a data file and its JSON sidecar) succeed or fail together:
@@ -82,32 +85,94 @@ fn folder(p: &Path) -> PathBuf {
     }
 }
 
-/// Absolute form of `p` with its folder's symbolic links resolved: the nearest existing
-/// ancestor folder is canonicalised and the rest appended (neither the file nor its folder
-/// need exist yet).
-fn resolve(p: &Path) -> Option<PathBuf> {
-    let name = p.file_name()?;
-    let mut dir = folder(p);
-    let mut rest = Vec::new();
-    loop {
-        if let Ok(c) = dir.canonicalize() {
-            let mut out = c;
-            for part in rest.iter().rev() {
-                out.push(part);
+/// The one place an output path is resolved (every writing command goes through [`check`]
+/// and [`write_together`], which call it): the absolute path the file will have, with every
+/// symbolic link of its folders resolved, whether or not the file or its folders exist yet.
+///
+/// The components are walked from the left: the deepest existing prefix is canonicalised;
+/// each following component is appended and, while it exists, canonicalised again (so a
+/// symbolic link met after a `..` is followed too); `.` is dropped and `..` removes the last
+/// component of the path resolved so far, which is a real folder at that point (or one to be
+/// created), so this is what the operating system will do once the folders exist. The last
+/// component is kept as written (a symbolic link there is replaced, not followed; [`check`]
+/// compares with the inputs by device and inode as well). Errors: a path that names no file
+/// (ending in `..`, `/` or empty), a dangling symbolic link among the folders, a component
+/// that exists but is not a folder, an unreadable folder.
+pub fn resolve(p: &Path) -> Result<PathBuf> {
+    use std::path::Component;
+    let bad = || anyhow!("{}: not a file name", p.display());
+    let name = match p.components().next_back() {
+        Some(Component::Normal(n)) => n.to_os_string(),
+        _ => return Err(bad()),
+    };
+    let folder_of = p.parent().filter(|d| !d.as_os_str().is_empty());
+    let start = match folder_of {
+        Some(d) if d.is_absolute() => PathBuf::new(),
+        _ => std::env::current_dir().map_err(|e| anyhow!("{}: {e}", p.display()))?,
+    };
+    let mut out = start.canonicalize().unwrap_or_else(|_| start.to_path_buf());
+    for c in folder_of.into_iter().flat_map(Path::components) {
+        match c {
+            Component::Prefix(_) | Component::RootDir => {
+                out = PathBuf::from(c.as_os_str());
             }
-            out.push(name);
-            return Some(out);
+            Component::CurDir => {}
+            Component::ParentDir => {
+                out.pop();
+            }
+            Component::Normal(n) => {
+                out.push(n);
+                match std::fs::symlink_metadata(&out) {
+                    Ok(_) => {
+                        out = out.canonicalize().map_err(|e| {
+                            anyhow!("{}: {} cannot be resolved: {e}", p.display(), out.display())
+                        })?;
+                        if !out.is_dir() {
+                            bail!("{}: {} is not a folder", p.display(), out.display());
+                        }
+                    }
+                    Err(e) if e.kind() == io::ErrorKind::NotFound => {}
+                    Err(e) => bail!("{}: {}: {e}", p.display(), out.display()),
+                }
+            }
         }
-        rest.push(dir.file_name()?.to_os_string());
-        dir = folder(&dir);
     }
+    out.push(name);
+    Ok(out)
 }
 
-/// Reads an input file whole, refusing files over `limit` bytes before reading them.
-/// The error names the path once.
+/// Opens an input for reading only if it is a regular file (or a link to one): a FIFO, a
+/// device or a folder is refused before `open` (which would block on a FIFO without a
+/// writer), and the opened file's type is checked again (the path may change in between).
+pub fn open_regular(path: &Path) -> Result<std::fs::File> {
+    let not_regular = |m: &std::fs::Metadata| {
+        let t = m.file_type();
+        let what = if t.is_dir() {
+            "a folder"
+        } else {
+            "not a regular file (a FIFO, socket or device)"
+        };
+        anyhow!("{} is {what}; give a file", path.display())
+    };
+    let m = std::fs::metadata(path).map_err(|e| anyhow!("reading {}: {e}", path.display()))?;
+    if !m.is_file() {
+        return Err(not_regular(&m));
+    }
+    let f = std::fs::File::open(path).map_err(|e| anyhow!("reading {}: {e}", path.display()))?;
+    let m = f
+        .metadata()
+        .map_err(|e| anyhow!("reading {}: {e}", path.display()))?;
+    if !m.is_file() {
+        return Err(not_regular(&m));
+    }
+    Ok(f)
+}
+
+/// Reads an input file whole, refusing files over `limit` bytes before reading them and
+/// anything that is not a regular file ([`open_regular`]). The error names the path once.
 pub fn read_limited(path: &Path, limit: u64) -> Result<Vec<u8>> {
     use std::io::Read;
-    let f = std::fs::File::open(path).map_err(|e| anyhow!("reading {}: {e}", path.display()))?;
+    let f = open_regular(path)?;
     let mut v = Vec::new();
     f.take(limit + 1)
         .read_to_end(&mut v)
@@ -127,20 +192,29 @@ pub fn load_lut(path: &Path) -> Result<brdf_lut::Lut> {
 /// Checks every output against the policy without writing anything (commands call it before
 /// long computations, and [`write_together`] calls it again just before writing).
 pub fn check(outputs: &[&Path], policy: &Policy) -> Result<()> {
-    for (k, out) in outputs.iter().enumerate() {
-        if out.file_name().is_none() {
-            bail!("{}: not a file name", out.display());
-        }
-        if outputs[..k]
-            .iter()
-            .any(|o| o == out || resolve(o) == resolve(out))
-        {
+    resolve_all(outputs, policy).map(|_| ())
+}
+
+/// [`check`], giving the resolved outputs ([`resolve`]) in the same order.
+fn resolve_all(outputs: &[&Path], policy: &Policy) -> Result<Vec<PathBuf>> {
+    // The inputs as the outputs are resolved (an input that cannot be resolved is still
+    // compared by device and inode).
+    let inputs: Vec<(&PathBuf, Option<PathBuf>)> =
+        policy.inputs.iter().map(|i| (i, resolve(i).ok())).collect();
+    let prot = policy
+        .protected
+        .as_ref()
+        .and_then(|p| p.canonicalize().ok());
+    let mut done: Vec<PathBuf> = Vec::with_capacity(outputs.len());
+    for out in outputs {
+        let abs = resolve(out)?;
+        if done.contains(&abs) {
             bail!("{} is named twice among the outputs", out.display());
         }
-        let abs = resolve(out);
-        for inp in &policy.inputs {
-            let same = same_file::is_same_file(out, inp).unwrap_or(false)
-                || (abs.is_some() && abs == resolve(inp));
+        for (inp, inp_abs) in &inputs {
+            // Same path, or the same file by (device, inode): hard and symbolic links.
+            let same = inp_abs.as_ref() == Some(&abs)
+                || same_file::is_same_file(&abs, inp).unwrap_or(false);
             if same {
                 bail!(
                     "refusing to write {}: it is the input {} (choose another output path)",
@@ -149,28 +223,28 @@ pub fn check(outputs: &[&Path], policy: &Policy) -> Result<()> {
                 );
             }
         }
-        if let (Some(prot), Some(abs)) = (&policy.protected, &abs) {
-            if let Ok(prot) = prot.canonicalize() {
-                if abs.starts_with(&prot) {
-                    bail!(
-                        "refusing to write {}: {} holds the committed default tables, which only \
-                         `cargo xtask lut` (the default set, unmodified) regenerates; choose \
-                         another output folder",
-                        out.display(),
-                        prot.display()
-                    );
-                }
+        if let Some(prot) = &prot {
+            if abs.starts_with(prot) {
+                bail!(
+                    "refusing to write {}: {} holds the committed default tables, which only \
+                     `cargo xtask lut` (the default set, unmodified) regenerates; choose \
+                     another output folder",
+                    out.display(),
+                    prot.display()
+                );
             }
         }
-        match std::fs::symlink_metadata(out) {
-            Ok(m) if m.is_dir() => bail!("{} is a folder", out.display()),
+        match std::fs::symlink_metadata(&abs) {
+            // A folder, or a link to one (a link is replaced, never followed, by the rename).
+            Ok(m) if m.is_dir() || abs.is_dir() => bail!("{} is a folder", out.display()),
             Ok(_) if !policy.force => bail!("{} exists; pass --force to replace it", out.display()),
             Ok(_) => {}
             Err(e) if e.kind() == io::ErrorKind::NotFound => {}
             Err(e) => bail!("{}: {e}", out.display()),
         }
+        done.push(abs);
     }
-    Ok(())
+    Ok(done)
 }
 
 /// Writes `files` (path, bytes) so that all of them are replaced or none is (module docs).
@@ -194,13 +268,15 @@ pub fn write_with_faults(
     faults: Faults,
 ) -> Result<()> {
     let paths: Vec<&Path> = files.iter().map(|(p, _)| p.as_path()).collect();
-    check(&paths, policy)?;
+    // Written where they resolve to (no folder that a `..` leaves is created); messages
+    // name the paths as given.
+    let targets = resolve_all(&paths, policy)?;
     // 1. Every temporary written and synced before anything is renamed.
     let mut temps: Vec<NamedTempFile> = Vec::with_capacity(files.len());
-    for (path, bytes) in files {
-        let dir = folder(path);
+    for ((path, bytes), target) in files.iter().zip(&targets) {
+        let dir = folder(target);
         std::fs::create_dir_all(&dir).map_err(|e| anyhow!("creating {}: {e}", dir.display()))?;
-        let name = path.file_name().unwrap_or_default().to_string_lossy();
+        let name = target.file_name().unwrap_or_default().to_string_lossy();
         let tmp = tempfile::Builder::new()
             .prefix(&format!(".{name}."))
             .suffix(".tmp")
@@ -220,9 +296,10 @@ pub fn write_with_faults(
     // 2. Renames, each target's previous file kept aside until all have succeeded.
     let mut done: Vec<(PathBuf, Option<TempPath>)> = Vec::new();
     let mut failure = None;
-    for (k, ((path, _), tmp)) in files.iter().zip(temps).enumerate() {
-        match commit_one(path, tmp, policy.force, faults.fail_rename == Some(k)) {
-            Ok(backup) => done.push((path.clone(), backup)),
+    for (k, (((shown, _), target), tmp)) in files.iter().zip(&targets).zip(temps).enumerate() {
+        let inject = faults.fail_rename == Some(k);
+        match commit_one(shown, target, tmp, policy.force, inject) {
+            Ok(backup) => done.push((target.clone(), backup)),
             Err(e) => {
                 failure = Some(e);
                 break;
@@ -243,21 +320,23 @@ pub fn write_with_faults(
         }
         return Err(e);
     }
-    for d in files.iter().map(|(p, _)| folder(p)) {
+    for d in targets.iter().map(|p| folder(p)) {
         sync_dir(&d);
     }
     // The backups are deleted when `done` drops.
     Ok(())
 }
 
-/// Renames `tmp` onto `path`; returns the previous file's new (temporary) name, if any.
+/// Renames `tmp` onto `path` (the resolved target; errors name `shown`, the path as given);
+/// returns the previous file's new (temporary) name, if any.
 fn commit_one(
+    shown: &Path,
     path: &Path,
     tmp: NamedTempFile,
     force: bool,
     inject: bool,
 ) -> Result<Option<TempPath>> {
-    let err = |e: &dyn std::fmt::Display| anyhow!("writing {}: {e}", path.display());
+    let err = |e: &dyn std::fmt::Display| anyhow!("writing {}: {e}", shown.display());
     let backup = if force && path.exists() {
         let name = path.file_name().unwrap_or_default().to_string_lossy();
         let b = tempfile::Builder::new()

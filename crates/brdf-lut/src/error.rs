@@ -63,6 +63,14 @@ pub enum LutError {
     },
     /// The values given to the writer do not fit the table (count, or not finite).
     BadInput(&'static str),
+    /// The header's error statistics are not a claim that can be checked: NaN, infinite or
+    /// negative, RMS above the maximum, or no sample ([`ErrorStats::check`]).
+    ///
+    /// [`ErrorStats::check`]: crate::ErrorStats::check
+    BadErrorStats {
+        /// Which rule fails.
+        field: &'static str,
+    },
 }
 
 impl fmt::Display for LutError {
@@ -96,6 +104,9 @@ impl fmt::Display for LutError {
                 "LUT payload value {index} is not finite or exceeds the value limit"
             ),
             LutError::BadInput(why) => write!(f, "cannot write the table: {why}"),
+            LutError::BadErrorStats { field } => {
+                write!(f, "LUT header's error statistics are invalid: {field}")
+            }
         }
     }
 }

@@ -273,16 +273,51 @@ impl Lut {
     }
 }
 
-/// A header string for a terminal: printable characters as they are, everything else
-/// (control characters such as ESC, which would reach the terminal raw) as Rust escapes
-/// (`\u{1b}`), so a crafted name cannot clear the screen or fake output.
+/// A header string for a terminal: printable characters as they are, everything else as
+/// Rust escapes (`\u{1b}`), so a crafted name cannot clear the screen or fake output:
+/// control characters (category Cc, such as ESC), format characters (category Cf: the
+/// bidirectional overrides and isolates U+202A–202E and U+2066–2069, the marks U+200E/200F
+/// and U+061C, zero-width characters, the BOM, …) and the line and paragraph separators
+/// U+2028/2029.
 pub struct Escaped<'a>(pub &'a str);
+
+/// Unicode general category Cf (Unicode 15.1), and Zl/Zp (U+2028, U+2029): characters that
+/// change how the text around them is shown without showing themselves.
+const INVISIBLE: [(u32, u32); 21] = [
+    (0xAD, 0xAD),
+    (0x600, 0x605),
+    (0x61C, 0x61C),
+    (0x6DD, 0x6DD),
+    (0x70F, 0x70F),
+    (0x890, 0x891),
+    (0x8E2, 0x8E2),
+    (0x180E, 0x180E),
+    (0x200B, 0x200F),
+    (0x2028, 0x202E),
+    (0x2060, 0x2064),
+    (0x2066, 0x206F),
+    (0xFEFF, 0xFEFF),
+    (0xFFF9, 0xFFFB),
+    (0x110BD, 0x110BD),
+    (0x110CD, 0x110CD),
+    (0x13430, 0x1343F),
+    (0x1BCA0, 0x1BCA3),
+    (0x1D173, 0x1D17A),
+    (0xE0001, 0xE0001),
+    (0xE0020, 0xE007F),
+];
+
+/// Whether [`Escaped`] escapes `c`.
+fn escaped(c: char) -> bool {
+    let u = c as u32;
+    c.is_control() || INVISIBLE.iter().any(|&(lo, hi)| (lo..=hi).contains(&u))
+}
 
 impl fmt::Display for Escaped<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let mut buf = String::new();
         for c in self.0.chars() {
-            if c.is_control() {
+            if escaped(c) {
                 buf.extend(c.escape_default());
             } else {
                 buf.push(c);

@@ -260,6 +260,27 @@ pub struct ErrorStats {
     pub seed: u64,
 }
 
+impl ErrorStats {
+    /// The rule for what a file states about its own error (docs/lut-format.md §3): max and
+    /// RMS finite and ≥ 0 (−0 counts as 0), and RMS ≤ max (a root mean square never exceeds
+    /// the largest term). Checked at parse and by the writer, so a reader never sees a claim
+    /// that cannot be re-checked; the error names the first rule that fails. (A sample count
+    /// of 0 is accepted: `lut verify` measures at least one point whatever it says.)
+    pub fn check(&self) -> Result<(), crate::LutError> {
+        let bad = |field| Err(crate::LutError::BadErrorStats { field });
+        if !(self.max_abs.is_finite() && self.max_abs >= 0.0) {
+            return bad("max |error| is not a finite number >= 0");
+        }
+        if !(self.rms.is_finite() && self.rms >= 0.0) {
+            return bad("RMS error is not a finite number >= 0");
+        }
+        if self.rms > self.max_abs {
+            return bad("RMS error exceeds max |error|");
+        }
+        Ok(())
+    }
+}
+
 /// The decoded header (without the magic and version, which are always [`MAGIC`] and
 /// [`FORMAT_VERSION`]). `checksum` is the CRC-32 of the encoded header bytes that precede it
 /// followed by the whole payload; the writer fills it in.

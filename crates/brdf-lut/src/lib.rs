@@ -26,6 +26,7 @@ mod error;
 mod f16;
 mod header;
 mod kernel;
+pub mod limits;
 mod lookup;
 mod tables;
 mod view;

@@ -101,7 +101,7 @@ pub(crate) fn check_header(h: &Header<'_>) -> Result<(), LutError> {
     if !ok {
         return Err(I("axis or channel count does not fit the table kind"));
     }
-    Ok(())
+    h.error.check()
 }
 
 /// Magic and version; the reader positioned after them.

@@ -37,6 +37,14 @@ fn default_out(input: &Path, ext: &str) -> PathBuf {
     PathBuf::from(name.with_extension(ext).file_name().unwrap_or_default())
 }
 
+/// `p` with `suffix` appended to its last component (`t.bin` → `t.bin.json`), byte for
+/// byte (no lossy conversion of a non-UTF-8 name).
+fn with_suffix(p: &Path, suffix: &str) -> PathBuf {
+    let mut s = p.as_os_str().to_os_string();
+    s.push(suffix);
+    PathBuf::from(s)
+}
+
 fn placement_formula(p: Placement) -> &'static str {
     match p {
         Placement::Endpoint => "s_i = i / (count - 1)",
@@ -74,14 +82,14 @@ pub fn run(a: ExportArgs) -> Result<()> {
         bail!("choose one of --png16, --raw-f16, --raw-f32");
     };
     let out = a.out.clone().unwrap_or_else(|| default_out(&a.file, ext));
-    let side_path = PathBuf::from(format!("{}.json", out.display()));
+    let side_path = with_suffix(&out, ".json");
     let policy = crate::fsio::Policy::new(a.force, &[&a.file]);
     crate::fsio::check(
         &[
             &out,
             &side_path,
-            &PathBuf::from(format!("{}.glsl", out.display())),
-            &PathBuf::from(format!("{}.wgsl", out.display())),
+            &with_suffix(&out, ".glsl"),
+            &with_suffix(&out, ".wgsl"),
         ],
         &policy,
     )?;
@@ -231,8 +239,8 @@ pub fn run(a: ExportArgs) -> Result<()> {
         .collect();
     let fname = format!("sample_{fname}");
     let shaders = super::export_shaders::shaders(h, &fname, &decode);
-    let glsl_path = PathBuf::from(format!("{}.glsl", out.display()));
-    let wgsl_path = PathBuf::from(format!("{}.wgsl", out.display()));
+    let glsl_path = with_suffix(&out, ".glsl");
+    let wgsl_path = with_suffix(&out, ".wgsl");
     let shaders_json = match &shaders {
         Some(_) => serde_json::json!({
             "function": fname,

@@ -36,6 +36,7 @@ use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
 #[derive(clap::Args)]
+#[command(after_help = super::LIMITS_HELP)]
 pub struct Args {
     #[command(flatten)]
     set: GenArgs,
@@ -73,7 +74,7 @@ pub struct Args {
     /// linear or catmull-rom (default).
     #[arg(long)]
     interpolation: Option<String>,
-    /// Random points of the error measurement (default 2000).
+    /// Random points of the error measurement, 1..=200000 (default 2000).
     #[arg(long)]
     samples: Option<u32>,
     /// Seed of the error measurement.
@@ -110,8 +111,7 @@ struct AxisConfig {
     placement: Option<String>,
 }
 
-/// The largest configuration file read.
-const MAX_CONFIG_BYTES: u64 = 1 << 20;
+use brdf_lut::limits::{self, MAX_CONFIG_BYTES};
 
 pub fn run(a: Args) -> Result<()> {
     if a.config.is_none() && a.kind.is_none() {
@@ -127,6 +127,7 @@ pub fn run(a: Args) -> Result<()> {
         if extra {
             bail!("table options need --kind (or --config FILE) to say which table to build");
         }
+        super::check_set_limits(&a.set)?;
         return super::gen::generate(a.set);
     }
     if a.set.only.is_some() || a.set.check {
@@ -160,6 +161,7 @@ pub fn run(a: Args) -> Result<()> {
     let policy = crate::fsio::Policy::new(a.set.force, &inputs);
     crate::fsio::check(&[&out], &policy)?;
     spec.validate().map_err(|e| anyhow!("{e}"))?;
+    check_limits(&spec)?;
     let total: u64 = spec.axes.iter().map(|x| x.count as u64).product();
     let pb = progress_bar(total, out.display().to_string());
     let t0 = std::time::Instant::now();
@@ -191,6 +193,24 @@ pub fn run(a: Args) -> Result<()> {
     }
     crate::fsio::write_together(&[(out.clone(), t.bytes)], &policy)?;
     println!("wrote {summary}");
+    Ok(())
+}
+
+/// Every number of `spec` that sizes memory or time, against the tool's limits
+/// (`brdf_lut::limits`), before anything is allocated or computed.
+fn check_limits(spec: &Spec) -> Result<()> {
+    limits::check_samples("--samples", spec.samples as u64)?;
+    let counts: Vec<u64> = spec.axes.iter().map(|x| x.count as u64).collect();
+    let channels = if spec.kind == Kind::SplitSum { 2 } else { 1 };
+    let nodes = limits::check_grid(&counts, channels)?;
+    let kind = match spec.kind {
+        Kind::GPerSigma { .. } | Kind::GOverSigma => brdf_lut::TableKind::PassingFactor,
+        Kind::SplitSum => brdf_lut::TableKind::SplitSum,
+        Kind::Albedo => brdf_lut::TableKind::DirectionalAlbedo,
+        Kind::AverageAlbedo => brdf_lut::TableKind::AverageAlbedo,
+    };
+    let model = spec.model().map_err(|e| anyhow!("{e}"))?;
+    limits::check_generate(kind, model, nodes, spec.samples as u64)?;
     Ok(())
 }
 

@@ -11,7 +11,7 @@ use clap::Subcommand;
 use std::path::{Path, PathBuf};
 
 #[derive(clap::Args)]
-#[command(args_conflicts_with_subcommands = true)]
+#[command(args_conflicts_with_subcommands = true, after_help = LIMITS_HELP)]
 pub struct Args {
     #[command(subcommand)]
     cmd: Option<Cmd>,
@@ -57,8 +57,9 @@ enum Cmd {
     Verify {
         /// Files (default: every `*.blut` in assets/).
         files: Vec<PathBuf>,
-        /// Random points per table (default: as recorded in each header, at most
-        /// 200000; the work never depends on a number read from the file beyond that cap).
+        /// Random points per table, 1..=200000 and within the kind's time budget (default: as
+        /// recorded in each header, capped by the same limits, with a note when capped; see
+        /// `cargo xtask lut --help` and docs/lut-format.md, Limits).
         #[arg(long)]
         samples: Option<u32>,
         /// Seed of the random points (default: a different one from the generator's).
@@ -70,7 +71,8 @@ enum Cmd {
         #[arg(long, default_value_t = 0.1)]
         tolerance: f64,
     },
-    /// Print the header in words.
+    /// Print the header in words (strings escaped: control, format and bidirectional
+    /// characters are shown as `\u{…}`). FILE must be a regular file.
     Inspect { file: PathBuf },
     /// Export the node values for GPU engines, with a JSON sidecar.
     Export(export::ExportArgs),
@@ -92,7 +94,10 @@ pub fn assets_dir() -> PathBuf {
 
 pub fn run(a: Args) -> Result<()> {
     match a.cmd {
-        None => gen::generate(a.gen),
+        None => {
+            check_set_limits(&a.gen)?;
+            gen::generate(a.gen)
+        }
         Some(Cmd::Generate(g)) => generate::run(*g),
         Some(Cmd::Verify {
             files,
@@ -110,15 +115,76 @@ pub fn run(a: Args) -> Result<()> {
     }
 }
 
-/// Most random points `lut verify` evaluates per table (the direct kernels cost up to
-/// milliseconds per point; memory is a few hundred bytes per point).
-pub const MAX_VERIFY_SAMPLES: u32 = 200_000;
+/// The work-size limits, for `--help` (docs/lut-format.md, Limits).
+pub const LIMITS_HELP: &str = "Limits (checked before any work; docs/lut-format.md, Limits): \
+error-measurement points (--samples, a header's count) 1..=200000; nodes per axis 2..=65536; \
+nodes x channels of a table built <= 2^24; estimated work of one generation <= 600 s of one \
+core, of verifying one table <= 20 s of one core (more recorded points are verified at as \
+many as fit, with a note); input files <= 64 MiB (TOML 1 MiB), regular files only.";
+
+/// Checks the default set's overrides (`--res`) against the tool's limits before anything
+/// is computed (each selected asset's grid and estimated work).
+pub fn check_set_limits(g: &GenArgs) -> Result<()> {
+    let Some(res) = &g.res else { return Ok(()) };
+    let counts: Vec<u64> = res
+        .split('x')
+        .map(|t| t.trim().parse::<u64>())
+        .collect::<Result<_, _>>()
+        .with_context(|| format!("--res `{res}` is not like 64x64"))?;
+    let only = g.only.as_deref().unwrap_or("");
+    for a in brdf_lut::generate::default_set()
+        .iter()
+        .filter(|a| a.file.contains(only))
+    {
+        let (s, def) = (&a.spec, a.spec.kind.def());
+        if s.axes.len() != counts.len() {
+            continue; // `apply_overrides` names the mismatch.
+        }
+        let check = || -> Result<(), brdf_lut::limits::LimitError> {
+            let nodes = brdf_lut::limits::check_grid(&counts, def.channels.len() as u64)?;
+            let model = s.model().unwrap_or(brdf_lut::Model::ModifiedG);
+            brdf_lut::limits::check_generate(def.table, model, nodes, s.samples as u64)
+        };
+        check().map_err(|e| anyhow::anyhow!("{}: --res {res}: {e}", a.file))?;
+    }
+    Ok(())
+}
+
+/// How many points `lut verify` measures on a table: `--samples`, else the header's count,
+/// within the tool's limits (a count that does not fit the kind's time budget: an error for
+/// `--samples`, a note and the budget's count for the header's).
+fn verify_points(name: &str, h: &brdf_lut::Header<'_>, samples: Option<u32>) -> Result<u32> {
+    use brdf_lut::limits;
+    let cap = limits::max_verify_points(h.kind, h.generator.model);
+    let cost = limits::cost_per_point_us(h.kind, h.generator.model);
+    let budget = limits::MAX_VERIFY_SECONDS;
+    if let Some(n) = samples {
+        if n > cap {
+            bail!(
+                "{name}: --samples {n}: a {:?} table of model {:?} costs about {cost} us a \
+                 point; at most {cap} points fit `lut verify`'s budget of {budget} s of one core \
+                 (docs/lut-format.md, Limits)",
+                h.kind,
+                h.generator.model
+            );
+        }
+        return Ok(n);
+    }
+    let recorded = h.error.samples;
+    let n = recorded.clamp(1, cap);
+    if n < recorded {
+        eprintln!(
+            "note: {name}: verifying {n} of the {recorded} recorded points (about {cost} us a \
+             point for a {:?} table; the limit is {budget} s of one core per table)",
+            h.kind
+        );
+    }
+    Ok(n)
+}
 
 fn verify(files: Vec<PathBuf>, samples: Option<u32>, seed: u64, tolerance: f64) -> Result<()> {
     if let Some(n) = samples {
-        if n == 0 || n > MAX_VERIFY_SAMPLES {
-            bail!("--samples must be in 1..={MAX_VERIFY_SAMPLES}, got {n}");
-        }
+        brdf_lut::limits::check_samples("--samples", n as u64)?;
     }
     if !(tolerance.is_finite() && tolerance >= 0.0) {
         bail!("--tolerance must be a finite number >= 0");
@@ -131,17 +197,20 @@ fn verify(files: Vec<PathBuf>, samples: Option<u32>, seed: u64, tolerance: f64) 
     let mut rows = Vec::new();
     let mut worse = Vec::new();
     for f in &files {
-        // Size-capped read (an endless file such as /dev/zero stops at the loader's cap).
+        // Size-capped read of a regular file; the parser rejects error statistics that are
+        // not finite and >= 0, so `recorded` is a claim that can be checked.
         let lut = crate::fsio::load_lut(f)?;
         let recorded = lut.header().error;
-        let n = samples.unwrap_or(recorded.samples.clamp(1, MAX_VERIFY_SAMPLES));
-        let view = lut.view()?;
-        // Every table is measured with the kernels its header names (library generator).
-        let st = gen::measure(&view, n, seed);
         let name = f.file_name().map_or_else(
             || f.display().to_string(),
             |s| s.to_string_lossy().into_owned(),
         );
+        let view = lut.view()?;
+        let h = view.header();
+        let n = verify_points(&name, h, samples)?;
+        eprintln!("verifying {name}: {n} points");
+        // Every table is measured with the kernels its header names (library generator).
+        let st = gen::measure(&view, n, seed);
         let limit = recorded.max_abs as f64 * (1.0 + tolerance) + 1e-6;
         if st.max_abs.is_nan() || st.max_abs as f64 > limit {
             worse.push(format!(
@@ -177,4 +246,27 @@ pub fn list_assets(dir: &Path) -> Result<Vec<PathBuf>> {
         bail!("no .blut files in {}", dir.display());
     }
     Ok(v)
+}
+
+#[cfg(test)]
+mod tests {
+    use brdf_lut::limits::*;
+
+    /// `--help` states the limits the code enforces.
+    #[test]
+    fn help_lists_the_limits() {
+        let h = super::LIMITS_HELP;
+        for n in [
+            format!("1..={MAX_SAMPLES}"),
+            format!("2..={MAX_NODES_PER_AXIS}"),
+            format!("2^{}", MAX_BUILD_VALUES.trailing_zeros()),
+            format!("{MAX_GENERATE_SECONDS} s"),
+            format!("{MAX_VERIFY_SECONDS} s"),
+            format!("{} MiB", brdf_lut::MAX_FILE_BYTES >> 20),
+            format!("TOML {} MiB", MAX_CONFIG_BYTES >> 20),
+        ] {
+            assert!(h.contains(&n), "{n} missing from: {h}");
+        }
+        assert_eq!(MAX_BUILD_VALUES, brdf_lut::generate::MAX_GENERATED_VALUES);
+    }
 }

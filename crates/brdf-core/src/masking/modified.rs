@@ -141,9 +141,16 @@ impl<T: Real, R: Rule> ModifiedG<T, R> {
         self.passing_cs(ct, st, ca, sa)
     }
 
-    /// M(θ, a) from cos θ, sin θ (sin θ ≥ 0) and cos a, sin a (cos a ≥ 0). Result in [0, 1];
-    /// 1 at θ = 0; at least ½ for every θ ≤ π/2 (a cos θ rounded below 0, as f32 cos(π/2)
-    /// is, counts as 0). NaN in, NaN out.
+    /// M(θ, a) from cos θ, sin θ (sin θ ≥ 0) and cos a, sin a (cos a ≥ 0). Result in [½, 1]
+    /// for every θ ≤ π/2 (a cos θ rounded below 0, as f32 cos(π/2) is, counts as 0); 1 at
+    /// θ = 0. NaN in, NaN out.
+    ///
+    /// The bound is exact, and enforced: lo = π/2 − θ ≥ 0, so the fully passing part
+    /// ∫_{−π/2}^{lo} p is at least ½ (p is even), and on the semi-passing range
+    /// γ + θ ≤ hi + θ ≤ π − (θ − a), so cos(γ + θ) ≥ −cos(θ − a) and r ≥ 0. The computed sum
+    /// can round below ½ where the semi-passing part is far smaller than the rounding of
+    /// the normaliser (θ → π/2 with σ ≳ 1e4 in f64 or 1e6 in f32: M − ½ ≈ 3e-8 at σ = 1e4);
+    /// it is clamped to [½, 1], which only moves it toward the exact value.
     ///
     /// One rule-`R` integral of √(1 + u²)e^{−v²} over [0, v_hi] plus the closed-form
     /// correction described in the module docs. In f64 the integral is skipped where its
@@ -168,7 +175,7 @@ impl<T: Real, R: Rule> ModifiedG<T, R> {
             let u = s2 * v;
             (T::ONE + u * u).sqrt() * (-(v * v)).exp_bounded()
         });
-        (T::HALF + (q - corr) * self.dist.inv_2z()).clamp(T::ZERO, T::ONE)
+        (T::HALF + (q - corr) * self.dist.inv_2z()).clamp(T::HALF, T::ONE)
     }
 
     /// [`ModifiedG::passing_cs`] in f64: the same integrals, with two shortcuts that are
@@ -193,10 +200,10 @@ impl<T: Real, R: Rule> ModifiedG<T, R> {
         if vhi >= vc {
             // Semi-passing range up to the cut: the integral is the normaliser's own, Z
             // (by definition), so M = ½ + (Z − K)/(2Z) = 1 − K/(2Z).
-            return (T::ONE - corr * inv_2z).clamp(T::ZERO, T::ONE);
+            return (T::ONE - corr * inv_2z).clamp(T::HALF, T::ONE);
         }
         let q = R::integrate_slope_weight(vhi, s2 * s2);
-        (T::HALF + (q - corr) * inv_2z).clamp(T::ZERO, T::ONE)
+        (T::HALF + (q - corr) * inv_2z).clamp(T::HALF, T::ONE)
     }
 
     /// The semi-passing range's end v_hi (v_lo when the range is empty) and the correction K
