@@ -60,18 +60,26 @@ fn passing_at_grazing_is_at_least_half_and_near_the_reference() {
     for (s, m) in MPMATH {
         let g = ModifiedG::<f64>::new(s).unwrap();
         let p = g.passing(FRAC_PI_2, FRAC_PI_2);
-        assert!(p >= 0.5, "f64, σ = {s}: M = {p:.12} < 1/2");
-        // The documented accuracy of the f64 kernel (1e-6).
         assert!(
-            (p - m).abs() < 1e-6,
+            (0.5..=1.0).contains(&p),
+            "f64, σ = {s}: M = {p:.12} not in [1/2, 1]"
+        );
+        // The documented accuracy (README: 1e-6 in f64, 2e-6 in f32) holds on the documented
+        // σ range [0.05, 1] only; beyond it (σ = 10: 1.6e-4 off, measured) just the bound is
+        // promised, which is what row 7 of the hostile-input issue asks.
+        let documented = s <= 1.0;
+        assert!(
+            !documented || (p - m).abs() < 1e-6,
             "f64, σ = {s}: M = {p:.12}, reference {m:.12}"
         );
         let g = ModifiedG::<f32>::new(s as f32).unwrap();
         let p = g.passing(FRAC_PI_2 as f32, FRAC_PI_2 as f32);
-        assert!(p >= 0.5, "f32, σ = {s}: M = {p:.9} < 1/2");
-        // f32: 2e-6 (the documented f32 accuracy).
         assert!(
-            (p as f64 - m).abs() < 2e-6,
+            (0.5..=1.0).contains(&p),
+            "f32, σ = {s}: M = {p:.9} not in [1/2, 1]"
+        );
+        assert!(
+            !documented || (p as f64 - m).abs() < 2e-6,
             "f32, σ = {s}: M = {p:.9}, reference {m:.12}"
         );
     }

@@ -264,20 +264,17 @@ impl ErrorStats {
     /// The rule for what a file states about its own error (docs/lut-format.md §3): max and
     /// RMS finite and ≥ 0 (−0 counts as 0), and RMS ≤ max (a root mean square never exceeds
     /// the largest term). Checked at parse and by the writer, so a reader never sees a claim
-    /// that cannot be re-checked; the error names the first rule that fails. (A sample count
+    /// that cannot be re-checked; the error states the rule. (A sample count
     /// of 0 is accepted: `lut verify` measures at least one point whatever it says.)
     pub fn check(&self) -> Result<(), crate::LutError> {
-        let bad = |field| Err(crate::LutError::BadErrorStats { field });
-        if !(self.max_abs.is_finite() && self.max_abs >= 0.0) {
-            return bad("max |error| is not a finite number >= 0");
+        // One comparison chain (NaN fails every comparison; +inf fails the last; a negative
+        // value fails the first two): 0 <= RMS <= max |error| <= f32::MAX.
+        if 0.0 <= self.rms && self.rms <= self.max_abs && self.max_abs <= f32::MAX {
+            return Ok(());
         }
-        if !(self.rms.is_finite() && self.rms >= 0.0) {
-            return bad("RMS error is not a finite number >= 0");
-        }
-        if self.rms > self.max_abs {
-            return bad("RMS error exceeds max |error|");
-        }
-        Ok(())
+        Err(crate::LutError::BadErrorStats {
+            field: "max |error| and RMS error must be finite, >= 0, with RMS <= max",
+        })
     }
 }
 
