@@ -91,8 +91,8 @@ fn sizes_beyond_the_limits_are_refused_before_any_work() {
         ),
         (&["--res", "8x8", "--samples", "4294967295"], "1..=200000"),
         (&["--res", "8x8", "--samples", "0"], "at least 1 sample"),
-        // 2 channels x 4096 x 4096 = 2^25 values.
-        (&["--res", "4096x4096"], "values"),
+        // 2 channels x 8192 x 4096 = 2^26 values: over the 2^25 limit.
+        (&["--res", "8192x4096"], "values"),
         // Within the value limit, far beyond the time budget (2^23 split-sum nodes).
         (
             &["--res", "4096x2048", "--encoding", "f32"],

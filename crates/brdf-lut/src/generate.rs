@@ -62,8 +62,8 @@ pub const MU_MIN: f64 = 0.017_452_406_437_283_5;
 
 /// The largest table this generator builds (nodes × channels: a 4096² two-channel engine
 /// texture); larger requests are refused before any work. The values are held as f64
-/// (256 MiB at this limit).
-pub const MAX_GENERATED_VALUES: u64 = 1 << 25;
+/// (256 MiB at this limit). The tools' limit [`crate::limits::MAX_BUILD_VALUES`] itself.
+pub const MAX_GENERATED_VALUES: u64 = crate::limits::MAX_BUILD_VALUES;
 
 /// The generator's name in the headers of tables built to order.
 pub const TOOL: &str = "brdf-lut generate";

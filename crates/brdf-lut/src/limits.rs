@@ -18,9 +18,10 @@ use core::fmt;
 pub const MAX_SAMPLES: u32 = 200_000;
 /// Most nodes along one axis of a table a tool builds (the format's own limit).
 pub const MAX_NODES_PER_AXIS: u32 = MAX_AXIS_COUNT;
-/// Most stored values (nodes × channels) of a table a tool builds: 2²⁴, 64 MiB as f32
-/// (the format itself reads up to [`MAX_VALUES`](crate::MAX_VALUES)).
-pub const MAX_BUILD_VALUES: u64 = 1 << 24;
+/// Most stored values (nodes × channels) of a table a tool builds: 2²⁵, a 4096² two-channel
+/// engine texture (256 MiB as f64 while it is built; the format itself reads up to
+/// [`MAX_VALUES`](crate::MAX_VALUES)). The generator's own cap is this constant.
+pub const MAX_BUILD_VALUES: u64 = 1 << 25;
 /// Largest estimated work of one `lut generate` (nodes and error measurement), in seconds
 /// of one core ([`cost_per_point_us`]); the wall time is this over the number of cores.
 pub const MAX_GENERATE_SECONDS: u64 = 600;
@@ -161,9 +162,9 @@ mod tests {
         assert_eq!(check_grid(&[8, 8], 2), Ok(64));
         assert!(check_grid(&[1, 8], 2).is_err());
         assert!(check_grid(&[65_537, 2], 1).is_err());
-        // 4096 x 4096 x 2 channels = 2^25 values: over 2^24.
-        assert!(check_grid(&[4096, 4096], 2).is_err());
-        assert!(check_grid(&[4096, 4096], 1).is_ok());
+        // 8192 x 4096 x 2 channels = 2^26 values: over 2^25; a 4096² RG texture fits.
+        assert!(check_grid(&[8192, 4096], 2).is_err());
+        assert!(check_grid(&[4096, 4096], 2).is_ok());
         // Saturating: no overflow whatever the counts.
         assert!(check_grid(&[65_536, 65_536, 65_536], 4).is_err());
     }

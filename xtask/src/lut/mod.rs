@@ -118,7 +118,7 @@ pub fn run(a: Args) -> Result<()> {
 /// The work-size limits, for `--help` (docs/lut-format.md, Limits).
 pub const LIMITS_HELP: &str = "Limits (checked before any work; docs/lut-format.md, Limits): \
 error-measurement points (--samples, a header's count) 1..=200000; nodes per axis 2..=65536; \
-nodes x channels of a table built <= 2^24; estimated work of one generation <= 600 s of one \
+nodes x channels of a table built <= 2^25; estimated work of one generation <= 600 s of one \
 core, of verifying one table <= 20 s of one core (more recorded points are verified at as \
 many as fit, with a note); input files <= 64 MiB (TOML 1 MiB), regular files only.";
 
