@@ -50,7 +50,7 @@ pub const MIRROR_ALPHA: f64 = 1e-7;
 pub trait CapIntegrand<T: Real> {
     /// The support function: the integrand vanishes where s(h) ≤ 0 (for reflection n·l).
     fn support(&self, h: Vec3<T>) -> T;
-    /// (f/p)(h) in both channels, given s = [`CapIntegrand::support`](h) > 0.
+    /// (f/p)(h) in both channels, given s = `support(h)` > 0 ([`CapIntegrand::support`]).
     fn value(&self, h: Vec3<T>, s: T) -> [T; 2];
 }
 
