@@ -124,10 +124,7 @@ const OPTIONAL: &[(&str, &str)] = &[
 const MAX_ARCHIVE: u64 = 64 << 20;
 
 fn repo_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .parent()
-        .expect("xtask lives in the repo root")
-        .to_path_buf()
+    crate::fsio::workspace_root()
 }
 
 fn sha256_hex(bytes: &[u8]) -> String {

@@ -22,6 +22,20 @@ use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 use tempfile::{NamedTempFile, TempPath};
 
+/// The workspace root (the folder that holds `xtask/`): the one place xtask locates the
+/// repository from.
+pub fn workspace_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("xtask lives in the workspace root")
+        .to_path_buf()
+}
+
+/// The committed default assets, `assets/` under the workspace root.
+pub fn assets_dir() -> PathBuf {
+    workspace_root().join("assets")
+}
+
 /// What a command may do to existing files and folders.
 #[derive(Clone, Debug, Default)]
 pub struct Policy {
@@ -39,7 +53,7 @@ impl Policy {
         Self {
             force,
             inputs: inputs.iter().map(|p| p.to_path_buf()).collect(),
-            protected: Some(crate::lut::assets_dir()),
+            protected: Some(assets_dir()),
         }
     }
 }

@@ -15,7 +15,6 @@
 //! Everything goes into `target/msrv-<ver>`, so the main build stays untouched.
 
 use anyhow::{bail, Context, Result};
-use std::path::Path;
 use std::process::Command;
 
 /// The crates published to crates.io.
@@ -31,10 +30,7 @@ const NO_STD_TARGET: &str = "thumbv7em-none-eabihf";
 pub struct Args {}
 
 fn root() -> std::path::PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .parent()
-        .expect("xtask lives in the repo root")
-        .to_path_buf()
+    crate::fsio::workspace_root()
 }
 
 /// `1.81` → `1.81.0`; a full `1.81.2` stays.

@@ -19,12 +19,7 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> anyhow::Result<()> {
-    let root = a.root.unwrap_or_else(|| {
-        PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-            .parent()
-            .map(PathBuf::from)
-            .unwrap_or_else(|| PathBuf::from("."))
-    });
+    let root = a.root.unwrap_or_else(crate::fsio::workspace_root);
     if a.three_d {
         return run_3d(&root, a.quick);
     }

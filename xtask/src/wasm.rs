@@ -23,10 +23,7 @@ pub struct WasmArgs {
 
 /// The workspace root.
 pub fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .parent()
-        .expect("xtask lives in the workspace")
-        .to_path_buf()
+    crate::fsio::workspace_root()
 }
 
 /// Cargo's target directory (honours `CARGO_TARGET_DIR`).

@@ -1,22 +1,14 @@
 //! `cargo xtask eval brdf` end to end: the binary is run on CSV input and its output is
 //! checked against closed forms written out here, and its errors against bad input.
 
-use std::io::Write;
-use std::process::{Command, Output, Stdio};
+use std::process::Output;
 
+mod common;
+use common::stderr;
+
+/// `cargo xtask eval brdf args` with `stdin` as input.
 fn run(args: &[&str], stdin: &str) -> Output {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_xtask"))
-        .args(["eval", "brdf"])
-        .args(args)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("xtask runs");
-    // The binary may exit on a bad argument before reading its input: a broken pipe here
-    // is expected then.
-    let _ = child.stdin.take().unwrap().write_all(stdin.as_bytes());
-    child.wait_with_output().unwrap()
+    common::xtask_stdin(&[&["eval", "brdf"], args].concat(), stdin)
 }
 
 fn rows(o: &Output) -> Vec<Vec<f64>> {
@@ -26,10 +18,6 @@ fn rows(o: &Output) -> Vec<Vec<f64>> {
     lines
         .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
         .collect()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8(o.stderr.clone()).unwrap()
 }
 
 #[test]

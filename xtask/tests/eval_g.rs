@@ -1,28 +1,14 @@
 //! `cargo xtask eval g` end to end: values against the independent reference, the error path.
 
 use brdf_tests::reference::RefDensity;
-use std::io::Write;
-use std::process::{Command, Stdio};
 
+mod common;
+
+/// `cargo xtask eval g args` with `input` on stdin: (success, stdout, stderr).
 fn run(args: &[&str], input: &str) -> (bool, String, String) {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_xtask"))
-        .args(["eval", "g"])
-        .args(args)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    // The tool may reject its arguments and exit before reading any input; the pipe is then
-    // closed and this write fails with EPIPE. That is the tool's correct behaviour, so the
-    // write's result is not the test's business: the exit status and stderr are checked below.
-    let _ = child.stdin.take().unwrap().write_all(input.as_bytes());
-    let out = child.wait_with_output().unwrap();
-    (
-        out.status.success(),
-        String::from_utf8(out.stdout).unwrap(),
-        String::from_utf8(out.stderr).unwrap(),
-    )
+    let out = common::xtask_stdin(&[&["eval", "g"], args].concat(), input);
+    let text = |b: Vec<u8>| String::from_utf8(b).expect("UTF-8 output");
+    (out.status.success(), text(out.stdout), text(out.stderr))
 }
 
 #[test]

@@ -1,44 +1,10 @@
 //! The shared `eval` input reader end to end (line cap, BOM) and the range warnings of
 //! `eval dfg` and `eval g --lut`.
 
-use std::io::Write;
-use std::process::{Command, Output, Stdio};
+use std::process::Output;
 
-/// Runs `xtask args` with `input` on stdin, written from a thread. The tool may exit before
-/// reading everything (that is the behaviour under test for the line cap), so write errors
-/// (a closed pipe) are ignored: only the exit status and the output are checked.
-fn run_with(args: &[&str], input: impl Iterator<Item = Vec<u8>> + Send + 'static) -> Output {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_xtask"))
-        .args(args)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("xtask runs");
-    let mut stdin = child.stdin.take().unwrap();
-    let writer = std::thread::spawn(move || {
-        for chunk in input {
-            if stdin.write_all(&chunk).is_err() {
-                break;
-            }
-        }
-    });
-    let out = child.wait_with_output().unwrap();
-    writer.join().unwrap();
-    out
-}
-
-fn run(args: &[&str], input: &str) -> Output {
-    run_with(args, std::iter::once(input.as_bytes().to_vec()))
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
+mod common;
+use common::{stderr, stdout, xtask_stdin as run, xtask_with as run_with};
 
 /// The (A, B) columns of `eval dfg` output rows.
 fn ab(o: &Output) -> Vec<(f64, f64)> {

@@ -2,23 +2,16 @@
 //! exported texture at the table's own values.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
 
-fn assets() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets")
-}
+mod common;
+use common::assets;
 
 /// Exports `asset` with `fmt` into a fresh temp dir; returns the dir and the output path.
 fn export(asset: &str, fmt: &str, out: &str) -> (tempfile::TempDir, PathBuf) {
     let d = tempfile::tempdir().unwrap();
-    let o = Command::new(env!("CARGO_BIN_EXE_xtask"))
-        .args(["lut", "export"])
-        .arg(assets().join(asset))
-        .args([fmt, "-o", out])
-        .current_dir(d.path())
-        .stdin(Stdio::null())
-        .output()
-        .unwrap();
+    let input = assets().join(asset);
+    let input = input.to_str().expect("UTF-8 path");
+    let o = common::xtask(&["lut", "export", input, fmt, "-o", out], d.path());
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let p = d.path().join(out);
     (d, p)

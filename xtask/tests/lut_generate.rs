@@ -3,25 +3,14 @@
 
 use brdf_lut::{Encoding, Model, Placement, Warp};
 use std::path::Path;
-use std::process::{Command, Output, Stdio};
+use std::process::Output;
 
+mod common;
+use common::{fails_with, stderr as err};
+
+/// `cargo xtask lut generate args` in `cwd`.
 fn xtask(args: &[&str], cwd: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_xtask"))
-        .args(["lut", "generate"])
-        .args(args)
-        .current_dir(cwd)
-        .stdin(Stdio::null())
-        .output()
-        .expect("xtask runs")
-}
-
-fn err(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn fails_with(o: &Output, text: &str) {
-    assert!(!o.status.success(), "expected failure: {}", err(o));
-    assert!(err(o).contains(text), "wanted `{text}` in: {}", err(o));
+    common::xtask(&[&["lut", "generate"], args].concat(), cwd)
 }
 
 #[test]
@@ -222,11 +211,7 @@ fn verify_uses_the_model_of_a_table_built_to_order() {
         d.path(),
     );
     assert!(o.status.success(), "{}", err(&o));
-    let v = Command::new(env!("CARGO_BIN_EXE_xtask"))
-        .args(["lut", "verify", "eb.blut", "--samples", "300"])
-        .current_dir(d.path())
-        .output()
-        .unwrap();
+    let v = common::xtask(&["lut", "verify", "eb.blut", "--samples", "300"], d.path());
     assert!(v.status.success(), "{}", err(&v));
     let out = String::from_utf8_lossy(&v.stdout).into_owned();
     let row = out.lines().find(|l| l.starts_with("eb.blut")).unwrap();

@@ -6,40 +6,14 @@
 
 use brdf_lut::{Crc32, Header, LutView};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-fn xtask(args: &[&str], cwd: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_xtask"))
-        .args(args)
-        .current_dir(cwd)
-        .stdin(Stdio::null())
-        .output()
-        .expect("xtask runs")
-}
-
-fn err(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn fails_with(o: &Output, text: &str) {
-    assert!(!o.status.success(), "expected failure: {}", err(o));
-    assert!(err(o).contains(text), "wanted `{text}` in: {}", err(o));
-}
-
-fn listing(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    v.sort();
-    v
-}
+mod common;
+use common::{fails_with, listing, stderr as err, xtask};
+use std::process::{Command, Stdio};
 
 fn asset(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../assets")
-        .join(name)
+    common::assets().join(name)
 }
 
 /// `bytes` (a valid table) with its header replaced by `edit(header)`, re-encoded by the

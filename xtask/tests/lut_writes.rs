@@ -3,39 +3,16 @@
 //! `xtask/src/fsio.rs`.)
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
 
-fn xtask(args: &[&str], cwd: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_xtask"))
-        .args(args)
-        .current_dir(cwd)
-        .stdin(Stdio::null())
-        .output()
-        .expect("xtask runs")
-}
-
-fn err(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn assets() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets")
-}
+mod common;
+use common::{assets, listing, stderr as err, xtask};
+use std::process::{Command, Stdio};
 
 /// A small committed table copied into `dir` under `name`.
 fn input(dir: &Path, name: &str) -> PathBuf {
     let p = dir.join(name);
     std::fs::copy(assets().join("kc_eavg_ggx.blut"), &p).unwrap();
     p
-}
-
-fn listing(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    v.sort();
-    v
 }
 
 #[test]

@@ -125,6 +125,30 @@ fn map2_sqrt<T: BatchReal>(
     }
 }
 
+/// `out[k] = f(d[k])` over dot-product pairs, after the length check.
+#[inline]
+fn map_dots<T: Real>(
+    d: DotsSoa<'_, T>,
+    out: &mut [T],
+    f: impl Fn(Dots<T>) -> T,
+) -> Result<(), BatchError> {
+    d.len_with(out.len())?;
+    for (o, dk) in out.iter_mut().zip(d.iter()) {
+        *o = f(dk);
+    }
+    Ok(())
+}
+
+/// `out[k] = f(a[k], b[k])`, after the length check.
+#[inline]
+fn map2<T: Copy>(a: &[T], b: &[T], out: &mut [T], f: impl Fn(T, T) -> T) -> Result<(), BatchError> {
+    same_len(&[a.len(), b.len(), out.len()])?;
+    for ((o, &x), &y) in out.iter_mut().zip(a).zip(b) {
+        *o = f(x, y);
+    }
+    Ok(())
+}
+
 /// Why a batch call was refused (nothing is written).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
@@ -223,11 +247,7 @@ pub fn g_modified<T: Real, R: Rule>(
     theta_r: &[T],
     out: &mut [T],
 ) -> Result<(), BatchError> {
-    same_len(&[theta_i.len(), theta_r.len(), out.len()])?;
-    for ((o, &ti), &tr) in out.iter_mut().zip(theta_i).zip(theta_r) {
-        *o = g.g(ti, tr);
-    }
-    Ok(())
+    map2(theta_i, theta_r, out, |ti, tr| g.g(ti, tr))
 }
 
 /// The modified G from dot products (reciprocal 3-D extension, [`ModifiedG::g_dots`]):
@@ -237,21 +257,13 @@ pub fn g_modified_dots<T: Real, R: Rule>(
     d: DotsSoa<'_, T>,
     out: &mut [T],
 ) -> Result<(), BatchError> {
-    d.len_with(out.len())?;
-    for (o, dk) in out.iter_mut().zip(d.iter()) {
-        *o = g.g_dots(dk);
-    }
-    Ok(())
+    map_dots(d, out, |dk| g.g_dots(dk))
 }
 
 /// Blinn's V-groove G (paper eq 4) from dot products:
 /// `out[k] = min(1, 2(n·h)(n·wo)/(wo·h), 2(n·h)(n·wi)/(wo·h))`, see [`masking::g_blinn_dots`].
 pub fn g_blinn_dots<T: Real>(d: DotsSoa<'_, T>, out: &mut [T]) -> Result<(), BatchError> {
-    d.len_with(out.len())?;
-    for (o, dk) in out.iter_mut().zip(d.iter()) {
-        *o = masking::g_blinn_dots(dk);
-    }
-    Ok(())
+    map_dots(d, out, |dk| masking::g_blinn_dots(dk))
 }
 
 /// Height-correlated Smith–Beckmann G = 1/(1 + Λ(θi) + Λ(θo)) (docs/conventions.md §6) for
@@ -262,11 +274,9 @@ pub fn g_smith_beckmann_correlated<T: Real>(
     m: T,
     out: &mut [T],
 ) -> Result<(), BatchError> {
-    same_len(&[cos_i.len(), cos_o.len(), out.len()])?;
-    for ((o, &ci), &co) in out.iter_mut().zip(cos_i).zip(cos_o) {
-        *o = masking::g_smith_beckmann_correlated(ci, co, m);
-    }
-    Ok(())
+    map2(cos_i, cos_o, out, |ci, co| {
+        masking::g_smith_beckmann_correlated(ci, co, m)
+    })
 }
 
 /// Height-correlated Smith–GGX G = 1/(1 + Λ(θi) + Λ(θo)), Λ = (√(1 + α² tan²θ) − 1)/2,
@@ -332,11 +342,7 @@ pub fn torrance_sparrow<T: Real, R: Rule>(
     d: DotsSoa<'_, T>,
     out: &mut [T],
 ) -> Result<(), BatchError> {
-    d.len_with(out.len())?;
-    for (o, dk) in out.iter_mut().zip(d.iter()) {
-        *o = ts.eval_dots(dk);
-    }
-    Ok(())
+    map_dots(d, out, |dk| ts.eval_dots(dk))
 }
 
 /// Any model's f(wi, wo) ([`Brdf::eval`], 1/sr per channel) over unit local-frame

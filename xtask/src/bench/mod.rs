@@ -123,7 +123,7 @@ fn harness_kernels(harness: &Path) -> Result<Vec<(String, usize, String)>> {
 }
 
 pub fn run(a: Args) -> Result<()> {
-    let root = super::lut::workspace_root();
+    let root = crate::fsio::workspace_root();
     let target = match std::env::var_os("CARGO_TARGET_DIR") {
         Some(t) => {
             let t = PathBuf::from(t);

@@ -109,7 +109,7 @@ pub fn write_set(dir: &Path, files: &[File], force: bool) -> Result<()> {
 }
 
 fn default_out(t: Target) -> PathBuf {
-    crate::lut::workspace_root()
+    crate::fsio::workspace_root()
         .join("target/lut-engine")
         .join(t.name())
 }

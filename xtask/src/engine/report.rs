@@ -281,7 +281,7 @@ pub const POINTS: usize = 4000;
 const SEED: u64 = 0x0E16_11E5;
 
 pub fn run(out: PathBuf, anchors: Option<PathBuf>, doc: Option<PathBuf>) -> Result<()> {
-    let root = crate::lut::workspace_root();
+    let root = crate::fsio::workspace_root();
     // Each engine's table from `--anchors`, else from the first default folder that has it.
     let anchor_dirs = match anchors {
         Some(a) => vec![a],

@@ -109,7 +109,7 @@ const COORD_TEXELS: f64 = 2e-4;
 ///   coordinate error [`COORD_TEXELS`], both times the spread of the four texels;
 /// - 1e-6 for the f32 blend and decode of values ≤ 1.
 pub fn prepare_native(dir: &Path) -> Result<()> {
-    let asset = crate::lut::assets_dir().join(NATIVE_ASSET);
+    let asset = crate::fsio::assets_dir().join(NATIVE_ASSET);
     std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
     let out = dir.join(NATIVE_EXPORT);
     export_in_process(&asset, &out)?;

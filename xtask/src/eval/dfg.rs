@@ -53,7 +53,7 @@ pub fn run(a: Args) -> Result<()> {
         let p = a
             .lut
             .clone()
-            .unwrap_or_else(|| crate::lut::assets_dir().join("dfg_ggx.blut"));
+            .unwrap_or_else(|| crate::fsio::assets_dir().join("dfg_ggx.blut"));
         bytes = crate::fsio::read_limited(&p, brdf_lut::MAX_FILE_BYTES)?;
         Some(
             brdf_lut::DfgTable::parse(&bytes)

@@ -160,7 +160,7 @@ pub fn run(a: Args) -> Result<()> {
         let p = a
             .lut_file
             .clone()
-            .unwrap_or_else(|| crate::lut::assets_dir().join("g_modified.blut"));
+            .unwrap_or_else(|| crate::fsio::assets_dir().join("g_modified.blut"));
         return run_lut(&p, conv);
     }
     match a.nodes {

@@ -11,10 +11,7 @@ pub const QEMU_TIMEOUT_S: u32 = 60;
 
 /// The repository root (xtask lives in it).
 pub(crate) fn repo_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .parent()
-        .expect("xtask lives in the repo root")
-        .to_path_buf()
+    crate::fsio::workspace_root()
 }
 
 pub(crate) fn ensure_qemu(root: &Path) -> Result<PathBuf> {

@@ -135,7 +135,7 @@ pub fn generate(g: GenArgs) -> Result<()> {
     print_table(&rows);
     println!("total generation time {:.1} s", t0.elapsed().as_secs_f64());
     if g.check {
-        let committed = g.out.clone().unwrap_or_else(super::assets_dir);
+        let committed = g.out.clone().unwrap_or_else(crate::fsio::assets_dir);
         return compare(&files, &committed);
     }
     println!("wrote {} files to {}", assets.len(), out.display());
@@ -178,7 +178,7 @@ fn write_target(g: &GenArgs, check_dir: Option<&Path>) -> Result<(PathBuf, crate
         return Ok((d.to_path_buf(), Policy::default()));
     }
     let modified = g.res.is_some() || g.encoding.is_some();
-    let assets = super::assets_dir();
+    let assets = crate::fsio::assets_dir();
     let out = match (&g.out, modified) {
         (Some(o), _) => o.clone(),
         (None, false) => assets.clone(),

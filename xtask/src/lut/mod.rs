@@ -80,18 +80,6 @@ enum Cmd {
     Engine(crate::engine::Args),
 }
 
-/// The workspace root (xtask's parent).
-pub fn workspace_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .parent()
-        .expect("xtask has a parent")
-        .to_path_buf()
-}
-
-pub fn assets_dir() -> PathBuf {
-    workspace_root().join("assets")
-}
-
 pub fn run(a: Args) -> Result<()> {
     match a.cmd {
         None => {
@@ -190,7 +178,7 @@ fn verify(files: Vec<PathBuf>, samples: Option<u32>, seed: u64, tolerance: f64) 
         bail!("--tolerance must be a finite number >= 0");
     }
     let files = if files.is_empty() {
-        list_assets(&assets_dir())?
+        list_assets(&crate::fsio::assets_dir())?
     } else {
         files
     };
