@@ -20,8 +20,10 @@
 //! not carry.
 
 mod containers;
+pub mod export;
 mod layouts;
 mod shaders;
+pub mod table_shaders;
 
 pub use containers::{half_bits, unorm16, unorm8};
 pub use layouts::{bevy, exr, filament, khronos, threejs};

@@ -2,7 +2,6 @@
 //! Format, readers and writer: the `brdf-lut` crate (`docs/lut-format.md`).
 
 mod export;
-mod export_shaders;
 mod gen;
 mod generate;
 

@@ -161,9 +161,9 @@ pub type Decode = Vec<(f32, f32)>;
 
 /// The sampling-function templates: a shared comment head, then one function per language
 /// (rendered one after the other: the workspace builds minijinja without `include`).
-const HEAD: &str = include_str!("../../templates/shaders/head.txt");
-const GLSL: &str = include_str!("../../templates/shaders/sampler.glsl");
-const WGSL: &str = include_str!("../../templates/shaders/sampler.wgsl");
+const HEAD: &str = include_str!("../templates/shaders/head.txt");
+const GLSL: &str = include_str!("../templates/shaders/sampler.glsl");
+const WGSL: &str = include_str!("../templates/shaders/sampler.wgsl");
 
 /// What a sampling function needs of one axis: its clamp range, t (warp) and u (placement)
 /// expressions, as shader source.
