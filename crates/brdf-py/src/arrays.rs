@@ -287,8 +287,8 @@ fn element_count(shape: &[usize], width: usize) -> PyResult<usize> {
         })
 }
 
-/// The result arrays: a [`SCALAR`] output has the broadcast shape, a width-`w` output the
-/// broadcast shape + `(w,)` (its components interleaved).
+/// The result arrays: a [`SCALAR`] output has the broadcast shape (a NumPy scalar when that
+/// is `()`), a width-`w` output the broadcast shape + `(w,)` (its components interleaved).
 fn assemble<'py, T: Float>(
     py: Python<'py>,
     shape: &[usize],
@@ -303,7 +303,14 @@ fn assemble<'py, T: Float>(
             if w != SCALAR {
                 sh.push(w);
             }
-            Ok(numpy::PyArray1::from_vec(py, v).reshape(sh)?.into_any())
+            let a = numpy::PyArray1::from_vec(py, v)
+                .reshape(&sh[..])?
+                .into_any();
+            if sh.is_empty() {
+                // A 0-d result is a NumPy scalar, as a ufunc returns.
+                return a.get_item(PyTuple::empty(py));
+            }
+            Ok(a)
         })
         .collect()
 }
@@ -388,7 +395,11 @@ fn run_typed<'py, T: Float, K: Kernel>(
     let shape = broadcast(&names, &shapes)?;
     let n = element_count(&shape, 1)?;
     // At least one axis, so that every view has lanes (a 0-d call is one element).
-    let shape1: Vec<usize> = if shape.is_empty() { vec![1] } else { shape.clone() };
+    let shape1: Vec<usize> = if shape.is_empty() {
+        vec![1]
+    } else {
+        shape.clone()
+    };
     let bviews: Vec<ArrayViewD<'_, T>> = comps
         .iter()
         .map(|(v, _)| {

@@ -31,7 +31,9 @@ fn texels(py: Python<'_>, n: usize) -> PyResult<SplitSumTexels> {
     match run_cancellable(py, move |p| split_sum_texels(n, p))? {
         Some(Ok(t)) => Ok(t),
         Some(Err(e)) => Err(lut_err(e)),
-        None => Err(lut_err("the engine table computation failed (internal error)")),
+        None => Err(lut_err(
+            "the engine table computation failed (internal error)",
+        )),
     }
 }
 
