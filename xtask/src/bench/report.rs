@@ -605,10 +605,22 @@ mod tests {
             "scalar_overhead_ns": 1100.0, "scalar_g_blinn_ns": 300.0
         });
         let md = render(Ok(b));
-        assert!(md.contains("| 500 ns / 400 ns = 1.25× | ≤ 1.3× | **met** |"), "{md}");
-        assert!(md.contains("| 475.0 µs / 500 ns = 950× | ≥ 1000× | **missed** |"), "{md}");
-        assert!(md.contains("| 1500 ns − 400 ns = 1100 ns | ≤ 1 µs | **missed** |"), "{md}");
-        assert!(md.contains("Python 3.11.7, NumPy 2.3.0, brdf_kernels 0.1.0"), "{md}");
+        assert!(
+            md.contains("| 500 ns / 400 ns = 1.25× | ≤ 1.3× | **met** |"),
+            "{md}"
+        );
+        assert!(
+            md.contains("| 475.0 µs / 500 ns = 950× | ≥ 1000× | **missed** |"),
+            "{md}"
+        );
+        assert!(
+            md.contains("| 1500 ns − 400 ns = 1100 ns | ≤ 1 µs | **missed** |"),
+            "{md}"
+        );
+        assert!(
+            md.contains("Python 3.11.7, NumPy 2.3.0, brdf_kernels 0.1.0"),
+            "{md}"
+        );
         assert!(!md.contains("Skipped"), "{md}");
     }
 
@@ -617,8 +629,14 @@ mod tests {
         let b = serde_json::json!({"python_ns": 500.0, "rust_ns": 400.0, "ratio": 1.25,
             "quad_ns": null, "quad_skipped": "No module named 'scipy'"});
         let md = render(Ok(b));
-        assert!(md.contains("not run (No module named 'scipy') | ≥ 1000× | not measured"), "{md}");
+        assert!(
+            md.contains("not run (No module named 'scipy') | ≥ 1000× | not measured"),
+            "{md}"
+        );
         let md = render(Err("pip install ./crates/brdf-py failed: no cargo".into()));
-        assert!(md.contains("Skipped in this run: pip install ./crates/brdf-py failed: no cargo."), "{md}");
+        assert!(
+            md.contains("Skipped in this run: pip install ./crates/brdf-py failed: no cargo."),
+            "{md}"
+        );
     }
 }
