@@ -257,7 +257,8 @@ fn run_modified<'py>(
 /// -------
 /// numpy.ndarray or float
 ///     G (or GM, GS, G) in the broadcast shape, float32 when every array argument is float32,
-///     float64 otherwise; a float for Python-number arguments.
+///     float64 otherwise (a NumPy scalar when that shape is ``()``); a Python float when
+///     every argument is a Python number.
 ///
 /// Raises
 /// ------
@@ -409,6 +410,13 @@ impl Kernel for Blinn {
 /// -------
 /// numpy.ndarray or float
 ///     G in [0, 1]; dtype as in :func:`g_modified`.
+///
+/// Raises
+/// ------
+/// ValueError
+///     Shapes that do not broadcast.
+/// TypeError
+///     An array of another kind than numbers (complex, strings, objects).
 #[pyfunction]
 pub fn g_blinn<'py>(
     py: Python<'py>,
@@ -433,6 +441,13 @@ pub fn g_blinn<'py>(
 /// -------
 /// numpy.ndarray or float
 ///     G in [0, 1]; dtype as in :func:`g_modified`.
+///
+/// Raises
+/// ------
+/// ValueError
+///     Shapes that do not broadcast.
+/// TypeError
+///     An array of another kind than numbers (complex, strings, objects).
 #[pyfunction]
 pub fn g_blinn_dots<'py>(
     py: Python<'py>,

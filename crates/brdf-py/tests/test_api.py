@@ -269,3 +269,17 @@ def test_gil_is_released_while_rust_computes():
     gaps = np.diff(stamps) if len(stamps) > 1 else np.array([span[0]])
     assert span[0] > 0.05, "the call is too short to tell"
     assert gaps.max() < 0.5 * span[0], (gaps.max(), span[0])
+
+
+def test_every_function_has_a_numpy_style_docstring_and_a_stub():
+    from pathlib import Path
+
+    stub = (Path(bk.__file__).parent / "_native.pyi").read_text()
+    assert (Path(bk.__file__).parent / "py.typed").exists()
+    funcs = [getattr(bk, n) for n in bk.__all__ if n not in ("__version__", "LutError", "Table")]
+    methods = [getattr(bk.Table, m) for m in ("load", "from_bytes", "save", "to_bytes", "lookup")]
+    for f in funcs + methods + [bk.Table.header]:
+        doc = f.__doc__ or ""
+        assert "Returns\n-------" in doc or "Raises\n------" in doc, f"{f}: {doc[:80]!r}"
+    for n in bk.__all__:
+        assert f"def {n}(" in stub or f"class {n}(" in stub or f"class {n}:" in stub or f"{n}:" in stub, n
