@@ -14,7 +14,6 @@ use pyo3::exceptions::{PyMemoryError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::{PyFloat, PyInt, PyTuple};
-use std::borrow::Cow;
 
 /// The two element types of the API.
 pub trait Float: Real + Element + Send + Sync + 'static {
@@ -34,7 +33,21 @@ impl Float for f64 {
 pub trait Kernel: Sync {
     /// Runs the kernel; an error text becomes `ValueError`.
     fn run<T: Float>(&self, inp: &[&[T]], out: &mut [&mut [T]]) -> Result<(), String>;
+    /// Elements per chunk (at most [`CHUNK`]): a kernel that costs microseconds per element
+    /// takes fewer, so that Ctrl-C is seen within a fraction of a second.
+    fn chunk(&self) -> usize {
+        CHUNK
+    }
 }
+
+/// Elements per chunk of an array call: the size of the temporaries (one chunk per input
+/// and output component, whatever the broadcast size) and the unit of work between two
+/// checks for signals.
+pub const CHUNK: usize = 65_536;
+
+/// The width of an output that is one number per element (shape = the broadcast shape); a
+/// width `w` ≥ 1 adds a last axis of length `w`.
+pub const SCALAR: usize = 0;
 
 /// One argument: its name (for messages), the object, and 1 (a number per element) or 3
 /// (a direction per element: the last axis has length 3).
@@ -213,65 +226,153 @@ fn components<'a, T: Float>(
     v
 }
 
-/// A component broadcast to `shape` as one contiguous slice: borrowed when it already is,
-/// else copied (or `MemoryError`).
-fn contiguous<'a, T: Float>(v: &'a ArrayViewD<'a, T>, shape: &[usize]) -> PyResult<Cow<'a, [T]>> {
-    let b = v
-        .broadcast(IxDyn(shape))
-        .ok_or_else(|| PyValueError::new_err("internal: broadcast failed"))?;
-    if v.shape() == shape {
-        if let Some(s) = v.as_slice() {
-            return Ok(Cow::Borrowed(s));
-        }
-    }
-    let n: usize = shape.iter().product();
-    let mut out = Vec::new();
-    out.try_reserve_exact(n)
-        .map_err(|_| PyMemoryError::new_err(format!("cannot allocate {n} {} values", T::DTYPE)))?;
-    out.extend(b.iter().copied());
-    Ok(Cow::Owned(out))
+/// Where one input component's values come from, chunk by chunk.
+enum Source<'a, T> {
+    /// Already contiguous in the broadcast shape: each chunk is a sub-slice, no copy.
+    Slice(&'a [T]),
+    /// Any other layout (strided, transposed, broadcast): read in logical (C) order, one
+    /// run of the last axis at a time, into a chunk-sized buffer.
+    Lanes(Lanes<'a, T>),
 }
 
-/// The width of an output that is one number per element (shape = the broadcast shape); a
-/// width `w` ≥ 1 adds a last axis of length `w`.
-pub const SCALAR: usize = 0;
+/// The lanes (runs along the last axis) of a broadcast view, and the position reached.
+struct Lanes<'a, T> {
+    iter: numpy::ndarray::iter::LanesIter<'a, T, IxDyn>,
+    lane: Option<numpy::ndarray::ArrayView1<'a, T>>,
+    at: usize,
+}
 
-/// The result arrays: the components of each output in turn; a [`SCALAR`] output has the
-/// broadcast shape, a width-`w` output the broadcast shape + `(w,)`.
+impl<'a, T: Copy> Lanes<'a, T> {
+    /// `view` must have at least one axis.
+    fn new(view: &'a ArrayViewD<'a, T>) -> Self {
+        Self {
+            iter: view.lanes(Axis(view.ndim() - 1)).into_iter(),
+            lane: None,
+            at: 0,
+        }
+    }
+
+    /// Appends the next `m` values to `buf` (fewer only when the view is exhausted).
+    fn read(&mut self, m: usize, buf: &mut Vec<T>) {
+        let mut left = m;
+        while left > 0 {
+            let lane = match &self.lane {
+                Some(l) if self.at < l.len() => l,
+                _ => match self.iter.next() {
+                    Some(l) => {
+                        self.at = 0;
+                        self.lane.insert(l)
+                    }
+                    None => return,
+                },
+            };
+            let k = left.min(lane.len() - self.at);
+            buf.extend((self.at..self.at + k).map(|j| lane[j]));
+            self.at += k;
+            left -= k;
+        }
+    }
+}
+
+/// The product of `shape`, or `MemoryError` when it does not fit in `usize`.
+fn element_count(shape: &[usize], width: usize) -> PyResult<usize> {
+    shape
+        .iter()
+        .try_fold(width.max(1), |n, &d| n.checked_mul(d))
+        .ok_or_else(|| {
+            PyMemoryError::new_err(format!(
+                "a result of shape {} × {width} does not fit in memory",
+                shape_text(shape)
+            ))
+        })
+}
+
+/// The result arrays: a [`SCALAR`] output has the broadcast shape (a NumPy scalar when that
+/// is `()`), a width-`w` output the broadcast shape + `(w,)` (its components interleaved).
 fn assemble<'py, T: Float>(
     py: Python<'py>,
     shape: &[usize],
     widths: &[usize],
-    outs: Vec<Vec<T>>,
+    finals: Vec<Vec<T>>,
 ) -> PyResult<Vec<Bound<'py, PyAny>>> {
-    let n: usize = shape.iter().product();
-    let mut it = outs.into_iter();
-    let mut res = Vec::new();
-    for &w in widths {
-        if w == SCALAR {
-            let v = it.next().unwrap_or_default();
-            res.push(
-                numpy::PyArray1::from_vec(py, v)
-                    .reshape(shape.to_vec())?
-                    .into_any(),
-            );
-        } else {
-            let parts: Vec<Vec<T>> = it.by_ref().take(w).collect();
-            let mut inter = alloc::<T>(n * w)?;
-            for (k, p) in parts.iter().enumerate() {
-                for (i, &x) in p.iter().enumerate() {
-                    inter[i * w + k] = x;
-                }
-            }
+    widths
+        .iter()
+        .zip(finals)
+        .map(|(&w, v)| {
             let mut sh = shape.to_vec();
-            sh.push(w);
-            res.push(numpy::PyArray1::from_vec(py, inter).reshape(sh)?.into_any());
-        }
-    }
-    Ok(res)
+            if w != SCALAR {
+                sh.push(w);
+            }
+            let a = numpy::PyArray1::from_vec(py, v)
+                .reshape(&sh[..])?
+                .into_any();
+            if sh.is_empty() {
+                // A 0-d result is a NumPy scalar, as a ufunc returns.
+                return a.get_item(PyTuple::empty(py));
+            }
+            Ok(a)
+        })
+        .collect()
 }
 
-/// Runs `k` over the broadcast arguments in `T`.
+/// Fills `out` (one chunk per component, outputs in turn) for elements `at..at + m`: the
+/// inputs are chunk slices (borrowed or read into `bufs`), a [`SCALAR`] output is written in
+/// place, a wider one into `tmp` and then interleaved into its result.
+#[allow(clippy::too_many_arguments)]
+fn run_chunk<T: Float, K: Kernel>(
+    k: &K,
+    sources: &mut [Source<'_, T>],
+    bufs: &mut [Vec<T>],
+    tmp: &mut [Vec<T>],
+    finals: &mut [Vec<T>],
+    widths: &[usize],
+    at: usize,
+    m: usize,
+) -> Result<(), String> {
+    let mut ins: Vec<&[T]> = Vec::with_capacity(sources.len());
+    for (src, buf) in sources.iter_mut().zip(bufs.iter_mut()) {
+        ins.push(match src {
+            Source::Slice(s) => &s[at..at + m],
+            Source::Lanes(l) => {
+                buf.clear();
+                l.read(m, buf);
+                &buf[..]
+            }
+        });
+    }
+    let mut tmp_it = tmp.iter_mut();
+    let mut outs: Vec<&mut [T]> = Vec::new();
+    for (&w, fin) in widths.iter().zip(finals.iter_mut()) {
+        if w == SCALAR {
+            outs.push(&mut fin[at..at + m]);
+        } else {
+            for t in tmp_it.by_ref().take(w) {
+                t.resize(m, T::NAN);
+                outs.push(&mut t[..]);
+            }
+        }
+    }
+    k.run(&ins, &mut outs)?;
+    drop(outs);
+    let mut t = tmp.iter();
+    for (&w, fin) in widths.iter().zip(finals.iter_mut()) {
+        if w == SCALAR {
+            continue;
+        }
+        for c in 0..w {
+            let Some(src) = t.next() else { break };
+            for (i, &x) in src.iter().enumerate() {
+                fin[(at + i) * w + c] = x;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Runs `k` over the broadcast arguments in `T`, [`Kernel::chunk`] elements at a time: the
+/// temporaries are one chunk per component whatever the broadcast size (only the result
+/// scales with it), the GIL is released while a chunk computes, and signals (Ctrl-C) are
+/// checked between chunks.
 fn run_typed<'py, T: Float, K: Kernel>(
     py: Python<'py>,
     args: &[Arg<'_, 'py>],
@@ -292,22 +393,56 @@ fn run_typed<'py, T: Float, K: Kernel>(
         })
         .collect();
     let shape = broadcast(&names, &shapes)?;
-    let n: usize = shape.iter().product();
-    let inputs: Vec<Cow<'_, [T]>> = comps
-        .iter()
-        .map(|(v, _)| contiguous(v, &shape))
-        .collect::<PyResult<_>>()?;
-    let mut outs: Vec<Vec<T>> = Vec::new();
-    for _ in 0..widths.iter().map(|&w| w.max(1)).sum::<usize>() {
-        outs.push(alloc::<T>(n)?);
-    }
-    let status = {
-        let ins: Vec<&[T]> = inputs.iter().map(|c| &c[..]).collect();
-        let mut os: Vec<&mut [T]> = outs.iter_mut().map(|o| &mut o[..]).collect();
-        py.detach(|| k.run(&ins, &mut os))
+    let n = element_count(&shape, 1)?;
+    // At least one axis, so that every view has lanes (a 0-d call is one element).
+    let shape1: Vec<usize> = if shape.is_empty() {
+        vec![1]
+    } else {
+        shape.clone()
     };
-    status.map_err(PyValueError::new_err)?;
-    assemble(py, &shape, widths, outs)
+    let bviews: Vec<ArrayViewD<'_, T>> = comps
+        .iter()
+        .map(|(v, _)| {
+            v.broadcast(IxDyn(&shape1))
+                .ok_or_else(|| PyValueError::new_err("internal: broadcast failed"))
+        })
+        .collect::<PyResult<_>>()?;
+    let mut sources: Vec<Source<'_, T>> = comps
+        .iter()
+        .zip(&bviews)
+        .map(|((v, _), b)| match v.as_slice() {
+            Some(s) if v.shape() == &shape[..] => Source::Slice(s),
+            _ => Source::Lanes(Lanes::new(b)),
+        })
+        .collect();
+    let mut finals = Vec::with_capacity(widths.len());
+    for &w in widths {
+        finals.push(alloc::<T>(element_count(&shape, w)?)?);
+    }
+    let size = k.chunk().clamp(1, CHUNK);
+    let mut bufs: Vec<Vec<T>> = sources.iter().map(|_| Vec::new()).collect();
+    let wide = widths.iter().filter(|&&w| w != SCALAR).sum::<usize>();
+    let mut tmp: Vec<Vec<T>> = (0..wide).map(|_| Vec::new()).collect();
+    let mut at = 0;
+    while at < n {
+        let m = size.min(n - at);
+        py.check_signals()?;
+        py.detach(|| {
+            run_chunk(
+                k,
+                &mut sources,
+                &mut bufs,
+                &mut tmp,
+                &mut finals,
+                widths,
+                at,
+                m,
+            )
+        })
+        .map_err(PyValueError::new_err)?;
+        at += m;
+    }
+    assemble(py, &shape, widths, finals)
 }
 
 /// Evaluates `k` on `args` with NumPy broadcasting and returns one object per output width
@@ -342,17 +477,25 @@ fn run_scalar<'py, K: Kernel>(
     for (v, a) in vals.iter_mut().zip(args) {
         *v = a.obj.extract::<f64>()?;
     }
-    let ins: Vec<&[f64]> = vals[..nin].chunks(1).collect();
+    let ins: [&[f64]; 8] = std::array::from_fn(|i| &vals[i..=i]);
     let mut outv = [f64::NAN; 8];
     let nout = widths.len().min(8);
     {
-        let mut os: Vec<&mut [f64]> = outv[..nout].chunks_mut(1).collect();
-        k.run(&ins, &mut os).map_err(PyValueError::new_err)?;
+        let mut it = outv.chunks_mut(1);
+        let mut os: [&mut [f64]; 8] = std::array::from_fn(|_| it.next().unwrap_or_default());
+        k.run(&ins[..nin], &mut os[..nout])
+            .map_err(PyValueError::new_err)?;
     }
     Ok(outv[..nout]
         .iter()
         .map(|&x| PyFloat::new(py, x).into_any())
         .collect())
+}
+
+/// The one result of a call with one output.
+pub fn single(mut v: Vec<Bound<'_, PyAny>>) -> PyResult<Bound<'_, PyAny>> {
+    v.pop()
+        .ok_or_else(|| PyValueError::new_err("internal: no result"))
 }
 
 /// One result, or a tuple of several.

@@ -2,12 +2,12 @@
 //! extension from dot products), Blinn's V-groove G and Smith's G, each a thin [`Kernel`]
 //! over `brdf_core::batch` or the scalar kernels of `brdf_core::masking`.
 
-use crate::arrays::{self, num, Float, Kernel, SCALAR};
+use crate::arrays::{self, dir, num, Float, Kernel, SCALAR};
 use brdf_core::batch::{self, DotsSoa};
-use brdf_core::masking::{self, Convention, ModifiedG};
+use brdf_core::masking::{self, Convention, GTerms, ModifiedG};
 use brdf_core::quadrature::{GaussLegendre, Rule, DEFAULT_NODES, NODE_COUNTS};
-use brdf_core::Dots;
 use brdf_core::ParamError;
+use brdf_core::{Dots, Vec3};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use std::any::{Any, TypeId};
@@ -70,13 +70,23 @@ fn convention(s: &str) -> PyResult<Convention> {
     }
 }
 
+/// What the arrays of a G call hold.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Input {
+    /// In-plane angles (θi, θr).
+    Angles,
+    /// Dot products (n·wi, n·wo, wi·wo).
+    Dots,
+    /// Directions wi, wo (x, y, z each) and, with `true`, a normal n (else n = +z).
+    Vectors(bool),
+}
+
 /// The modified G's inputs besides the arrays.
 struct Modified {
     sigma: f64,
     convention: Convention,
     nodes: usize,
-    /// From dot products (n·wi, n·wo, wi·wo) instead of angles (θi, θr).
-    dots: bool,
+    input: Input,
     /// Write GM, GS, G (three outputs) instead of G.
     terms: bool,
 }
@@ -121,7 +131,39 @@ fn sigma_error(sigma: f64, e: ParamError) -> String {
     format!("argument `sigma` = {sigma} is outside its range {range} ({e})")
 }
 
+/// GM, GS, G of one element of a [`Input::Vectors`] call: the vectors normalised as
+/// `ModifiedG::g_vectors` does, NaN when one is zero or not finite.
+fn vector_terms<T: Float, R: Rule>(g: &ModifiedG<T, R>, x: &[&[T]], k: usize) -> GTerms<T> {
+    let v = |c: usize| Vec3::new(x[c][k], x[c + 1][k], x[c + 2][k]).normalize();
+    let n = if x.len() == 9 {
+        v(6)
+    } else {
+        Some(Vec3::new(T::ZERO, T::ZERO, T::ONE))
+    };
+    match (v(0), v(3), n) {
+        (Some(wi), Some(wo), Some(n)) => g.terms_dots(Dots::from_vectors(wi, wo, n)),
+        _ => GTerms {
+            gm: T::NAN,
+            gs: T::NAN,
+            g: T::NAN,
+        },
+    }
+}
+
 impl Modified {
+    /// The elementwise kernel: `terms(k)` gives GM, GS, G of element k (used where
+    /// `brdf_core::batch` has no entry point for the input form).
+    fn each<T: Float>(out: &mut [&mut [T]], n: usize, terms: impl Fn(usize) -> GTerms<T>) {
+        for k in 0..n {
+            let t = terms(k);
+            match out {
+                [g] => g[k] = t.g,
+                [gm, gs, g] => (gm[k], gs[k], g[k]) = (t.gm, t.gs, t.g),
+                _ => {}
+            }
+        }
+    }
+
     fn with<T: Float, R: Rule + 'static>(
         &self,
         inp: &[&[T]],
@@ -131,9 +173,10 @@ impl Modified {
             .map_err(|e| sigma_error(self.sigma, e))?
             .with_convention(self.convention);
         let e = |e: batch::BatchError| e.to_string();
-        match (self.dots, self.terms, inp, out) {
-            (false, false, [ti, tr], [o]) => batch::g_modified(&g, ti, tr, o).map_err(e),
-            (true, false, [a, b, c], [o]) => {
+        let n = out.first().map_or(0, |o| o.len());
+        match (self.input, self.terms, inp, &mut *out) {
+            (Input::Angles, false, [ti, tr], [o]) => batch::g_modified(&g, ti, tr, o).map_err(e),
+            (Input::Dots, false, [a, b, c], [o]) => {
                 let d = DotsSoa {
                     n_i: a,
                     n_o: b,
@@ -141,18 +184,16 @@ impl Modified {
                 };
                 batch::g_modified_dots(&g, d, o).map_err(e)
             }
-            (false, true, [ti, tr], [gm, gs, gg]) => {
-                for k in 0..ti.len().min(tr.len()) {
-                    let t = g.terms(ti[k], tr[k]);
-                    (gm[k], gs[k], gg[k]) = (t.gm, t.gs, t.g);
-                }
+            (Input::Angles, _, [ti, tr], _) => {
+                Self::each(out, n, |k| g.terms(ti[k], tr[k]));
                 Ok(())
             }
-            (true, true, [a, b, c], [gm, gs, gg]) => {
-                for k in 0..a.len() {
-                    let t = g.terms_dots(Dots::new(a[k], b[k], c[k]));
-                    (gm[k], gs[k], gg[k]) = (t.gm, t.gs, t.g);
-                }
+            (Input::Dots, _, [a, b, c], _) => {
+                Self::each(out, n, |k| g.terms_dots(Dots::new(a[k], b[k], c[k])));
+                Ok(())
+            }
+            (Input::Vectors(_), _, x, _) if x.len() >= 6 => {
+                Self::each(out, n, |k| vector_terms(&g, x, k));
                 Ok(())
             }
             _ => Err("internal: argument count".into()),
@@ -167,7 +208,7 @@ impl Kernel for Modified {
 }
 
 /// Checks σ, the convention and the node count before any array work.
-fn modified(sigma: f64, conv: &str, nodes: usize, dots: bool, terms: bool) -> PyResult<Modified> {
+fn modified(sigma: f64, conv: &str, nodes: usize, input: Input, terms: bool) -> PyResult<Modified> {
     if let Err(e) = surface::<f64, GaussLegendre<DEFAULT_NODES>>(sigma) {
         return Err(PyValueError::new_err(sigma_error(sigma, e)));
     }
@@ -180,9 +221,19 @@ fn modified(sigma: f64, conv: &str, nodes: usize, dots: bool, terms: bool) -> Py
         sigma,
         convention: convention(conv)?,
         nodes,
-        dots,
+        input,
         terms,
     })
+}
+
+/// Runs a modified-G call: one output, or three with `terms`.
+fn run_modified<'py>(
+    py: Python<'py>,
+    k: &Modified,
+    args: &[arrays::Arg<'_, 'py>],
+) -> PyResult<Bound<'py, PyAny>> {
+    let widths: &[usize] = if k.terms { &[SCALAR; 3] } else { &[SCALAR] };
+    arrays::one_or_tuple(py, arrays::run(py, args, widths, k)?)
 }
 
 /// The paper's modified geometric attenuation factor G = min(GM, GS) (eqs 6–13).
@@ -206,7 +257,8 @@ fn modified(sigma: f64, conv: &str, nodes: usize, dots: bool, terms: bool) -> Py
 /// -------
 /// numpy.ndarray or float
 ///     G (or GM, GS, G) in the broadcast shape, float32 when every array argument is float32,
-///     float64 otherwise; a float for Python-number arguments.
+///     float64 otherwise (a NumPy scalar when that shape is ``()``); a Python float when
+///     every argument is a Python number.
 ///
 /// Raises
 /// ------
@@ -223,10 +275,8 @@ pub fn g_modified<'py>(
     nodes: usize,
     terms: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let k = modified(sigma, convention, nodes, false, terms)?;
-    let widths: &[usize] = if terms { &[SCALAR; 3] } else { &[SCALAR] };
-    let args = [num("theta_i", theta_i), num("theta_r", theta_r)];
-    arrays::one_or_tuple(py, arrays::run(py, &args, widths, &k)?)
+    let k = modified(sigma, convention, nodes, Input::Angles, terms)?;
+    run_modified(py, &k, &[num("theta_i", theta_i), num("theta_r", theta_r)])
 }
 
 /// The modified G from dot products: the reciprocal 3-D extension (shader form).
@@ -267,10 +317,59 @@ pub fn g_modified_dots<'py>(
     nodes: usize,
     terms: bool,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let k = modified(sigma, convention, nodes, true, terms)?;
-    let widths: &[usize] = if terms { &[SCALAR; 3] } else { &[SCALAR] };
-    let args = [num("n_i", n_i), num("n_o", n_o), num("i_o", i_o)];
-    arrays::one_or_tuple(py, arrays::run(py, &args, widths, &k)?)
+    let k = modified(sigma, convention, nodes, Input::Dots, terms)?;
+    run_modified(py, &k, &[num("n_i", n_i), num("n_o", n_o), num("i_o", i_o)])
+}
+
+/// The modified G from directions: the reciprocal 3-D extension of
+/// :func:`g_modified_dots` with the dot products taken from the vectors
+/// (``brdf_core::masking::ModifiedG::g_vectors``).
+///
+/// Parameters
+/// ----------
+/// wi, wo : array_like, shape (..., 3)
+///     Directions toward the light and the viewer, any length (normalised here); the leading
+///     shapes broadcast. A zero or non-finite vector gives NaN; a direction at or below the
+///     horizon gives 0.
+/// sigma : float
+///     RMS slope σ ∈ (0, 1e6].
+/// n : array_like, shape (..., 3), optional
+///     The surface normal (normalised here; default +z, the local frame), broadcast with
+///     wi and wo.
+/// convention : {"reciprocal", "printed"}
+///     As in :func:`g_modified`.
+/// nodes : int
+///     As in :func:`g_modified`.
+/// terms : bool
+///     Return (GM, GS, G) instead of G.
+///
+/// Returns
+/// -------
+/// numpy.ndarray
+///     G (or GM, GS, G) in the broadcast leading shape; float32 when every array argument is
+///     float32, float64 otherwise.
+///
+/// Raises
+/// ------
+/// ValueError
+///     As in :func:`g_modified`; a last axis that is not 3.
+#[pyfunction]
+#[pyo3(signature = (wi, wo, sigma, *, n=None, convention="reciprocal", nodes=10, terms=false))]
+#[allow(clippy::too_many_arguments)]
+pub fn g_modified_vectors<'py>(
+    py: Python<'py>,
+    wi: &Bound<'py, PyAny>,
+    wo: &Bound<'py, PyAny>,
+    sigma: f64,
+    n: Option<&Bound<'py, PyAny>>,
+    convention: &str,
+    nodes: usize,
+    terms: bool,
+) -> PyResult<Bound<'py, PyAny>> {
+    let k = modified(sigma, convention, nodes, Input::Vectors(n.is_some()), terms)?;
+    let mut args = vec![dir("wi", wi), dir("wo", wo)];
+    args.extend(n.map(|n| dir("n", n)));
+    run_modified(py, &k, &args)
 }
 
 /// Blinn's V-groove G (paper eq 4), from angles or from dot products.
@@ -311,6 +410,13 @@ impl Kernel for Blinn {
 /// -------
 /// numpy.ndarray or float
 ///     G in [0, 1]; dtype as in :func:`g_modified`.
+///
+/// Raises
+/// ------
+/// ValueError
+///     Shapes that do not broadcast.
+/// TypeError
+///     An array of another kind than numbers (complex, strings, objects).
 #[pyfunction]
 pub fn g_blinn<'py>(
     py: Python<'py>,
@@ -335,6 +441,13 @@ pub fn g_blinn<'py>(
 /// -------
 /// numpy.ndarray or float
 ///     G in [0, 1]; dtype as in :func:`g_modified`.
+///
+/// Raises
+/// ------
+/// ValueError
+///     Shapes that do not broadcast.
+/// TypeError
+///     An array of another kind than numbers (complex, strings, objects).
 #[pyfunction]
 pub fn g_blinn_dots<'py>(
     py: Python<'py>,
@@ -477,6 +590,7 @@ pub fn g_smith_correlated<'py>(
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(g_modified, m)?)?;
     m.add_function(wrap_pyfunction!(g_modified_dots, m)?)?;
+    m.add_function(wrap_pyfunction!(g_modified_vectors, m)?)?;
     m.add_function(wrap_pyfunction!(g_blinn, m)?)?;
     m.add_function(wrap_pyfunction!(g_blinn_dots, m)?)?;
     m.add_function(wrap_pyfunction!(g_smith_separable, m)?)?;

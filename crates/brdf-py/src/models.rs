@@ -107,6 +107,18 @@ struct ModelKernel {
     job: Job,
 }
 
+impl ModelKernel {
+    /// The model by name with its keyword parameters checked, for `job`.
+    fn new(model: &str, kw: Option<&Bound<'_, PyDict>>, job: Job) -> PyResult<Self> {
+        let spec = find(model)?;
+        Ok(Self {
+            spec,
+            flat: params(spec, kw)?,
+            job,
+        })
+    }
+}
+
 /// A unit vector from three components, or `None` (zero, non-finite).
 fn unit<T: Real>(x: &[&[T]], k: usize) -> Option<Vec3<T>> {
     Vec3::new(x[0][k], x[1][k], x[2][k]).normalize()
@@ -152,6 +164,15 @@ impl Kernel for ModelKernel {
         }
         Ok(())
     }
+
+    /// An albedo is a quadrature of a few hundred evaluations: smaller chunks, so that
+    /// Ctrl-C is seen within a fraction of a second.
+    fn chunk(&self) -> usize {
+        match self.job {
+            Job::Albedo => 256,
+            Job::Eval | Job::Sample => arrays::CHUNK,
+        }
+    }
 }
 
 /// Evaluates a catalogue model f(wi, wo) (1/sr per channel; the Dirac part of a model with
@@ -187,15 +208,8 @@ pub fn eval<'py>(
     wo: &Bound<'py, PyAny>,
     params: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let spec = find(model)?;
-    let k = ModelKernel {
-        spec,
-        flat: self::params(spec, params)?,
-        job: Job::Eval,
-    };
-    let mut r = arrays::run(py, &[dir("wi", wi), dir("wo", wo)], &[3], &k)?;
-    r.pop()
-        .ok_or_else(|| PyValueError::new_err("internal: no result"))
+    let k = ModelKernel::new(model, params, Job::Eval)?;
+    arrays::single(arrays::run(py, &[dir("wi", wi), dir("wo", wo)], &[3], &k)?)
 }
 
 /// Importance-samples a catalogue model.
@@ -236,12 +250,7 @@ pub fn sample<'py>(
     u: &Bound<'py, PyAny>,
     params: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let spec = find(model)?;
-    let k = ModelKernel {
-        spec,
-        flat: self::params(spec, params)?,
-        job: Job::Sample,
-    };
+    let k = ModelKernel::new(model, params, Job::Sample)?;
     let np = py.import("numpy")?;
     let ua = np.call_method1("asarray", (u,))?;
     let shape: Vec<usize> = ua.getattr("shape")?.extract()?;
@@ -289,15 +298,8 @@ pub fn albedo<'py>(
     wo: &Bound<'py, PyAny>,
     params: Option<&Bound<'py, PyDict>>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let spec = find(model)?;
-    let k = ModelKernel {
-        spec,
-        flat: self::params(spec, params)?,
-        job: Job::Albedo,
-    };
-    let mut r = arrays::run(py, &[dir("wo", wo)], &[3], &k)?;
-    r.pop()
-        .ok_or_else(|| PyValueError::new_err("internal: no result"))
+    let k = ModelKernel::new(model, params, Job::Albedo)?;
+    arrays::single(arrays::run(py, &[dir("wo", wo)], &[3], &k)?)
 }
 
 /// One parameter as a dict.

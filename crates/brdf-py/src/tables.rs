@@ -23,7 +23,7 @@ create_exception!(
      or checksum), or a table that cannot be built from its spec."
 );
 
-fn lut_err(e: impl std::fmt::Display) -> PyErr {
+pub(crate) fn lut_err(e: impl std::fmt::Display) -> PyErr {
     LutError::new_err(e.to_string())
 }
 
@@ -331,11 +331,15 @@ fn quiet_cancel_hook() {
 /// The unwinding payload of a cancelled build.
 struct Cancelled;
 
-/// Runs the generator on a worker thread; every 50 ms the calling thread takes the GIL and
-/// checks for signals (Ctrl-C). On a signal the workers stop at their next node (the
-/// progress callback unwinds with [`Cancelled`], which `std::thread::scope` passes on to
-/// the worker, where it is caught) and the signal's exception is raised.
-fn run_generate(py: Python<'_>, spec: Spec) -> PyResult<generate::Generated> {
+/// Runs `job` (a table computation taking a progress callback) on a worker thread; every
+/// 50 ms the calling thread takes the GIL and checks for signals (Ctrl-C). On a signal the
+/// workers stop at their next progress report (the callback unwinds with [`Cancelled`],
+/// which `std::thread::scope` passes on to the worker, where it is caught) and the signal's
+/// exception is raised. `Ok(None)`: the job panicked for another reason.
+pub(crate) fn run_cancellable<R: Send + 'static>(
+    py: Python<'_>,
+    job: impl FnOnce(&(dyn Fn(u64) + Sync)) -> R + Send + 'static,
+) -> PyResult<Option<R>> {
     quiet_cancel_hook();
     let stop = Arc::new(AtomicBool::new(false));
     let (tx, rx) = std::sync::mpsc::channel();
@@ -347,10 +351,8 @@ fn run_generate(py: Python<'_>, spec: Spec) -> PyResult<generate::Generated> {
                 std::panic::resume_unwind(Box::new(Cancelled));
             }
         };
-        let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            generate::generate(&spec, &progress)
-        }));
-        let _ = tx.send(r.map_err(|_| ()));
+        let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| job(&progress)));
+        let _ = tx.send(r.ok());
     });
     let mut rx = rx;
     loop {
@@ -359,11 +361,7 @@ fn run_generate(py: Python<'_>, spec: Spec) -> PyResult<generate::Generated> {
         match got {
             Ok(r) => {
                 let _ = worker.join();
-                return match r {
-                    Ok(Ok(g)) => Ok(g),
-                    Ok(Err(e)) => Err(lut_err(e)),
-                    Err(()) => Err(lut_err("the table generator failed (internal error)")),
-                };
+                return Ok(r);
             }
             Err(std::sync::mpsc::RecvTimeoutError::Timeout) => {
                 if let Err(e) = py.check_signals() {
@@ -372,14 +370,23 @@ fn run_generate(py: Python<'_>, spec: Spec) -> PyResult<generate::Generated> {
                     return Err(e);
                 }
             }
-            Err(_) => return Err(lut_err("the table generator stopped unexpectedly")),
+            Err(_) => return Err(lut_err("the table computation stopped unexpectedly")),
         }
     }
 }
 
-/// Writes `bytes` to `path` through a temporary file in the same folder (synced, then
-/// renamed into place): an error leaves any previous file untouched and no partial file.
-fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+/// The generator, interruptible ([`run_cancellable`]).
+fn run_generate(py: Python<'_>, spec: Spec) -> PyResult<generate::Generated> {
+    match run_cancellable(py, move |p| generate::generate(&spec, p))? {
+        Some(Ok(g)) => Ok(g),
+        Some(Err(e)) => Err(lut_err(e)),
+        None => Err(lut_err("the table generator failed (internal error)")),
+    }
+}
+
+/// Writes `bytes` to a temporary file beside `path` (same folder, so that a rename is
+/// atomic), synced; returns its path. On an error the temporary file is removed.
+pub(crate) fn write_temp(path: &Path, bytes: &[u8]) -> std::io::Result<PathBuf> {
     let dir = match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
         _ => PathBuf::from("."),
@@ -392,16 +399,28 @@ fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     let res = (|| {
         let mut f = std::fs::File::create(&tmp)?;
         f.write_all(bytes)?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, path)
+        f.sync_all()
     })();
-    if res.is_err() {
-        let _ = std::fs::remove_file(&tmp);
+    match res {
+        Ok(()) => Ok(tmp),
+        Err(e) => {
+            let _ = std::fs::remove_file(&tmp);
+            Err(e)
+        }
     }
-    res
 }
 
-/// A loaded, validated BLUT table.
+/// Writes `bytes` to `path` through a temporary file in the same folder (synced, then
+/// renamed into place): an error leaves any previous file untouched and no partial file.
+fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let tmp = write_temp(path, bytes)?;
+    std::fs::rename(&tmp, path).inspect_err(|_| {
+        let _ = std::fs::remove_file(&tmp);
+    })
+}
+
+/// A loaded, validated BLUT table (docs/lut-format.md): made by :func:`build_table`,
+/// :meth:`Table.load` or :meth:`Table.from_bytes`; immutable.
 #[pyclass(module = "brdf_kernels", frozen)]
 pub struct Table {
     lut: Lut,
@@ -494,6 +513,11 @@ impl Table {
     }
 
     /// The file's bytes.
+    ///
+    /// Returns
+    /// -------
+    /// bytes
+    ///     The whole BLUT file (header, payload, checksum), as :meth:`save` writes it.
     fn to_bytes<'py>(&self, py: Python<'py>) -> Bound<'py, PyBytes> {
         PyBytes::new(py, self.lut.bytes())
     }
@@ -502,6 +526,11 @@ impl Table {
     /// ``count``, ``lo``, ``hi``, ``warp``, ``placement``), ``channels``, ``encoding``,
     /// ``interpolation``, ``model``, ``convention``, ``sigma``, ``nodes``, ``tool``,
     /// ``max_error``, ``rms_error``, ``error_samples``, ``error_seed``, ``checksum``.
+    ///
+    /// Returns
+    /// -------
+    /// dict
+    ///     A new dict on every access (changing it does not change the table).
     #[getter]
     fn header<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let h = self.lut.header();
@@ -586,9 +615,7 @@ impl Table {
         let args: Vec<_> = coords.iter().zip(names).map(|(c, n)| num(n, c)).collect();
         let widths = [h.channels.len()];
         let k = Lookup { lut: &self.lut };
-        let mut r = arrays::run(py, &args, &widths, &k)?;
-        r.pop()
-            .ok_or_else(|| PyValueError::new_err("internal: no result"))
+        arrays::single(arrays::run(py, &args, &widths, &k)?)
     }
 
     fn __repr__(&self) -> String {

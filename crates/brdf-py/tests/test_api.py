@@ -23,6 +23,12 @@ def test_scalar_call_returns_float_and_equals_array_call():
     assert isinstance(g, float)
     assert g == bk.g_modified(np.array([0.5]), np.array([0.7]), 0.3)[0]
     assert isinstance(bk.g_blinn(0, 1), float)
+    # NumPy scalars and 0-d arrays give a NumPy scalar of the dtype rule, as ufuncs do.
+    g64 = bk.g_modified(np.float64(0.5), 0.7, 0.3)
+    assert type(g64) is np.float64 and g64 == g
+    g32 = bk.g_modified(np.array(0.5, np.float32), np.float32(0.7), 0.3)
+    assert type(g32) is np.float32
+    assert g32 == bk.g_modified(np.array([0.5], np.float32), np.array([0.7], np.float32), 0.3)[0]
 
 
 @pytest.mark.parametrize("sa,sb", [((4, 1), (3,)), ((2, 1, 5), (1, 3, 1)), ((), (6,)), ((0,), (1,))])
@@ -101,6 +107,47 @@ def test_results_in_shape_of_directions():
     assert bk.albedo("lambert", wo).shape == (5, 3)
     wi_s, w, pdf = bk.sample("ggx", wo, rng.uniform(size=(2, 5, 2)))
     assert wi_s.shape == (2, 5, 3) and w.shape == (2, 5, 3) and pdf.shape == (2, 5)
+
+
+def test_vectors_in_plane_equal_the_angle_form():
+    # Coplanar directions: the 3-D extension reduces to the in-plane G of the angles (θr > 0
+    # on the forward side: wo's tangential part opposite wi's). The two forms reach G through
+    # different trigonometry (angles vs dot products), so they agree to rounding: a few ulps
+    # of the cosines, times dG/dθ (below 10 here), well inside 1e-12.
+    ti, tr = 0.5, np.linspace(-1.5, 1.5, 61)
+    wi = np.array([np.sin(ti), 0.0, np.cos(ti)])
+    wo = np.stack([-np.sin(tr), np.zeros_like(tr), np.cos(tr)], axis=-1)
+    np.testing.assert_allclose(bk.g_modified_vectors(wi, wo, 0.3), bk.g_modified(ti, tr, 0.3), rtol=0, atol=1e-12)
+    # A rotated frame (normal, wi and wo rotated together) gives the same G, to rounding.
+    c, s = np.cos(0.7), np.sin(0.7)
+    rot = np.array([[1, 0, 0], [0, c, -s], [0, s, c]]) @ np.array([[c, 0, s], [0, 1, 0], [-s, 0, c]])
+    got = bk.g_modified_vectors(wi @ rot.T, wo @ rot.T, 0.3, n=rot @ [0.0, 0.0, 1.0])
+    np.testing.assert_allclose(got, bk.g_modified(ti, tr, 0.3), rtol=0, atol=1e-12)
+    # Lengths do not matter (normalised inside); terms as in the angle form.
+    gm, gs, g = bk.g_modified_vectors(3 * wi, 0.5 * wo, 0.3, terms=True)
+    gm2, gs2, g2 = bk.g_modified(ti, tr, 0.3, terms=True)
+    np.testing.assert_allclose(np.stack([gm, gs, g]), np.stack([gm2, gs2, g2]), rtol=0, atol=1e-12)
+
+
+def test_vectors_match_the_validation_crates_published_values():
+    # docs/validation-2d.json (the 3-D study of crates/brdf-validate) records, per cell
+    # (θi, θo, azimuth φ between them), the reciprocal 3-D extension's GM, GS and G as
+    # computed there, rounded to 4 decimals: agreement to half a unit of the 4th decimal
+    # checks the direction convention and the azimuthal part of the extension.
+    import json
+
+    from conftest import ROOT
+
+    data = json.loads((ROOT / "docs" / "validation-2d.json").read_text())
+    for sweep in data["sweeps"]:
+        c = sweep["cells"]
+        ti, to, ph = (np.radians([x[k] for x in c]) for k in ("theta_i", "theta_o", "phi"))
+        wi = np.stack([np.sin(ti), np.zeros_like(ti), np.cos(ti)], axis=-1)
+        wo = np.stack([np.sin(to) * np.cos(ph), np.sin(to) * np.sin(ph), np.cos(to)], axis=-1)
+        gm, gs, g = bk.g_modified_vectors(wi, wo, sweep["sigma"], terms=True)
+        for got, key in [(gm, "modified_gm"), (gs, "modified_gs")]:
+            np.testing.assert_allclose(got, [x[key] for x in c], rtol=0, atol=5e-5 + 1e-12)
+        np.testing.assert_allclose(g, [x["models"]["modified"] for x in c], rtol=0, atol=5e-5 + 1e-12)
 
 
 def test_terms_is_tuple_with_g_the_minimum():
@@ -196,15 +243,6 @@ def test_model_errors():
         bk.eval("ggx", [0, 0, 1], [0, 0, 1], alpha="x")
 
 
-def test_huge_request_raises_memory_error_not_abort():
-    # A broadcast of two length-2**31 views (no memory used by the inputs) asks for
-    # 2**62 results: refused with MemoryError before any work.
-    a = np.broadcast_to(np.float64(0.1), (2**31, 1))
-    b = np.broadcast_to(np.float64(0.2), (1, 2**31))
-    with pytest.raises(MemoryError):
-        bk.g_blinn(a, b)
-
-
 def test_gil_is_released_while_rust_computes():
     # While a long call runs in a worker thread, this thread keeps running Python: the
     # longest pause between its loop iterations stays well below the call's duration (with
@@ -231,3 +269,17 @@ def test_gil_is_released_while_rust_computes():
     gaps = np.diff(stamps) if len(stamps) > 1 else np.array([span[0]])
     assert span[0] > 0.05, "the call is too short to tell"
     assert gaps.max() < 0.5 * span[0], (gaps.max(), span[0])
+
+
+def test_every_function_has_a_numpy_style_docstring_and_a_stub():
+    from pathlib import Path
+
+    stub = (Path(bk.__file__).parent / "_native.pyi").read_text()
+    assert (Path(bk.__file__).parent / "py.typed").exists()
+    funcs = [getattr(bk, n) for n in bk.__all__ if n not in ("__version__", "LutError", "Table")]
+    methods = [getattr(bk.Table, m) for m in ("load", "from_bytes", "save", "to_bytes", "lookup")]
+    for f in funcs + methods + [bk.Table.header]:
+        doc = f.__doc__ or ""
+        assert "Returns\n-------" in doc or "Raises\n------" in doc, f"{f}: {doc[:80]!r}"
+    for n in bk.__all__:
+        assert f"def {n}(" in stub or f"class {n}(" in stub or f"class {n}:" in stub or f"{n}:" in stub, n

@@ -133,3 +133,29 @@ def test_eval_equals_rust_ref(rust_ref, tmp_path, dtype, model, params):
     got = bk.eval(model, wi, wo, **params)
     assert got.dtype == dtype
     assert_array_equal(got.ravel(), ref[0])
+
+
+def _vectors(n, seed):
+    """Unnormalised directions (lengths 0.1 … 3), some below the horizon, one zero vector
+    and one NaN component."""
+    rng = np.random.default_rng(seed)
+    w = rng.normal(size=(n, 3)) * rng.uniform(0.1, 3.0, (n, 1))
+    w[: n // 3, 2] = np.abs(w[: n // 3, 2])
+    w[5] = 0.0
+    w[7, 1] = np.nan
+    return w
+
+
+@pytest.mark.parametrize("dtype", [np.float32, np.float64])
+def test_vectors_equal_rust_ref(rust_ref, tmp_path, dtype):
+    wi, wo = _vectors(300, 21).astype(dtype), _vectors(300, 22).astype(dtype)
+    normal = np.random.default_rng(23).normal(size=(300, 3)).astype(dtype)
+    normal[:100] = [0.0, 0.0, 2.0]
+    ref = rust_ref("vectors", dtype, 0.3, [wi, wo, normal], 1, tmp=tmp_path)
+    got = bk.g_modified_vectors(wi, wo, 0.3, n=normal)
+    assert got.dtype == dtype and got.shape == (300,)
+    assert_array_equal(got, ref[0])
+    # The default normal is +z (the local frame).
+    up = np.broadcast_to(np.array([0.0, 0.0, 1.0], dtype), wi.shape)
+    ref_up = rust_ref("vectors", dtype, 0.3, [wi, wo, up], 1, tmp=tmp_path)
+    assert_array_equal(bk.g_modified_vectors(wi, wo, 0.3), ref_up[0])

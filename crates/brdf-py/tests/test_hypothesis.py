@@ -49,6 +49,25 @@ def test_g_dots_and_smith(a, b, c, w):
         assert in_unit_or_nan(bk.g_smith_correlated(a, b, w, distribution=dist))
 
 
+VECS = hnp.arrays(np.float64, st.tuples(st.integers(0, 8), st.just(3)), elements=ANY_FLOAT)
+
+
+@settings(max_examples=300, deadline=None)
+@given(VECS, VECS, VECS, st.floats(1e-3, 10), st.booleans())
+def test_g_vectors(wi, wo, n, sigma, with_normal):
+    k = min(len(wi), len(wo), len(n))
+    wi, wo, n = wi[:k], wo[:k], n[:k]
+    kw = {"n": n} if with_normal else {}
+    gm, gs, g = bk.g_modified_vectors(wi, wo, sigma, terms=True, **kw)
+    assert g.shape == (k,)
+    assert in_unit_or_nan(gm) and in_unit_or_nan(gs) and in_unit_or_nan(g)
+    # NaN where a vector has a NaN component (such a vector is not a direction).
+    bad = np.isnan(wi).any(axis=1) | np.isnan(wo).any(axis=1)
+    if with_normal:
+        bad |= np.isnan(n).any(axis=1)
+    assert np.all(np.isnan(g[bad]))
+
+
 MODELS = bk.models()
 DIRS = hnp.arrays(np.float64, st.tuples(st.integers(0, 8), st.just(3)), elements=st.floats(-1e3, 1e3))
 

@@ -63,6 +63,21 @@ def test_save_load_round_trip_and_no_temporary_left(tmp_path):
     assert bk.Table.from_bytes(p.read_bytes()).to_bytes() == t.to_bytes()
 
 
+def test_failed_save_leaves_nothing_half_written(tmp_path):
+    # The target is a non-empty folder: the temporary file is written, the rename onto the
+    # folder fails, and the temporary file is removed; the folder is untouched.
+    t = bk.build_table(SPECS[2])
+    target = tmp_path / "t.blut"
+    target.mkdir()
+    (target / "keep").write_bytes(b"x")
+    with pytest.raises(OSError):
+        t.save(target)
+    assert os.listdir(tmp_path) == ["t.blut"] and os.listdir(target) == ["keep"]
+    with pytest.raises(OSError):  # a folder that does not exist: nothing created
+        t.save(tmp_path / "missing" / "t.blut")
+    assert os.listdir(tmp_path) == ["t.blut"]
+
+
 def test_spec_out_writes_the_file(tmp_path):
     p = tmp_path / "o.blut"
     t = bk.build_table({**SPECS[2], "out": str(p)})

@@ -8,6 +8,8 @@ use brdf_bench::SIGMA;
 use brdf_core::quadrature::DEFAULT_NODES;
 use minijinja::{context, AutoEscape, Environment, UndefinedBehavior, Value};
 use std::collections::BTreeMap;
+use std::path::Path;
+use std::process::Command;
 
 const TEMPLATE: &str = include_str!("../../templates/benchmarks.md");
 
@@ -301,6 +303,7 @@ pub(super) fn render(r: &Report<'_>) -> Result<String> {
         kernel_target_rows => kernel_target_rows(r, per("dfg/lut_linear_f32"), per("dfg/karis_approx_f32"), peer_ns, direct64),
         g_points => a.g_points,
         dfg_points => a.dfg_points,
+        python => python_context(&python_bench(&crate::lut::workspace_root())),
         node_rows, table_rows, limits => Value::from_serialize(&limits), closed_rows, peer, dfg,
         model_rows, batch_rows, parse_rows, gen, cg, raw_rows,
     };
@@ -444,6 +447,122 @@ fn kernel_target_rows(
     rows
 }
 
+/// The Python package's interpreter: `.cache/python-venv` (made by `.ci/python.sh`) with
+/// `brdf_kernels` importable, built there from `crates/brdf-py` when it is not (`python3 -m
+/// venv`, then `pip install numpy ./crates/brdf-py`; needs cargo and PyPI).
+fn package_python(root: &Path) -> std::result::Result<std::path::PathBuf, String> {
+    let py = root.join(".cache/python-venv/bin/python");
+    let imports = |py: &Path| {
+        Command::new(py)
+            .args(["-c", "import brdf_kernels"])
+            .output()
+            .is_ok_and(|o| o.status.success())
+    };
+    if imports(&py) {
+        return Ok(py);
+    }
+    let run = |cmd: &mut Command, what: &str| -> std::result::Result<(), String> {
+        let o = cmd.output().map_err(|e| format!("{what}: {e}"))?;
+        if o.status.success() {
+            return Ok(());
+        }
+        let err = String::from_utf8_lossy(&o.stderr);
+        let last = err.lines().last().unwrap_or("").trim().to_string();
+        Err(format!("{what} failed: {last}"))
+    };
+    eprintln!("installing brdf_kernels into {}", py.display());
+    if !py.exists() {
+        run(
+            Command::new("python3")
+                .args(["-m", "venv"])
+                .arg(root.join(".cache/python-venv")),
+            "python3 -m venv",
+        )?;
+    }
+    run(
+        Command::new(&py)
+            .args(["-m", "pip", "install", "--quiet", "numpy"])
+            .arg(root.join("crates/brdf-py")),
+        "pip install ./crates/brdf-py",
+    )?;
+    if imports(&py) {
+        Ok(py)
+    } else {
+        Err("crates/brdf-py installed but `import brdf_kernels` fails".into())
+    }
+}
+
+/// Runs `crates/brdf-py/bench/bench.py --json` (the SciPy peer through `.cache/scipy-venv`
+/// when that exists) and returns its figures.
+fn python_bench(root: &Path) -> std::result::Result<serde_json::Value, String> {
+    eprintln!("== Python package");
+    let py = package_python(root)?;
+    let mut cmd = Command::new(&py);
+    cmd.arg(root.join("crates/brdf-py/bench/bench.py"))
+        .arg("--json")
+        .current_dir(root);
+    let peer = root.join(".cache/scipy-venv/bin/python3");
+    if peer.exists() {
+        cmd.arg("--peer-python").arg(peer);
+    }
+    let o = cmd.output().map_err(|e| format!("bench.py: {e}"))?;
+    if !o.status.success() {
+        let err = String::from_utf8_lossy(&o.stderr);
+        return Err(format!(
+            "bench.py failed: {}",
+            err.lines().last().unwrap_or("").trim()
+        ));
+    }
+    serde_json::from_slice(&o.stdout).map_err(|e| format!("unreadable bench.py output ({e})"))
+}
+
+/// The template's `python` object from bench.py's figures (ns per element or per call).
+fn python_context(b: &std::result::Result<serde_json::Value, String>) -> Value {
+    let v = match b {
+        Ok(v) => v,
+        Err(why) => return context! { ran => false, why => why },
+    };
+    let f = |k: &str| v[k].as_f64().filter(|x| x.is_finite());
+    let ns = |k: &str| f(k).map_or("–".into(), fmt_ns);
+    let judge = |ok: Option<bool>| match ok {
+        Some(true) => "**met**",
+        Some(false) => "**missed**",
+        None => "not measured",
+    };
+    let ratio = f("ratio");
+    let speedup = f("quad_speedup");
+    let overhead = f("scalar_overhead_ns");
+    let quad = match (f("quad_ns"), speedup) {
+        (Some(q), Some(x)) => format!("{} / {} = {x:.0}×", fmt_ns(q), ns("python_ns")),
+        _ => format!(
+            "not run ({})",
+            v["quad_skipped"].as_str().unwrap_or("no figure")
+        ),
+    };
+    context! {
+        ran => true,
+        versions => format!(
+            "Python {}, NumPy {}, brdf_kernels {}",
+            v["python"].as_str().unwrap_or("?"),
+            v["numpy"].as_str().unwrap_or("?"),
+            v["brdf_kernels"].as_str().unwrap_or("?")
+        ),
+        sigma => v["sigma"].to_string(),
+        pairs => v["pairs"].as_u64().unwrap_or(0),
+        reps => v["reps"].as_u64().unwrap_or(0),
+        quad_pairs => v["quad_pairs"].as_u64().unwrap_or(0),
+        py_ns => ns("python_ns"),
+        rust_ns => ns("rust_ns"),
+        ratio => ratio.map_or("–".into(), |x| format!("{x:.2}×")),
+        v_ratio => judge(ratio.map(|x| x <= 1.3)),
+        quad,
+        v_quad => judge(speedup.map(|x| x >= 1000.0)),
+        scalar => format!("{} − {} = {}", ns("scalar_g_modified_ns"), ns("rust_ns"), ns("scalar_overhead_ns")),
+        v_scalar => judge(overhead.map(|x| x <= 1000.0)),
+        blinn => ns("scalar_g_blinn_ns"),
+    }
+}
+
 /// Renders a Markdown template: no escaping, undefined names are errors, a block tag's own
 /// line break is dropped (so `{% if %}` lines leave no blank lines).
 pub(crate) fn fill(template: &str, ctx: Value) -> Result<String> {
@@ -457,4 +576,67 @@ pub(crate) fn fill(template: &str, ctx: Value) -> Result<String> {
     env.get_template("report.md")?
         .render(ctx)
         .context("rendering the report template")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The template's Python section alone.
+    fn python_section() -> &'static str {
+        let start = TEMPLATE.find("## Python package").expect("section");
+        let end = start + TEMPLATE[start..].find("\n## DFG").expect("next section");
+        &TEMPLATE[start..end]
+    }
+
+    fn render(b: std::result::Result<serde_json::Value, String>) -> String {
+        let ctx = context! { python => python_context(&b), dn => DEFAULT_NODES };
+        fill(python_section(), ctx).expect("renders")
+    }
+
+    #[test]
+    fn python_section_states_each_figure_and_judges_it_against_its_goal() {
+        // 1.25 ≤ 1.3 met; 950× < 1000× missed; 1,100 ns overhead > 1 µs missed.
+        let b = serde_json::json!({
+            "pairs": 1000000, "reps": 5, "sigma": 0.3, "python": "3.11.7",
+            "numpy": "2.3.0", "brdf_kernels": "0.1.0", "rust_ns": 400.0,
+            "python_ns": 500.0, "ratio": 1.25, "quad_ns": 475000.0, "quad_pairs": 64,
+            "quad_skipped": null, "quad_speedup": 950.0, "scalar_g_modified_ns": 1500.0,
+            "scalar_overhead_ns": 1100.0, "scalar_g_blinn_ns": 300.0
+        });
+        let md = render(Ok(b));
+        assert!(
+            md.contains("| 500 ns / 400 ns = 1.25× | ≤ 1.3× | **met** |"),
+            "{md}"
+        );
+        assert!(
+            md.contains("| 475.0 µs / 500 ns = 950× | ≥ 1000× | **missed** |"),
+            "{md}"
+        );
+        assert!(
+            md.contains("| 1500 ns − 400 ns = 1100 ns | ≤ 1 µs | **missed** |"),
+            "{md}"
+        );
+        assert!(
+            md.contains("Python 3.11.7, NumPy 2.3.0, brdf_kernels 0.1.0"),
+            "{md}"
+        );
+        assert!(!md.contains("Skipped"), "{md}");
+    }
+
+    #[test]
+    fn python_section_without_scipy_or_package_says_why() {
+        let b = serde_json::json!({"python_ns": 500.0, "rust_ns": 400.0, "ratio": 1.25,
+            "quad_ns": null, "quad_skipped": "No module named 'scipy'"});
+        let md = render(Ok(b));
+        assert!(
+            md.contains("not run (No module named 'scipy') | ≥ 1000× | not measured"),
+            "{md}"
+        );
+        let md = render(Err("pip install ./crates/brdf-py failed: no cargo".into()));
+        assert!(
+            md.contains("Skipped in this run: pip install ./crates/brdf-py failed: no cargo."),
+            "{md}"
+        );
+    }
 }

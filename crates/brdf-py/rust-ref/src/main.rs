@@ -4,6 +4,8 @@
 //! ```text
 //! brdf-py-ref g f32|f64 SIGMA IN OUT      IN: θi[n] θr[n] (radians); OUT: GM GS G Blinn [n each]
 //! brdf-py-ref dots f32|f64 SIGMA IN OUT   IN: n·i[n] n·o[n] i·o[n]; OUT: G Blinn [n each]
+//! brdf-py-ref vectors f32|f64 SIGMA IN OUT IN: wi[n][3] wo[n][3] normal[n][3]; OUT: G [n]
+//!                                          (ModifiedG::g_vectors; NaN where it gives None)
 //! brdf-py-ref smith f32|f64 WIDTH IN OUT  IN: cos_i[n] cos_o[n]; OUT: Beckmann sep, corr, GGX sep, corr
 //! brdf-py-ref eval f32|f64 MODEL IN OUT [KEY=NUMBER…]  IN: wi[n][3] wo[n][3] (normalised here); OUT: rgb[n][3]
 //! brdf-py-ref bench IN REPS               IN: θi[n] θr[n] f64; prints the best ns per element
@@ -92,6 +94,17 @@ fn dots<T: Elem>(a: &[String]) -> Result<(), String> {
     write(&a[2], &cols)
 }
 
+fn vectors<T: Elem>(a: &[String]) -> Result<(), String> {
+    let x = read::<T>(&a[1])?;
+    let n = x.len() / 9;
+    let g = ModifiedG::<T>::new(T::from_f64(num(&a[0])?)).map_err(|e| e.to_string())?;
+    let v = |k: usize| Vec3::new(x[3 * k], x[3 * k + 1], x[3 * k + 2]);
+    let col: Vec<T> = (0..n)
+        .map(|k| g.g_vectors(v(k), v(n + k), v(2 * n + k)).unwrap_or(T::NAN))
+        .collect();
+    write(&a[2], &[col])
+}
+
 fn smith<T: Elem>(a: &[String]) -> Result<(), String> {
     let x = read::<T>(&a[1])?;
     let n = x.len() / 2;
@@ -170,6 +183,7 @@ fn main() -> ExitCode {
     let r = match a.first().map(String::as_str) {
         Some("g") => typed(g::<f32>, g::<f64>),
         Some("dots") => typed(dots::<f32>, dots::<f64>),
+        Some("vectors") => typed(vectors::<f32>, vectors::<f64>),
         Some("smith") => typed(smith::<f32>, smith::<f64>),
         Some("eval") => typed(eval::<f32>, eval::<f64>),
         Some("bench") if a.len() == 3 => bench(&a[1..]),
