@@ -70,7 +70,12 @@ fn number(lo: u64, hi: u64, small: std::ops::RangeInclusive<u64>) -> BoxedStrate
         Just("-0".to_string()),
     ]
     .prop_map(|s| (s, Class::NotANumber));
-    let mut parts = vec![fits.boxed(), over.boxed(), wide.boxed(), not_a_number.boxed()];
+    let mut parts = vec![
+        fits.boxed(),
+        over.boxed(),
+        wide.boxed(),
+        not_a_number.boxed(),
+    ];
     if lo > 0 {
         parts.push(under.boxed());
         parts.push(zeros.boxed());

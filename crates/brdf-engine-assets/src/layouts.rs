@@ -239,10 +239,10 @@ fn finish(e: Engine, g: &SplitSumTexels, stem: &str, d: Described) -> Result<Vec
 }
 
 /// Absolute tolerance per channel asked of the reference integrals.
-const REFERENCE_TOL: f64 = 1e-10;
+const REFERENCE_TOL: f64 = 1e-8;
 /// Columns whose centre μ lies below this are all measured (the grazing columns, where the
 /// fixed rule is least accurate).
-const GRAZING_MU: f64 = 0.05;
+const GRAZING_MU: f64 = 0.025;
 
 /// The measured texels of an n × n table: (columns μ, rows r). Columns: every column whose
 /// centre μ < [`GRAZING_MU`], and 16 evenly spaced ones (k·(n − 1)/15, first and last

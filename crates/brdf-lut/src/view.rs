@@ -468,7 +468,15 @@ mod tests {
         let v = LutView::parse(&buf[..n]).unwrap();
         assert_eq!((v.node_value(1, 0), v.node_value(5, 0)), (0.5, 2.0));
         let wraps = (usize::MAX / 4).wrapping_add(2);
-        for flat in [6, 7, wraps, usize::MAX / 4, usize::MAX / 2, usize::MAX - 1, usize::MAX] {
+        for flat in [
+            6,
+            7,
+            wraps,
+            usize::MAX / 4,
+            usize::MAX / 2,
+            usize::MAX - 1,
+            usize::MAX,
+        ] {
             for ch in [0, 1, usize::MAX] {
                 assert!(v.node_value(flat, ch).is_nan(), "node {flat} channel {ch}");
             }

@@ -165,9 +165,8 @@ pub(super) unsafe fn gather_words<const N: usize, const R: usize, const W: usize
                 // SAFETY: register-only AVX2 (this function's contract: the processor
                 // supports AVX2); a safe call from Rust 1.87 on, the block is for 1.84.
                 #[allow(unused_unsafe)]
-                let o = unsafe {
-                    _mm256_add_epi32(v, _mm256_set1_epi32((o + 4 * j as u32) as i32))
-                };
+                let o =
+                    unsafe { _mm256_add_epi32(v, _mm256_set1_epi32((o + 4 * j as u32) as i32)) };
                 // SAFETY: the gathered words lie in the allocation at `base` (the
                 // contract), and the store writes lanes g..g + 8 < N of `w`.
                 unsafe {
@@ -602,68 +601,68 @@ mod wide8 {
         // reads at p + at and q + at = p + row + at lie in the allocation for every
         // at ≤ `limit`, which is checked for all eight offsets before any read.
         unsafe {
-        let (i0, f0) = cells(f, 0, _mm256_loadu_ps(x.as_ptr()));
-        let (i1, f1) = cells(f, 1, _mm256_loadu_ps(y.as_ptr()));
-        // Byte offset of node (i0, i1): 4·i0 + i1 · 2^row_shift, as in the scalar path.
-        let at = _mm256_add_epi32(
-            _mm256_slli_epi32::<2>(i0),
-            _mm256_sll_epi32(i1, _mm_cvtsi32_si128(i32::from(f.row_shift))),
-        );
-        if _mm256_movemask_epi8(_mm256_cmpgt_epi32(at, _mm256_set1_epi32(limit as i32))) != 0 {
-            return false;
-        }
-        let o: [u32; 8] = [
-            _mm256_extract_epi32::<0>(at) as u32,
-            _mm256_extract_epi32::<1>(at) as u32,
-            _mm256_extract_epi32::<2>(at) as u32,
-            _mm256_extract_epi32::<3>(at) as u32,
-            _mm256_extract_epi32::<4>(at) as u32,
-            _mm256_extract_epi32::<5>(at) as u32,
-            _mm256_extract_epi32::<6>(at) as u32,
-            _mm256_extract_epi32::<7>(at) as u32,
-        ];
-        let q = p.add(f.row as usize);
-        // Row words: node 0 (A₀ B₀) and node 1 (A₁ B₁) of each query, rows 0 and 1, in
-        // query order (the shuffles pick the even, then the odd words of queries
-        // 0 1 | 4 5 and 2 3 | 6 7).
-        let (a0, b0) = (rows4(p, &o, 0), rows4(p, &o, 2));
-        let (a1, b1) = (rows4(q, &o, 0), rows4(q, &o, 2));
-        let split = |a: __m256i, b: __m256i, imm: bool| {
-            let (a, b) = (_mm256_castsi256_ps(a), _mm256_castsi256_ps(b));
-            _mm256_castps_si256(if imm {
-                _mm256_shuffle_ps::<0b11_01_11_01>(a, b)
-            } else {
-                _mm256_shuffle_ps::<0b10_00_10_00>(a, b)
-            })
-        };
-        let words = [
-            [split(a0, b0, false), split(a0, b0, true)],
-            [split(a1, b1, false), split(a1, b1, true)],
-        ];
-        let low = _mm256_set1_epi32(0xffff);
-        for (c, o) in out.into_iter().enumerate() {
-            let num = |w: __m256i| {
-                if c == 0 {
-                    _mm256_and_si256(w, low)
-                } else {
-                    _mm256_srli_epi32::<16>(w)
-                }
-            };
-            // Along axis 0 per row (p₁ − p₀ formed exactly in integers), then axis 1, then
-            // offset + scale · v: the scalar path's operations in its order.
-            let r = words.map(|[n0, n1]| {
-                let (q0, q1) = (num(n0), num(n1));
-                let d = _mm256_cvtepi32_ps(_mm256_sub_epi32(q1, q0));
-                _mm256_add_ps(_mm256_cvtepi32_ps(q0), _mm256_mul_ps(f0, d))
-            });
-            let v = _mm256_add_ps(r[0], _mm256_mul_ps(f1, _mm256_sub_ps(r[1], r[0])));
-            let v = _mm256_add_ps(
-                _mm256_set1_ps(reader.offset[c]),
-                _mm256_mul_ps(_mm256_set1_ps(reader.scale[c]), v),
+            let (i0, f0) = cells(f, 0, _mm256_loadu_ps(x.as_ptr()));
+            let (i1, f1) = cells(f, 1, _mm256_loadu_ps(y.as_ptr()));
+            // Byte offset of node (i0, i1): 4·i0 + i1 · 2^row_shift, as in the scalar path.
+            let at = _mm256_add_epi32(
+                _mm256_slli_epi32::<2>(i0),
+                _mm256_sll_epi32(i1, _mm_cvtsi32_si128(i32::from(f.row_shift))),
             );
-            _mm256_storeu_ps(o.as_mut_ptr(), v);
-        }
-        true
+            if _mm256_movemask_epi8(_mm256_cmpgt_epi32(at, _mm256_set1_epi32(limit as i32))) != 0 {
+                return false;
+            }
+            let o: [u32; 8] = [
+                _mm256_extract_epi32::<0>(at) as u32,
+                _mm256_extract_epi32::<1>(at) as u32,
+                _mm256_extract_epi32::<2>(at) as u32,
+                _mm256_extract_epi32::<3>(at) as u32,
+                _mm256_extract_epi32::<4>(at) as u32,
+                _mm256_extract_epi32::<5>(at) as u32,
+                _mm256_extract_epi32::<6>(at) as u32,
+                _mm256_extract_epi32::<7>(at) as u32,
+            ];
+            let q = p.add(f.row as usize);
+            // Row words: node 0 (A₀ B₀) and node 1 (A₁ B₁) of each query, rows 0 and 1, in
+            // query order (the shuffles pick the even, then the odd words of queries
+            // 0 1 | 4 5 and 2 3 | 6 7).
+            let (a0, b0) = (rows4(p, &o, 0), rows4(p, &o, 2));
+            let (a1, b1) = (rows4(q, &o, 0), rows4(q, &o, 2));
+            let split = |a: __m256i, b: __m256i, imm: bool| {
+                let (a, b) = (_mm256_castsi256_ps(a), _mm256_castsi256_ps(b));
+                _mm256_castps_si256(if imm {
+                    _mm256_shuffle_ps::<0b11_01_11_01>(a, b)
+                } else {
+                    _mm256_shuffle_ps::<0b10_00_10_00>(a, b)
+                })
+            };
+            let words = [
+                [split(a0, b0, false), split(a0, b0, true)],
+                [split(a1, b1, false), split(a1, b1, true)],
+            ];
+            let low = _mm256_set1_epi32(0xffff);
+            for (c, o) in out.into_iter().enumerate() {
+                let num = |w: __m256i| {
+                    if c == 0 {
+                        _mm256_and_si256(w, low)
+                    } else {
+                        _mm256_srli_epi32::<16>(w)
+                    }
+                };
+                // Along axis 0 per row (p₁ − p₀ formed exactly in integers), then axis 1, then
+                // offset + scale · v: the scalar path's operations in its order.
+                let r = words.map(|[n0, n1]| {
+                    let (q0, q1) = (num(n0), num(n1));
+                    let d = _mm256_cvtepi32_ps(_mm256_sub_epi32(q1, q0));
+                    _mm256_add_ps(_mm256_cvtepi32_ps(q0), _mm256_mul_ps(f0, d))
+                });
+                let v = _mm256_add_ps(r[0], _mm256_mul_ps(f1, _mm256_sub_ps(r[1], r[0])));
+                let v = _mm256_add_ps(
+                    _mm256_set1_ps(reader.offset[c]),
+                    _mm256_mul_ps(_mm256_set1_ps(reader.scale[c]), v),
+                );
+                _mm256_storeu_ps(o.as_mut_ptr(), v);
+            }
+            true
         }
     }
 }
