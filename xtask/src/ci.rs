@@ -6,14 +6,16 @@
 //! tools (`.ci/install-web.sh`), QEMU (`cargo xtask firmware` runs `.ci/install-qemu.sh`), the
 //! MSRV toolchain (`rustup toolchain install`), SciPy for the benchmark's peer (a venv under
 //! `.cache/`, made by `cargo xtask bench`), the Python package's build and test tools (a venv
-//! under `.cache/`, made by `.ci/python.sh`).
+//! under `.cache/`, made by `.ci/python.sh`), the nightly toolchain and cargo-fuzz for the
+//! fuzz smoke run (`.ci/fuzz.sh`, docs/fuzzing.md).
 
 use anyhow::{bail, Result};
 use std::process::Command;
 
 #[derive(clap::Args)]
 pub struct Args {
-    /// Skip the slow steps (browser, firmware, asset regeneration); for quick local runs.
+    /// Skip the slow steps (browser, firmware, asset regeneration, fuzzing); for quick
+    /// local runs.
     #[arg(long)]
     quick: bool,
 }
@@ -175,6 +177,11 @@ const STEPS: &[Step] = &[
     Step {
         name: "firmware on QEMU (micromath, tolerance)",
         cmd: &["cargo", "xtask", "firmware", "--micromath"],
+        slow: true,
+    },
+    Step {
+        name: "fuzz smoke: BLUT parser and typed tables, 60 s (FUZZ_SECONDS; installs nightly, cargo-fuzz 0.13.2)",
+        cmd: &["bash", ".ci/fuzz.sh"],
         slow: true,
     },
 ];

@@ -13,6 +13,12 @@
 )]
 #![no_std]
 #![warn(missing_docs)]
+// Every unsafe operation sits in its own `unsafe` block with a `// SAFETY:` comment, and
+// every unsafe function states its contract under `# Safety` (all of them are in
+// `lookup/simd.rs` and `lookup/mod.rs`: the x86-64 SIMD paths).
+#![deny(unsafe_op_in_unsafe_fn)]
+#![deny(clippy::undocumented_unsafe_blocks)]
+#![deny(clippy::missing_safety_doc)]
 
 #[cfg(feature = "alloc")]
 extern crate alloc;

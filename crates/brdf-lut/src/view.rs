@@ -453,6 +453,36 @@ mod tests {
         }
     }
 
+    /// A flat index past the nodes, up to `usize::MAX`, gives NaN: no overflow panic, and
+    /// no wrapped byte offset landing on a real node (2⁶² + 1 four-byte values wrap to
+    /// offset 4, node 1, on 64-bit targets).
+    #[test]
+    fn node_value_past_the_nodes_is_nan() {
+        let mut buf = [0u8; 1024];
+        let axes = [
+            ax(3, 0.0, 1.0, Warp::Linear, Placement::Endpoint),
+            ax(2, 0.0, 1.0, Warp::Linear, Placement::Endpoint),
+        ];
+        // Node (i, j) holds i/2 + j: flat 1 (i = 1, j = 0) is 0.5, the last (5) is 2.
+        let n = table(&mut buf, axes, Interpolation::Linear, |x, y| x + y);
+        let v = LutView::parse(&buf[..n]).unwrap();
+        assert_eq!((v.node_value(1, 0), v.node_value(5, 0)), (0.5, 2.0));
+        let wraps = (usize::MAX / 4).wrapping_add(2);
+        for flat in [
+            6,
+            7,
+            wraps,
+            usize::MAX / 4,
+            usize::MAX / 2,
+            usize::MAX - 1,
+            usize::MAX,
+        ] {
+            for ch in [0, 1, usize::MAX] {
+                assert!(v.node_value(flat, ch).is_nan(), "node {flat} channel {ch}");
+            }
+        }
+    }
+
     #[test]
     fn order_key_orders_like_ieee() {
         // Against f64's own comparison on values spanning signs, zeros, subnormals and

@@ -75,7 +75,7 @@ pub struct Args {
     #[arg(long)]
     interpolation: Option<String>,
     /// Random points of the error measurement, 1..=200000 (default 2000).
-    #[arg(long)]
+    #[arg(long, value_parser = samples_arg)]
     samples: Option<u32>,
     /// Seed of the error measurement.
     #[arg(long)]
@@ -112,6 +112,36 @@ struct AxisConfig {
 }
 
 use brdf_lut::limits::{self, MAX_CONFIG_BYTES};
+
+/// A `--samples` count: a number too wide for u32 is refused naming the limit (clap's own
+/// message would say only "too large"); counts within u32 meet the limit check later.
+pub(super) fn samples_arg(s: &str) -> Result<u32, String> {
+    let digits = !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
+    match s.parse::<u32>() {
+        Ok(n) => Ok(n),
+        Err(_) if digits => Err(format!(
+            "{s} points; the limit is 1..={} (docs/lut-format.md, Limits)",
+            limits::MAX_SAMPLES
+        )),
+        Err(e) => Err(format!("`{s}` is not a whole number of points: {e}")),
+    }
+}
+
+/// One node count of `--res`: a whole number within the tool's limit per axis, checked here
+/// so that a number too large for any integer type names the limit too (not only "not a
+/// number").
+fn res_count(res: &str, t: &str) -> Result<u32> {
+    let t = t.trim();
+    let max = limits::MAX_NODES_PER_AXIS as u64;
+    let n = match t.parse::<u64>() {
+        Ok(n) => n,
+        Err(_) if !t.is_empty() && t.bytes().all(|b| b.is_ascii_digit()) => u64::MAX,
+        Err(_) => bail!("--res `{res}`: `{t}` is not a whole number of nodes"),
+    };
+    limits::check_range("nodes per axis", n, 2, max)
+        .map_err(|e| anyhow!("--res `{res}`: `{t}`: {e}"))?;
+    Ok(n as u32)
+}
 
 pub fn run(a: Args) -> Result<()> {
     if a.config.is_none() && a.kind.is_none() {
@@ -355,11 +385,7 @@ fn build_spec(
     if let Some(res) = a.set.res.as_ref().or(cfg.res.as_ref()) {
         let counts: Vec<u32> = res
             .split('x')
-            .map(|t| {
-                t.trim()
-                    .parse::<u32>()
-                    .map_err(|_| anyhow!("--res `{res}`: `{t}` is not a whole number of nodes"))
-            })
+            .map(|t| res_count(res, t))
             .collect::<Result<_>>()?;
         if counts.len() != names.len() {
             bail!(

@@ -59,7 +59,7 @@ enum Cmd {
         /// Random points per table, 1..=200000 and within the kind's time budget (default: as
         /// recorded in each header, capped by the same limits, with a note when capped; see
         /// `cargo xtask lut --help` and docs/lut-format.md, Limits).
-        #[arg(long)]
+        #[arg(long, value_parser = generate::samples_arg)]
         samples: Option<u32>,
         /// Seed of the random points (default: a different one from the generator's).
         #[arg(long, default_value_t = 0x5EED_0002)]
@@ -115,7 +115,15 @@ pub fn check_set_limits(g: &GenArgs) -> Result<()> {
     let Some(res) = &g.res else { return Ok(()) };
     let counts: Vec<u64> = res
         .split('x')
-        .map(|t| t.trim().parse::<u64>())
+        .map(|t| {
+            let t = t.trim();
+            match t.parse::<u64>() {
+                Ok(n) => Ok(n),
+                // Digits too many for u64: beyond the limit, which the check below names.
+                Err(_) if !t.is_empty() && t.bytes().all(|b| b.is_ascii_digit()) => Ok(u64::MAX),
+                Err(e) => Err(e),
+            }
+        })
         .collect::<Result<_, _>>()
         .with_context(|| format!("--res `{res}` is not like 64x64"))?;
     let only = g.only.as_deref().unwrap_or("");

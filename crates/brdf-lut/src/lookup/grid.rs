@@ -57,9 +57,17 @@ impl Grid {
             return f32::NAN;
         }
         let nb = self.encoding.bytes();
-        let off = (flat * c + ch) * nb;
+        // Checked: a flat index past the nodes (up to usize::MAX) is out of range, not an
+        // overflow.
+        let Some(off) = flat
+            .checked_mul(c)
+            .and_then(|v| v.checked_add(ch))
+            .and_then(|v| v.checked_mul(nb))
+        else {
+            return f32::NAN;
+        };
         let (Some(b), Some(offset), Some(scale)) = (
-            payload.get(off..off + nb),
+            off.checked_add(nb).and_then(|end| payload.get(off..end)),
             self.offset.get(ch),
             self.scale.get(ch),
         ) else {

@@ -157,12 +157,18 @@ pub(super) unsafe fn gather_words<const N: usize, const R: usize, const W: usize
         _mm256_storeu_si256,
     };
     for g in (0..N).step_by(8) {
-        // SAFETY (all blocks): 8 lanes from g < N, N a multiple of 8, lie in the arrays;
-        // the gathered words lie in the allocation by the caller's contract.
+        // SAFETY: the 8 lanes from g lie in `idx` (g < N, N a multiple of 8); AVX2 is
+        // there (the contract).
         let v = unsafe { _mm256_loadu_si256(idx.as_ptr().add(g).cast::<__m256i>()) };
         for (wr, &o) in words.iter_mut().zip(off) {
             for (j, w) in wr.iter_mut().enumerate() {
-                let o = _mm256_add_epi32(v, _mm256_set1_epi32((o + 4 * j as u32) as i32));
+                // SAFETY: register-only AVX2 (this function's contract: the processor
+                // supports AVX2); a safe call from Rust 1.87 on, the block is for 1.84.
+                #[allow(unused_unsafe)]
+                let o =
+                    unsafe { _mm256_add_epi32(v, _mm256_set1_epi32((o + 4 * j as u32) as i32)) };
+                // SAFETY: the gathered words lie in the allocation at `base` (the
+                // contract), and the store writes lanes g..g + 8 < N of `w`.
                 unsafe {
                     let x = _mm256_i32gather_epi32::<1>(base.cast::<i32>(), o);
                     _mm256_storeu_si256(w.as_mut_ptr().add(g).cast::<__m256i>(), x);
@@ -527,30 +533,47 @@ mod wide8 {
 
     /// Node and fraction of eight coordinates on one `Sqrt` axis: [`Fast2::ab_in`]'s lane
     /// steps (the same IEEE operations, eight lanes wide).
+    ///
+    /// # Safety
+    /// The processor supports AVX2 (callers: [`eight`], entered through `wide`'s check).
     #[inline(always)]
     unsafe fn cells(f: &Fast2, k: usize, x: __m256) -> (__m256i, __m256) {
-        let d = _mm256_max_ps(
-            _mm256_setzero_ps(),
-            _mm256_sub_ps(x, _mm256_set1_ps(f.lo[k])),
-        );
-        let w = _mm256_sqrt_ps(_mm256_min_ps(_mm256_set1_ps(f.span[k]), d));
-        let t = _mm256_mul_ps(_mm256_set1_ps(f.a[k]), w);
-        let i = _mm256_cvttps_epi32(_mm256_min_ps(t, _mm256_set1_ps(f.last_cell[k])));
-        (i, _mm256_sub_ps(t, _mm256_cvtepi32_ps(i)))
+        // SAFETY: AVX instructions on registers only (no memory access), and the processor
+        // supports AVX2 (this function's contract).
+        unsafe {
+            let d = _mm256_max_ps(
+                _mm256_setzero_ps(),
+                _mm256_sub_ps(x, _mm256_set1_ps(f.lo[k])),
+            );
+            let w = _mm256_sqrt_ps(_mm256_min_ps(_mm256_set1_ps(f.span[k]), d));
+            let t = _mm256_mul_ps(_mm256_set1_ps(f.a[k]), w);
+            let i = _mm256_cvttps_epi32(_mm256_min_ps(t, _mm256_set1_ps(f.last_cell[k])));
+            (i, _mm256_sub_ps(t, _mm256_cvtepi32_ps(i)))
+        }
     }
 
     /// The 8-byte rows at `p + at[k]` for queries (k, k + 1, k + 4, k + 5), k = 0 or 2:
     /// lanes 0–1 of the result hold queries k and k + 1, lanes 2–3 queries k + 4, k + 5.
+    ///
+    /// # Safety
+    /// The processor supports AVX2, and the 8 bytes at `p + at[j]` lie in one allocation
+    /// for j = k, k + 1, k + 4, k + 5.
     #[inline(always)]
     unsafe fn rows4(p: *const u8, at: &[u32; 8], k: usize) -> __m256i {
         let two = |j: usize| {
-            let lo = _mm_loadl_epi64(p.add(at[j] as usize).cast());
-            _mm_castpd_si128(_mm_loadh_pd(
-                _mm_castsi128_pd(lo),
-                p.add(at[j + 1] as usize).cast(),
-            ))
+            // SAFETY: the 8 bytes at p + at[j] and p + at[j + 1] lie in one allocation
+            // (this function's contract; `movq`/`movhpd` need no alignment); SSE2 is part
+            // of the x86-64 baseline.
+            unsafe {
+                let lo = _mm_loadl_epi64(p.add(at[j] as usize).cast());
+                _mm_castpd_si128(_mm_loadh_pd(
+                    _mm_castsi128_pd(lo),
+                    p.add(at[j + 1] as usize).cast(),
+                ))
+            }
         };
-        _mm256_inserti128_si256::<1>(_mm256_castsi128_si256(two(k)), two(k + 4))
+        // SAFETY: register-only AVX2 insertion; the processor supports AVX2 (the contract).
+        unsafe { _mm256_inserti128_si256::<1>(_mm256_castsi128_si256(two(k)), two(k + 4)) }
     }
 
     /// Channels A and B of eight queries of a `Sqrt` table whose payload starts at `p`, or
@@ -558,8 +581,9 @@ mod wide8 {
     /// for a parsed table).
     ///
     /// # Safety
-    /// AVX2 is available, and every 8-byte read at `p + at` and `p + at + row` with
-    /// at ≤ `limit` lies in one allocation; `limit` < 2³¹.
+    /// AVX2 is available; `x`, `y` and both `out` slices hold at least 8 values; and every
+    /// 8-byte read at `p + at` and `p + at + row` with at ≤ `limit` lies in one allocation;
+    /// `limit` < 2³¹.
     #[target_feature(enable = "avx2")]
     #[inline]
     pub(super) unsafe fn eight(
@@ -571,68 +595,75 @@ mod wide8 {
         y: &[f32],
         out: [&mut [f32]; 2],
     ) -> bool {
-        let (i0, f0) = cells(f, 0, _mm256_loadu_ps(x.as_ptr()));
-        let (i1, f1) = cells(f, 1, _mm256_loadu_ps(y.as_ptr()));
-        // Byte offset of node (i0, i1): 4·i0 + i1 · 2^row_shift, as in the scalar path.
-        let at = _mm256_add_epi32(
-            _mm256_slli_epi32::<2>(i0),
-            _mm256_sll_epi32(i1, _mm_cvtsi32_si128(i32::from(f.row_shift))),
-        );
-        if _mm256_movemask_epi8(_mm256_cmpgt_epi32(at, _mm256_set1_epi32(limit as i32))) != 0 {
-            return false;
-        }
-        let o: [u32; 8] = [
-            _mm256_extract_epi32::<0>(at) as u32,
-            _mm256_extract_epi32::<1>(at) as u32,
-            _mm256_extract_epi32::<2>(at) as u32,
-            _mm256_extract_epi32::<3>(at) as u32,
-            _mm256_extract_epi32::<4>(at) as u32,
-            _mm256_extract_epi32::<5>(at) as u32,
-            _mm256_extract_epi32::<6>(at) as u32,
-            _mm256_extract_epi32::<7>(at) as u32,
-        ];
-        let q = p.add(f.row as usize);
-        // Row words: node 0 (A₀ B₀) and node 1 (A₁ B₁) of each query, rows 0 and 1, in
-        // query order (the shuffles pick the even, then the odd words of queries
-        // 0 1 | 4 5 and 2 3 | 6 7).
-        let (a0, b0) = (rows4(p, &o, 0), rows4(p, &o, 2));
-        let (a1, b1) = (rows4(q, &o, 0), rows4(q, &o, 2));
-        let split = |a: __m256i, b: __m256i, imm: bool| {
-            let (a, b) = (_mm256_castsi256_ps(a), _mm256_castsi256_ps(b));
-            _mm256_castps_si256(if imm {
-                _mm256_shuffle_ps::<0b11_01_11_01>(a, b)
-            } else {
-                _mm256_shuffle_ps::<0b10_00_10_00>(a, b)
-            })
-        };
-        let words = [
-            [split(a0, b0, false), split(a0, b0, true)],
-            [split(a1, b1, false), split(a1, b1, true)],
-        ];
-        let low = _mm256_set1_epi32(0xffff);
-        for (c, o) in out.into_iter().enumerate() {
-            let num = |w: __m256i| {
-                if c == 0 {
-                    _mm256_and_si256(w, low)
-                } else {
-                    _mm256_srli_epi32::<16>(w)
-                }
-            };
-            // Along axis 0 per row (p₁ − p₀ formed exactly in integers), then axis 1, then
-            // offset + scale · v: the scalar path's operations in its order.
-            let r = words.map(|[n0, n1]| {
-                let (q0, q1) = (num(n0), num(n1));
-                let d = _mm256_cvtepi32_ps(_mm256_sub_epi32(q1, q0));
-                _mm256_add_ps(_mm256_cvtepi32_ps(q0), _mm256_mul_ps(f0, d))
-            });
-            let v = _mm256_add_ps(r[0], _mm256_mul_ps(f1, _mm256_sub_ps(r[1], r[0])));
-            let v = _mm256_add_ps(
-                _mm256_set1_ps(reader.offset[c]),
-                _mm256_mul_ps(_mm256_set1_ps(reader.scale[c]), v),
+        // SAFETY: the processor supports AVX2, as `cells` and `rows4` require (this
+        // function's contract); the loads read 8 values of `x` and `y` and the stores
+        // write 8 values of each `out` slice, all of at least 8 (the contract); the row
+        // reads at p + at and q + at = p + row + at lie in the allocation for every
+        // at ≤ `limit`, which is checked for all eight offsets before any read.
+        unsafe {
+            let (i0, f0) = cells(f, 0, _mm256_loadu_ps(x.as_ptr()));
+            let (i1, f1) = cells(f, 1, _mm256_loadu_ps(y.as_ptr()));
+            // Byte offset of node (i0, i1): 4·i0 + i1 · 2^row_shift, as in the scalar path.
+            let at = _mm256_add_epi32(
+                _mm256_slli_epi32::<2>(i0),
+                _mm256_sll_epi32(i1, _mm_cvtsi32_si128(i32::from(f.row_shift))),
             );
-            _mm256_storeu_ps(o.as_mut_ptr(), v);
+            if _mm256_movemask_epi8(_mm256_cmpgt_epi32(at, _mm256_set1_epi32(limit as i32))) != 0 {
+                return false;
+            }
+            let o: [u32; 8] = [
+                _mm256_extract_epi32::<0>(at) as u32,
+                _mm256_extract_epi32::<1>(at) as u32,
+                _mm256_extract_epi32::<2>(at) as u32,
+                _mm256_extract_epi32::<3>(at) as u32,
+                _mm256_extract_epi32::<4>(at) as u32,
+                _mm256_extract_epi32::<5>(at) as u32,
+                _mm256_extract_epi32::<6>(at) as u32,
+                _mm256_extract_epi32::<7>(at) as u32,
+            ];
+            let q = p.add(f.row as usize);
+            // Row words: node 0 (A₀ B₀) and node 1 (A₁ B₁) of each query, rows 0 and 1, in
+            // query order (the shuffles pick the even, then the odd words of queries
+            // 0 1 | 4 5 and 2 3 | 6 7).
+            let (a0, b0) = (rows4(p, &o, 0), rows4(p, &o, 2));
+            let (a1, b1) = (rows4(q, &o, 0), rows4(q, &o, 2));
+            let split = |a: __m256i, b: __m256i, imm: bool| {
+                let (a, b) = (_mm256_castsi256_ps(a), _mm256_castsi256_ps(b));
+                _mm256_castps_si256(if imm {
+                    _mm256_shuffle_ps::<0b11_01_11_01>(a, b)
+                } else {
+                    _mm256_shuffle_ps::<0b10_00_10_00>(a, b)
+                })
+            };
+            let words = [
+                [split(a0, b0, false), split(a0, b0, true)],
+                [split(a1, b1, false), split(a1, b1, true)],
+            ];
+            let low = _mm256_set1_epi32(0xffff);
+            for (c, o) in out.into_iter().enumerate() {
+                let num = |w: __m256i| {
+                    if c == 0 {
+                        _mm256_and_si256(w, low)
+                    } else {
+                        _mm256_srli_epi32::<16>(w)
+                    }
+                };
+                // Along axis 0 per row (p₁ − p₀ formed exactly in integers), then axis 1, then
+                // offset + scale · v: the scalar path's operations in its order.
+                let r = words.map(|[n0, n1]| {
+                    let (q0, q1) = (num(n0), num(n1));
+                    let d = _mm256_cvtepi32_ps(_mm256_sub_epi32(q1, q0));
+                    _mm256_add_ps(_mm256_cvtepi32_ps(q0), _mm256_mul_ps(f0, d))
+                });
+                let v = _mm256_add_ps(r[0], _mm256_mul_ps(f1, _mm256_sub_ps(r[1], r[0])));
+                let v = _mm256_add_ps(
+                    _mm256_set1_ps(reader.offset[c]),
+                    _mm256_mul_ps(_mm256_set1_ps(reader.scale[c]), v),
+                );
+                _mm256_storeu_ps(o.as_mut_ptr(), v);
+            }
+            true
         }
-        true
     }
 }
 
