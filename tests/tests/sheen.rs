@@ -148,30 +148,37 @@ fn smith_lambda_exact(alpha: f64, mu: f64) -> f64 {
     i / mu - 1.0
 }
 
+/// The fit against the exact Smith Λ of D. Measured (printed with `--nocapture`): for
+/// r ≥ 0.3 the fitted G1 = 1/(1 + Λ) is within 0.045 of the exact one and Λ within a factor
+/// e^0.19; for small r the exact Λ grows like α^(−1/2) (∫ D dω ≈ √(π/(2α))) while the fit
+/// stays bounded, so the fit underestimates Λ there (by a factor up to e^4.5 at r = 0.01).
+/// The bounds below are those measured accuracies (rounded up), the fit's documented error
+/// (docs/conventions.md §11); the reference's own error (quadrature to 1e-12) is far below.
 #[test]
 fn lambda_fit_against_exact_smith_lambda() {
-    let mut worst_g1: f64 = 0.0;
-    let mut worst_ln: f64 = 0.0;
     for r in [0.01, 0.1, 0.3, 0.5, 0.7, 0.9, 1.0] {
         let ch = Charlie::<f64>::from_roughness(r).unwrap();
         let a = ch.alpha();
-        let mut row_g1: f64 = 0.0;
-        let mut row_ln: f64 = 0.0;
+        // The reference itself: Λ(1) = 0 for a normalised D.
+        assert!(smith_lambda_exact(a, 1.0).abs() < 1e-9);
+        let (mut row_g1, mut row_ln): (f64, f64) = (0.0, 0.0);
         for k in 1..=40 {
             let mu = k as f64 / 40.0;
             let exact = smith_lambda_exact(a, mu);
             let fit = ch.lambda(mu);
-            let dg = (1.0 / (1.0 + fit) - 1.0 / (1.0 + exact)).abs();
-            row_g1 = row_g1.max(dg);
+            row_g1 = row_g1.max((1.0 / (1.0 + fit) - 1.0 / (1.0 + exact)).abs());
             if exact > 1e-3 {
                 row_ln = row_ln.max((fit / exact).ln().abs());
             }
+            if r < 0.3 && mu < 0.9 {
+                assert!(fit < exact, "r {r} mu {mu}: fit {fit:e} exact {exact:e}");
+            }
         }
         println!("r {r:4}: max |ΔG1| {row_g1:.4}, max |ln(Λfit/Λ)| (Λ > 1e-3) {row_ln:.3}");
-        worst_g1 = worst_g1.max(row_g1);
-        worst_ln = worst_ln.max(row_ln);
+        if r >= 0.3 {
+            assert!(row_g1 < 0.05 && row_ln < 0.2, "r {r}: {row_g1} {row_ln}");
+        }
     }
-    println!("worst |ΔG1| {worst_g1:.4}, worst |ln ratio| {worst_ln:.3}");
 }
 
 /// The glTF specification's Λ, written out here from its text (its `mix` with the α = 1 row
@@ -418,36 +425,6 @@ fn special_values() {
 
 // ---------------------------------------------------------------- sampling
 
-/// ∫ over wi of pdf(wo, wi) in polar coordinates (β, ψ) about −wo, where the half-vector
-/// part's integrable 1/|wi + wo| singularity is cancelled by sin β.
-fn pdf_integral(m: &Sheen<f64>, wo: Vec3<f64>) -> f64 {
-    let axis = wo.scale(-1.0);
-    let t = if axis.x.abs() < 0.9 {
-        Vec3::new(1.0, 0.0, 0.0)
-    } else {
-        Vec3::new(0.0, 1.0, 0.0)
-    };
-    let e1 = t.sub(axis.scale(axis.dot(t))).normalize().unwrap();
-    let e2 = axis.cross(e1);
-    let inner = |b: f64| {
-        let (sb, cb) = b.sin_cos();
-        2.0 * integrate(
-            |p: f64| {
-                let wi = axis
-                    .scale(cb)
-                    .add(e1.scale(sb * p.cos()))
-                    .add(e2.scale(sb * p.sin()));
-                m.pdf(wo, wi.normalize().unwrap())
-            },
-            0.0,
-            PI,
-            &[FRAC_PI_2],
-            1e-12,
-        ) * sb
-    };
-    integrate(inner, 0.0, PI, &[0.5, 1.0, 2.0, 2.5, 3.0], 1e-10)
-}
-
 /// P(wo·h ≤ 0) under D cos θh: ∫ D cos θh sin θh (2π − 2φ₀) dθh, φ₀ = arccos(−A/B),
 /// A = μo cos θh, B = sin θo sin θh (the failed half-vector samples).
 fn backfacing_mass(ch: &Charlie<f64>, mu: f64) -> f64 {
@@ -475,26 +452,23 @@ fn backfacing_mass(ch: &Charlie<f64>, mu: f64) -> f64 {
     )
 }
 
-/// The pdf integrates to 1 minus the probability of a failed sample (½ times the back-
-/// facing mass of D cos θh), and the sampler's failure rate is that probability.
+/// The sampler fails (returns `None`) exactly when the half-vector branch (probability ½)
+/// draws h facing away from wo: its rate is ½ the back-facing mass of D cos θh, computed by
+/// quadrature. (That the pdf integrates to 1 minus this rate is checked cell by cell by the
+/// chi-square test in plausibility.rs, whose failure cell holds the remainder.)
 #[test]
-fn pdf_integrates_to_one_minus_failures() {
+fn failure_rate_is_the_backfacing_mass() {
     let mut rng = Pcg64::seed_from_u64(14);
-    for r in [0.05, 0.3, 1.0] {
+    for r in [0.05, 0.5, 1.0] {
         let m = sheen(r, SheenVisibility::EstevezKulla);
-        for mu in [1.0, 0.7, 0.2, 0.02] {
-            let wo = dir(mu, 0.4);
+        for mu in [1.0, 0.5, 0.1, 0.01] {
             let fail = 0.5 * backfacing_mass(&m.distribution(), mu);
-            let total = pdf_integral(&m, wo);
-            println!("r {r} μo {mu}: ∫pdf {total:.9}, P(fail) {fail:.6}");
-            assert!(
-                (total + fail - 1.0).abs() < 1e-7,
-                "r {r} μo {mu}: ∫pdf = {total}, fail {fail}"
-            );
-            let n = 200_000;
+            let n = 100_000;
+            let wo = dir(mu, 0.4);
             let failed = (0..n)
                 .filter(|_| m.sample(wo, [rng.random(), rng.random()]).is_none())
                 .count() as f64;
+            println!("r {r} μo {mu}: P(fail) {fail:.5}, sampled {:.5}", failed / n as f64);
             // Binomial: 5 standard deviations.
             let sd = (n as f64 * fail * (1.0 - fail)).sqrt();
             assert!(
@@ -526,17 +500,17 @@ fn albedo_reference(m: &Sheen<f64>, mu_o: f64) -> f64 {
                     0.0,
                     PI,
                     &[0.25, 0.5, 1.0, 2.0],
-                    1e-12,
+                    1e-10,
                 )
         },
         0.0,
         1.0,
         &br,
-        1e-10,
+        1e-8,
     )
 }
 
-const ALBEDO_MU: [f64; 9] = [1.0, 0.7, 0.5, 0.3, 0.2, 0.1, 0.05, 0.02, 0.0175];
+const ALBEDO_MU: [f64; 6] = [1.0, 0.5, 0.2, 0.1, 0.03, 0.0175];
 
 /// The directional albedo over a grid of (r, μo) for both visibility terms: the crate's
 /// fixed quadrature against the adaptive reference, and the maxima the docs quote.
@@ -545,7 +519,7 @@ fn albedo_table_and_quadrature() {
     for v in VIS {
         let mut best = (0.0, 0.0, 0.0);
         let mut worst_q: f64 = 0.0;
-        for r in [0.0, 0.1, 0.3, 0.5, 0.7, 1.0] {
+        for r in [0.0, 0.1, 0.5, 1.0] {
             let m = sheen(r, v);
             let mut row = String::new();
             for mu in ALBEDO_MU {
@@ -571,11 +545,11 @@ fn albedo_table_and_quadrature() {
 fn sampler_weights_average_to_the_albedo() {
     let mut rng = Pcg64::seed_from_u64(15);
     for v in VIS {
-        for (r, mu) in [(0.3, 1.0), (0.5, 0.3), (0.8, 0.05), (0.1, 0.1)] {
+        for (r, mu) in [(0.5, 0.3), (0.8, 0.05), (0.1, 0.1)] {
             let m = sheen(r, v);
             let want = albedo_reference(&m, mu);
             let wo = dir(mu, 0.0);
-            let n = 400_000;
+            let n = 100_000;
             let (mut s, mut s2) = (0.0, 0.0);
             for _ in 0..n {
                 let w = m
