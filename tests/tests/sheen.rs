@@ -329,7 +329,10 @@ fn f_matches_reference_f64_and_f32() {
                 let e32 = ((got32 - want32) / want32).abs();
                 let tol = 200.0 * eps + 8.0 * eps * m / a;
                 w32 = w32.max(e32 / tol);
-                assert!(e32 < tol, "f32 r {r} {v:?} {wi32:?} {wo32:?}: {e32:e} > {tol:e}");
+                assert!(
+                    e32 < tol,
+                    "f32 r {r} {v:?} {wi32:?} {wo32:?}: {e32:e} > {tol:e}"
+                );
             }
         }
     }
@@ -468,7 +471,10 @@ fn failure_rate_is_the_backfacing_mass() {
             let failed = (0..n)
                 .filter(|_| m.sample(wo, [rng.random(), rng.random()]).is_none())
                 .count() as f64;
-            println!("r {r} μo {mu}: P(fail) {fail:.5}, sampled {:.5}", failed / n as f64);
+            println!(
+                "r {r} μo {mu}: P(fail) {fail:.5}, sampled {:.5}",
+                failed / n as f64
+            );
             // Binomial: 5 standard deviations.
             let sd = (n as f64 * fail * (1.0 - fail)).sqrt();
             assert!(

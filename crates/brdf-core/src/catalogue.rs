@@ -278,9 +278,7 @@ impl ModelSpec {
                     g_amb: Rgb::splat(g_amb),
                 })
             }
-            ModelId::Sheen => {
-                AnyBrdf::Sheen(Sheen::new(c(0), x(3), SheenVisibility::ALL[i(4)])?)
-            }
+            ModelId::Sheen => AnyBrdf::Sheen(Sheen::new(c(0), x(3), SheenVisibility::ALL[i(4)])?),
         })
     }
 }

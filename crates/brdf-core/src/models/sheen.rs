@@ -25,9 +25,7 @@
 //! cosine lobe covers those.) Half vectors facing away from wo are failed samples (`None`).
 
 use super::rgb::check_rgb;
-use super::{
-    above, mixture_pdf, mixture_sample, Brdf, BrdfFlags, BrdfSample, Rgb,
-};
+use super::{above, mixture_pdf, mixture_sample, Brdf, BrdfFlags, BrdfSample, Rgb};
 use crate::geometry::{half_vector_and_cos, min_cos, Dots, Vec3};
 use crate::microfacet::charlie::{v_ashikhmin, Charlie};
 use crate::{ParamError, Real};
@@ -74,7 +72,11 @@ pub struct Sheen<T> {
 impl<T: Real> Sheen<T> {
     /// Checked constructor: color ∈ [0, 1] per channel, perceptual roughness r ∈ [0, 1]
     /// (α = r², at least 1e-4).
-    pub fn new(color: Rgb<T>, roughness: T, visibility: SheenVisibility) -> Result<Self, ParamError> {
+    pub fn new(
+        color: Rgb<T>,
+        roughness: T,
+        visibility: SheenVisibility,
+    ) -> Result<Self, ParamError> {
         Ok(Self {
             color: check_rgb("color", color, T::ZERO, T::ONE, "[0, 1]")?,
             dist: Charlie::from_roughness(roughness)?,
