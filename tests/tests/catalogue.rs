@@ -21,6 +21,7 @@ fn names_are_one_set_with_the_old_spellings_as_aliases() {
     }
     assert_eq!(catalogue::find("shirley").unwrap().name, "shirley-damped");
     assert_eq!(catalogue::find("coupled").unwrap().name, "coupled-smooth");
+    assert_eq!(catalogue::find("charlie").unwrap().name, "sheen");
     assert!(catalogue::find("torrance-sparrow").is_some());
     assert!(catalogue::find("nosuch").is_none());
 }
@@ -173,6 +174,11 @@ fn the_layout_maps_to_the_constructors() {
             "lambert-mirror",
             vec![0.2, 0.3, 0.4, 0.5],
             Box::new(LambertSpecularMix::new(c(0.2, 0.3, 0.4), 0.5).unwrap()),
+        ),
+        (
+            "charlie",
+            vec![0.7, 0.3, 0.1, 0.35, 1.0],
+            Box::new(Sheen::new(c(0.7, 0.3, 0.1), 0.35, SheenVisibility::Ashikhmin).unwrap()),
         ),
     ];
     for (name, q, direct) in cases {

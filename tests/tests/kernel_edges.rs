@@ -727,6 +727,12 @@ fn sampler_models<T: Real>() -> Vec<(String, Box<dyn Brdf<T>>)> {
             ),
         ),
     ];
+    for vis in SheenVisibility::ALL {
+        v.push((
+            format!("sheen {vis:?}"),
+            Box::new(Sheen::new(w(1.0), f(0.0), *vis).unwrap()),
+        ));
+    }
     for s in [
         MicrofacetSampling::Normals,
         MicrofacetSampling::VisibleNormals,

@@ -215,6 +215,14 @@ fn hand_models() -> Vec<Named> {
             )
             .unwrap(),
         ),
+        named(
+            "sheen r=0.1 estevez-kulla",
+            Sheen::new(c, 0.1, SheenVisibility::EstevezKulla).unwrap(),
+        ),
+        named(
+            "sheen r=1 ashikhmin",
+            Sheen::new(w(1.0), 1.0, SheenVisibility::Ashikhmin).unwrap(),
+        ),
     ]
 }
 
@@ -856,6 +864,14 @@ fn extreme_models<T: Real>() -> Vec<(String, Box<dyn Brdf<T>>)> {
             v.push((
                 format!("standard {n} {h:?}"),
                 Box::new(StandardLighting::new(one, one, one, one, f(n), h).unwrap()),
+            ));
+        }
+    }
+    for r in [0.0, 1.0] {
+        for vis in SheenVisibility::ALL {
+            v.push((
+                format!("sheen {r} {vis:?}"),
+                Box::new(Sheen::new(one, f(r), *vis).unwrap()),
             ));
         }
     }

@@ -137,6 +137,8 @@ pub enum ModelId {
     GgxAnisotropic,
     /// [`StandardLit`]: the standard lighting model (a lit colour, not a BRDF).
     Standard,
+    /// [`Sheen`]: the Charlie microfacet sheen (Estevez–Kulla 2017, glTF).
+    Sheen,
 }
 
 /// One model of the catalogue.
@@ -276,6 +278,7 @@ impl ModelSpec {
                     g_amb: Rgb::splat(g_amb),
                 })
             }
+            ModelId::Sheen => AnyBrdf::Sheen(Sheen::new(c(0), x(3), SheenVisibility::ALL[i(4)])?),
         })
     }
 }
@@ -368,6 +371,8 @@ pub enum AnyBrdf<T> {
     Ggx(Ggx<T>),
     /// A [`StandardLit`] (from [`ModelId::Standard`]).
     Standard(StandardLit<T>),
+    /// A [`Sheen`] (from [`ModelId::Sheen`]).
+    Sheen(Sheen<T>),
 }
 
 macro_rules! dispatch {
@@ -386,6 +391,7 @@ macro_rules! dispatch {
             AnyBrdf::Ward($m) => $e,
             AnyBrdf::Ggx($m) => $e,
             AnyBrdf::Standard($m) => $e,
+            AnyBrdf::Sheen($m) => $e,
         }
     };
 }
@@ -1068,5 +1074,42 @@ pub const MODELS: &[ModelSpec] = &[
         ],
         flags: flags(true, false, false),
         id: ModelId::Standard,
+    },
+    ModelSpec {
+        name: "sheen",
+        aliases: &["charlie"],
+        #[cfg(feature = "catalogue-text")]
+        about: "Charlie sheen (Estevez-Kulla 2017, glTF KHR_materials_sheen): color D V, \
+                D = (2 + 1/alpha) sin^(1/alpha) theta_h/(2pi), alpha = r^2 (>= 1e-4); not \
+                energy conserving (a layer)",
+        params: &[
+            rgb(
+                "color",
+                ["color_r", "color_g", "color_b"],
+                U01,
+                (0.0, 1.0),
+                [1.0; 3],
+                "sheen colour",
+            ),
+            num(
+                "roughness",
+                "1 (perceptual, alpha = r^2)",
+                U01,
+                (0.0, 1.0),
+                0.01,
+                0.5,
+                "sheen roughness r (alpha = r^2, clamped to >= 1e-4)",
+            ),
+            choice(
+                "visibility",
+                SheenVisibility::NAMES,
+                SheenVisibility::RANGE,
+                0,
+                "visibility V, in option order: G2/(4 mu_i mu_o) with the fitted Smith Lambda \
+                 (glTF), or 1/(4(mu_i + mu_o - mu_i mu_o)) (Filament)",
+            ),
+        ],
+        flags: flags(false, false, false),
+        id: ModelId::Sheen,
     },
 ];

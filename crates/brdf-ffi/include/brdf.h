@@ -34,6 +34,9 @@
 // Storage words (8 bytes each) of the GGX handles.
 #define BRDF_GGX_WORDS 8
 
+// Storage words (8 bytes each) of the sheen handles.
+#define BRDF_SHEEN_WORDS 16
+
 // Storage words (8 bytes each) of every table handle.
 #define BRDF_TABLE_WORDS 56
 
@@ -159,6 +162,24 @@ typedef struct BrdfVec3F64 {
     // z (normal).
     double z;
 } BrdfVec3F64;
+
+// A prepared sheen BRDF. Fill it with `brdf_sheen_init_f32`; the fields are private to the
+// library.
+typedef struct BrdfSheenF32 {
+    uint64_t tag;
+    uint64_t storage[BRDF_SHEEN_WORDS];
+} BrdfSheenF32;
+
+// The visibility term of the sheen BRDF (a `BRDF_SHEEN_VISIBILITY_*` value): the index of
+// the option in the model catalogue's `visibility` choice.
+typedef uint32_t BrdfSheenVisibility;
+
+// A prepared sheen BRDF. Fill it with `brdf_sheen_init_f64`; the fields are private to the
+// library.
+typedef struct BrdfSheenF64 {
+    uint64_t tag;
+    uint64_t storage[BRDF_SHEEN_WORDS];
+} BrdfSheenF64;
 
 // A parsed per-σ modified-G table (2-D passing-factor table, reciprocal convention). Fill
 // it with `brdf_g_table_parse`; the fields are private to the library.
@@ -293,6 +314,13 @@ typedef struct BrdfAverageAlbedoTable {
 
 // The exact unpolarised dielectric reflectance; parameter the relative index η > 0.
 #define BRDF_FRESNEL_DIELECTRIC 3
+
+// V = G2/(4 (n·wi)(n·wo)) with Estevez and Kulla's fitted Smith Λ (glTF
+// `KHR_materials_sheen`).
+#define BRDF_SHEEN_VISIBILITY_ESTEVEZ_KULLA 0
+
+// Ashikhmin's V = 1/(4 (n·wi + n·wo − (n·wi)(n·wo))) (Filament's cloth).
+#define BRDF_SHEEN_VISIBILITY_ASHIKHMIN 1
 
 #ifdef __cplusplus
 extern "C" {
@@ -507,6 +535,50 @@ struct BrdfRgbF64 brdf_ggx_eval_f64(const struct BrdfGgxF64 *g, struct BrdfVec3F
 // Directional albedo per channel of the GGX BRDF for a viewer at μ = n·wo; arguments and
 // bad input as for `brdf_torrance_sparrow_albedo_f64`.
 struct BrdfRgbF64 brdf_ggx_albedo_f64(const struct BrdfGgxF64 *g, double mu);
+
+// Prepares the Charlie sheen BRDF of Estevez and Kulla (2017), f = color · D · V, with
+// D = (2 + 1/α) sin^(1/α)θh / (2π), α = r² (perceptual roughness `roughness` ∈ [0, 1];
+// α is clamped to at least 1e-4), `color` ∈ [0, 1] per channel and `visibility` a
+// `BRDF_SHEEN_VISIBILITY_*` value. Returns `BRDF_STATUS_OK`, `BRDF_STATUS_NULL_POINTER`
+// or `BRDF_STATUS_INVALID_ARGUMENT`; on error `*out` is left not initialised.
+BrdfStatus brdf_sheen_init_f32(struct BrdfSheenF32 *out, struct BrdfRgbF32 color, float roughness, BrdfSheenVisibility visibility);
+
+// The sheen BRDF in 1/sr per channel for unit local-frame directions `wi` (toward the
+// light) and `wo` (toward the viewer), half vector from the vectors. 0 when either is
+// at or below the horizon; all NaN for a non-finite component or a null or
+// uninitialised handle.
+struct BrdfRgbF32 brdf_sheen_eval_f32(const struct BrdfSheenF32 *s, struct BrdfVec3F32 wi, struct BrdfVec3F32 wo);
+
+// The sheen BRDF from the dot products n·wi, n·wo and wi·wo of unit vectors (the module
+// docs say what the three-dot form loses for nearly opposite pairs at the horizon);
+// 0 at or below the horizon; all NaN for a non-finite input or a bad handle.
+struct BrdfRgbF32 brdf_sheen_eval_dots_f32(const struct BrdfSheenF32 *s, float n_i, float n_o, float i_o);
+
+// Directional albedo per channel of the sheen BRDF for a viewer at μ = n·wo ∈ (0, 1]
+// (clamped above); 0 for μ ≤ 0; all NaN for NaN or a bad handle.
+struct BrdfRgbF32 brdf_sheen_albedo_f32(const struct BrdfSheenF32 *s, float mu);
+
+// Prepares the Charlie sheen BRDF of Estevez and Kulla (2017), f = color · D · V, with
+// D = (2 + 1/α) sin^(1/α)θh / (2π), α = r² (perceptual roughness `roughness` ∈ [0, 1];
+// α is clamped to at least 1e-4), `color` ∈ [0, 1] per channel and `visibility` a
+// `BRDF_SHEEN_VISIBILITY_*` value. Returns `BRDF_STATUS_OK`, `BRDF_STATUS_NULL_POINTER`
+// or `BRDF_STATUS_INVALID_ARGUMENT`; on error `*out` is left not initialised.
+BrdfStatus brdf_sheen_init_f64(struct BrdfSheenF64 *out, struct BrdfRgbF64 color, double roughness, BrdfSheenVisibility visibility);
+
+// The sheen BRDF in 1/sr per channel for unit local-frame directions `wi` (toward the
+// light) and `wo` (toward the viewer), half vector from the vectors. 0 when either is
+// at or below the horizon; all NaN for a non-finite component or a null or
+// uninitialised handle.
+struct BrdfRgbF64 brdf_sheen_eval_f64(const struct BrdfSheenF64 *s, struct BrdfVec3F64 wi, struct BrdfVec3F64 wo);
+
+// The sheen BRDF from the dot products n·wi, n·wo and wi·wo of unit vectors (the module
+// docs say what the three-dot form loses for nearly opposite pairs at the horizon);
+// 0 at or below the horizon; all NaN for a non-finite input or a bad handle.
+struct BrdfRgbF64 brdf_sheen_eval_dots_f64(const struct BrdfSheenF64 *s, double n_i, double n_o, double i_o);
+
+// Directional albedo per channel of the sheen BRDF for a viewer at μ = n·wo ∈ (0, 1]
+// (clamped above); 0 for μ ≤ 0; all NaN for NaN or a bad handle.
+struct BrdfRgbF64 brdf_sheen_albedo_f64(const struct BrdfSheenF64 *s, double mu);
 
 // Parses a per-σ modified-G table from `len` bytes at `bytes` into `*out`. The bytes are
 // borrowed, not copied: keep them alive and unchanged while `*out` is used. Returns

@@ -1,6 +1,7 @@
-//! Kernel exports: the modified G, Blinn's and Smith's G, the Torrance–Sparrow and GGX
-//! BRDFs and their directional albedo, each in `f32` and `f64`: one definition (the
-//! `typed_abi!` macro below, over generic helpers) instantiated for each scalar type.
+//! Kernel exports: the modified G, Blinn's and Smith's G, the Torrance–Sparrow, GGX and
+//! sheen BRDFs and their directional albedo, each in `f32` and `f64`: one definition (the
+//! `typed_abi!` and `sheen_abi!` macros below, over generic helpers) instantiated for each
+//! scalar type.
 //!
 //! Conventions (docs/conventions.md): local frame with z the normal, both directions
 //! pointing away from the surface, `wi` toward the light and `wo` toward the viewer; the
@@ -20,8 +21,8 @@ use brdf_core::albedo::directional_albedo;
 use brdf_core::fresnel::Fresnel;
 use brdf_core::masking::{self, Convention, ModifiedG};
 use brdf_core::models::{
-    Brdf, BrdfFlags, BrdfSample, GeometricTerm, Ggx, LobeHint, MicrofacetSampling, Rgb, SmithForm,
-    TorranceSparrow,
+    Brdf, BrdfFlags, BrdfSample, GeometricTerm, Ggx, LobeHint, MicrofacetSampling, Rgb, Sheen,
+    SheenVisibility, SmithForm, TorranceSparrow,
 };
 use brdf_core::{Dots, Real, Vec3};
 
@@ -74,12 +75,23 @@ pub const BRDF_FRESNEL_SCHLICK_IOR: BrdfFresnel = 2;
 /// The exact unpolarised dielectric reflectance; parameter the relative index η > 0.
 pub const BRDF_FRESNEL_DIELECTRIC: BrdfFresnel = 3;
 
+/// The visibility term of the sheen BRDF (a `BRDF_SHEEN_VISIBILITY_*` value): the index of
+/// the option in the model catalogue's `visibility` choice.
+pub type BrdfSheenVisibility = u32;
+/// V = G2/(4 (n·wi)(n·wo)) with Estevez and Kulla's fitted Smith Λ (glTF
+/// `KHR_materials_sheen`).
+pub const BRDF_SHEEN_VISIBILITY_ESTEVEZ_KULLA: BrdfSheenVisibility = 0;
+/// Ashikhmin's V = 1/(4 (n·wi + n·wo − (n·wi)(n·wo))) (Filament's cloth).
+pub const BRDF_SHEEN_VISIBILITY_ASHIKHMIN: BrdfSheenVisibility = 1;
+
 /// Storage words (8 bytes each) of the modified-G handles.
 pub const BRDF_MODIFIED_G_WORDS: usize = 8;
 /// Storage words (8 bytes each) of the Torrance–Sparrow handles.
 pub const BRDF_TORRANCE_SPARROW_WORDS: usize = 16;
 /// Storage words (8 bytes each) of the GGX handles.
 pub const BRDF_GGX_WORDS: usize = 8;
+/// Storage words (8 bytes each) of the sheen handles.
+pub const BRDF_SHEEN_WORDS: usize = 16;
 
 const TAG_MODIFIED_G_F32: u64 = 0x4252_4446_4d47_3332;
 const TAG_MODIFIED_G_F64: u64 = 0x4252_4446_4d47_3634;
@@ -87,6 +99,8 @@ const TAG_TS_F32: u64 = 0x4252_4446_5453_3332;
 const TAG_TS_F64: u64 = 0x4252_4446_5453_3634;
 const TAG_GGX_F32: u64 = 0x4252_4446_4758_3332;
 const TAG_GGX_F64: u64 = 0x4252_4446_4758_3634;
+const TAG_SHEEN_F32: u64 = 0x4252_4446_5348_3332;
+const TAG_SHEEN_F64: u64 = 0x4252_4446_5348_3634;
 
 fn convention(c: BrdfConvention) -> Option<Convention> {
     match c {
@@ -235,6 +249,21 @@ fn ggx_albedo<T: Real>(g: &Ggx<T>, mu: T) -> Rgb<T> {
         None => Rgb::splat(T::NAN),
         Some(None) => Rgb::zero(),
         Some(Some(wo)) => directional_albedo(g, wo),
+    }
+}
+
+fn sheen_new<T: Real>(color: Rgb<T>, r: T, v: BrdfSheenVisibility) -> Result<Sheen<T>, BrdfStatus> {
+    let v = *SheenVisibility::ALL
+        .get(v as usize)
+        .ok_or(BRDF_STATUS_INVALID_ARGUMENT)?;
+    Sheen::new(color, r, v).map_err(|_| BRDF_STATUS_INVALID_ARGUMENT)
+}
+
+fn sheen_albedo<T: Real>(m: &Sheen<T>, mu: T) -> Rgb<T> {
+    match wo_of_mu(mu) {
+        None => Rgb::splat(T::NAN),
+        Some(None) => Rgb::zero(),
+        Some(Some(wo)) => directional_albedo(m, wo),
     }
 }
 
@@ -715,4 +744,94 @@ typed_abi! {
     brdf_torrance_sparrow_eval_nh_f64, brdf_torrance_sparrow_specular_f64,
     brdf_torrance_sparrow_eval_batch_f64, brdf_torrance_sparrow_albedo_f64,
     brdf_ggx_init_f64, brdf_ggx_eval_f64, brdf_ggx_albedo_f64,
+}
+
+/// Emits the sheen handle and its exports for one scalar type `$t` (the vector and colour
+/// structs come from `typed_abi!`).
+macro_rules! sheen_abi {
+    (
+        $t:ident; $Vec3:ident, $Rgb:ident; $Sheen:ident = $tag:ident;
+        $init:ident, $eval:ident, $eval_dots:ident, $albedo:ident $(,)?
+    ) => {
+        #[doc = concat!(" A prepared sheen BRDF. Fill it with `", stringify!($init), "`; the fields are private to the")]
+        /// library.
+        #[repr(C)]
+        pub struct $Sheen {
+            tag: u64,
+            storage: [u64; BRDF_SHEEN_WORDS],
+        }
+        handle!($Sheen, Sheen<$t>, $tag);
+
+        /// Prepares the Charlie sheen BRDF of Estevez and Kulla (2017), f = color · D · V, with
+        /// D = (2 + 1/α) sin^(1/α)θh / (2π), α = r² (perceptual roughness `roughness` ∈ [0, 1];
+        /// α is clamped to at least 1e-4), `color` ∈ [0, 1] per channel and `visibility` a
+        /// `BRDF_SHEEN_VISIBILITY_*` value. Returns `BRDF_STATUS_OK`, `BRDF_STATUS_NULL_POINTER`
+        /// or `BRDF_STATUS_INVALID_ARGUMENT`; on error `*out` is left not initialised.
+        #[cfg_attr(not(brdf_header), doc = crate::safety!(init))]
+        #[no_mangle]
+        pub unsafe extern "C" fn $init(
+            out: *mut $Sheen,
+            color: $Rgb,
+            roughness: $t,
+            visibility: BrdfSheenVisibility,
+        ) -> BrdfStatus {
+            let new = || sheen_new(Rgb::new(color.r, color.g, color.b), roughness, visibility);
+            // SAFETY: the caller's contract for `out` is the one `init` needs.
+            unsafe { init(out, $Sheen::clear, $Sheen::put, new) }
+        }
+
+        /// The sheen BRDF in 1/sr per channel for unit local-frame directions `wi` (toward the
+        /// light) and `wo` (toward the viewer), half vector from the vectors. 0 when either is
+        /// at or below the horizon; all NaN for a non-finite component or a null or
+        /// uninitialised handle.
+        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
+        #[no_mangle]
+        pub unsafe extern "C" fn $eval(s: *const $Sheen, wi: $Vec3, wo: $Vec3) -> $Rgb {
+            // SAFETY: `s` is null or a readable handle (the caller's contract).
+            let c = match unsafe { $Sheen::get(s) } {
+                Some(m) if finite3(wi.x, wi.y, wi.z) && finite3(wo.x, wo.y, wo.z) => {
+                    m.eval(wi.into(), wo.into())
+                }
+                _ => Rgb::splat(<$t>::NAN),
+            };
+            c.into()
+        }
+
+        /// The sheen BRDF from the dot products n·wi, n·wo and wi·wo of unit vectors (the module
+        /// docs say what the three-dot form loses for nearly opposite pairs at the horizon);
+        /// 0 at or below the horizon; all NaN for a non-finite input or a bad handle.
+        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
+        #[no_mangle]
+        pub unsafe extern "C" fn $eval_dots(s: *const $Sheen, n_i: $t, n_o: $t, i_o: $t) -> $Rgb {
+            // SAFETY: `s` is null or a readable handle (the caller's contract).
+            let c = match unsafe { $Sheen::get(s) } {
+                Some(m) if finite3(n_i, n_o, i_o) => m.eval_dots(Dots::new(n_i, n_o, i_o)),
+                _ => Rgb::splat(<$t>::NAN),
+            };
+            c.into()
+        }
+
+        /// Directional albedo per channel of the sheen BRDF for a viewer at μ = n·wo ∈ (0, 1]
+        /// (clamped above); 0 for μ ≤ 0; all NaN for NaN or a bad handle.
+        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
+        #[no_mangle]
+        pub unsafe extern "C" fn $albedo(s: *const $Sheen, mu: $t) -> $Rgb {
+            // SAFETY: `s` is null or a readable handle (the caller's contract).
+            let c = match unsafe { $Sheen::get(s) } {
+                Some(m) => sheen_albedo(m, mu),
+                None => Rgb::splat(<$t>::NAN),
+            };
+            c.into()
+        }
+    };
+}
+
+sheen_abi! {
+    f32; BrdfVec3F32, BrdfRgbF32; BrdfSheenF32 = TAG_SHEEN_F32;
+    brdf_sheen_init_f32, brdf_sheen_eval_f32, brdf_sheen_eval_dots_f32, brdf_sheen_albedo_f32,
+}
+
+sheen_abi! {
+    f64; BrdfVec3F64, BrdfRgbF64; BrdfSheenF64 = TAG_SHEEN_F64;
+    brdf_sheen_init_f64, brdf_sheen_eval_f64, brdf_sheen_eval_dots_f64, brdf_sheen_albedo_f64,
 }

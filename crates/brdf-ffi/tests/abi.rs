@@ -325,3 +325,68 @@ fn torrance_sparrow_with_n_h_is_exact_for_near_mirror_pairs_at_the_horizon() {
         "f32 three dots: {lossy}"
     );
 }
+
+#[test]
+fn sheen_through_the_abi() {
+    // The visibility constants are the catalogue's option indices.
+    use brdf_core::models::SheenVisibility;
+    assert_eq!(
+        SheenVisibility::ALL[BRDF_SHEEN_VISIBILITY_ESTEVEZ_KULLA as usize],
+        SheenVisibility::EstevezKulla
+    );
+    assert_eq!(
+        SheenVisibility::ALL[BRDF_SHEEN_VISIBILITY_ASHIKHMIN as usize],
+        SheenVisibility::Ashikhmin
+    );
+    let white = BrdfRgbF64 {
+        r: 1.0,
+        g: 1.0,
+        b: 1.0,
+    };
+    let s: BrdfSheenF64 =
+        init(|p| unsafe { brdf_sheen_init_f64(p, white, 1.0, BRDF_SHEEN_VISIBILITY_ASHIKHMIN) });
+    // r = 1 (α = 1): D = 3 sin θh/(2π); wi = wo = (0.6, 0, 0.8): h = wo, sin θh = 0.6,
+    // V = 1/(4(0.8 + 0.8 − 0.64)) = 1/3.84.
+    let w = BrdfVec3F64 {
+        x: 0.6,
+        y: 0.0,
+        z: 0.8,
+    };
+    let want = 3.0 * 0.6 / (2.0 * std::f64::consts::PI) / 3.84;
+    let got = unsafe { brdf_sheen_eval_f64(&s, w, w) };
+    assert!(
+        (got.r - want).abs() < 1e-15 && got.g == got.r,
+        "{got:?} vs {want}"
+    );
+    let dots = unsafe { brdf_sheen_eval_dots_f64(&s, 0.8, 0.8, 1.0) };
+    assert!((dots.r - want).abs() < 1e-14, "{dots:?}");
+    // Bad input: status codes and NaN.
+    let mut h = MaybeUninit::<BrdfSheenF32>::uninit();
+    let one = BrdfRgbF32 {
+        r: 1.0,
+        g: 1.0,
+        b: 1.0,
+    };
+    assert_eq!(
+        unsafe { brdf_sheen_init_f32(h.as_mut_ptr(), one, 0.5, 2) },
+        BRDF_STATUS_INVALID_ARGUMENT
+    );
+    assert_eq!(
+        unsafe { brdf_sheen_init_f32(h.as_mut_ptr(), one, 1.5, 0) },
+        BRDF_STATUS_INVALID_ARGUMENT
+    );
+    assert!(unsafe { brdf_sheen_albedo_f32(h.as_ptr(), 0.5) }.r.is_nan());
+    assert!(unsafe { brdf_sheen_albedo_f64(std::ptr::null(), 0.5) }
+        .r
+        .is_nan());
+    // The albedo at normal incidence, f32 against f64 (the same quadrature).
+    let s32: BrdfSheenF32 =
+        init(|p| unsafe { brdf_sheen_init_f32(p, one, 1.0, BRDF_SHEEN_VISIBILITY_ASHIKHMIN) });
+    let a64 = unsafe { brdf_sheen_albedo_f64(&s, 1.0) }.r;
+    let a32 = unsafe { brdf_sheen_albedo_f32(&s32, 1.0) }.r as f64;
+    assert!(
+        a64 > 0.0 && a64 < 1.0 && (a32 - a64).abs() < 1e-4,
+        "{a32} {a64}"
+    );
+    assert_eq!(unsafe { brdf_sheen_albedo_f64(&s, 0.0) }.r, 0.0);
+}

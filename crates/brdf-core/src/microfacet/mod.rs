@@ -5,6 +5,9 @@
 //!
 //! * [`Beckmann`]: D(h) = exp(−((h_x/αx)² + (h_y/αy)²)/h_z²)/(π αx αy h_z⁴).
 //! * [`TrowbridgeReitz`] (GGX): D(h) = 1/(π αx αy ((h_x/αx)² + (h_y/αy)² + h_z²)²).
+//! * [`Charlie`] (sheen, Estevez–Kulla): D(h) = (2 + 1/α) sin^{1/α}θh/(2π), isotropic, with
+//!   its fitted Λ and Ashikhmin's visibility; it has no visible-normal sampler and so does
+//!   not implement [`Distribution`] (module [`charlie`]).
 //!
 //! **Roughness convention (the one used everywhere in the crate).** Every distribution takes
 //! the slope widths α = (αx, αy) along the local x and y axes (unitless, slopes = tan θh).
@@ -26,10 +29,12 @@
 
 pub mod beckmann;
 pub mod beckmann_visible;
+pub mod charlie;
 pub mod ggx;
 pub mod visible_cap;
 
 pub use beckmann::Beckmann;
+pub use charlie::Charlie;
 pub use ggx::TrowbridgeReitz;
 
 use crate::geometry::{min_cos, Vec3};

@@ -16,6 +16,7 @@
 //! | [`Bank`], [`Ward`] | the Cook–Torrance and Bank notes §10.3–10.4 |
 //! | [`Ggx`] | Trowbridge–Reitz, isotropic or anisotropic, with Smith masking (docs/conventions.md §8) |
 //! | [`TorranceSparrow`] | paper eq 3: Beckmann D, any [`GeometricTerm`], a [`crate::fresnel::Fresnel`] |
+//! | [`Sheen`] | Estevez and Kulla 2017 (Charlie sheen), glTF `KHR_materials_sheen` (docs/conventions.md §11) |
 //!
 //! The microfacet models compose a distribution of [`crate::microfacet`] with a G and a
 //! Fresnel term; every model is listed, with its parameters, in [`crate::catalogue`].
@@ -32,6 +33,7 @@ pub mod lambert;
 pub mod mix;
 pub mod phong;
 pub mod rgb;
+pub mod sheen;
 pub mod shirley;
 pub mod standard;
 pub mod torrance_sparrow;
@@ -46,6 +48,7 @@ pub use lambert::Lambert;
 pub use mix::LambertSpecularMix;
 pub use phong::{BlinnPhongNormalized, PhongNormalized};
 pub use rgb::Rgb;
+pub use sheen::{Sheen, SheenVisibility};
 pub use shirley::ShirleyDamped;
 pub use standard::{Highlight, Light, StandardLighting};
 pub use torrance_sparrow::{GeometricTerm, TorranceSparrow};
