@@ -34,20 +34,17 @@ fn mus() -> Vec<f64> {
         89f64.to_radians().cos(),
         1e-3,
         centre(0),
-        centre(3),
         0.02,
         0.1,
-        0.3,
-        0.5,
-        0.7,
-        0.9,
+        0.4,
+        0.8,
         1.0,
     ]
 }
 
 /// Perceptual roughness r (α = r²): from α = 1e-6 to 1.
 fn rs() -> Vec<f64> {
-    vec![1e-3, centre(0), 0.01, 0.03, 0.1, 0.2, 0.3, 0.5, 0.7, 0.9, 1.0]
+    vec![1e-3, centre(0), 0.03, 0.1, 0.3, 0.6, 1.0]
 }
 
 /// Checks one result against (A, B) = `want` at tolerance `tol`; returns error/estimate.
@@ -66,50 +63,81 @@ fn check(p: &Polar<f64>, want: [f64; 2], tol: f64, what: &str) -> f64 {
             "{what} ch {ch}: estimate {:.2e} below the error {err:.2e}",
             p.error[ch]
         );
-        assert!(p.error[ch] <= tol, "{what} ch {ch}: estimate {:.2e}", p.error[ch]);
+        assert!(
+            p.error[ch] <= tol,
+            "{what} ch {ch}: estimate {:.2e}",
+            p.error[ch]
+        );
         ratio = ratio.max(err / p.error[ch]);
     }
     ratio
 }
 
-fn against_reference(tol: f64) {
-    let (mut worst, mut ratio, mut evals, mut max_evals, mut n) = (0f64, 0f64, 0u64, 0u32, 0);
+/// Every (μ, r) of [`mus`] × [`rs`] at tol 2e-6 (½ LSB of 16 bits is 7.6e-6) and 1e-8, the
+/// reference computed once per point.
+#[test]
+#[ignore = "long run (the reference at 1e-11 takes minutes at grazing, small-α points on 2 loaded cores): cargo test -p brdf-tests --test split_sum_polar -- --ignored"]
+fn matches_reference() {
+    let mut pts = Vec::new();
     for r in rs() {
-        let row = DfgGgxPolarRow::new(r);
         for mu in mus() {
-            let p = row.texel(mu, tol);
+            pts.push((mu, r));
+        }
+    }
+    against_reference(&pts);
+}
+
+/// The CI-sized sample of [`matches_reference`]: grazing (cos 89°, the first texel centre),
+/// mid and normal views at mid and full roughness.
+#[test]
+fn ci_sample_matches_reference() {
+    let pts = [
+        (89f64.to_radians().cos(), 1.0),
+        (centre(0), 0.6),
+        (0.02, 0.3),
+        (0.4, 0.3),
+        (0.4, 1.0),
+        (1.0, 0.6),
+    ];
+    against_reference(&pts);
+}
+
+fn against_reference(pts: &[(f64, f64)]) {
+    let tols = [2e-6, 1e-8];
+    let mut stats = [(0f64, 0f64, 0u64, 0u32); 2];
+    let mut n = 0;
+    for &(mu, r) in pts {
+        let row = DfgGgxPolarRow::new(r);
+        {
             let want = split_sum_ggx(mu, r * r, 1e-11);
-            let what = format!("mu {mu} r {r} tol {tol:e}");
-            ratio = ratio.max(check(&p, [want.0, want.1], tol, &what));
-            worst = worst.max((p.value[0] - want.0).abs().max((p.value[1] - want.1).abs()));
-            evals += p.evals as u64;
-            max_evals = max_evals.max(p.evals);
+            for (tol, st) in tols.iter().zip(stats.iter_mut()) {
+                let p = row.texel(mu, *tol);
+                let what = format!("mu {mu} r {r} tol {tol:e}");
+                st.1 = st.1.max(check(&p, [want.0, want.1], *tol, &what));
+                let err = (p.value[0] - want.0).abs().max((p.value[1] - want.1).abs());
+                st.0 = st.0.max(err);
+                st.2 += p.evals as u64;
+                st.3 = st.3.max(p.evals);
+            }
             n += 1;
         }
     }
-    println!(
-        "tol {tol:e}: {n} points, max |error| {worst:.2e}, max error/estimate {ratio:.2e}, \
-         evals mean {:.0} max {max_evals}",
-        evals as f64 / n as f64
-    );
-}
-
-#[test]
-fn matches_reference_to_half_lsb_tolerance() {
-    against_reference(2e-6);
-}
-
-#[test]
-fn matches_reference_to_1e_8() {
-    against_reference(1e-8);
+    for (tol, (worst, ratio, evals, max_evals)) in tols.iter().zip(stats) {
+        println!(
+            "tol {tol:e}: {n} points, max |error| {worst:.2e}, max error/estimate {ratio:.2e}, \
+             evals mean {:.0} max {max_evals}",
+            evals as f64 / n as f64
+        );
+    }
 }
 
 /// Random Khronos texel centres (seeded), tol 2e-6.
 #[test]
+#[ignore = "long run (the reference at 1e-11 takes minutes at grazing, small-α points on 2 loaded cores): cargo test -p brdf-tests --test split_sum_polar -- --ignored"]
 fn random_texels_match_reference() {
     use rand::{Rng, SeedableRng};
     let mut rng = rand_pcg::Pcg64::seed_from_u64(2222);
-    for _ in 0..60 {
+    for _ in 0..20 {
         let (mu, r) = (
             centre(rng.random_range(0..1024)),
             centre(rng.random_range(0..1024)),
@@ -175,7 +203,11 @@ fn mirror_limit() {
             let fc = (1.0 - mu).powi(5);
             for (ch, want) in [1.0 - fc, fc].into_iter().enumerate() {
                 let err = (p.value[ch] - want).abs();
-                assert!(err <= tol + 1e-10, "mu {mu} ch {ch}: {} vs {want}", p.value[ch]);
+                assert!(
+                    err <= tol + 1e-10,
+                    "mu {mu} ch {ch}: {} vs {want}",
+                    p.value[ch]
+                );
             }
         }
     }
@@ -202,26 +234,29 @@ fn white_furnace() {
     }
 }
 
-/// E_avg(r) = ∫₀¹ 4t³ E(t²) dt against the same integral of the reference's E by
-/// adaptive Gauss–Kronrod in t (to 1e-8) at two roughnesses.
+/// E_avg(1) = ∫₀¹ 4t³ E(t²) dt against the same integral of the reference's E by a
+/// composite K15 in t on [0, ½], [½, 1]; the reference's own quadrature error is taken as
+/// its |K15 − G7| and allowed on top of the estimates.
 #[test]
+#[ignore = "long run (the reference at 1e-11 takes minutes at grazing, small-α points on 2 loaded cores): cargo test -p brdf-tests --test split_sum_polar -- --ignored"]
 fn e_avg_matches_reference() {
-    for r in [0.5, 1.0] {
-        let (e, est) = e_avg_ggx_polar(r, 1e-6);
-        let want = integrate(
-            |t| {
-                let (a, b) = split_sum_ggx(t * t, r * r, 1e-11);
-                4.0 * t * t * t * (a + b)
-            },
-            0.0,
-            1.0,
-            &[0.1, 0.3],
-            1e-8,
-        );
-        let err = (e - want).abs();
-        assert!(err <= 1e-6, "r {r}: {e} vs {want}");
-        assert!(err <= est + 1e-8, "r {r}: estimate {est:e} < error {err:e}");
+    use brdf_core::quadrature::kronrod::gk15;
+    let (e, est): (f64, f64) = e_avg_ggx_polar(1.0, 1e-6);
+    let (mut want, mut ref_err) = (0.0, 0.0);
+    for (a, b) in [(0.0, 0.5), (0.5, 1.0)] {
+        let (v, d) = gk15(a, b, |t: f64| {
+            let (x, y) = split_sum_ggx(t * t, 1.0, 1e-11);
+            [4.0 * t * t * t * (x + y), 0.0]
+        });
+        want += v[0];
+        ref_err += d[0];
     }
+    let err = (e - want).abs();
+    println!(
+        "E_avg(1) {e} vs {want}: error {err:.2e}, estimate {est:.2e}, reference's {ref_err:.2e}"
+    );
+    assert!(err <= 1e-6 + ref_err, "{e} vs {want}");
+    assert!(err <= est + ref_err, "estimate {est:e} < error {err:e}");
 }
 
 /// Bad input: NaN in, NaN out; μ ≤ 0 gives 0; μ > 1 and r outside [0, 1] are clamped.

@@ -104,11 +104,19 @@ impl<T: Real> Polar<T> {
 /// sinh x: the Taylor series to x¹³ for |x| < ½ (relative error < 3e-17), else (eˣ − e⁻ˣ)/2.
 fn sinh<T: Real>(x: T) -> T {
     if x.abs() < T::HALF {
+        // Horner form of Σ x^{2k}/(2k + 1)!: s ← 1 + x²/((2k)(2k + 1)) · s, k = 6 … 1.
+        const INV: [f64; 6] = [
+            1.0 / 6.0,
+            1.0 / 20.0,
+            1.0 / 42.0,
+            1.0 / 72.0,
+            1.0 / 110.0,
+            1.0 / 156.0,
+        ];
         let x2 = x * x;
         let mut s = T::ONE;
-        for k in (1..=6).rev() {
-            let k = T::from_f64((2 * k * (2 * k + 1)) as f64);
-            s = T::ONE + x2 / k * s;
+        for k in INV.iter().rev() {
+            s = T::ONE + x2 * T::from_f64(*k) * s;
         }
         x * s
     } else {
@@ -245,7 +253,8 @@ impl<T: Real> Texel<T> {
         let num = self.sv * r.c * tau + self.mu;
         let vh = num / d.sqrt();
         let q = sh / (ch * ch * ch);
-        let val = q * T::TWO * num * nl / ((nl * self.rv + self.mu * rl) * T::PI);
+        let val =
+            q * T::from_f64(2.0 / core::f64::consts::PI) * num * nl / (nl * self.rv + self.mu * rl);
         let fc = (T::ONE - vh).max(T::ZERO).powi(5);
         [val * (T::ONE - fc), val * fc]
     }
