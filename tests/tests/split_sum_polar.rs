@@ -180,7 +180,9 @@ fn normal_incidence(a: f64) -> [f64; 2] {
 
 #[test]
 fn normal_incidence_matches_one_dimensional_integral() {
-    for r in rs() {
+    // r ≥ 0.03: the 1-D reference in θ does not resolve α = r² ≲ 1e-4 to 1e-8 (the mirror
+    // limit test covers r = 1e-3 at μ = 1).
+    for r in rs().into_iter().filter(|r| *r >= 0.03) {
         for tol in [2e-6, 1e-8] {
             let p = dfg_ggx_polar(1.0, r, tol);
             check(&p, normal_incidence(r * r), tol, &format!("mu 1 r {r}"));
@@ -194,7 +196,8 @@ fn normal_incidence_matches_one_dimensional_integral() {
 }
 
 /// α → 0: A → 1 − (1 − μ)⁵, B → (1 − μ)⁵. At r = 1e-3 (α = 1e-6) the difference is
-/// O((α/μ)²) from G2 and O(α²) from F_c over the lobe: below 1e-10 for μ ≥ 1e-3.
+/// O((α/μ)²) from G2 (Λ(v) ≈ α² sin²θv/(4μ²)) and O(α²) from F_c over the lobe: (α/μ)² is
+/// allowed (1e-6 at μ = 1e-3, 3.3e-9 at cos 89°, 1e-12 at μ = 1).
 #[test]
 fn mirror_limit() {
     for mu in mus() {
@@ -204,7 +207,7 @@ fn mirror_limit() {
             for (ch, want) in [1.0 - fc, fc].into_iter().enumerate() {
                 let err = (p.value[ch] - want).abs();
                 assert!(
-                    err <= tol + 1e-10,
+                    err <= tol + (1e-6 / mu).powi(2),
                     "mu {mu} ch {ch}: {} vs {want}",
                     p.value[ch]
                 );
