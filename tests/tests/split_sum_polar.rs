@@ -50,13 +50,13 @@ fn rs() -> Vec<f64> {
 /// Checks one result against (A, B) = `want` at tolerance `tol`; returns error/estimate.
 fn check(p: &Polar<f64>, want: [f64; 2], tol: f64, what: &str) -> f64 {
     let mut ratio = 0f64;
-    for ch in 0..2 {
-        let err = (p.value[ch] - want[ch]).abs();
+    for (ch, want) in want.into_iter().enumerate() {
+        let err = (p.value[ch] - want).abs();
         assert!(
             err <= tol,
             "{what} ch {ch}: {} vs {} (error {err:.2e} > tol {tol:e})",
             p.value[ch],
-            want[ch]
+            want
         );
         assert!(
             err <= p.error[ch] + REF_UNCERTAINTY,

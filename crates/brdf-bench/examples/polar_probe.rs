@@ -55,9 +55,12 @@ fn args() -> Args {
     a
 }
 
+/// Texel indices (i, j).
+type Texels = Vec<(usize, usize)>;
+
 /// Texel indices (i: μ column, j: r row): `n` drawn by a fixed linear congruential
 /// sequence, and the edges (the first two and the last column and row, every texel).
-fn khronos_sample(size: usize, n: usize, seed: u64) -> (Vec<(usize, usize)>, Vec<(usize, usize)>) {
+fn khronos_sample(size: usize, n: usize, seed: u64) -> (Texels, Texels) {
     let mut edges = Vec::new();
     for e in [0, 1, size - 1] {
         for k in 0..size {
@@ -108,7 +111,10 @@ fn polar_set(name: &str, pts: &[(f64, f64)], tol: f64) -> Vec<Polar<f64>> {
         .fold(0f64, f64::max);
     let missed = res
         .iter()
-        .filter(|p| !(p.error[0].max(p.error[1]) <= tol))
+        .filter(|p| {
+            p.error[0].max(p.error[1]).partial_cmp(&tol) != Some(std::cmp::Ordering::Less)
+                && p.error[0].max(p.error[1]) != tol
+        })
         .count();
     println!(
         "{name}: {} texels, tol {tol:e}: {:.2} us/texel wall, {:.2} us/texel CPU, evals/texel mean {:.0} max {max_evals}, \
@@ -167,9 +173,9 @@ fn main() {
     let cpu = cpu_seconds().zip(c0).map_or(f64::NAN, |(a, b)| a - b);
     let (mut diff, mut worst_ratio, mut over) = ([0f64; 2], 0f64, 0usize);
     for (p, q) in polar[..m].iter().zip(&conv) {
-        for ch in 0..2 {
+        for (ch, dc) in diff.iter_mut().enumerate() {
             let d = (p.value[ch] - q.value[ch]).abs();
-            diff[ch] = diff[ch].max(d);
+            *dc = dc.max(d);
             let both = p.error[ch] + q.error[ch];
             worst_ratio = worst_ratio.max(d / both);
             over += usize::from(d > both);
