@@ -24,6 +24,7 @@
 //! uses an `RO`-point rule in ξ and an `RI`-point rule in φ.
 
 pub mod converged;
+pub mod polar;
 
 use crate::distribution::{d_beckmann, d_ggx};
 use crate::geometry::Dots;

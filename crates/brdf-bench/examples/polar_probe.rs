@@ -1,0 +1,199 @@
+//! The polar split-sum integrator (`brdf_core::split_sum::polar`) timed and counted on
+//! texel centres, next to the converged visible-cap integrator (`split_sum::converged`) on
+//! the same texels.
+//!
+//! ```text
+//! cargo run --release -p brdf-bench --example polar_probe -- \
+//!     [--tol 2e-6] [--grid 64] [--size 1024] [--samples 4096] [--converged 512] [--seed 22]
+//! ```
+//!
+//! Sets: (1) every texel centre of a grid × grid table (μ = (i + ½)/grid, r = (j + ½)/grid);
+//! (2) the edges of the size × size Khronos axes (α = r²): the first two and the last
+//! column and row, every texel; (3) `--samples` random texels of those axes (a fixed linear
+//! congruential sequence). For each set: µs per texel (one thread, wall clock around the
+//! loop, and CPU time of the process from /proc/self/stat, which a loaded machine
+//! inflates less), evaluations per texel (mean, max), rows, the largest estimate and how many
+//! texels miss `tol`. Then the converged integrator at the same `tol` on the first
+//! `--converged` texels of set (3): its µs per texel and the largest |polar − converged|
+//! per channel, next to the sum of the two estimates there.
+
+use brdf_core::split_sum::converged::DfgGgxRow;
+use brdf_core::split_sum::polar::{DfgGgxPolarRow, Polar};
+use std::time::Instant;
+
+struct Args {
+    tol: f64,
+    grid: usize,
+    size: usize,
+    samples: usize,
+    converged: usize,
+    seed: u64,
+}
+
+fn args() -> Args {
+    let mut a = Args {
+        tol: 2e-6,
+        grid: 64,
+        size: 1024,
+        samples: 4096,
+        converged: 512,
+        seed: 22,
+    };
+    let v: Vec<String> = std::env::args().skip(1).collect();
+    for p in v.chunks(2) {
+        let x = p.get(1).cloned().unwrap_or_default();
+        match p[0].as_str() {
+            "--tol" => a.tol = x.parse().expect("--tol"),
+            "--grid" => a.grid = x.parse().expect("--grid"),
+            "--size" => a.size = x.parse().expect("--size"),
+            "--samples" => a.samples = x.parse().expect("--samples"),
+            "--converged" => a.converged = x.parse().expect("--converged"),
+            "--seed" => a.seed = x.parse().expect("--seed"),
+            o => panic!("unknown option {o}"),
+        }
+    }
+    a
+}
+
+/// Texel indices (i, j).
+type Texels = Vec<(usize, usize)>;
+
+/// Texel indices (i: μ column, j: r row): `n` drawn by a fixed linear congruential
+/// sequence, and the edges (the first two and the last column and row, every texel).
+fn khronos_sample(size: usize, n: usize, seed: u64) -> (Texels, Texels) {
+    let mut edges = Vec::new();
+    for e in [0, 1, size - 1] {
+        for k in 0..size {
+            edges.push((e, k));
+            if ![0, 1, size - 1].contains(&k) {
+                edges.push((k, e));
+            }
+        }
+    }
+    let mut s = seed.wrapping_mul(6364136223846793005).wrapping_add(1);
+    let mut next = || {
+        s = s
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((s >> 33) % size as u64) as usize
+    };
+    let random = (0..n).map(|_| (next(), next())).collect();
+    (random, edges)
+}
+
+/// This process's CPU time (user + system) in seconds, from /proc/self/stat (clock ticks
+/// of 1/100 s, the Linux USER_HZ); None where that file is absent.
+fn cpu_seconds() -> Option<f64> {
+    let s = std::fs::read_to_string("/proc/self/stat").ok()?;
+    let rest = &s[s.rfind(')')? + 2..];
+    let f: Vec<&str> = rest.split_whitespace().collect();
+    let ticks: u64 = f.get(11)?.parse::<u64>().ok()? + f.get(12)?.parse::<u64>().ok()?;
+    Some(ticks as f64 / 100.0)
+}
+
+/// Runs the polar rule on (μ, r) points; prints the statistics; returns the results.
+fn polar_set(name: &str, pts: &[(f64, f64)], tol: f64) -> Vec<Polar<f64>> {
+    let (t0, c0) = (Instant::now(), cpu_seconds());
+    let res: Vec<Polar<f64>> = pts
+        .iter()
+        .map(|&(mu, r)| DfgGgxPolarRow::new(r).texel(mu, tol))
+        .collect();
+    let dt = t0.elapsed().as_secs_f64();
+    let cpu = cpu_seconds().zip(c0).map_or(f64::NAN, |(a, b)| a - b);
+    let n = pts.len() as f64;
+    let evals: u64 = res.iter().map(|p| p.evals as u64).sum();
+    let max_evals = res.iter().map(|p| p.evals).max().unwrap_or(0);
+    let rows: u64 = res.iter().map(|p| p.rows as u64).sum();
+    let max_rows = res.iter().map(|p| p.rows).max().unwrap_or(0);
+    let max_est = res
+        .iter()
+        .map(|p| p.error[0].max(p.error[1]))
+        .fold(0f64, f64::max);
+    let missed = res
+        .iter()
+        .filter(|p| {
+            p.error[0].max(p.error[1]).partial_cmp(&tol) != Some(std::cmp::Ordering::Less)
+                && p.error[0].max(p.error[1]) != tol
+        })
+        .count();
+    println!(
+        "{name}: {} texels, tol {tol:e}: {:.2} us/texel wall, {:.2} us/texel CPU, evals/texel mean {:.0} max {max_evals}, \
+         rows mean {:.1} max {max_rows}, max estimate {max_est:.2e}, texels over tol {missed}",
+        pts.len(),
+        dt / n * 1e6,
+        cpu / n * 1e6,
+        evals as f64 / n,
+        rows as f64 / n,
+    );
+    res
+}
+
+fn main() {
+    let a = args();
+    let g = a.grid;
+    let grid: Vec<(f64, f64)> = (0..g * g)
+        .map(|k| {
+            let (i, j) = (k % g, k / g);
+            ((i as f64 + 0.5) / g as f64, (j as f64 + 0.5) / g as f64)
+        })
+        .collect();
+    polar_set(&format!("grid {g}x{g}"), &grid, a.tol);
+
+    let c = |k: usize| (k as f64 + 0.5) / a.size as f64;
+    let (random, edges) = khronos_sample(a.size, a.samples, a.seed);
+    let to_pts = |v: &[(usize, usize)]| -> Vec<(f64, f64)> {
+        v.iter().map(|&(i, j)| (c(i), c(j))).collect()
+    };
+    let edge_pts = to_pts(&edges);
+    polar_set(
+        &format!(
+            "Khronos {0}x{0} edges (first two, last column and row)",
+            a.size
+        ),
+        &edge_pts,
+        a.tol,
+    );
+    let pts = to_pts(&random);
+    let polar = polar_set(
+        &format!("Khronos {0}x{0} random sample", a.size),
+        &pts,
+        a.tol,
+    );
+
+    let m = a.converged.min(pts.len());
+    if m == 0 {
+        return;
+    }
+    let (t0, c0) = (Instant::now(), cpu_seconds());
+    let conv: Vec<_> = pts[..m]
+        .iter()
+        .map(|&(mu, r)| DfgGgxRow::new(r).texel(mu, a.tol))
+        .collect();
+    let dt = t0.elapsed().as_secs_f64();
+    let cpu = cpu_seconds().zip(c0).map_or(f64::NAN, |(a, b)| a - b);
+    let (mut diff, mut worst_ratio, mut over) = ([0f64; 2], 0f64, 0usize);
+    for (p, q) in polar[..m].iter().zip(&conv) {
+        for (ch, dc) in diff.iter_mut().enumerate() {
+            let d = (p.value[ch] - q.value[ch]).abs();
+            *dc = dc.max(d);
+            let both = p.error[ch] + q.error[ch];
+            worst_ratio = worst_ratio.max(d / both);
+            over += usize::from(d > both);
+        }
+    }
+    let evals: u64 = conv
+        .iter()
+        .map(|q| q.evals as u64 + q.cut_evals as u64)
+        .sum();
+    println!(
+        "converged (visible cap) on the first {m} sample texels, tol {:e}: {:.2} us/texel wall, {:.2} us/texel CPU, \
+         evals+cut evals/texel mean {:.0}; max |polar - converged| A {:.2e} B {:.2e}; \
+         max difference / (sum of both estimates) {worst_ratio:.2e}, channels over it {over}",
+        a.tol,
+        dt / m as f64 * 1e6,
+        cpu / m as f64 * 1e6,
+        evals as f64 / m as f64,
+        diff[0],
+        diff[1],
+    );
+}
