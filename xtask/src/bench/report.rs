@@ -303,7 +303,7 @@ pub(super) fn render(r: &Report<'_>) -> Result<String> {
         kernel_target_rows => kernel_target_rows(r, per("dfg/lut_linear_f32"), per("dfg/karis_approx_f32"), peer_ns, direct64),
         g_points => a.g_points,
         dfg_points => a.dfg_points,
-        python => python_context(&python_bench(&crate::lut::workspace_root())),
+        python => python_context(&python_bench(&crate::fsio::workspace_root())),
         node_rows, table_rows, limits => Value::from_serialize(&limits), closed_rows, peer, dfg,
         model_rows, batch_rows, parse_rows, gen, cg, raw_rows,
     };
