@@ -39,7 +39,7 @@ pub struct Args {
     /// Table edge N (N × N texels; default: the engine's own size: khronos 1024, bevy,
     /// filament and exr 64, threejs 16). The engines' shaders need no change for another N
     /// (all placements are texel centres), but a drop-in replacement keeps the engine's size.
-    #[arg(long)]
+    #[arg(long, value_parser = size_arg)]
     size: Option<usize>,
     /// Output folder (default: target/lut-engine/<target> in the workspace).
     #[arg(long)]
@@ -75,6 +75,19 @@ impl Target {
 }
 
 /// All n² texel-centre integrals (library generator), with a progress bar for large tables.
+/// `--size`: a whole number; one too large for any integer type is refused naming the
+/// limit (2..=[`MAX_SIZE`]), as every other size flag is.
+fn size_arg(s: &str) -> Result<usize, String> {
+    let digits = !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
+    match s.parse::<usize>() {
+        Ok(n) => Ok(n),
+        Err(_) if digits => Err(format!(
+            "{s}: the table edge must be between 2 and {MAX_SIZE}"
+        )),
+        Err(e) => Err(format!("`{s}` is not a whole number: {e}")),
+    }
+}
+
 pub fn compute_grid(n: usize, quiet: bool) -> Result<SplitSumTexels> {
     let bar = (!quiet && n >= 128).then(|| {
         let b = ProgressBar::new((n * n) as u64);
