@@ -336,15 +336,20 @@ enum Peer {
 /// time depends on its version).
 const SCIPY: &str = "scipy==1.16.3";
 
-/// The virtual environment's Python with SciPy importable, creating it when needed
-/// (`python3 -m venv`, then `pip install`). Idempotent: an existing environment whose SciPy
-/// imports is reused.
-fn scipy_python(root: &Path) -> std::result::Result<PathBuf, String> {
-    let venv = root.join(".cache/scipy-venv");
+/// The Python of the virtual environment `venv` (under the workspace) in which `module`
+/// imports, creating the environment (`python3 -m venv`) and installing `packages` with pip
+/// when it does not. Idempotent: an environment where `module` imports is reused.
+pub(crate) fn venv_python(
+    root: &Path,
+    venv: &str,
+    module: &str,
+    packages: &[&std::ffi::OsStr],
+) -> std::result::Result<PathBuf, String> {
+    let venv = root.join(venv);
     let py = venv.join("bin/python3");
     let imports = |py: &Path| {
         Command::new(py)
-            .args(["-c", "import scipy.integrate"])
+            .args(["-c", &format!("import {module}")])
             .output()
             .is_ok_and(|o| o.status.success())
     };
@@ -354,35 +359,47 @@ fn scipy_python(root: &Path) -> std::result::Result<PathBuf, String> {
     let run = |cmd: &mut Command, what: &str| -> std::result::Result<(), String> {
         let o = cmd.output().map_err(|e| format!("{what}: {e}"))?;
         if o.status.success() {
-            Ok(())
-        } else {
-            Err(format!(
-                "{what} failed: {}",
-                String::from_utf8_lossy(&o.stderr).trim()
-            ))
+            return Ok(());
         }
+        let err = String::from_utf8_lossy(&o.stderr);
+        Err(format!(
+            "{what} failed: {}",
+            err.lines().last().unwrap_or("").trim()
+        ))
     };
-    eprintln!("installing {SCIPY} into {}", venv.display());
-    run(
-        Command::new("python3").args(["-m", "venv"]).arg(&venv),
-        "python3 -m venv",
-    )?;
-    run(
-        Command::new(&py).args([
-            "-m",
-            "pip",
-            "install",
-            "--quiet",
-            "--disable-pip-version-check",
-            SCIPY,
-        ]),
-        "pip install scipy",
-    )?;
+    eprintln!("installing {module} into {}", venv.display());
+    if !py.exists() {
+        run(
+            Command::new("python3").args(["-m", "venv"]).arg(&venv),
+            "python3 -m venv",
+        )?;
+    }
+    let pip = [
+        "-m",
+        "pip",
+        "install",
+        "--quiet",
+        "--disable-pip-version-check",
+    ];
+    run(Command::new(&py).args(pip).args(packages), "pip install")?;
     if imports(&py) {
         Ok(py)
     } else {
-        Err(format!("{SCIPY} installed but does not import"))
+        Err(format!(
+            "installed into {} but `import {module}` fails",
+            venv.display()
+        ))
     }
+}
+
+/// The Python with SciPy importable for the peer (`.cache/scipy-venv`).
+fn scipy_python(root: &Path) -> std::result::Result<PathBuf, String> {
+    venv_python(
+        root,
+        ".cache/scipy-venv",
+        "scipy.integrate",
+        &[SCIPY.as_ref()],
+    )
 }
 
 fn run_peer(root: &Path, n: usize, repeat: usize) -> Peer {

@@ -451,45 +451,13 @@ fn kernel_target_rows(
 /// `brdf_kernels` importable, built there from `crates/brdf-py` when it is not (`python3 -m
 /// venv`, then `pip install numpy ./crates/brdf-py`; needs cargo and PyPI).
 fn package_python(root: &Path) -> std::result::Result<std::path::PathBuf, String> {
-    let py = root.join(".cache/python-venv/bin/python");
-    let imports = |py: &Path| {
-        Command::new(py)
-            .args(["-c", "import brdf_kernels"])
-            .output()
-            .is_ok_and(|o| o.status.success())
-    };
-    if imports(&py) {
-        return Ok(py);
-    }
-    let run = |cmd: &mut Command, what: &str| -> std::result::Result<(), String> {
-        let o = cmd.output().map_err(|e| format!("{what}: {e}"))?;
-        if o.status.success() {
-            return Ok(());
-        }
-        let err = String::from_utf8_lossy(&o.stderr);
-        let last = err.lines().last().unwrap_or("").trim().to_string();
-        Err(format!("{what} failed: {last}"))
-    };
-    eprintln!("installing brdf_kernels into {}", py.display());
-    if !py.exists() {
-        run(
-            Command::new("python3")
-                .args(["-m", "venv"])
-                .arg(root.join(".cache/python-venv")),
-            "python3 -m venv",
-        )?;
-    }
-    run(
-        Command::new(&py)
-            .args(["-m", "pip", "install", "--quiet", "numpy"])
-            .arg(root.join("crates/brdf-py")),
-        "pip install ./crates/brdf-py",
-    )?;
-    if imports(&py) {
-        Ok(py)
-    } else {
-        Err("crates/brdf-py installed but `import brdf_kernels` fails".into())
-    }
+    let pkg = root.join("crates/brdf-py");
+    super::venv_python(
+        root,
+        ".cache/python-venv",
+        "brdf_kernels",
+        &["numpy".as_ref(), pkg.as_os_str()],
+    )
 }
 
 /// Runs `crates/brdf-py/bench/bench.py --json` (the SciPy peer through `.cache/scipy-venv`

@@ -400,6 +400,37 @@ impl<T: Real> CapIntegrand<T> for GgxSplitSum<T> {
     }
 }
 
+/// α of the split-sum row of perceptual roughness r: r clamped to [0, 1], then α = r²
+/// (docs/conventions.md §8); NaN stays NaN. Shared by every texel rule of a row.
+pub(crate) fn row_alpha<T: Real>(r: T) -> T {
+    let r = if r.is_nan() {
+        r
+    } else {
+        r.clamp(T::ZERO, T::ONE)
+    };
+    alpha_from_perceptual(r)
+}
+
+/// The texels every split-sum rule answers without integrating: NaN μ or α give NaN, μ below
+/// [`min_cos`] gives (0, 0), and α ≤ [`MIRROR_ALPHA`] the mirror limit A = 1 − (1 − μ)⁵,
+/// B = (1 − μ)⁵ with the estimate (α/μ)² — as `Err((values, estimates))`. Otherwise `Ok(μ)`
+/// with μ clamped to 1.
+pub(crate) fn texel_edges<T: Real>(mu: T, alpha: T) -> Result<T, ([T; 2], [T; 2])> {
+    if mu.is_nan() || alpha.is_nan() {
+        return Err(([T::NAN; 2], [T::NAN; 2]));
+    }
+    if !(mu >= min_cos()) {
+        return Err(([T::ZERO; 2], [T::ZERO; 2]));
+    }
+    let mu = mu.min(T::ONE);
+    if !(alpha > T::from_f64(MIRROR_ALPHA)) {
+        let fc = (T::ONE - mu).powi(5);
+        let e = (alpha / mu).sq();
+        return Err(([T::ONE - fc, fc], [e, e]));
+    }
+    Ok(mu)
+}
+
 /// One roughness row of the converged GGX split-sum table: α = r² (perceptual r clamped to
 /// [0, 1], docs/conventions.md §8) is fixed along it, μ varies.
 #[derive(Clone, Copy, Debug)]
@@ -410,13 +441,8 @@ pub struct DfgGgxRow<T> {
 impl<T: Real> DfgGgxRow<T> {
     /// The row of perceptual roughness r (NaN stays NaN).
     pub fn new(r: T) -> Self {
-        let r = if r.is_nan() {
-            r
-        } else {
-            r.clamp(T::ZERO, T::ONE)
-        };
         Self {
-            alpha: alpha_from_perceptual(r),
+            alpha: row_alpha(r),
         }
     }
     /// (A, B) at μ to the absolute tolerance `tol` per channel. NaN μ or r gives NaN; μ
@@ -425,18 +451,10 @@ impl<T: Real> DfgGgxRow<T> {
     /// angle that changes F_c, and G2/G1(v) differs from 1 by O((α/μ)²) (Λ(w) ≈
     /// α²(1 − w_z²)/(4w_z²) for small α), which is the estimate returned with it.
     pub fn texel(&self, mu: T, tol: T) -> Converged<T> {
-        if mu.is_nan() || self.alpha.is_nan() {
-            return Converged::exact([T::NAN; 2], [T::NAN; 2]);
-        }
-        if !(mu >= min_cos()) {
-            return Converged::exact([T::ZERO; 2], [T::ZERO; 2]);
-        }
-        let mu = mu.min(T::ONE);
-        if !(self.alpha > T::from_f64(MIRROR_ALPHA)) {
-            let fc = (T::ONE - mu).powi(5);
-            let e = (self.alpha / mu).sq();
-            return Converged::exact([T::ONE - fc, fc], [e, e]);
-        }
+        let mu = match texel_edges(mu, self.alpha) {
+            Ok(mu) => mu,
+            Err((v, e)) => return Converged::exact(v, e),
+        };
         let map = GgxVisibleCap::new(self.alpha, mu);
         integrate_cap(&map, &GgxSplitSum::new(self.alpha, mu), tol)
     }

@@ -50,9 +50,8 @@
 //! [`MAX_INTERVALS`] + 1 rows and [`MAX_PANELS`] panels; when either is exhausted the
 //! result is returned with its (then larger than `tol`) estimate.
 
-use crate::geometry::min_cos;
+use super::converged::{row_alpha, texel_edges};
 use crate::quadrature::kronrod::{gk15_combine, gk15_nodes};
-use crate::roughness::alpha_from_perceptual;
 use crate::Real;
 
 /// The finest trapezoid level in ψ (intervals on [0, π]).
@@ -67,8 +66,8 @@ pub const BUMP_BREAK: f64 = 1.5;
 pub const GRADE_RATIO: f64 = 6.0;
 /// Grading toward the cut stops at this distance (in w).
 pub const GRADE_MAX: f64 = 1.0;
-/// Below this width α the split sum is its mirror limit (as in `converged`).
-pub const MIRROR_ALPHA: f64 = 1e-7;
+/// Below this width α the split sum is its mirror limit (the same as `converged`'s).
+pub use super::converged::MIRROR_ALPHA;
 
 /// A texel's integral: the two channels, their estimates and the work done.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -515,35 +514,21 @@ pub struct DfgGgxPolarRow<T> {
 impl<T: Real> DfgGgxPolarRow<T> {
     /// The row of perceptual roughness r (NaN stays NaN).
     pub fn new(r: T) -> Self {
-        let r = if r.is_nan() {
-            r
-        } else {
-            r.clamp(T::ZERO, T::ONE)
-        };
         Self {
-            alpha: alpha_from_perceptual(r),
+            alpha: row_alpha(r),
         }
     }
 
     /// (A, B) at μ to the absolute tolerance `tol` per channel, with the estimate and the
-    /// work. NaN μ or r gives NaN; μ below [`min_cos`] gives (0, 0); μ > 1 is clamped.
+    /// work. NaN μ or r gives NaN; μ below [`crate::geometry::min_cos`] gives (0, 0); μ > 1 is clamped.
     /// α ≤ [`MIRROR_ALPHA`] is the mirror limit A = 1 − (1 − μ)⁵, B = (1 − μ)⁵ with the
     /// estimate (α/μ)² (G2 = 1 − O((α/μ)²)). A `tol` that cannot be met (≤ 0, NaN, or
     /// beyond the fixed storage) returns the best result with its estimate.
     pub fn texel(&self, mu: T, tol: T) -> Polar<T> {
-        if mu.is_nan() || self.alpha.is_nan() {
-            return Polar::exact([T::NAN; 2], [T::NAN; 2]);
+        match texel_edges(mu, self.alpha) {
+            Ok(mu) => integrate(mu, self.alpha, tol),
+            Err((v, e)) => Polar::exact(v, e),
         }
-        if !(mu >= min_cos()) {
-            return Polar::exact([T::ZERO; 2], [T::ZERO; 2]);
-        }
-        let mu = mu.min(T::ONE);
-        if !(self.alpha > T::from_f64(MIRROR_ALPHA)) {
-            let fc = (T::ONE - mu).powi(5);
-            let e = (self.alpha / mu).sq();
-            return Polar::exact([T::ONE - fc, fc], [e, e]);
-        }
-        integrate(mu, self.alpha, tol)
     }
 }
 
