@@ -24,7 +24,7 @@ fn option_errors_name_the_real_problem_and_write_nothing() {
     };
     fails_with(
         &with(&["--res", "1x1"]),
-        "axis mu: 1 node(s); an axis needs at least 2 nodes",
+        "nodes per axis is 1; the limit is 2..=65536",
     );
     fails_with(&with(&["--res", "64"]), "has 2 axes (mu, roughness)");
     fails_with(&with(&["--res", "64xq"]), "`q` is not a whole number");
