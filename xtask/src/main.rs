@@ -4,6 +4,7 @@
 use clap::{Parser, Subcommand};
 
 mod anchors;
+mod args;
 mod bench;
 mod cffi;
 mod ci;

@@ -78,10 +78,9 @@ impl Target {
 /// `--size`: a whole number; one too large for any integer type is refused naming the
 /// limit (2..=[`MAX_SIZE`]), as every other size flag is.
 fn size_arg(s: &str) -> Result<usize, String> {
-    let digits = !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
-    match s.parse::<usize>() {
-        Ok(n) => Ok(n),
-        Err(_) if digits => Err(format!(
+    match crate::args::whole::<usize>(s) {
+        Ok(Some(n)) => Ok(n),
+        Ok(None) => Err(format!(
             "{s}: the table edge must be between 2 and {MAX_SIZE}"
         )),
         Err(e) => Err(format!("`{s}` is not a whole number: {e}")),

@@ -116,10 +116,9 @@ use brdf_lut::limits::{self, MAX_CONFIG_BYTES};
 /// A `--samples` count: a number too wide for u32 is refused naming the limit (clap's own
 /// message would say only "too large"); counts within u32 meet the limit check later.
 pub(super) fn samples_arg(s: &str) -> Result<u32, String> {
-    let digits = !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
-    match s.parse::<u32>() {
-        Ok(n) => Ok(n),
-        Err(_) if digits => Err(format!(
+    match crate::args::whole::<u32>(s) {
+        Ok(Some(n)) => Ok(n),
+        Ok(None) => Err(format!(
             "{s} points; the limit is 1..={} (docs/lut-format.md, Limits)",
             limits::MAX_SAMPLES
         )),
@@ -133,9 +132,8 @@ pub(super) fn samples_arg(s: &str) -> Result<u32, String> {
 fn res_count(res: &str, t: &str) -> Result<u32> {
     let t = t.trim();
     let max = limits::MAX_NODES_PER_AXIS as u64;
-    let n = match t.parse::<u64>() {
-        Ok(n) => n,
-        Err(_) if !t.is_empty() && t.bytes().all(|b| b.is_ascii_digit()) => u64::MAX,
+    let n = match crate::args::whole::<u64>(t) {
+        Ok(n) => n.unwrap_or(u64::MAX),
         Err(_) => bail!("--res `{res}`: `{t}` is not a whole number of nodes"),
     };
     limits::check_range("nodes per axis", n, 2, max)

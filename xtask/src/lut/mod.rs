@@ -5,7 +5,7 @@ mod export;
 mod gen;
 mod generate;
 
-use anyhow::{bail, Context, Result};
+use anyhow::{anyhow, bail, Context, Result};
 use clap::Subcommand;
 use std::path::{Path, PathBuf};
 
@@ -115,16 +115,10 @@ pub fn check_set_limits(g: &GenArgs) -> Result<()> {
     let Some(res) = &g.res else { return Ok(()) };
     let counts: Vec<u64> = res
         .split('x')
-        .map(|t| {
-            let t = t.trim();
-            match t.parse::<u64>() {
-                Ok(n) => Ok(n),
-                // Digits too many for u64: beyond the limit, which the check below names.
-                Err(_) if !t.is_empty() && t.bytes().all(|b| b.is_ascii_digit()) => Ok(u64::MAX),
-                Err(e) => Err(e),
-            }
-        })
-        .collect::<Result<_, _>>()
+        // Digits too many for u64: beyond the limit, which the check below names.
+        .map(|t| crate::args::whole::<u64>(t.trim()).map(|n| n.unwrap_or(u64::MAX)))
+        .collect::<Result<_, String>>()
+        .map_err(|e| anyhow!(e))
         .with_context(|| format!("--res `{res}` is not like 64x64"))?;
     let only = g.only.as_deref().unwrap_or("");
     for a in brdf_lut::generate::default_set()
