@@ -5,7 +5,19 @@
 //! ```text
 //! cargo run --release -p brdf-bench --example polar_probe -- \
 //!     [--tol 2e-6] [--grid 64] [--size 1024] [--samples 4096] [--converged 512] [--seed 22]
+//! cargo run --release -p brdf-bench --example polar_probe -- --rows 64 \
+//!     [--tol 2e-6] [--size 1024] [--converged 64] [--ref-tol 1e-9] [--full 1] [--seed 22]
 //! ```
+//!
+//! With `--rows K` the row API (`split_sum::rows`, `DfgGgxPolarRow::texels`) instead: K
+//! rows of the size × size Khronos table (the first two, the last, and K − 3 drawn by the
+//! linear congruential sequence), each whole row timed (CPU time), with evaluations per
+//! texel (mean over all, and the largest row mean), nodes and pieces per row, the largest
+//! estimate and texels over `tol`; then `--converged` texels drawn from those rows against
+//! the converged integrator at `--ref-tol` (largest |row − converged| per channel and
+//! whether each difference is within the sum of both estimates); the projected time of the
+//! whole table on 2 cores; and with `--full 1` the whole table computed on 2 threads
+//! (std::thread::scope, rows interleaved), timed by wall clock.
 //!
 //! Sets: (1) every texel centre of a grid × grid table (μ = (i + ½)/grid, r = (j + ½)/grid);
 //! (2) the edges of the size × size Khronos axes (α = r²): the first two and the last
@@ -19,6 +31,7 @@
 
 use brdf_core::split_sum::converged::DfgGgxRow;
 use brdf_core::split_sum::polar::{DfgGgxPolarRow, Polar};
+use brdf_core::split_sum::rows::RowWork;
 use std::time::Instant;
 
 struct Args {
@@ -28,6 +41,9 @@ struct Args {
     samples: usize,
     converged: usize,
     seed: u64,
+    rows: usize,
+    ref_tol: f64,
+    full: bool,
 }
 
 fn args() -> Args {
@@ -38,6 +54,9 @@ fn args() -> Args {
         samples: 4096,
         converged: 512,
         seed: 22,
+        rows: 0,
+        ref_tol: 1e-9,
+        full: false,
     };
     let v: Vec<String> = std::env::args().skip(1).collect();
     for p in v.chunks(2) {
@@ -49,6 +68,9 @@ fn args() -> Args {
             "--samples" => a.samples = x.parse().expect("--samples"),
             "--converged" => a.converged = x.parse().expect("--converged"),
             "--seed" => a.seed = x.parse().expect("--seed"),
+            "--rows" => a.rows = x.parse().expect("--rows"),
+            "--ref-tol" => a.ref_tol = x.parse().expect("--ref-tol"),
+            "--full" => a.full = x.parse::<u32>().expect("--full") != 0,
             o => panic!("unknown option {o}"),
         }
     }
@@ -130,6 +152,9 @@ fn polar_set(name: &str, pts: &[(f64, f64)], tol: f64) -> Vec<Polar<f64>> {
 
 fn main() {
     let a = args();
+    if a.rows > 0 {
+        return rows_mode(&a);
+    }
     let g = a.grid;
     let grid: Vec<(f64, f64)> = (0..g * g)
         .map(|k| {
@@ -195,5 +220,153 @@ fn main() {
         evals as f64 / m as f64,
         diff[0],
         diff[1],
+    );
+}
+
+/// A fixed linear congruential sequence of indices below `n`.
+fn lcg(seed: u64, n: usize) -> impl FnMut() -> usize {
+    let mut s = seed.wrapping_mul(6364136223846793005).wrapping_add(1);
+    move || {
+        s = s
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((s >> 33) % n as u64) as usize
+    }
+}
+
+/// One row of the Khronos table (r = (j + ½)/size) by the row API.
+fn khronos_row(j: usize, mus: &[f64], tol: f64, out: &mut [Polar<f64>]) -> RowWork {
+    let r = (j as f64 + 0.5) / mus.len() as f64;
+    DfgGgxPolarRow::new(r)
+        .texels(mus, tol, out)
+        .expect("row lengths and tol are valid")
+}
+
+/// The `--rows` mode (module docs).
+fn rows_mode(a: &Args) {
+    let n = a.size;
+    let mus: Vec<f64> = (0..n).map(|i| (i as f64 + 0.5) / n as f64).collect();
+    let mut next = lcg(a.seed, n);
+    let mut js = vec![0, 1, n - 1];
+    js.extend((3..a.rows).map(|_| next()));
+    js.truncate(a.rows);
+    let mut out = vec![vec![Polar::default(); n]; js.len()];
+    let (t0, c0) = (Instant::now(), cpu_seconds());
+    let work: Vec<RowWork> = js
+        .iter()
+        .zip(out.iter_mut())
+        .map(|(&j, o)| khronos_row(j, &mus, a.tol, o))
+        .collect();
+    let dt = t0.elapsed().as_secs_f64();
+    let cpu = cpu_seconds().zip(c0).map_or(f64::NAN, |(x, y)| x - y);
+    if std::env::var_os("POLAR_PROBE_ROWS").is_some() {
+        for (j, w) in js.iter().zip(&work) {
+            println!(
+                "  row j {j}: {w:?}, evals/node {:.0}",
+                w.evals as f64 / w.nodes.max(1) as f64
+            );
+        }
+    }
+    let texels = (js.len() * n) as f64;
+    let evals: u64 = work.iter().map(|w| w.evals).sum();
+    let max_row = work
+        .iter()
+        .map(|w| w.evals as f64 / n as f64)
+        .fold(0.0, f64::max);
+    let nodes: u64 = work.iter().map(|w| w.nodes as u64).sum();
+    let max_nodes = work.iter().map(|w| w.nodes).max().unwrap_or(0);
+    let pieces: u64 = work.iter().map(|w| w.pieces as u64).sum();
+    let direct: u64 = work.iter().map(|w| w.direct as u64).sum();
+    let flat = out.iter().flatten();
+    let max_est = flat
+        .clone()
+        .map(|p| p.error[0].max(p.error[1]))
+        .fold(0f64, f64::max);
+    let over = flat
+        .filter(|p| !(p.error[0].max(p.error[1]) <= a.tol))
+        .count();
+    let us = cpu / texels * 1e6;
+    println!(
+        "rows: {} rows x {n} texels, tol {:e}: {:.2} us/texel wall, {us:.2} us/texel CPU, \
+         evals/texel mean {:.1} (largest row mean {max_row:.1}), nodes/row mean {:.1} max {max_nodes}, \
+         pieces/row {:.2}, direct texels {direct}, max estimate {max_est:.2e}, texels over tol {over}; \
+         projected {n}x{n} on 2 cores {:.2} s",
+        js.len(),
+        a.tol,
+        dt / texels * 1e6,
+        evals as f64 / texels,
+        nodes as f64 / js.len() as f64,
+        pieces as f64 / js.len() as f64,
+        us * 1e-6 * (n * n) as f64 / 2.0,
+    );
+    compare_converged(a, &js, &mus, &out);
+    if a.full {
+        full_table(a, &mus);
+    }
+}
+
+/// `--converged` texels drawn from the computed rows against the converged integrator.
+fn compare_converged(a: &Args, js: &[usize], mus: &[f64], out: &[Vec<Polar<f64>>]) {
+    let mut next = lcg(a.seed ^ 0x5eed, js.len() * mus.len());
+    let (mut diff, mut worst_ratio, mut over) = ([0f64; 2], 0f64, 0usize);
+    let t0 = Instant::now();
+    for _ in 0..a.converged {
+        let k = next();
+        let (row, i) = (k / mus.len(), k % mus.len());
+        let r = (js[row] as f64 + 0.5) / mus.len() as f64;
+        let q = DfgGgxRow::new(r).texel(mus[i], a.ref_tol);
+        let p = &out[row][i];
+        for (ch, dc) in diff.iter_mut().enumerate() {
+            let d = (p.value[ch] - q.value[ch]).abs();
+            *dc = dc.max(d);
+            let both = p.error[ch] + q.error[ch];
+            worst_ratio = worst_ratio.max(d / both);
+            over += usize::from(d > both);
+        }
+    }
+    println!(
+        "row vs converged (tol {:e}) on {} texels of those rows ({:.1} s): max |row - converged| \
+         A {:.2e} B {:.2e}; max difference / (sum of both estimates) {worst_ratio:.2e}, channels over it {over}",
+        a.ref_tol,
+        a.converged,
+        t0.elapsed().as_secs_f64(),
+        diff[0],
+        diff[1],
+    );
+}
+
+/// The whole size × size table on 2 threads (rows interleaved), wall clock.
+fn full_table(a: &Args, mus: &[f64]) {
+    let n = mus.len();
+    let t0 = Instant::now();
+    let results: Vec<(u64, f64, usize)> = std::thread::scope(|s| {
+        let hs: Vec<_> = (0..2)
+            .map(|t| {
+                s.spawn(move || {
+                    let mut out = vec![Polar::default(); n];
+                    let (mut evals, mut max_est, mut over) = (0u64, 0f64, 0usize);
+                    for j in (t..n).step_by(2) {
+                        evals += khronos_row(j, mus, a.tol, &mut out).evals;
+                        for p in &out {
+                            let e = p.error[0].max(p.error[1]);
+                            max_est = max_est.max(e);
+                            over += usize::from(!(e <= a.tol));
+                        }
+                    }
+                    (evals, max_est, over)
+                })
+            })
+            .collect();
+        hs.into_iter()
+            .map(|h| h.join().expect("row thread"))
+            .collect()
+    });
+    let dt = t0.elapsed().as_secs_f64();
+    let evals: u64 = results.iter().map(|r| r.0).sum();
+    let max_est = results.iter().map(|r| r.1).fold(0f64, f64::max);
+    let over: usize = results.iter().map(|r| r.2).sum();
+    println!(
+        "full {n}x{n} table on 2 threads: {dt:.2} s wall, evals/texel mean {:.1}, max estimate {max_est:.2e}, texels over tol {over}",
+        evals as f64 / (n * n) as f64,
     );
 }

@@ -25,6 +25,7 @@
 
 pub mod converged;
 pub mod polar;
+pub mod rows;
 
 use crate::distribution::{d_beckmann, d_ggx};
 use crate::geometry::Dots;

@@ -70,7 +70,7 @@ pub const GRADE_MAX: f64 = 1.0;
 pub use super::converged::MIRROR_ALPHA;
 
 /// A texel's integral: the two channels, their estimates and the work done.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Polar<T> {
     /// (A, B).
     pub value: [T; 2],
@@ -85,7 +85,8 @@ pub struct Polar<T> {
 }
 
 impl<T: Real> Polar<T> {
-    fn exact(value: [T; 2], error: [T; 2]) -> Self {
+    /// A texel answered without integrating (no work).
+    pub(crate) fn exact(value: [T; 2], error: [T; 2]) -> Self {
         Self {
             value,
             error,
@@ -121,6 +122,21 @@ fn sinh<T: Real>(x: T) -> T {
     } else {
         let e = x.exp();
         (e - T::ONE / e) * T::HALF
+    }
+}
+
+/// (sinh w, cosh w) for w ≥ 0 from one exponential: for w ≥ ½, e = e^{−w} by
+/// [`Real::exp_bounded`] (w ≤ 87) and sinh = (1/e − e)/2, cosh = (1/e + e)/2 (no
+/// cancellation: e^{−w} ≤ 0.61 e^{w}); below ½ the series of [`sinh`] and cosh = √(1 + sinh²).
+#[inline]
+fn sinh_cosh<T: Real>(w: T) -> (T, T) {
+    if w >= T::HALF && w <= T::from_f64(87.0) {
+        let e = (-w).exp_bounded();
+        let ie = T::ONE / e;
+        ((ie - e) * T::HALF, (ie + e) * T::HALF)
+    } else {
+        let sh = sinh(w);
+        (sh, (T::ONE + sh * sh).sqrt())
     }
 }
 
@@ -239,8 +255,7 @@ impl<T: Real> Texel<T> {
     /// lit range.
     #[inline]
     fn integrand(&self, r: &Row<T>, w: T) -> [T; 2] {
-        let sh = sinh(w);
-        let ch = (T::ONE + sh * sh).sqrt();
+        let (sh, ch) = sinh_cosh(w);
         let tau = self.alpha * sh;
         let d = T::ONE + tau * tau;
         let nl = self.mu * (r.tc - tau) * (tau + r.itc) / d;
@@ -517,6 +532,11 @@ impl<T: Real> DfgGgxPolarRow<T> {
         Self {
             alpha: row_alpha(r),
         }
+    }
+
+    /// The row's width α = r².
+    pub(crate) fn alpha(&self) -> T {
+        self.alpha
     }
 
     /// (A, B) at μ to the absolute tolerance `tol` per channel, with the estimate and the
