@@ -305,31 +305,71 @@ fn rows_mode(a: &Args) {
     }
 }
 
-/// `--converged` texels drawn from the computed rows against the converged integrator.
+/// `--converged` texels drawn from the computed rows against the converged integrator at
+/// `--ref-tol`, and the same texels against the polar rule per texel at 1e-10.
 fn compare_converged(a: &Args, js: &[usize], mus: &[f64], out: &[Vec<Polar<f64>>]) {
     let mut next = lcg(a.seed ^ 0x5eed, js.len() * mus.len());
-    let (mut diff, mut worst_ratio, mut over) = ([0f64; 2], 0f64, 0usize);
+    let picks: Vec<(usize, usize)> = (0..a.converged)
+        .map(|_| {
+            let k = next();
+            (k / mus.len(), k % mus.len())
+        })
+        .collect();
     let t0 = Instant::now();
-    for _ in 0..a.converged {
-        let k = next();
-        let (row, i) = (k / mus.len(), k % mus.len());
-        let r = (js[row] as f64 + 0.5) / mus.len() as f64;
-        let q = DfgGgxRow::new(r).texel(mus[i], a.ref_tol);
+    let conv: Vec<[[f64; 2]; 2]> = picks
+        .iter()
+        .map(|&(row, i)| {
+            let r = (js[row] as f64 + 0.5) / mus.len() as f64;
+            let q = DfgGgxRow::new(r).texel(mus[i], a.ref_tol);
+            [q.value, q.error]
+        })
+        .collect();
+    let dt = t0.elapsed().as_secs_f64();
+    let polar: Vec<[[f64; 2]; 2]> = picks
+        .iter()
+        .map(|&(row, i)| {
+            let r = (js[row] as f64 + 0.5) / mus.len() as f64;
+            let q = DfgGgxPolarRow::new(r).texel(mus[i], 1e-10);
+            [q.value, q.error]
+        })
+        .collect();
+    let name = format!("converged (tol {:e}, {dt:.1} s)", a.ref_tol);
+    report_against(&name, js, mus, out, &picks, &conv);
+    report_against("polar per texel (tol 1e-10)", js, mus, out, &picks, &polar);
+}
+
+/// max |row − reference| per channel over the picked texels, and the largest difference
+/// relative to the sum of both estimates.
+fn report_against(
+    name: &str,
+    js: &[usize],
+    mus: &[f64],
+    out: &[Vec<Polar<f64>>],
+    picks: &[(usize, usize)],
+    refs: &[[[f64; 2]; 2]],
+) {
+    let (mut diff, mut worst_ratio, mut over) = ([0f64; 2], 0f64, 0usize);
+    let mut worst_at = (0.0, 0.0, 0, 0.0, 0.0, 0.0);
+    for (&(row, i), q) in picks.iter().zip(refs) {
         let p = &out[row][i];
+        let r = (js[row] as f64 + 0.5) / mus.len() as f64;
         for (ch, dc) in diff.iter_mut().enumerate() {
-            let d = (p.value[ch] - q.value[ch]).abs();
+            let d = (p.value[ch] - q[0][ch]).abs();
             *dc = dc.max(d);
-            let both = p.error[ch] + q.error[ch];
-            worst_ratio = worst_ratio.max(d / both);
+            let both = p.error[ch] + q[1][ch];
+            if d / both > worst_ratio {
+                worst_ratio = d / both;
+                worst_at = (mus[i], r, ch, d, p.error[ch], q[1][ch]);
+            }
             over += usize::from(d > both);
         }
     }
+    let (wm, wr, wch, wd, we, wq) = worst_at;
     println!(
-        "row vs converged (tol {:e}) on {} texels of those rows ({:.1} s): max |row - converged| \
-         A {:.2e} B {:.2e}; max difference / (sum of both estimates) {worst_ratio:.2e}, channels over it {over}",
-        a.ref_tol,
-        a.converged,
-        t0.elapsed().as_secs_f64(),
+        "row vs {name} on {} texels of those rows: max |row - reference| A {:.2e} B {:.2e}; \
+         max difference / (sum of both estimates) {worst_ratio:.2e} (mu {wm} r {wr} channel {wch}: \
+         |difference| {wd:.2e}, row estimate {we:.2e}, reference's {wq:.2e}), channels over it {over}",
+        picks.len(),
         diff[0],
         diff[1],
     );
