@@ -1,3 +1,4 @@
+#![allow(clippy::neg_cmp_op_on_partial_ord)] // NaN counts as over tol: `!(e <= tol)`.
 //! The polar split-sum integrator (`brdf_core::split_sum::polar`) timed and counted on
 //! texel centres, next to the converged visible-cap integrator (`split_sum::converged`) on
 //! the same texels.

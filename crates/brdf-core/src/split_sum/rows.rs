@@ -214,8 +214,8 @@ impl<T: Real> Job<'_, T> {
             for k in 0..=n {
                 let w = if k == 0 || k == n { T::HALF } else { T::ONE };
                 let cs = self.cos[(j * k * s) % (2 * ROW_MAX_DEGREE)] * w * scale;
-                for ch in 0..2 {
-                    cj[ch] += p.f[k * s][ch] * cs;
+                for (c, f) in cj.iter_mut().zip(&p.f[k * s]) {
+                    *c += *f * cs;
                 }
             }
             if j == 0 || j == n {
