@@ -19,17 +19,24 @@
 //! doubling keeps the old nodes) give the interpolant p_n = Σ_j c_j T_j(t),
 //! t = (2x − a − b)/(b − a), with c_j = (2/n) Σ''_k f_k cos(jkπ/n) (Σ'' halves the k = 0,
 //! n terms; c_0, c_n halved too) (Trefethen, "Approximation Theory and Approximation
-//! Practice", 2013, ch. 3, eq 3.12 and 4.8). The estimate of a piece per channel is
+//! Practice" (ATAP), 2013, ch. 3: the interpolant's coefficients by the discrete cosine
+//! transform of the values). The estimate of a texel per channel is
 //!
 //! ```text
-//! e = Σ_j |c_j⁽ⁿ⁾ − c_j⁽ⁿᐟ²⁾|  +  Λ_n δ  +  64ε|p|,     Λ_n = 1 + (2/π) ln(n + 1),
+//! e = I  +  Λ_n δ  +  64ε|p|,     Λ_n = 1 + (2/π) ln(n + 1),
+//! I = 2 Σ_{j > 3n/4} |c_j|            if max_{j > 3n/4} |c_j| ≤ ½ max_{n/2 < j ≤ 3n/4} |c_j|,
+//! I = Σ_j |c_j⁽ⁿ⁾ − c_j⁽ⁿᐟ²⁾|          otherwise.
 //! ```
 //!
-//! the first term a bound on max |p_n − p_{n/2}| over the piece (|T_j| ≤ 1), i.e. the error
-//! of the coarser interpolant, which bounds that of p_n once the coefficients decay
-//! geometrically (as the polar rule's |T_N − T_{N/2}|); δ the largest node estimate (each
-//! node by the polar rule to tol/8) and Λ_n the Lebesgue constant bound of the Chebyshev
-//! points (ATAP Theorem 15.2), which carries the node errors into the interpolant. A piece
+//! I estimates the interpolation error, which is at most 2 Σ_{j > n} |a_j| (a_j the
+//! Chebyshev coefficients of the function, ATAP ch. 4): when the last quarter of the
+//! coefficients has decayed at least twofold from the quarter before, geometric decay
+//! |a_j| ~ ρ^{−j} with ρ^{n/4} ≥ 2 makes the last quarter's sum at least the tail beyond n;
+//! otherwise the difference of p_n and p_{n/2} (a bound on max |p_n − p_{n/2}|, |T_j| ≤ 1:
+//! the error of the coarser interpolant, which bounds that of p_n once the coefficients
+//! decay, as the polar rule's |T_N − T_{N/2}|). δ is the largest node estimate (each node by
+//! the polar rule to tol/8) and Λ_n the Lebesgue constant bound of the Chebyshev points
+//! (ATAP Theorem 15.2), which carries the node errors into the interpolant. A piece
 //! is accepted when e ≤ tol in both channels; otherwise n is doubled up to
 //! [`ROW_MAX_DEGREE`], then the piece is halved (at most [`ROW_MAX_DEPTH`] times). Where
 //! interpolation cannot pay — a piece holding no more texels than the nodes the next step
