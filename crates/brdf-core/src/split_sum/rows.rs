@@ -39,8 +39,8 @@
 //! (ATAP Theorem 15.2), which carries the node errors into the interpolant. A piece
 //! is accepted when e ≤ tol in both channels; otherwise n is doubled up to
 //! [`ROW_MAX_DEGREE`], then the piece is halved (at most [`ROW_MAX_DEPTH`] times). Where
-//! interpolation cannot pay — a piece holding no more texels than the nodes the next step
-//! would add, depth exhausted, or node estimates too large for Λ_n δ < tol — its texels are
+//! interpolation cannot pay — a piece holding no more texels than [`NODE_COST`] × the nodes
+//! the next step would add, depth exhausted, or node estimates too large for Λ_n δ < tol — its texels are
 //! integrated directly by the polar rule to `tol` (their own estimates and work).
 
 use super::converged::texel_edges;
@@ -56,6 +56,10 @@ pub const ROW_MAX_DEPTH: u32 = 10;
 /// Node tolerance as a fraction of the row's `tol` (Λ_64 δ ≤ 0.46 tol: the rest is left
 /// for the interpolation term).
 pub const NODE_TOL_FRACTION: f64 = 0.125;
+
+/// A node (the polar rule to tol/8) costs about this many texels (to tol): measured
+/// 2–2.5× the evaluations with `polar_probe`; used to decide where interpolation pays.
+pub const NODE_COST: usize = 2;
 
 /// Nodes of the finest degree.
 const NG: usize = ROW_MAX_DEGREE + 1;
@@ -308,7 +312,7 @@ impl<T: Real> Job<'_, T> {
         if count == 0 {
             return;
         }
-        if count <= ROW_FIRST_DEGREE + 1 || !(b > a) {
+        if count <= NODE_COST * (ROW_FIRST_DEGREE + 1) || !(b > a) {
             return self.direct(a, b);
         }
         let mut p = Nodes {
@@ -324,7 +328,7 @@ impl<T: Real> Job<'_, T> {
             return self.direct(a, b);
         }
         while p.n < ROW_MAX_DEGREE {
-            if count <= p.n {
+            if count <= NODE_COST * p.n {
                 return self.direct(a, b);
             }
             let n = 2 * p.n;
