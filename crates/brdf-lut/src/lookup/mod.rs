@@ -114,13 +114,13 @@ use warp_w as warp_q;
 /// One axis: physical coordinate → fractional node index.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Lane {
-    warp: Warp,
-    lo: f32,
-    hi: f32,
-    a: f32,
-    b: f32,
+    pub(crate) warp: Warp,
+    pub(crate) lo: f32,
+    pub(crate) hi: f32,
+    pub(crate) a: f32,
+    pub(crate) b: f32,
     /// n − 1.
-    last: f32,
+    pub(crate) last: f32,
     /// n − 2, the last cell.
     #[cfg(not(hosted))]
     last_cell: i32,
