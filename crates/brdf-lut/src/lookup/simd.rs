@@ -405,22 +405,16 @@ impl Fast2 {
         self.ab_in::<false>(reader, data, base, x, y)
     }
 
-    /// [`Fast2::ab`]; `SQRT`: a `Sqrt` table.
+    /// The node index (lanes 0, 1: axis 0, 1; a truncating conversion) and the fraction of
+    /// both axes of [`Fast2::ab_in`]'s query: clamp, warp, t = a·w + b, clamp of t, node.
     #[inline(always)]
-    fn ab_in<const SQRT: bool>(
-        &self,
-        reader: &Reader,
-        data: &[u8],
-        base: usize,
-        x: f32,
-        y: f32,
-    ) -> (f32, f32) {
+    fn cells<const SQRT: bool>(&self, reader: &Reader, x: f32, y: f32) -> (__m128i, __m128) {
         let [l0, l1, _] = &reader.lanes;
         // SAFETY: SSE and SSE2 are part of the x86-64 baseline, and these intrinsics only
         // compute on registers (no memory access). They are safe functions from Rust 1.87
         // on; the block is for the crate's minimum Rust, 1.84.
         #[allow(unused_unsafe)]
-        let (i, f) = unsafe {
+        unsafe {
             // Lanes 2 and 3 repeat the query; their results are not used.
             let x = _mm_setr_ps(x, y, x, y);
             // `maxps`/`minps` return their second operand unless the comparison holds, so
@@ -456,7 +450,20 @@ impl Fast2 {
             // n − 2 (min returns its second operand) and keeps f = NaN.
             let i = _mm_cvttps_epi32(_mm_min_ps(t, pair(&self.last_cell)));
             (i, _mm_sub_ps(t, _mm_cvtepi32_ps(i)))
-        };
+        }
+    }
+
+    /// [`Fast2::ab`]; `SQRT`: a `Sqrt` table.
+    #[inline(always)]
+    fn ab_in<const SQRT: bool>(
+        &self,
+        reader: &Reader,
+        data: &[u8],
+        base: usize,
+        x: f32,
+        y: f32,
+    ) -> (f32, f32) {
+        let (i, f) = self.cells::<SQRT>(reader, x, y);
         // SAFETY: as above (register-only SSE2).
         #[allow(unused_unsafe)]
         let (i0, i1) = unsafe {
