@@ -8,6 +8,7 @@ mod args;
 mod bench;
 mod cffi;
 mod ci;
+mod device;
 mod engine;
 mod eval;
 mod firmware;

@@ -9,6 +9,9 @@ use crate::view::LutView;
 use crate::LutError;
 use core::f32::consts::FRAC_PI_2;
 
+/// The two-lane lookup against the general reader (tables made with the writer).
+#[cfg(all(test, feature = "std", hosted, target_arch = "x86_64"))]
+mod fast2_tests;
 pub(crate) mod layout;
 
 /// What every query of a table needs, computed once from its header.

@@ -154,210 +154,12 @@ fn markdown(
     notes: &[&str],
 ) -> Result<String> {
     let n_cell = s.samples_per_cell();
-    let nb = s.profiles * s.batches_per_profile;
-
-    let lag = (1.0 / DX).round() as usize;
-    let profile_rows: Vec<Value> = profiles
-        .iter()
-        .enumerate()
-        .map(|(i, p)| {
-            context! {
-                i => i,
-                slope_rms => f4(p.realised_slope_rms()),
-                autocorrelation => f4(p.realised_autocorrelation(lag)),
-            }
-        })
-        .collect();
-
-    // 2. Checks.
-    let normal_rows: Vec<Value> = sweeps
-        .iter()
-        .filter_map(|sw| {
-            let c = sw.cells.iter().find(|c| c.ti == 0.0 && c.tr == 0.0)?;
-            Some(context! {
-                sigma => sw.sigma.to_string(),
-                g => f4(c.sim.g.mean),
-                n => c.sim.g.n,
-            })
-        })
-        .collect();
-    let per_b = s.per_batch * 4;
-    let mut g1_rows = Vec::new();
-    for &sg in s.sigmas.iter().filter(|x| [0.1, 0.3, 1.0].contains(*x)) {
-        let surf = Surface {
-            profiles,
-            sigma: sg,
-        };
-        for th in [30.0f64, 60.0, 80.0, 88.0] {
-            let seed = crate::surface::mix_seed(&[77, th as u64, (sg * 1000.0) as u64]);
-            let (g1, id) = surf.g1_area(th.to_radians(), per_b, s.batches_per_profile, seed);
-            g1_rows.push(context! {
-                theta => th.to_string(),
-                sigma => sg.to_string(),
-                identity => f4(id.mean),
-                identity_se => f4(id.se()),
-                smith => f4(smith1d::g1(th.to_radians(), sg)),
-                g1 => f4(g1.mean),
-                g1_se => f4(g1.se()),
-            });
-        }
-    }
-    let reciprocity_rows: Vec<Value> = sweeps
-        .iter()
-        .map(|sw| {
-            let (mut zmax, mut z2, mut n) = (0.0f64, 0.0, 0);
-            for c in &sw.cells {
-                let (mi, mr) = if c.tr >= 0.0 {
-                    (c.tr, c.ti)
-                } else {
-                    (-c.tr, -c.ti)
-                };
-                if let Some(o) = sw.cells.iter().find(|o| o.ti == mi && o.tr == mr) {
-                    if o.ti == c.ti && o.tr == c.tr {
-                        continue;
-                    }
-                    let se = (c.sim.g.se().powi(2) + o.sim.g.se().powi(2))
-                        .sqrt()
-                        .max(1e-9);
-                    let z = (c.sim.g.mean - o.sim.g.mean).abs() / se;
-                    zmax = zmax.max(z);
-                    z2 += z * z;
-                    n += 1;
-                }
-            }
-            context! {
-                n => n,
-                sigma => sw.sigma.to_string(),
-                rms_z => format!("{:.2}", (z2 / n.max(1) as f64).sqrt()),
-                max_z => format!("{zmax:.2}"),
-            }
-        })
-        .collect();
-    let formula_rows: Vec<Value> = sweeps
-        .iter()
-        .map(|sw| {
-            let (zm, zs, _) = formula_vs_single_neighbour(sw);
-            context! {
-                sigma => sw.sigma.to_string(),
-                cells => sw.cells.len(),
-                z_gm => format!("{zm:.2}"),
-                z_gs => format!("{zs:.2}"),
-            }
-        })
-        .collect();
-    let smith_rows: Vec<Value> = sweeps
-        .iter()
-        .map(|sw| {
-            let mut dmax = 0.0f64;
-            for c in sw
-                .cells
-                .iter()
-                .filter(|c| c.ti == 0.0 && c.tr.abs() <= 80.0)
-            {
-                dmax = dmax.max((c.sim.g.mean - smith1d::g1(c.tr.to_radians(), sw.sigma)).abs());
-            }
-            context! { sigma => sw.sigma.to_string(), max_diff => f4(dmax) }
-        })
-        .collect();
-    // Slope bin effect.
     let bin_sweep = sweeps.iter().find(|w| (w.sigma - 0.3).abs() < 1e-9);
-    let mut slope_bin_rows = Vec::new();
-    if let Some(sw) = bin_sweep {
-        let surf = Surface {
-            profiles,
-            sigma: 0.3,
-        };
-        for (ti, tr) in [
-            (30.0f64, 60.0f64),
-            (60.0, 60.0),
-            (30.0, 80.0),
-            (60.0, 0.0),
-            (70.0, 80.0),
-            (80.0, 80.0),
-        ] {
-            let Some(c) = sw.cells.iter().find(|c| c.ti == ti && c.tr == tr) else {
-                continue;
-            };
-            let bins: Vec<Value> = [0.02, 0.1, 0.3]
-                .into_iter()
-                .map(|b| {
-                    let e = surf.g_slope_bin(
-                        ti.to_radians(),
-                        tr.to_radians(),
-                        b,
-                        s.per_batch,
-                        s.batches_per_profile,
-                        99,
-                    );
-                    context! { g => f4(e.mean), se => f4(e.se()), n => e.n }
-                })
-                .collect();
-            slope_bin_rows.push(context! {
-                ti => ti.to_string(),
-                tr => tr.to_string(),
-                g => f4(c.sim.g.mean),
-                se => f4(c.sim.g.se()),
-                bins => bins,
-            });
-        }
-    }
-
-    // 3. Figures: Fig. 6 numbers.
-    let fig6_rows: Vec<Value> = Model::ALL
+    let brdf_table: Vec<BrdfRow> = sweeps
         .iter()
-        .enumerate()
-        .map(|(k, md)| {
-            let e = err_stats(fig6, |c| c.models[k]);
-            context! { name => md.name(), rms => f4(e.rms), max => f4(e.max) }
-        })
+        .map(|sw| (sw.sigma, brdf_errors(sw)))
         .collect();
-    let e = err_stats(fig6, |c| c.sn.g.mean);
-    let fig6_single = context! { rms => f4(e.rms), max => f4(e.max) };
-
-    // 4. Error tables.
-    let model_names: Vec<&str> = Model::ALL.iter().map(|m| m.name()).collect();
-    let error_rows: Vec<Value> = sweeps
-        .iter()
-        .map(|sw| {
-            let mut errors: Vec<Value> = (0..Model::ALL.len())
-                .map(|k| err_cells(&err_stats(sw, |c| c.models[k])))
-                .collect();
-            errors.push(err_cells(&err_stats(sw, |c| c.sn.g.mean)));
-            context! { sigma => sw.sigma.to_string(), errors => errors }
-        })
-        .collect();
-    let where_rows: Vec<Value> = sweeps
-        .iter()
-        .map(|sw| {
-            let (zm, zs, dmin) = formula_vs_single_neighbour(sw);
-            let a = err_stats(sw, |c| c.sn.g.mean);
-            let b = err_stats(sw, |c| c.models[1]);
-            context! {
-                sigma => sw.sigma.to_string(),
-                z_gm => format!("{zm:.2}"),
-                z_gs => format!("{zs:.2}"),
-                min_diff => format!("{dmin:.3}"),
-                sn_rms => format!("{:.3}", a.rms),
-                sn_max => format!("{:.3}", a.max),
-                mod_rms => format!("{:.3}", b.rms),
-                mod_max => format!("{:.3}", b.max),
-            }
-        })
-        .collect();
-    let mut brdf_table: Vec<BrdfRow> = Vec::new();
-    let brdf_rows: Vec<Value> = sweeps
-        .iter()
-        .map(|sw| {
-            let errs = brdf_errors(sw);
-            let cells: Vec<Value> = errs
-                .iter()
-                .map(|(_, r, x)| context! { rms => format!("{r:.2e}"), max => format!("{x:.2e}") })
-                .collect();
-            brdf_table.push((sw.sigma, errs));
-            context! { sigma => sw.sigma.to_string(), errors => cells }
-        })
-        .collect();
-
+    let (fig6_rows, fig6_single) = fig6_numbers(fig6);
     let mut m = fill(
         "validation.md",
         TEMPLATE,
@@ -367,27 +169,27 @@ fn markdown(
             profiles => s.profiles,
             log2_nodes => s.log2_nodes,
             n_cell => n_cell,
-            nb => nb,
+            nb => s.profiles * s.batches_per_profile,
             sigmas => format!("{:?}", s.sigmas),
             step => s.step_deg.to_string(),
             seed => s.seed,
             inv_dx => format!("{:.0}", 1.0 / DX),
-            profile_rows => profile_rows,
+            profile_rows => profile_rows(profiles),
             se_max => format!("{:.4}", 0.5 / (n_cell as f64).sqrt()),
-            normal_rows => normal_rows,
-            g1_rows => g1_rows,
-            reciprocity_rows => reciprocity_rows,
-            formula_rows => formula_rows,
-            smith_rows => smith_rows,
+            normal_rows => normal_rows(sweeps),
+            g1_rows => g1_rows(s, profiles),
+            reciprocity_rows => sweeps.iter().map(reciprocity_row).collect::<Vec<_>>(),
+            formula_rows => sweeps.iter().map(formula_row).collect::<Vec<_>>(),
+            smith_rows => sweeps.iter().map(smith_row).collect::<Vec<_>>(),
             slope_bin => bin_sweep.is_some(),
-            slope_bin_rows => slope_bin_rows,
+            slope_bin_rows => bin_sweep.map(|sw| slope_bin_rows(s, profiles, sw)).unwrap_or_default(),
             notes => notes,
             fig6_rows => fig6_rows,
             fig6_single => fig6_single,
-            model_names => model_names,
-            error_rows => error_rows,
-            where_rows => where_rows,
-            brdf_rows => brdf_rows,
+            model_names => Model::ALL.iter().map(|m| m.name()).collect::<Vec<_>>(),
+            error_rows => sweeps.iter().map(error_row).collect::<Vec<_>>(),
+            where_rows => sweeps.iter().map(where_row).collect::<Vec<_>>(),
+            brdf_rows => brdf_table.iter().map(brdf_row).collect::<Vec<_>>(),
         },
     )?;
 
@@ -403,45 +205,222 @@ fn markdown(
     Ok(m)
 }
 
+/// §1: each profile's realised slope RMS and autocorrelation at a lag of one unit length.
+fn profile_rows(profiles: &[Profile]) -> Vec<Value> {
+    let lag = (1.0 / DX).round() as usize;
+    profiles
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            context! {
+                i => i,
+                slope_rms => f4(p.realised_slope_rms()),
+                autocorrelation => f4(p.realised_autocorrelation(lag)),
+            }
+        })
+        .collect()
+}
+
+/// §2 check: the simulated G at normal incidence and exitance (θi = θr = 0) per σ.
+fn normal_rows(sweeps: &[Sweep]) -> Vec<Value> {
+    sweeps
+        .iter()
+        .filter_map(|sw| {
+            let c = sw.cells.iter().find(|c| c.ti == 0.0 && c.tr == 0.0)?;
+            Some(context! {
+                sigma => sw.sigma.to_string(),
+                g => f4(c.sim.g.mean),
+                n => c.sim.g.n,
+            })
+        })
+        .collect()
+}
+
+/// §2 check: the one-sided G1 by area (and the area identity) against Smith's G1, at
+/// σ ∈ {0.1, 0.3, 1} and θ ∈ {30°, 60°, 80°, 88°} (extra simulations, four times the
+/// batch size).
+fn g1_rows(s: &Settings, profiles: &[Profile]) -> Vec<Value> {
+    let per_b = s.per_batch * 4;
+    let mut rows = Vec::new();
+    for &sg in s.sigmas.iter().filter(|x| [0.1, 0.3, 1.0].contains(*x)) {
+        let surf = Surface {
+            profiles,
+            sigma: sg,
+        };
+        for th in [30.0f64, 60.0, 80.0, 88.0] {
+            let seed = crate::surface::mix_seed(&[77, th as u64, (sg * 1000.0) as u64]);
+            let (g1, id) = surf.g1_area(th.to_radians(), per_b, s.batches_per_profile, seed);
+            rows.push(context! {
+                theta => th.to_string(),
+                sigma => sg.to_string(),
+                identity => f4(id.mean),
+                identity_se => f4(id.se()),
+                smith => f4(smith1d::g1(th.to_radians(), sg)),
+                g1 => f4(g1.mean),
+                g1_se => f4(g1.se()),
+            });
+        }
+    }
+    rows
+}
+
+/// §2 check, reciprocity: z = |G(θi, θr) − G(mirror)| / combined standard error over the
+/// cells whose mirrored cell (θr, θi) — or (−θr, −θi) — was simulated; RMS and max of z.
+fn reciprocity_row(sw: &Sweep) -> Value {
+    let (mut zmax, mut z2, mut n) = (0.0f64, 0.0, 0);
+    for c in &sw.cells {
+        let (mi, mr) = if c.tr >= 0.0 {
+            (c.tr, c.ti)
+        } else {
+            (-c.tr, -c.ti)
+        };
+        if let Some(o) = sw.cells.iter().find(|o| o.ti == mi && o.tr == mr) {
+            if o.ti == c.ti && o.tr == c.tr {
+                continue;
+            }
+            let se = (c.sim.g.se().powi(2) + o.sim.g.se().powi(2))
+                .sqrt()
+                .max(1e-9);
+            let z = (c.sim.g.mean - o.sim.g.mean).abs() / se;
+            zmax = zmax.max(z);
+            z2 += z * z;
+            n += 1;
+        }
+    }
+    context! {
+        n => n,
+        sigma => sw.sigma.to_string(),
+        rms_z => format!("{:.2}", (z2 / n.max(1) as f64).sqrt()),
+        max_z => format!("{zmax:.2}"),
+    }
+}
+
+/// §2 check: the paper's formula against the single-neighbour count of the same rays
+/// ([`formula_vs_single_neighbour`]'s z-scores).
+fn formula_row(sw: &Sweep) -> Value {
+    let (zm, zs, _) = formula_vs_single_neighbour(sw);
+    context! {
+        sigma => sw.sigma.to_string(),
+        cells => sw.cells.len(),
+        z_gm => format!("{zm:.2}"),
+        z_gs => format!("{zs:.2}"),
+    }
+}
+
+/// §2 check: max |G(0, θr) − Smith G1(θr)| over |θr| ≤ 80° (at θi = 0 the pair G is G1).
+fn smith_row(sw: &Sweep) -> Value {
+    let mut dmax = 0.0f64;
+    for c in sw
+        .cells
+        .iter()
+        .filter(|c| c.ti == 0.0 && c.tr.abs() <= 80.0)
+    {
+        dmax = dmax.max((c.sim.g.mean - smith1d::g1(c.tr.to_radians(), sw.sigma)).abs());
+    }
+    context! { sigma => sw.sigma.to_string(), max_diff => f4(dmax) }
+}
+
+/// §2, slope bin effect at σ = 0.3: the cell's G beside G simulated with slope bins of
+/// 0.02, 0.1 and 0.3 (extra simulations), for six (θi, θr) cells that were simulated.
+fn slope_bin_rows(s: &Settings, profiles: &[Profile], sw: &Sweep) -> Vec<Value> {
+    let surf = Surface {
+        profiles,
+        sigma: 0.3,
+    };
+    let mut rows = Vec::new();
+    for (ti, tr) in [
+        (30.0f64, 60.0f64),
+        (60.0, 60.0),
+        (30.0, 80.0),
+        (60.0, 0.0),
+        (70.0, 80.0),
+        (80.0, 80.0),
+    ] {
+        let Some(c) = sw.cells.iter().find(|c| c.ti == ti && c.tr == tr) else {
+            continue;
+        };
+        let bins: Vec<Value> = [0.02, 0.1, 0.3]
+            .into_iter()
+            .map(|b| {
+                let e = surf.g_slope_bin(
+                    ti.to_radians(),
+                    tr.to_radians(),
+                    b,
+                    s.per_batch,
+                    s.batches_per_profile,
+                    99,
+                );
+                context! { g => f4(e.mean), se => f4(e.se()), n => e.n }
+            })
+            .collect();
+        rows.push(context! {
+            ti => ti.to_string(),
+            tr => tr.to_string(),
+            g => f4(c.sim.g.mean),
+            se => f4(c.sim.g.se()),
+            bins => bins,
+        });
+    }
+    rows
+}
+
+/// §3, Fig. 6's numbers: RMS and max error of each model, and of the single-neighbour
+/// count, against the simulation.
+fn fig6_numbers(fig6: &Sweep) -> (Vec<Value>, Value) {
+    let rows = Model::ALL
+        .iter()
+        .enumerate()
+        .map(|(k, md)| {
+            let e = err_stats(fig6, |c| c.models[k]);
+            context! { name => md.name(), rms => f4(e.rms), max => f4(e.max) }
+        })
+        .collect();
+    let e = err_stats(fig6, |c| c.sn.g.mean);
+    (rows, context! { rms => f4(e.rms), max => f4(e.max) })
+}
+
+/// §4 error table row: every model's errors, then the single-neighbour count's.
+fn error_row(sw: &Sweep) -> Value {
+    let mut errors: Vec<Value> = (0..Model::ALL.len())
+        .map(|k| err_cells(&err_stats(sw, |c| c.models[k])))
+        .collect();
+    errors.push(err_cells(&err_stats(sw, |c| c.sn.g.mean)));
+    context! { sigma => sw.sigma.to_string(), errors => errors }
+}
+
+/// §4, where the models differ: the formula's z-scores, the smallest difference, and the
+/// single-neighbour and modified G errors side by side.
+fn where_row(sw: &Sweep) -> Value {
+    let (zm, zs, dmin) = formula_vs_single_neighbour(sw);
+    let a = err_stats(sw, |c| c.sn.g.mean);
+    let b = err_stats(sw, |c| c.models[1]);
+    context! {
+        sigma => sw.sigma.to_string(),
+        z_gm => format!("{zm:.2}"),
+        z_gs => format!("{zs:.2}"),
+        min_diff => format!("{dmin:.3}"),
+        sn_rms => format!("{:.3}", a.rms),
+        sn_max => format!("{:.3}", a.max),
+        mod_rms => format!("{:.3}", b.rms),
+        mod_max => format!("{:.3}", b.max),
+    }
+}
+
+/// §4 BRDF table row: RMS and max of each term's normalised BRDF curve error.
+fn brdf_row((sigma, errs): &BrdfRow) -> Value {
+    let cells: Vec<Value> = errs
+        .iter()
+        .map(|(_, r, x)| context! { rms => format!("{r:.2e}"), max => format!("{x:.2e}") })
+        .collect();
+    context! { sigma => sigma.to_string(), errors => cells }
+}
+
 /// The numbers of §5 (defects of the sources): eq 12's sign, the normalisation C, G ≥ ½ at
 /// grazing, the paper's claim, textbook eqs 24.3 and 24.9.
 fn defects(sweeps: &[Sweep], fig6: &Sweep, fig7: &Sweep, brdf_rows: &[BrdfRow]) -> Value {
-    // eq 12: the printed convention's asymmetry and its GS against the simulation.
-    let asym: Vec<Value> = sweeps
-        .iter()
-        .map(|sw| {
-            let (mut ap, mut ar, mut gs_gap) = (0.0f64, 0.0f64, 0.0f64);
-            let mg = ModifiedG::<f64>::new(sw.sigma).expect("σ > 0");
-            let mp = mg.with_convention(Convention::Printed);
-            for c in &sw.cells {
-                let (a, b) = (c.ti.to_radians(), c.tr.to_radians());
-                let (mi, mr) = if b >= 0.0 { (b, a) } else { (-b, -a) };
-                ap = ap.max((mp.g(a, b) - mp.g(mi, mr)).abs());
-                ar = ar.max((mg.g(a, b) - mg.g(mi, mr)).abs());
-                gs_gap = gs_gap.max((mp.terms(a, b).gs - c.sn.gs.mean).abs());
-            }
-            context! {
-                sigma => sw.sigma.to_string(),
-                printed => format!("{ap:.3}"),
-                reciprocal => format!("{ar:.1e}"),
-                gs_gap => format!("{gs_gap:.3}"),
-            }
-        })
-        .collect();
-    // Normalisation: ∫ p dγ with C = 1. With u = tan γ, p dγ = (1/(2πσ²)) √(1+u²)
-    // e^{−u²/2σ²} du; midpoint rule on u ∈ [−12σ, 12σ].
+    let asym = asym_rows(sweeps);
     let sigma = 0.3;
-    let n = 200_000;
-    let (a, b) = (-12.0 * sigma, 12.0 * sigma);
-    let h = (b - a) / n as f64;
-    let mass_c1: f64 = (0..n)
-        .map(|i| {
-            let u = a + (i as f64 + 0.5) * h;
-            (1.0 + u * u).sqrt() * (-u * u / (2.0 * sigma * sigma)).exp()
-        })
-        .sum::<f64>()
-        * h
-        / (2.0 * std::f64::consts::PI * sigma * sigma);
+    let mass_c1 = mass_c1(sigma);
     let c_core = brdf_core::distribution::SlopeDistribution::<f64>::new(sigma)
         .map(|d| d.normalisation_c())
         .unwrap_or(f64::NAN);
@@ -492,25 +471,7 @@ fn defects(sweeps: &[Sweep], fig6: &Sweep, fig7: &Sweep, brdf_rows: &[BrdfRow]) 
             )
         })
         .unwrap_or_default();
-    // The paper's claim, against the ray-traced truth at σ = 0.3.
-    let claim = brdf_rows
-        .iter()
-        .find(|(sg, _)| (*sg - 0.3).abs() < 1e-9)
-        .map(|(_, errs)| {
-            use brdf_core::models::GeometricTerm as T;
-            let get = |t: T| {
-                let e = errs.iter().find(|e| e.0 == t).map_or(f64::NAN, |e| e.1);
-                format!("{e:.4}")
-            };
-            context! {
-                none => get(T::None),
-                blinn => get(T::Blinn),
-                modified => get(T::Modified),
-                printed => get(T::ModifiedPrinted),
-                separable => get(T::SmithSeparable),
-                correlated => get(T::SmithCorrelated),
-            }
-        });
+    let claim = paper_claim(brdf_rows);
     // Textbook.
     let r0 = 0.04;
     let albedo = |theta: f64, k: f64| format!("{:.4}", textbook::coupled_albedo(theta, r0, k));
@@ -534,6 +495,71 @@ fn defects(sweeps: &[Sweep], fig6: &Sweep, fig7: &Sweep, brdf_rows: &[BrdfRow]) 
         e9p => format!("{e9p:.5e}"),
         e9f => format!("{e9f:.5e}"),
     }
+}
+
+/// §5, eq 12: per σ, the printed convention's largest asymmetry |G(a, b) − G(mirror)|, the
+/// reciprocal one's, and the printed GS's largest distance from the simulated GS.
+fn asym_rows(sweeps: &[Sweep]) -> Vec<Value> {
+    sweeps
+        .iter()
+        .map(|sw| {
+            let (mut ap, mut ar, mut gs_gap) = (0.0f64, 0.0f64, 0.0f64);
+            let mg = ModifiedG::<f64>::new(sw.sigma).expect("σ > 0");
+            let mp = mg.with_convention(Convention::Printed);
+            for c in &sw.cells {
+                let (a, b) = (c.ti.to_radians(), c.tr.to_radians());
+                let (mi, mr) = if b >= 0.0 { (b, a) } else { (-b, -a) };
+                ap = ap.max((mp.g(a, b) - mp.g(mi, mr)).abs());
+                ar = ar.max((mg.g(a, b) - mg.g(mi, mr)).abs());
+                gs_gap = gs_gap.max((mp.terms(a, b).gs - c.sn.gs.mean).abs());
+            }
+            context! {
+                sigma => sw.sigma.to_string(),
+                printed => format!("{ap:.3}"),
+                reciprocal => format!("{ar:.1e}"),
+                gs_gap => format!("{gs_gap:.3}"),
+            }
+        })
+        .collect()
+}
+
+/// §5, the normalisation: ∫ p dγ with C = 1. With u = tan γ, p dγ = (1/(2πσ²)) √(1+u²)
+/// e^{−u²/2σ²} du; midpoint rule on u ∈ [−12σ, 12σ] with 200 000 points.
+fn mass_c1(sigma: f64) -> f64 {
+    let n = 200_000;
+    let (a, b) = (-12.0 * sigma, 12.0 * sigma);
+    let h = (b - a) / n as f64;
+    (0..n)
+        .map(|i| {
+            let u = a + (i as f64 + 0.5) * h;
+            (1.0 + u * u).sqrt() * (-u * u / (2.0 * sigma * sigma)).exp()
+        })
+        .sum::<f64>()
+        * h
+        / (2.0 * std::f64::consts::PI * sigma * sigma)
+}
+
+/// §5, the paper's claim: each term's normalised BRDF curve RMS error against the
+/// ray-traced truth at σ = 0.3 (None when σ = 0.3 was not swept).
+fn paper_claim(brdf_rows: &[BrdfRow]) -> Option<Value> {
+    brdf_rows
+        .iter()
+        .find(|(sg, _)| (*sg - 0.3).abs() < 1e-9)
+        .map(|(_, errs)| {
+            use brdf_core::models::GeometricTerm as T;
+            let get = |t: T| {
+                let e = errs.iter().find(|e| e.0 == t).map_or(f64::NAN, |e| e.1);
+                format!("{e:.4}")
+            };
+            context! {
+                none => get(T::None),
+                blinn => get(T::Blinn),
+                modified => get(T::Modified),
+                printed => get(T::ModifiedPrinted),
+                separable => get(T::SmithSeparable),
+                correlated => get(T::SmithCorrelated),
+            }
+        })
 }
 
 /// The numbers of §6 (which G to use): the best two G by RMS over the populated cells per

@@ -1,7 +1,7 @@
 //! The C ABI's build steps: the header (rustc's macro expansion read by cbindgen), the
 //! cross compiler, the device and host libraries and `examples/c`.
 
-use crate::firmware::runner::target_base;
+use crate::device::{cargo, run_step, target_base};
 use anyhow::{bail, Context, Result};
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -63,13 +63,6 @@ fn expand_ffi(root: &Path) -> Result<String> {
         );
     }
     String::from_utf8(out.stdout).context("rustc printed non-UTF-8 source")
-}
-
-/// Writes through a temporary file in the same folder and a rename.
-pub(crate) fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    let tmp = path.with_extension(format!("tmp{}", std::process::id()));
-    std::fs::write(&tmp, bytes).with_context(|| format!("writing {}", tmp.display()))?;
-    std::fs::rename(&tmp, path).with_context(|| format!("renaming to {}", path.display()))
 }
 
 fn have(cmd: &str) -> bool {
@@ -140,53 +133,29 @@ fn is_root() -> bool {
         .is_ok_and(|o| String::from_utf8_lossy(&o.stdout).trim() == "0")
 }
 
-fn cargo() -> String {
-    std::env::var("CARGO").unwrap_or_else(|_| "cargo".into())
-}
-
 /// libbrdf_ffi.a for the Cortex-M4F, in its own target folder (size-optimised, fat LTO).
 pub(crate) fn build_device_lib(root: &Path, base: &Path) -> Result<PathBuf> {
     let tdir = base.join("cffi-rust-device");
-    let st = Command::new(cargo())
-        .current_dir(root)
-        .args([
-            "rustc",
-            "-p",
-            "brdf-ffi",
-            "--release",
-            "--locked",
-            "--target",
-            "thumbv7em-none-eabihf",
-            "--crate-type",
-            "staticlib",
-            "--config",
-            "profile.release.opt-level=\"z\"",
-            "--config",
-            "profile.release.lto=\"fat\"",
-            "--config",
-            "profile.release.codegen-units=1",
-            "--config",
-            "profile.release.panic=\"abort\"",
-        ])
-        .env("CARGO_TARGET_DIR", &tdir)
-        .status()
-        .context("running cargo rustc for the device library")?;
-    if !st.success() {
-        bail!("building libbrdf_ffi.a for thumbv7em-none-eabihf failed ({st})");
-    }
+    let mut cmd = Command::new(cargo());
+    cmd.current_dir(root)
+        .args(["rustc", "-p", "brdf-ffi", "--release", "--locked"])
+        .args(["--target", "thumbv7em-none-eabihf"])
+        .args(["--crate-type", "staticlib"])
+        .args(["--config", "profile.release.opt-level=\"z\""])
+        .args(["--config", "profile.release.lto=\"fat\""])
+        .args(["--config", "profile.release.codegen-units=1"])
+        .args(["--config", "profile.release.panic=\"abort\""])
+        .env("CARGO_TARGET_DIR", &tdir);
+    run_step(&mut cmd, "building libbrdf_ffi.a for thumbv7em-none-eabihf")?;
     Ok(tdir.join("thumbv7em-none-eabihf/release/libbrdf_ffi.a"))
 }
 
 /// libbrdf_ffi.a and libbrdf_ffi.so for the host (the workspace's release profile).
 pub(crate) fn build_host_lib(root: &Path, base: &Path) -> Result<PathBuf> {
-    let st = Command::new(cargo())
-        .current_dir(root)
-        .args(["build", "-p", "brdf-ffi", "--release", "--locked"])
-        .status()
-        .context("running cargo build for the host library")?;
-    if !st.success() {
-        bail!("building libbrdf_ffi for the host failed ({st})");
-    }
+    let mut cmd = Command::new(cargo());
+    cmd.current_dir(root)
+        .args(["build", "-p", "brdf-ffi", "--release", "--locked"]);
+    run_step(&mut cmd, "building libbrdf_ffi for the host")?;
     Ok(base.join("release"))
 }
 
@@ -197,8 +166,8 @@ pub(crate) fn make_examples(
     device_lib: &Path,
     host_dir: &Path,
 ) -> Result<()> {
-    let st = Command::new("make")
-        .arg("-B")
+    let mut make = Command::new("make");
+    make.arg("-B")
         .arg("-C")
         .arg(root.join("examples/c"))
         .arg("all")
@@ -206,11 +175,6 @@ pub(crate) fn make_examples(
         .arg(format!("OUT={}", out.display()))
         .arg(format!("DEVICE_LIB={}", device_lib.display()))
         .arg(format!("HOST_LIB_DIR={}", host_dir.display()))
-        .arg("EXTRA_CFLAGS=-Werror")
-        .status()
-        .context("running make for examples/c")?;
-    if !st.success() {
-        bail!("building examples/c failed ({st})");
-    }
-    Ok(())
+        .arg("EXTRA_CFLAGS=-Werror");
+    run_step(&mut make, "building examples/c (make)")
 }

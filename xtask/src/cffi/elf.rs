@@ -2,7 +2,7 @@
 //! tables, C program), the README's C size table, and the functions that can reach core's
 //! panic machinery.
 
-use crate::firmware::size::{elf_sections, elf_symbols, tidy, with_commas as thousands};
+use crate::device::elf::{elf_sections, elf_symbols, stdout_of, tidy, with_commas as thousands};
 use anyhow::{bail, Context, Result};
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -45,15 +45,8 @@ pub(crate) fn report(
 /// core's panic entry points or to a core function that does; core's own functions are not
 /// listed.
 fn panic_callers(elf: &Path) -> Result<Vec<String>> {
-    let out = Command::new("arm-none-eabi-objdump")
-        .args(["-d", "-C"])
-        .arg(elf)
-        .output()
-        .context("running arm-none-eabi-objdump")?;
-    if !out.status.success() {
-        bail!("objdump failed: {}", String::from_utf8_lossy(&out.stderr));
-    }
-    let text = String::from_utf8_lossy(&out.stdout);
+    let mut objdump = Command::new("arm-none-eabi-objdump");
+    let text = stdout_of(objdump.args(["-d", "-C"]).arg(elf), "arm-none-eabi-objdump")?;
     // function → the functions it branches to
     let mut calls: BTreeMap<String, Vec<String>> = BTreeMap::new();
     let mut cur = String::new();

@@ -2,7 +2,7 @@
 //! digits for `f32`/`f64` bits) and tables, and recomputes every value it printed on the
 //! host through the same exports called from Rust.
 
-use crate::firmware::protocol::{self, Val};
+use crate::device::protocol::{self, Val};
 use anyhow::{bail, Context, Result};
 use brdf_ffi::*;
 use std::mem::MaybeUninit;

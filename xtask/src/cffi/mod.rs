@@ -18,14 +18,14 @@
 //!
 //! Parts: [`build`] (header, tools, builds), [`host`] (the host recomputation), [`elf`]
 //! (sizes, README table, panic paths). Running programs, reading their output and comparing
-//! values are the firmware runner's shared modules (`crate::firmware::{runner, protocol}`).
+//! values are shared with the firmware runner (`crate::device`).
 
 mod build;
 mod elf;
 mod host;
 
-use crate::firmware::protocol::{self, print_rows, Output, Row, Val};
-use crate::firmware::runner::{ensure_qemu, repo_root, run_qemu, run_timed, target_base, RunOut};
+use crate::device::protocol::{self, print_rows, Output, Row, Val};
+use crate::device::{ensure_qemu, repo_root, run_qemu, run_timed, target_base, RunOut};
 use anyhow::{bail, Context, Result};
 use brdf_ffi::BRDF_ABI_VERSION;
 use std::path::{Path, PathBuf};
@@ -60,7 +60,7 @@ fn check_header(root: &Path, write: bool) -> Result<()> {
     if committed == header {
         println!("cffi: {HEADER} is up to date");
     } else if write {
-        build::write_atomic(&path, header.as_bytes())?;
+        crate::fsio::replace(&path, header.as_bytes())?;
         println!("cffi: wrote {HEADER}");
     } else {
         bail!("{HEADER} is out of date: run `cargo xtask cffi --write-header` and commit it");

@@ -1,9 +1,9 @@
 //! The firmware's side of the comparison: reads its numbers (`bits/decimal`) and tables,
 //! recomputes every value it printed with the firmware's own kernels compiled for the host
-//! (crate `brdf-firmware-kernels`), and compares them through [`super::protocol::Row`]: bit
+//! (crate `brdf-firmware-kernels`), and compares them through [`crate::device::protocol::Row`]: bit
 //! for bit with libm, within a per-kernel relative tolerance with micromath.
 
-use super::protocol::{self, Output, Row, Val};
+use crate::device::protocol::{self, Output, Row, Val};
 use anyhow::{bail, Context, Result};
 use std::path::Path;
 
@@ -162,7 +162,7 @@ pub(crate) fn compare(out: &Output, tables: &HostTables, micromath: bool) -> Res
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::firmware::protocol::RawResult;
+    use crate::device::protocol::RawResult;
 
     fn output(results: Vec<RawResult>) -> Output {
         Output {

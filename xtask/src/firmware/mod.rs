@@ -6,25 +6,24 @@
 //! formatting code. Fails when a value differs, a device self-check fails or QEMU times out,
 //! and with `--enforce-budget` also when the libm kernels exceed [`KERNEL_FLASH_BUDGET`].
 //!
-//! Parts: [`runner`] (QEMU install, firmware build, runs under a timeout), [`protocol`] (the
-//! output lines, run errors and value comparison, shared with `cargo xtask cffi`),
-//! [`compare`] (the firmware's numbers and the host recomputation), [`size`] (flash/RAM
-//! report, its `llvm-size`/`llvm-nm` reading shared with `cargo xtask cffi`).
+//! Parts: [`compare`] (the firmware's numbers and the host recomputation), [`size`] (the
+//! flash/RAM report by part and the README's figures), here the build; QEMU, the output
+//! lines, run errors, value comparison and ELF reading are `crate::device`'s, shared with
+//! `cargo xtask cffi`.
 //!
 //! QEMU comes from `.ci/install-qemu.sh` (unpacks Debian's qemu-system-arm into
 //! `.cache/qemu` without touching the installed qemu-utils).
 
 pub mod compare;
-pub mod protocol;
-pub mod runner;
 pub mod size;
 
+use crate::device::protocol::{self, print_rows};
+use crate::device::{cargo, ensure_qemu, repo_root, run_qemu, run_step, target_base};
 use anyhow::{bail, Result};
 use compare::{compare, micromath_tol, HostTables};
-use protocol::print_rows;
-use runner::{build, ensure_qemu, locked_version, repo_root, run_qemu};
 use size::{print_sizes, sizes, Sizes, KERNEL_FLASH_BUDGET};
-use std::path::Path;
+use std::path::{Path, PathBuf};
+use std::process::Command;
 use std::time::Instant;
 
 #[derive(clap::Args)]
@@ -42,6 +41,37 @@ pub struct FirmwareArgs {
     /// (libm build). Without it, a README that disagrees with the measurement is an error.
     #[arg(long)]
     pub update_readme: bool,
+}
+
+/// The version of `krate` recorded in a Cargo.lock (the first entry), if any.
+fn locked_version(lock: &Path, krate: &str) -> Option<String> {
+    let text = std::fs::read_to_string(lock).ok()?;
+    let want = format!("name = \"{krate}\"");
+    let mut lines = text.lines();
+    while let Some(l) = lines.next() {
+        if l.trim() == want {
+            let v = lines.next()?.trim().strip_prefix("version = \"")?;
+            return Some(v.trim_end_matches('"').to_string());
+        }
+    }
+    None
+}
+
+/// Builds `crates/brdf-firmware` (its own Cargo.lock, its own target folder per math
+/// crate) for the Cortex-M4F; returns the ELF.
+fn build(root: &Path, micromath: bool) -> Result<PathBuf> {
+    let variant = if micromath { "micromath" } else { "libm" };
+    let tdir = target_base(root).join("firmware").join(variant);
+    let mut cmd = Command::new(cargo());
+    cmd.current_dir(root.join("crates/brdf-firmware"))
+        .args(["build", "--release", "--locked"])
+        .args(["--target", "thumbv7em-none-eabihf"])
+        .env("CARGO_TARGET_DIR", &tdir);
+    if micromath {
+        cmd.args(["--features", "micromath"]);
+    }
+    run_step(&mut cmd, "the firmware build (cargo build)")?;
+    Ok(tdir.join("thumbv7em-none-eabihf/release/brdf-firmware"))
 }
 
 /// Notes a math crate whose version differs between the host's and the firmware's
@@ -176,4 +206,24 @@ fn readme_error(root: &Path, update: bool, sizes: &Sizes) -> Result<Option<Strin
             claimed.0, claimed.1, measured.0, measured.1
         )),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn locked_version_reads_the_entry_after_the_name() {
+        let dir = std::env::temp_dir().join(format!("xtask-fw-lock-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let lock = dir.join("Cargo.lock");
+        std::fs::write(
+            &lock,
+            "[[package]]\nname = \"libmx\"\nversion = \"9\"\n\n[[package]]\nname = \"libm\"\nversion = \"0.2.16\"\n",
+        )
+        .unwrap();
+        assert_eq!(locked_version(&lock, "libm").as_deref(), Some("0.2.16"));
+        assert_eq!(locked_version(&lock, "micromath"), None);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }

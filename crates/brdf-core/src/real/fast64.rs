@@ -172,15 +172,20 @@ pub fn exp_neg_f64(z: f64) -> f64 {
 /// lanes where the target has two-lane f64 SIMD).
 #[inline(always)]
 pub fn exp_neg2_f64(z: [f64; 2]) -> [f64; 2] {
-    #[cfg(not(target_os = "none"))]
-    return [exp_neg_f64(z[0]), exp_neg_f64(z[1])];
-    // Bare-metal devices (soft f64): one out-of-line copy (smaller, the same values).
-    #[cfg(target_os = "none")]
-    return [exp_neg_once(z[0]), exp_neg_once(z[1])];
+    if BARE_METAL {
+        // Soft f64: one out-of-line copy (smaller, the same values).
+        [exp_neg_once(z[0]), exp_neg_once(z[1])]
+    } else {
+        [exp_neg_f64(z[0]), exp_neg_f64(z[1])]
+    }
 }
 
+/// Bare-metal devices (`target_os = "none"`, soft f64): the pair kernels call one
+/// out-of-line copy of the scalar kernel instead of inlining two (code size; the same
+/// values). A constant, so the branch not taken is compiled away.
+const BARE_METAL: bool = cfg!(target_os = "none");
+
 /// [`exp_neg_f64`], not inlined.
-#[cfg(target_os = "none")]
 #[inline(never)]
 fn exp_neg_once(z: f64) -> f64 {
     exp_neg_f64(z)
@@ -218,15 +223,14 @@ pub fn erfcx_bounded_f64(x: f64) -> f64 {
 /// side: each step of the polynomial serves both lanes).
 #[inline(always)]
 pub fn erfcx2_bounded_f64(x: [f64; 2]) -> [f64; 2] {
-    #[cfg(not(target_os = "none"))]
-    return erfcx_poly(F2::new(x)).get();
-    // Bare-metal devices (soft f64): one out-of-line copy (smaller, the same values).
-    #[cfg(target_os = "none")]
-    return [erfcx_once(x[0]), erfcx_once(x[1])];
+    if BARE_METAL {
+        [erfcx_once(x[0]), erfcx_once(x[1])]
+    } else {
+        erfcx_poly(F2::new(x)).get()
+    }
 }
 
-/// [`erfcx_bounded_f64`], not inlined.
-#[cfg(target_os = "none")]
+/// [`erfcx_bounded_f64`], not inlined ([`BARE_METAL`] devices).
 #[inline(never)]
 fn erfcx_once(x: f64) -> f64 {
     erfcx_poly(x)

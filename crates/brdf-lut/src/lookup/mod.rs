@@ -114,13 +114,13 @@ use warp_w as warp_q;
 /// One axis: physical coordinate → fractional node index.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Lane {
-    warp: Warp,
-    lo: f32,
-    hi: f32,
-    a: f32,
-    b: f32,
+    pub(crate) warp: Warp,
+    pub(crate) lo: f32,
+    pub(crate) hi: f32,
+    pub(crate) a: f32,
+    pub(crate) b: f32,
     /// n − 1.
-    last: f32,
+    pub(crate) last: f32,
     /// n − 2, the last cell.
     #[cfg(not(hosted))]
     last_cell: i32,
@@ -958,6 +958,20 @@ impl Reader {
                 None => bad[k] = f32::NAN,
             }
         }
+        self.blend::<D, C, N>(&q, &bad, &f0, &f1)
+    }
+
+    /// [`Reader::chunk_in`]'s interpolation of the stored numbers `q` ([channel][tap][query],
+    /// tap = 2 × row + node; `bad` is NaN for a query whose taps were out of the payload):
+    /// r = q₀ + f₀ (q₁ − q₀) per row, v = r₀ + f₁ (r₁ − r₀), then offset + scale · v.
+    #[inline(always)]
+    fn blend<const D: usize, const C: usize, const N: usize>(
+        &self,
+        q: &[[[u32; N]; 4]; C],
+        bad: &[f32; N],
+        f0: &[f32; N],
+        f1: &[f32; N],
+    ) -> [[f32; N]; C] {
         let mut out = [[0.0f32; N]; C];
         for c in 0..C {
             let (sc, of) = (self.scale[c], self.offset[c]);

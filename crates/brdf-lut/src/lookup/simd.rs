@@ -194,7 +194,7 @@ use core::arch::x86_64::{
 #[cfg(target_arch = "x86_64")]
 /// Which form of the two-lane lookup a table takes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Kind {
+pub(crate) enum Kind {
     /// Not this path (another shape, warp, encoding or interpolant).
     None,
     /// Both axes √-warped with endpoint nodes (b = 0), t at hi rounds to at most n − 1,
@@ -222,7 +222,7 @@ pub(crate) struct Fast2 {
     row: u32,
     /// log₂ `row` (`Sqrt` tables, whose rows are a power of two bytes long).
     row_shift: u8,
-    kind: Kind,
+    pub(crate) kind: Kind,
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -349,7 +349,7 @@ impl Fast2 {
     /// The largest row offset (from `base`) whose two rows (the second `row` bytes on) end
     /// in `data`, at most 2³¹ − 1; `None` if no row fits.
     #[cfg(feature = "std")]
-    fn limit(&self, data: &[u8], base: usize) -> Option<u32> {
+    pub(crate) fn limit(&self, data: &[u8], base: usize) -> Option<u32> {
         let l = data.len().checked_sub(base + self.row as usize + 8)?;
         u32::try_from(l.min(i32::MAX as usize)).ok()
     }
@@ -363,7 +363,7 @@ impl Fast2 {
     #[cfg(feature = "std")]
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
-    unsafe fn batch_avx2(
+    pub(crate) unsafe fn batch_avx2(
         &self,
         reader: &Reader,
         data: &[u8],
@@ -405,22 +405,16 @@ impl Fast2 {
         self.ab_in::<false>(reader, data, base, x, y)
     }
 
-    /// [`Fast2::ab`]; `SQRT`: a `Sqrt` table.
+    /// The node index (lanes 0, 1: axis 0, 1; a truncating conversion) and the fraction of
+    /// both axes of [`Fast2::ab_in`]'s query: clamp, warp, t = a·w + b, clamp of t, node.
     #[inline(always)]
-    fn ab_in<const SQRT: bool>(
-        &self,
-        reader: &Reader,
-        data: &[u8],
-        base: usize,
-        x: f32,
-        y: f32,
-    ) -> (f32, f32) {
+    fn cells<const SQRT: bool>(&self, reader: &Reader, x: f32, y: f32) -> (__m128i, __m128) {
         let [l0, l1, _] = &reader.lanes;
         // SAFETY: SSE and SSE2 are part of the x86-64 baseline, and these intrinsics only
         // compute on registers (no memory access). They are safe functions from Rust 1.87
         // on; the block is for the crate's minimum Rust, 1.84.
         #[allow(unused_unsafe)]
-        let (i, f) = unsafe {
+        unsafe {
             // Lanes 2 and 3 repeat the query; their results are not used.
             let x = _mm_setr_ps(x, y, x, y);
             // `maxps`/`minps` return their second operand unless the comparison holds, so
@@ -456,7 +450,20 @@ impl Fast2 {
             // n − 2 (min returns its second operand) and keeps f = NaN.
             let i = _mm_cvttps_epi32(_mm_min_ps(t, pair(&self.last_cell)));
             (i, _mm_sub_ps(t, _mm_cvtepi32_ps(i)))
-        };
+        }
+    }
+
+    /// [`Fast2::ab`]; `SQRT`: a `Sqrt` table.
+    #[inline(always)]
+    fn ab_in<const SQRT: bool>(
+        &self,
+        reader: &Reader,
+        data: &[u8],
+        base: usize,
+        x: f32,
+        y: f32,
+    ) -> (f32, f32) {
+        let (i, f) = self.cells::<SQRT>(reader, x, y);
         // SAFETY: as above (register-only SSE2).
         #[allow(unused_unsafe)]
         let (i0, i1) = unsafe {
@@ -664,369 +671,5 @@ mod wide8 {
             }
             true
         }
-    }
-}
-
-#[cfg(target_arch = "x86_64")]
-#[cfg(all(test, feature = "std"))]
-mod tests {
-    extern crate std;
-    use super::*;
-    use crate::header::{Axis, Interpolation, Placement, TableKind};
-    use crate::tables::Prepared;
-    use crate::write;
-    use crate::LutView;
-    use std::vec::Vec;
-
-    fn same(a: (f32, f32), b: [f32; 2]) -> bool {
-        a.0.to_bits() == b[0].to_bits() && a.1.to_bits() == b[1].to_bits()
-    }
-
-    /// Coordinates for one axis of `lane`: special values, the range ends and their f32
-    /// neighbours, every node exactly (x = lo + (hi − lo)·s² or lo + (hi − lo)·s at node
-    /// s = k/(n − 1) and its neighbours), cell midpoints and an additive recurrence.
-    fn coords(l: &Lane) -> Vec<f32> {
-        let (lo, hi) = (l.lo, l.hi);
-        let up = |x: f32| {
-            f32::from_bits(if x >= 0.0 {
-                x.to_bits() + 1
-            } else {
-                x.to_bits() - 1
-            })
-        };
-        let down = |x: f32| {
-            f32::from_bits(if x > 0.0 {
-                x.to_bits() - 1
-            } else {
-                x.to_bits() + 1
-            })
-        };
-        let mut v = std::vec![
-            f32::NAN,
-            -f32::NAN,
-            f32::INFINITY,
-            f32::NEG_INFINITY,
-            0.0,
-            -0.0,
-            f32::MAX,
-            -f32::MAX,
-            f32::MIN_POSITIVE,
-            1e-30,
-            -1e-30,
-            lo,
-            hi,
-            up(lo),
-            down(lo),
-            up(hi),
-            down(hi),
-            lo - 1.0,
-            hi + 1.0,
-            0.5 * (lo + hi),
-        ];
-        let n = l.n;
-        for k in 0..n {
-            for m in [0.0, 0.5] {
-                let s = ((k as f64 + m) / (n - 1) as f64).min(1.0);
-                let s = if l.warp == Warp::Sqrt { s * s } else { s };
-                let x = (lo as f64 + (hi as f64 - lo as f64) * s) as f32;
-                v.extend([x, up(x), down(x)]);
-            }
-        }
-        for k in 0..2000 {
-            let u = (0.618_033_988_749_895 * k as f64).fract() as f32;
-            v.push(lo + (hi - lo) * u);
-        }
-        v
-    }
-
-    /// `Fast2::ab` (from the payload and from the whole file) against the general scalar
-    /// reader, bit for bit, over the product of both axes' coordinates; returns the kind.
-    fn check(bytes: &[u8]) -> Kind {
-        let view = LutView::parse(bytes).unwrap();
-        let p = Prepared::new(&view);
-        let f = Fast2::new(&p.reader, p.grid.dims, p.grid.channels);
-        if f.kind == Kind::None {
-            return Kind::None;
-        }
-        let payload = view.payload();
-        let hl = p.header_len;
-        assert_eq!(&bytes[hl..], payload);
-        let (xs, ys) = (coords(&p.reader.lanes[0]), coords(&p.reader.lanes[1]));
-        let mut nan = 0;
-        for &x in &xs {
-            for &y in &ys {
-                let want = p.reader.sample::<2, 2>(&p.grid, payload, [x, y]);
-                let (a, b) = (
-                    f.ab(&p.reader, payload, 0, x, y),
-                    f.ab(&p.reader, bytes, hl, x, y),
-                );
-                // Two different NaNs (signs) meeting in one operation give either one: x86
-                // returns the first operand's, and the compiler may swap the operands of a
-                // multiplication. Only then are the NaNs' bits left free.
-                let free = x.is_nan() && y.is_nan() && x.to_bits() != y.to_bits();
-                let ok = |v: Option<(f32, f32)>| {
-                    v.is_some_and(|v| {
-                        same(v, want) || free && v.0.is_nan() && v.1.is_nan() && want[0].is_nan()
-                    })
-                };
-                assert!(ok(a) && ok(b), "({x:e}, {y:e}): {a:?} {b:?} vs {want:?}");
-                // NaN in either coordinate (only then) gives NaN in both channels.
-                assert_eq!(
-                    x.is_nan() || y.is_nan(),
-                    want[0].is_nan() && want[1].is_nan()
-                );
-                nan += usize::from(want[0].is_nan());
-            }
-        }
-        assert!(nan > 0);
-        // A payload one byte short of the last block reads NaN (no panic, no read past it).
-        let short = &payload[..payload.len() - 1];
-        let (l0, l1) = (&p.reader.lanes[0], &p.reader.lanes[1]);
-        let v = f.ab(&p.reader, short, 0, l0.hi, l1.hi).unwrap();
-        assert!(v.0.is_nan() && v.1.is_nan());
-        assert!(!f.ab(&p.reader, short, 0, l0.lo, l1.lo).unwrap().0.is_nan());
-        if f.kind == Kind::Sqrt {
-            batch_equals_scalar(&f, &p.reader, bytes, hl, &xs, &ys);
-        }
-        f.kind
-    }
-
-    /// The eight-lane batch (where the processor has AVX2) against `Fast2::ab`, bit for
-    /// bit: every (x, y) of the coordinate product in query order, a tail of 1–7, and a
-    /// payload one byte short, whose chunks that touch the last block fall back to the
-    /// scalar lookup (NaN there).
-    fn batch_equals_scalar(f: &Fast2, r: &Reader, bytes: &[u8], hl: usize, xs: &[f32], ys: &[f32]) {
-        if !std::is_x86_feature_detected!("avx2") {
-            return;
-        }
-        let (mut x, mut y) = (Vec::new(), Vec::new());
-        for &a in xs {
-            for &b in ys {
-                x.push(a);
-                y.push(b);
-            }
-        }
-        let (l0, l1) = (&r.lanes[0], &r.lanes[1]);
-        let short = &bytes[..bytes.len() - 1];
-        for (data, n) in [(bytes, x.len()), (bytes, 13), (short, 40)] {
-            let (x, mut y) = (&x[x.len() - n..], y[y.len() - n..].to_vec());
-            if data.len() < bytes.len() {
-                // Every third query at the far corner (its block is the short one).
-                let mut x = x.to_vec();
-                for k in (0..n).step_by(3) {
-                    (x[k], y[k]) = (l0.hi, l1.hi);
-                }
-                return run(f, r, data, hl, &x, &y);
-            }
-            run(f, r, data, hl, x, &y);
-        }
-        fn run(f: &Fast2, r: &Reader, data: &[u8], hl: usize, x: &[f32], y: &[f32]) {
-            let n = x.len();
-            let (mut a, mut b) = (std::vec![-1.0; n], std::vec![-1.0; n]);
-            let limit = f.limit(data, hl).unwrap();
-            // SAFETY: the processor has AVX2 (checked above).
-            assert!(unsafe { f.batch_avx2(r, data, hl, limit, x, y, [&mut a, &mut b]) });
-            for k in 0..n {
-                let want = f.ab(r, data, hl, x[k], y[k]).unwrap();
-                let free = x[k].is_nan() && y[k].is_nan() && x[k].to_bits() != y[k].to_bits();
-                let ok = same((a[k], b[k]), [want.0, want.1])
-                    || free && a[k].is_nan() && b[k].is_nan() && want.0.is_nan();
-                assert!(
-                    ok,
-                    "{k} ({:e}, {:e}): {:?} vs {want:?}",
-                    x[k],
-                    y[k],
-                    (a[k], b[k])
-                );
-            }
-        }
-    }
-
-    fn asset(name: &str) -> Vec<u8> {
-        let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../../assets")
-            .join(name);
-        std::fs::read(p).unwrap()
-    }
-
-    /// Every committed asset: the two-channel linear ones take the two-lane path (the
-    /// split-sum speed tier its inlined form) and equal the general reader bit for bit.
-    #[test]
-    fn assets_equal_the_general_reader() {
-        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets");
-        let mut taken = Vec::new();
-        for e in std::fs::read_dir(dir).unwrap() {
-            let name = e.unwrap().file_name().into_string().unwrap();
-            if !name.ends_with(".blut") {
-                continue;
-            }
-            let bytes = asset(&name);
-            let h = *LutView::parse(&bytes).unwrap().header();
-            let fits = h.axes.len() == 2
-                && h.channels.len() == 2
-                && h.encoding == Encoding::Unorm16
-                && h.interpolation == Interpolation::Linear;
-            let kind = check(&bytes);
-            assert_eq!(kind != Kind::None, fits, "{name}");
-            if fits {
-                taken.push((name, kind));
-            }
-        }
-        assert!(
-            taken.contains(&("dfg_ggx_linear.blut".into(), Kind::Sqrt)),
-            "{taken:?}"
-        );
-    }
-
-    /// A √ endpoint axis whose t at hi rounds above n − 1 (found by search) keeps the t
-    /// clamp: the table takes the out-of-line form, with the same values.
-    #[test]
-    fn rounding_past_the_last_node_keeps_the_clamp() {
-        let ax = |hi: f64| Axis {
-            name: "x",
-            count: 256,
-            lo: 0.0,
-            hi,
-            warp: Warp::Sqrt,
-            placement: Placement::Endpoint,
-        };
-        let over = (1..1000)
-            .map(|k| 0.3 + 0.0007 * k as f64)
-            .find(|&hi| {
-                let l = Lane::new(&ax(hi), 2).unwrap();
-                l.a * libm::sqrtf(l.hi - l.lo) + l.b > l.last
-            })
-            .expect("some range rounds past the last node");
-        let axes = [ax(over), ax(1.0)];
-        let spec = write::Spec {
-            kind: TableKind::SplitSum,
-            axes: &axes,
-            channels: &["A", "B"],
-            encoding: Encoding::Unorm16,
-            interpolation: Interpolation::Linear,
-            generator: Default::default(),
-        };
-        let values: Vec<f64> = (0..spec.nodes() * 2)
-            .map(|k| (0.37 * k as f64).sin())
-            .collect();
-        let (chans, payload) = write::quantise(&spec, &values).unwrap();
-        let h = write::header(&spec, chans, Default::default()).unwrap();
-        assert_eq!(check(&write::encode(&h, &payload).unwrap()), Kind::Mixed);
-        // The same table with the other range takes the inlined form.
-        let axes = [ax(1.0), ax(1.0)];
-        let spec = write::Spec {
-            axes: &axes,
-            ..spec
-        };
-        let (chans, payload) = write::quantise(&spec, &values).unwrap();
-        let h = write::header(&spec, chans, Default::default()).unwrap();
-        assert_eq!(check(&write::encode(&h, &payload).unwrap()), Kind::Sqrt);
-    }
-
-    /// Made-up tables of every axis form the path takes (linear, √, endpoint and texel-centre
-    /// nodes, 2 to 300 nodes, ranges that do and do not start at 0, negative ends), and
-    /// some it does not (log warp, Catmull–Rom, one channel).
-    #[test]
-    fn made_up_tables_equal_the_general_reader() {
-        let ax = |count, lo, hi, warp, placement| Axis {
-            name: "x",
-            count,
-            lo,
-            hi,
-            warp,
-            placement,
-        };
-        use Placement::{Endpoint as E, TexelCentre as T};
-        use Warp::{Linear as L, Log, Sqrt as S};
-        let cases = [
-            (
-                [ax(256, 0.0, 1.0, S, E), ax(256, 0.0, 1.0, S, E)],
-                2,
-                Interpolation::Linear,
-            ),
-            (
-                [ax(2, 0.0, 1.0, S, E), ax(3, 0.0, 1.0, S, E)],
-                2,
-                Interpolation::Linear,
-            ),
-            (
-                [ax(64, 0.05, 0.93, S, E), ax(19, 0.1, 1.0, S, E)],
-                2,
-                Interpolation::Linear,
-            ),
-            (
-                [ax(37, 0.05, 0.93, S, E), ax(19, 0.1, 1.0, S, E)],
-                2,
-                Interpolation::Linear,
-            ),
-            (
-                [ax(16, 0.0, 1.0, S, T), ax(9, 0.0, 1.0, S, T)],
-                2,
-                Interpolation::Linear,
-            ),
-            (
-                [ax(33, -1.5, 2.25, L, E), ax(17, 0.0, 1.0, S, E)],
-                2,
-                Interpolation::Linear,
-            ),
-            (
-                [ax(8, 0.0, 1.0, S, E), ax(300, -3.0, -1.0, L, T)],
-                2,
-                Interpolation::Linear,
-            ),
-            (
-                [ax(64, 0.0, 1.0, L, E), ax(64, 0.0, 1.0, L, E)],
-                2,
-                Interpolation::Linear,
-            ),
-            (
-                [ax(16, 0.1, 1.0, Log, E), ax(16, 0.0, 1.0, S, E)],
-                2,
-                Interpolation::Linear,
-            ),
-            (
-                [ax(16, 0.0, 1.0, S, E), ax(16, 0.0, 1.0, S, E)],
-                2,
-                Interpolation::CatmullRom,
-            ),
-            (
-                [ax(16, 0.0, 1.0, S, E), ax(16, 0.0, 1.0, S, E)],
-                1,
-                Interpolation::Linear,
-            ),
-        ];
-        let names = ["A", "B"];
-        let mut kinds = Vec::new();
-        for (axes, nc, interpolation) in cases {
-            let spec = write::Spec {
-                kind: if nc == 2 {
-                    TableKind::SplitSum
-                } else {
-                    TableKind::DirectionalAlbedo
-                },
-                axes: &axes,
-                channels: &names[..nc],
-                encoding: Encoding::Unorm16,
-                interpolation,
-                generator: Default::default(),
-            };
-            let nodes = spec.nodes();
-            // Smooth plus a fixed pseudo-random part, so neighbouring nodes differ.
-            let values: Vec<f64> = (0..nodes * nc)
-                .map(|k| {
-                    let u = (0.754_877_666_246_692_7 * k as f64).fract();
-                    (0.37 * k as f64).sin() + 0.2 * u
-                })
-                .collect();
-            let (chans, payload) = write::quantise(&spec, &values).unwrap();
-            let h = write::header(&spec, chans, Default::default()).unwrap();
-            let bytes = write::encode(&h, &payload).unwrap();
-            kinds.push(check(&bytes));
-        }
-        use Kind::{Mixed as M, None as N, Sqrt as Q};
-        // Which form each table takes: √ with endpoint nodes and 2^k nodes on axis 0 the
-        // inlined one (t at the range ends rounds into [0, n − 1] for these ranges), the
-        // rest (37 nodes on axis 0, texel centres, linear axes) out of line.
-        assert_eq!(kinds, [Q, Q, Q, M, M, M, M, M, N, N, N]);
     }
 }

@@ -1,6 +1,11 @@
-//! Running programs for the firmware and C runners: installs QEMU (`.ci/install-qemu.sh`),
-//! builds the firmware for the Cortex-M4F, runs an ELF on `mps2-an386` with semihosting and
-//! a host program, each under a timeout. What they print is read by [`super::protocol`].
+//! What the firmware runner (`cargo xtask firmware`, Rust on the Cortex-M4F) and the C
+//! runner (`cargo xtask cffi`, C on the Cortex-M4F and on the host) share: installing QEMU
+//! (`.ci/install-qemu.sh`), running an ELF on `mps2-an386` with semihosting and a host
+//! program, each under a timeout, and the child cargo/make steps; what the programs print
+//! and how a run is judged ([`protocol`]); flash and RAM read from an ELF ([`elf`]).
+
+pub(crate) mod elf;
+pub(crate) mod protocol;
 
 use anyhow::{bail, Context, Result};
 use std::path::{Path, PathBuf};
@@ -37,51 +42,24 @@ pub(crate) fn ensure_qemu(root: &Path) -> Result<PathBuf> {
     Ok(PathBuf::from(bin))
 }
 
-/// The version of `krate` recorded in a Cargo.lock (the first entry), if any.
-pub(crate) fn locked_version(lock: &Path, krate: &str) -> Option<String> {
-    let text = std::fs::read_to_string(lock).ok()?;
-    let want = format!("name = \"{krate}\"");
-    let mut lines = text.lines();
-    while let Some(l) = lines.next() {
-        if l.trim() == want {
-            let v = lines.next()?.trim().strip_prefix("version = \"")?;
-            return Some(v.trim_end_matches('"').to_string());
-        }
-    }
-    None
-}
-
 pub(crate) fn target_base(root: &Path) -> PathBuf {
     std::env::var_os("CARGO_TARGET_DIR")
         .map(PathBuf::from)
         .unwrap_or_else(|| root.join("target"))
 }
 
-pub(crate) fn build(root: &Path, micromath: bool) -> Result<PathBuf> {
-    let krate = root.join("crates/brdf-firmware");
-    let variant = if micromath { "micromath" } else { "libm" };
-    let tdir = target_base(root).join("firmware").join(variant);
-    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-    let mut cmd = Command::new(cargo);
-    cmd.current_dir(&krate)
-        .args([
-            "build",
-            "--release",
-            "--locked",
-            "--target",
-            "thumbv7em-none-eabihf",
-        ])
-        .env("CARGO_TARGET_DIR", &tdir);
-    if micromath {
-        cmd.args(["--features", "micromath"]);
-    }
-    let st = cmd
-        .status()
-        .context("running cargo build for the firmware")?;
+/// The cargo that runs xtask (`$CARGO`), for the child builds.
+pub(crate) fn cargo() -> String {
+    std::env::var("CARGO").unwrap_or_else(|_| "cargo".into())
+}
+
+/// Runs a build step (`what` names it in the messages) and fails unless it succeeds.
+pub(crate) fn run_step(cmd: &mut Command, what: &str) -> Result<()> {
+    let st = cmd.status().with_context(|| format!("running {what}"))?;
     if !st.success() {
-        bail!("firmware build failed ({st})");
+        bail!("{what} failed ({st})");
     }
-    Ok(tdir.join("thumbv7em-none-eabihf/release/brdf-firmware"))
+    Ok(())
 }
 
 /// A finished (or timed-out) run.
@@ -144,24 +122,4 @@ pub(crate) fn run_qemu(qemu: &Path, elf: &Path) -> Result<RunOut> {
         .arg(elf)
         .env("LD_LIBRARY_PATH", ld.trim_end_matches(':'));
     run_timed(&mut cmd, QEMU_TIMEOUT_S)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn locked_version_reads_the_entry_after_the_name() {
-        let dir = std::env::temp_dir().join(format!("xtask-fw-lock-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let lock = dir.join("Cargo.lock");
-        std::fs::write(
-            &lock,
-            "[[package]]\nname = \"libmx\"\nversion = \"9\"\n\n[[package]]\nname = \"libm\"\nversion = \"0.2.16\"\n",
-        )
-        .unwrap();
-        assert_eq!(locked_version(&lock, "libm").as_deref(), Some("0.2.16"));
-        assert_eq!(locked_version(&lock, "micromath"), None);
-        std::fs::remove_dir_all(&dir).unwrap();
-    }
 }

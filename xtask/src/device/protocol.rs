@@ -7,7 +7,7 @@
 //! Lines: `<BANNER> …`, `TABLE <words…>`, `R <kernel> <args…> = <values…>`,
 //! `CHECK <name> ok|FAIL`, `STACK <bytes>`, `END <results>`; anything else is ignored.
 
-use super::runner::RunOut;
+use super::RunOut;
 use anyhow::{bail, Context, Result};
 use std::collections::BTreeMap;
 
