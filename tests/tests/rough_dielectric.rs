@@ -30,7 +30,10 @@ fn dir(mu: f64, phi: f64) -> Vec3<f64> {
 
 fn random_dir(rng: &mut Pcg64, lo: f64, below: bool) -> Vec3<f64> {
     let mu = 10f64.powf(rng.random_range(lo.log10()..0.0));
-    dir(if below { -mu } else { mu }, rng.random_range(0.0..2.0 * PI))
+    dir(
+        if below { -mu } else { mu },
+        rng.random_range(0.0..2.0 * PI),
+    )
 }
 
 // ---------------------------------------------------------------- reference formulas
@@ -89,9 +92,7 @@ fn f_ref(d: DielectricDistribution, a: f64, eta: f64, i: Vec3<f64>, o: Vec3<f64>
         let m = s.scale(i.z.signum() / s.length_sq().sqrt());
         let c = i.dot(m).abs();
         let e = if i.z > 0.0 { eta } else { 1.0 / eta };
-        fresnel_ref(c, e) * d_ref(d, a, m.z)
-            * g(m)
-            / (4.0 * i.z.abs() * o.z.abs())
+        fresnel_ref(c, e) * d_ref(d, a, m.z) * g(m) / (4.0 * i.z.abs() * o.z.abs())
     } else {
         let s = i.scale(ei).add(o.scale(eo));
         let mut m = s.scale(-1.0 / s.length_sq().sqrt());
@@ -100,7 +101,9 @@ fn f_ref(d: DielectricDistribution, a: f64, eta: f64, i: Vec3<f64>, o: Vec3<f64>
         }
         let (ih, oh) = (i.dot(m), o.dot(m));
         let den = ei * ih + eo * oh;
-        ih.abs() * oh.abs() / (i.z.abs() * o.z.abs()) * eo * eo
+        ih.abs() * oh.abs() / (i.z.abs() * o.z.abs())
+            * eo
+            * eo
             * (1.0 - fresnel_ref(ih.abs(), eo / ei))
             * d_ref(d, a, m.z)
             * g(m)
@@ -108,14 +111,19 @@ fn f_ref(d: DielectricDistribution, a: f64, eta: f64, i: Vec3<f64>, o: Vec3<f64>
     }
 }
 
-/// F of the refraction facet of a pair on opposite sides (eq 22 form, from i's side).
-fn facet_fresnel(i: Vec3<f64>, o: Vec3<f64>, eta: f64) -> f64 {
+/// The conditioning of 1 − F for the refraction facet h of a pair on opposite sides:
+/// (1 − F) min(|i·h|, |o·h|). A dot product carries ε absolute, so the facet cosines carry
+/// ε/cos relative, and 1 − F (∝ cos for a grazing facet, a difference from 1 otherwise)
+/// carries ≈ ε/((1 − F) cos) relative: the tests divide their ε bounds by this.
+fn facet_conditioning(i: Vec3<f64>, o: Vec3<f64>, eta: f64) -> f64 {
     let (ei, eo) = (
         if i.z > 0.0 { 1.0 } else { eta },
         if o.z > 0.0 { 1.0 } else { eta },
     );
     let s = i.scale(ei).add(o.scale(eo));
-    fresnel_ref(i.dot(s).abs() / s.length_sq().sqrt(), eo / ei)
+    let n = s.length_sq().sqrt();
+    let (ci, co) = (i.dot(s).abs() / n, o.dot(s).abs() / n);
+    (1.0 - fresnel_ref(ci, eo / ei)) * ci.min(co)
 }
 
 fn rel(a: f64, b: f64) -> f64 {
@@ -152,24 +160,34 @@ fn f_matches_walters_formulas() {
         let m = model(d, a, eta);
         for k in 0..4000 {
             let (bi, bo) = (k % 2 == 1, (k / 2) % 2 == 1);
-            let (i, o) = (random_dir(&mut rng, 1e-6, bi), random_dir(&mut rng, 1e-6, bo));
+            let (i, o) = (
+                random_dir(&mut rng, 1e-6, bi),
+                random_dir(&mut rng, 1e-6, bo),
+            );
             let want = f_ref(d, a, eta, i, o);
             let got = m.eval(i, o).r;
             assert!(got.is_finite() && got >= 0.0);
             if want < 1e-300 && got < 1e-300 {
                 continue;
             }
-            // Transmission: 1 − F carries ε F/(1 − F) relative (from either formula).
-            let t = if bi != bo { 1.0 - facet_fresnel(i, o, eta) } else { 1.0 };
+            // Transmission: 1 − F's conditioning ([`facet_conditioning`]).
+            let t = if bi != bo {
+                facet_conditioning(i, o, eta)
+            } else {
+                1.0
+            };
             let e = rel(got, want);
             worst = worst.max(e * t);
-            assert!(e < 1e-9 / t, "{d:?} α {a} η {eta} i {i:?} o {o:?}: {got:e} vs {want:e}");
+            assert!(
+                e < 1e-9 / t,
+                "{d:?} α {a} η {eta} i {i:?} o {o:?}: {got:e} vs {want:e}"
+            );
             // The adjoint is the transposed BSDF.
             let e = rel(m.eval_adjoint(o, i), got);
             assert!(e < 64.0 * f64::EPSILON / t, "adjoint {e:e}");
         }
     }
-    println!("f vs Walter's formulas: worst relative difference × (1 − F) {worst:.2e}");
+    println!("f vs Walter's formulas: worst relative difference × conditioning {worst:.2e}");
 }
 
 // ---------------------------------------------------------------- reciprocity
@@ -191,17 +209,23 @@ fn reciprocity_and_generalised_reciprocity() {
             let e = rel(m.eval(i, o).r, m.eval(o, i).r);
             wr = wr.max(e);
             assert!(e < 1e-13, "reflection {d:?} {a} {eta}: {e:e}");
-            let (i, o) = (random_dir(&mut rng, 1e-6, false), random_dir(&mut rng, 1e-6, true));
+            let (i, o) = (
+                random_dir(&mut rng, 1e-6, false),
+                random_dir(&mut rng, 1e-6, true),
+            );
             let (ft, fb) = (m.eval(i, o).r, m.eval(o, i).r);
-            // η_i = 1 (i outside), η_o = η. F is evaluated from either side: 1 − F carries
-            // ε F/(1 − F) relative.
+            // η_i = 1 (i outside), η_o = η. F is evaluated from either side (conditioning:
+            // [`facet_conditioning`]).
             let e = rel(ft / (eta * eta), fb);
-            let t = 1.0 - facet_fresnel(i, o, eta);
+            let t = facet_conditioning(i, o, eta);
             wt = wt.max(e * t);
-            assert!(e < 64.0 * f64::EPSILON / t, "transmission {d:?} {a} {eta}: {ft:e}/η² vs {fb:e}");
+            assert!(
+                e < 64.0 * f64::EPSILON / t,
+                "transmission {d:?} {a} {eta}: {ft:e}/η² vs {fb:e}"
+            );
         }
     }
-    println!("reciprocity: reflection worst {wr:.2e}, generalised transmission worst × (1 − F) {wt:.2e}");
+    println!("reciprocity: reflection worst {wr:.2e}, generalised transmission worst × conditioning {wt:.2e}");
 }
 
 // ---------------------------------------------------------------- sampling
@@ -215,7 +239,7 @@ fn sphere_integral(f: &dyn Fn(Vec3<f64>) -> f64, zb: &[f64], phi0: f64, tol: f64
                 |p| f(Vec3::new(r * p.cos(), r * p.sin(), z)),
                 phi0 - PI,
                 phi0 + PI,
-                &[phi0],
+                &[phi0, phi0 - 1.0, phi0 + 1.0, phi0 - 3.0, phi0 + 3.0],
                 tol,
             )
         },
@@ -226,9 +250,13 @@ fn sphere_integral(f: &dyn Fn(Vec3<f64>) -> f64, zb: &[f64], phi0: f64, tol: f64
     )
 }
 
-/// The z of the mirror and the refracted direction of wo = dir(mu, ·) (Snell), and ±0.
+/// z break points: the mirror and the refracted direction of wo = dir(mu, ·) (Snell), −wo
+/// (where the reflection pdf's limit depends on the approach), and a grid of step 0.05 (the
+/// refraction lobe of a grazing view is spread with steep flanks; a single split at the
+/// horizon left 7e-6 of ∫ pdf unresolved at tolerance 1e-10 for Beckmann α 0.8, η 2.4, 85°).
 fn lobe_breaks(mu: f64, eta: f64) -> Vec<f64> {
-    let mut v = vec![0.0, mu, -mu];
+    let mut v: Vec<f64> = (1..40).map(|k| -1.0 + 0.05 * k as f64).collect();
+    v.extend([mu, -mu]);
     let s2 = (1.0 - mu * mu) / (eta * eta);
     if s2 < 1.0 {
         v.push(-(1.0 - s2).sqrt());
@@ -271,8 +299,13 @@ const NP: usize = 24;
 
 /// χ² of `n` samples against the pdf over an NZ × NP grid in (z, φ) of the whole sphere;
 /// expected counts by adaptive quadrature of the pdf per cell, cells below 5 pooled, failed
-/// samples against the remainder. Returns (χ², dof, p, failures, transmitted fraction).
-fn chi_square(m: &RoughDielectric<f64>, wo: Vec3<f64>, n: usize, seed: u64) -> (f64, usize, f64, usize, f64) {
+/// samples and the cell of −wo against the remainder. Returns (χ², dof, p, failures, transmitted fraction).
+fn chi_square(
+    m: &RoughDielectric<f64>,
+    wo: Vec3<f64>,
+    n: usize,
+    seed: u64,
+) -> (f64, usize, f64, usize, f64) {
     let mut rng = Pcg64::seed_from_u64(seed);
     let cell = |v: Vec3<f64>| {
         let iz = (((v.z + 1.0) * 0.5 * NZ as f64) as usize).min(NZ - 1);
@@ -296,27 +329,60 @@ fn chi_square(m: &RoughDielectric<f64>, wo: Vec3<f64>, n: usize, seed: u64) -> (
             None => fail += 1,
         }
     }
+    // The reflection pdf near wi = −wo concentrates the mass of the facets seen edge-on
+    // (wo·h → 0; the limit depends on the approach) in a spike that cell quadrature does not
+    // resolve: that cell is not integrated but pooled with the failures, whose expected count
+    // is the exact remainder 1 − Σ(other cells).
+    let singular = cell(wo.scale(-1.0));
     let mut cells = Vec::new();
     let mut total = 0.0;
     for iz in 0..NZ {
-        let (z0, z1) = (-1.0 + 2.0 * iz as f64 / NZ as f64, -1.0 + 2.0 * (iz + 1) as f64 / NZ as f64);
+        let (z0, z1) = (
+            -1.0 + 2.0 * iz as f64 / NZ as f64,
+            -1.0 + 2.0 * (iz + 1) as f64 / NZ as f64,
+        );
         for ip in 0..NP {
-            let (p0, p1) = (2.0 * PI * ip as f64 / NP as f64, 2.0 * PI * (ip + 1) as f64 / NP as f64);
+            if iz * NP + ip == singular {
+                continue;
+            }
+            let (p0, p1) = (
+                2.0 * PI * ip as f64 / NP as f64,
+                2.0 * PI * (ip + 1) as f64 / NP as f64,
+            );
             let prob = integrate(
                 |z| {
                     let r = (1.0 - z * z).max(0.0).sqrt();
-                    integrate(|p| m.pdf(wo, Vec3::new(r * p.cos(), r * p.sin(), z)), p0, p1, &[], 1e-11)
+                    integrate(
+                        |p| m.pdf(wo, Vec3::new(r * p.cos(), r * p.sin(), z)),
+                        p0,
+                        p1,
+                        &[],
+                        1e-9,
+                    )
                 },
                 z0,
                 z1,
                 &[],
-                1e-10,
+                1e-9,
             );
             total += prob;
             cells.push((hist[iz * NP + ip] as f64, prob * n as f64));
         }
     }
-    cells.push((fail as f64, (1.0 - total).max(0.0) * n as f64));
+    cells.push((
+        (fail + hist[singular]) as f64,
+        (1.0 - total).max(0.0) * n as f64,
+    ));
+    if std::env::var("CHI_DEBUG").is_ok() {
+        let mut v = cells.clone();
+        v.sort_by(|a, b| {
+            ((b.0 - b.1).powi(2) / b.1.max(1e-9)).total_cmp(&((a.0 - a.1).powi(2) / a.1.max(1e-9)))
+        });
+        for x in v.iter().take(6) {
+            println!("  cell: observed {} expected {:.2}", x.0, x.1);
+        }
+        println!("  total probability {total:.9}");
+    }
     cells.sort_by(|a, b| a.1.partial_cmp(&b.1).unwrap());
     let (mut chi2, mut dof) = (0.0, 0usize);
     let (mut po, mut pe) = (0.0, 0.0);
@@ -334,7 +400,13 @@ fn chi_square(m: &RoughDielectric<f64>, wo: Vec3<f64>, n: usize, seed: u64) -> (
         dof += 1;
     }
     let dof = dof - 1;
-    (chi2, dof, chi2_p(chi2, dof as f64), fail, below as f64 / n as f64)
+    (
+        chi2,
+        dof,
+        chi2_p(chi2, dof as f64),
+        fail,
+        below as f64 / n as f64,
+    )
 }
 
 /// The sampler's histogram over the whole sphere against its pdf (both hemispheres), GGX and
@@ -354,7 +426,11 @@ fn sampler_fits_its_pdf() {
     ];
     let sig = 1.0 - (1.0f64 - 0.01).powf(1.0 / cases.len() as f64);
     let mut bad = Vec::new();
+    let only: Option<usize> = std::env::var("CHI_ONLY").ok().and_then(|k| k.parse().ok());
     for (k, (d, a, eta, th)) in cases.into_iter().enumerate() {
+        if only.is_some_and(|o| o != k) {
+            continue;
+        }
         let m = model(d, a, eta);
         let wo = dir(f64::cos(th * PI / 180.0), 0.3);
         let (chi2, dof, p, fail, t) = chi_square(&m, wo, 1_000_000, 100 + k as u64);
@@ -377,16 +453,21 @@ fn refract_ref(wo: Vec3<f64>, h: Vec3<f64>, eta: f64) -> Option<Vec3<f64>> {
     if s2 >= 1.0 {
         return None;
     }
-    Some(wo.scale(-1.0 / eta).add(h.scale(c / eta - (1.0 - s2).sqrt())))
+    Some(
+        wo.scale(-1.0 / eta)
+            .add(h.scale(c / eta - (1.0 - s2).sqrt())),
+    )
 }
 
 /// (E_r, E_t*) for wo outside: ∫ f_r |cos θi| dωi and ∫ f_t* |cos θi| dωi (the adjoint:
 /// energy arriving along wo that is transmitted), by the change of variables to the half
 /// vector h carried out here: dωi = 4|wo·h| dωh (reflection), dωi = |η wi·h + wo·h|²/(η²
 /// |wi·h|) dωh (refraction), h at polar slope r = α tan u, so that any α down to the floor is
-/// resolved. f is the kernel's.
+/// resolved; symmetric about wo's plane of incidence. f is the kernel's.
 fn energy(m: &RoughDielectric<f64>, wo: Vec3<f64>) -> (f64, f64) {
     let (a, eta) = (m.alpha(), m.eta());
+    // The integrand is symmetric about wo's plane of incidence: twice the half turn from it.
+    let phi0 = wo.y.atan2(wo.x);
     let part = |refl: bool| {
         2.0 * integrate(
             |u| {
@@ -394,7 +475,8 @@ fn energy(m: &RoughDielectric<f64>, wo: Vec3<f64>) -> (f64, f64) {
                 let dr = a / (u.cos() * u.cos());
                 integrate(
                     |p| {
-                        let h = Vec3::new(r * p.cos(), r * p.sin(), 1.0).scale(1.0 / (1.0 + r * r).sqrt());
+                        let h = Vec3::new(r * p.cos(), r * p.sin(), 1.0)
+                            .scale(1.0 / (1.0 + r * r).sqrt());
                         let dwh = r * dr / (1.0 + r * r).powf(1.5);
                         let c = wo.dot(h);
                         if c <= 0.0 {
@@ -418,8 +500,8 @@ fn energy(m: &RoughDielectric<f64>, wo: Vec3<f64>) -> (f64, f64) {
                             m.eval_adjoint(wi, wo) * wi.z.abs() * jac * dwh
                         }
                     },
-                    0.0,
-                    PI,
+                    phi0,
+                    phi0 + PI,
                     &[],
                     1e-9,
                 )
@@ -448,7 +530,10 @@ fn energy_two_routes_agree() {
             0.0,
             1e-10,
         );
-        println!("energy {d:?} α {a} η {eta:.4} θo {th}: half-vector {:.9}, sphere {s:.9}", er + et);
+        println!(
+            "energy {d:?} α {a} η {eta:.4} θo {th}: half-vector {:.9}, sphere {s:.9}",
+            er + et
+        );
         assert!((er + et - s).abs() < 1e-6, "{} vs {s}", er + et);
     }
 }
@@ -471,18 +556,27 @@ fn white_furnace() {
                     let (er, et) = energy(&m, wo);
                     let e = er + et;
                     row += &format!(" {e:.6}");
-                    assert!(e <= 1.0 + 1e-7 && e >= 0.0, "{d:?} α {a} η {eta} θ {th}: {e}");
+                    assert!(
+                        e <= 1.0 + 1e-7 && e >= 0.0,
+                        "{d:?} α {a} η {eta} θ {th}: {e}"
+                    );
                     if a == 1e-4 && th <= 60.0 {
                         // Smooth limit: R = F(θo), T = 1 − F (closed form, eq 22 form).
                         let f = fresnel_ref(mu, eta);
-                        assert!((er - f).abs() < 1e-5, "{d:?} η {eta} θ {th}: E_r {er} vs F {f}");
+                        assert!(
+                            (er - f).abs() < 1e-5,
+                            "{d:?} η {eta} θ {th}: E_r {er} vs F {f}"
+                        );
                         assert!((et - (1.0 - f)).abs() < 1e-5, "{d:?} η {eta} θ {th}: {et}");
                     }
                     if a <= 0.01 && th <= 60.0 {
                         assert!(e > 1.0 - 1e-3, "{d:?} α {a} η {eta} θ {th}: {e}");
                     }
                 }
-                println!("E_r + E_t*: {d:?} η {eta:.4} α {a:<6} θo {thetas:?}:{row} ({:.1} s)", t0.elapsed().as_secs_f64());
+                println!(
+                    "E_r + E_t*: {d:?} η {eta:.4} α {a:<6} θo {thetas:?}:{row} ({:.1} s)",
+                    t0.elapsed().as_secs_f64()
+                );
             }
         }
     }
@@ -499,7 +593,10 @@ fn index_matched_interface_is_invisible() {
         let m = model(d, 0.3, 1.0);
         assert!(m.flags().has_delta);
         for _ in 0..2000 {
-            let (i, o) = (random_dir(&mut rng, 1e-6, false), random_dir(&mut rng, 1e-6, false));
+            let (i, o) = (
+                random_dir(&mut rng, 1e-6, false),
+                random_dir(&mut rng, 1e-6, false),
+            );
             assert_eq!(m.eval(i, o).r, 0.0);
             assert_eq!(m.eval(i, o.scale(-1.0)).r, 0.0);
             assert_eq!(m.pdf(o, i), 0.0);
@@ -524,14 +621,18 @@ fn total_internal_reflection() {
         for eta in [1.0 / 1.5, 1.0 / 2.4] {
             let crit = f64::asin(eta);
             let smooth = model(d, 0.0, eta);
-            for th in [crit + 0.05, 1.2, 1.5] {
+            for th in [crit + 0.2, 1.2, 1.5] {
                 let wo = dir(th.cos(), 0.4);
                 for _ in 0..20_000 {
                     let s = smooth.sample(wo, [rng.random(), rng.random()]).unwrap();
                     assert!(s.wi.z > 0.0, "η {eta} θ {th}: {s:?}");
                 }
                 let (er, et) = energy(&smooth, wo);
-                assert!(et == 0.0 && (er - 1.0).abs() < 1e-5, "{er} {et}");
+                println!("TIR {d:?} η {eta:.4} θo {th:.3}: E_r {er:.9} E_t* {et:.3e}");
+                // GGX's tail reaches facets tilted past the critical angle with mass ≈
+                // α²/tan²(0.2) = 2.6e-7; Beckmann's Gaussian tail underflows to 0.
+                let tail = if d == Ggx { 1e-6 } else { 0.0 };
+                assert!(et <= tail && (er - 1.0).abs() < 1e-5, "{er} {et}");
             }
             let wo = dir((crit - 0.05).cos(), 0.4);
             let (er, et) = energy(&smooth, wo);
@@ -595,7 +696,11 @@ fn bad_inputs() {
         assert_eq!(m.pdf(w, n), 0.0);
         // wi at the horizon is a direction the sampler reaches: a finite density.
         let p = m.pdf(n, w);
-        assert!(if w == hz { p.is_finite() && p >= 0.0 } else { p == 0.0 });
+        assert!(if w == hz {
+            p.is_finite() && p >= 0.0
+        } else {
+            p == 0.0
+        });
         assert!(m.sample(w, [0.3, 0.6]).is_none());
         assert!(m.delta(w).is_none());
     }
@@ -606,10 +711,22 @@ fn bad_inputs() {
     for u in [[0.0, 0.0], [1.0, 1.0], [-1.0, 2.0]] {
         assert!(m.sample(n, u).is_some());
     }
-    assert!(matches!(RoughDielectric::new(Ggx, f64::NAN, 1.5), Err(ParamError::NotFinite { .. })));
-    assert!(matches!(RoughDielectric::new(Ggx, -0.1, 1.5), Err(ParamError::OutOfRange { .. })));
-    assert!(matches!(RoughDielectric::new(Ggx, 0.3, 0.05), Err(ParamError::OutOfRange { .. })));
-    assert!(matches!(RoughDielectric::new(Ggx, 0.3, f64::INFINITY), Err(ParamError::NotFinite { .. })));
+    assert!(matches!(
+        RoughDielectric::new(Ggx, f64::NAN, 1.5),
+        Err(ParamError::NotFinite { .. })
+    ));
+    assert!(matches!(
+        RoughDielectric::new(Ggx, -0.1, 1.5),
+        Err(ParamError::OutOfRange { .. })
+    ));
+    assert!(matches!(
+        RoughDielectric::new(Ggx, 0.3, 0.05),
+        Err(ParamError::OutOfRange { .. })
+    ));
+    assert!(matches!(
+        RoughDielectric::new(Ggx, 0.3, f64::INFINITY),
+        Err(ParamError::NotFinite { .. })
+    ));
     assert_eq!(model(Beckmann, 0.0, 1.5).alpha(), 1e-4);
     assert_eq!(model(Beckmann, 0.5, 1.5).alpha(), 0.5);
 }
@@ -619,7 +736,10 @@ fn bad_inputs() {
 #[test]
 fn catalogue_entry_builds_the_model() {
     let spec = catalogue::find("rough-dielectric").unwrap();
-    assert_eq!(catalogue::find("rough-glass").unwrap().name, "rough-dielectric");
+    assert_eq!(
+        catalogue::find("rough-glass").unwrap().name,
+        "rough-dielectric"
+    );
     let built = spec.build::<f64>(&[0.25, 1.33, 1.0]).unwrap();
     let direct = model(Beckmann, 0.25, 1.33);
     let (wi, wo) = (dir(0.3, 0.2), dir(0.6, 2.0));
@@ -629,17 +749,28 @@ fn catalogue_entry_builds_the_model() {
         assert_eq!(built.pdf(wo, w), direct.pdf(wo, w));
     }
     assert_eq!(built.sample(wo, [0.3, 0.8]), direct.sample(wo, [0.3, 0.8]));
-    let dist = spec.params.iter().find(|p| p.name == "distribution").unwrap();
-    assert_eq!(dist.kind, catalogue::ParamKind::Choice(DielectricDistribution::NAMES));
-    assert_eq!(DielectricDistribution::RANGE, DielectricDistribution::NAMES.join(" | "));
+    let dist = spec
+        .params
+        .iter()
+        .find(|p| p.name == "distribution")
+        .unwrap();
+    assert_eq!(
+        dist.kind,
+        catalogue::ParamKind::Choice(DielectricDistribution::NAMES)
+    );
+    assert_eq!(
+        DielectricDistribution::RANGE,
+        DielectricDistribution::NAMES.join(" | ")
+    );
     assert!(spec.flags.has_delta);
 }
 
 /// One generic source: f32 agrees with f64 at f32-rounded inputs with |cos| ≥ 1e-2, away
 /// from the total-internal-reflection edge (facet F > 0.9 in transmission, where 1 − F has
-/// an infinite slope). The bound is measured (printed) and set from the f32 half vector's
-/// error, a few ε_f32 in direction, which D turns into ≈ 4 tan θh/α² × that (relative) and the
-/// transmission half vector's cancellation |η_i wi + η_o wo| amplifies by 1/|η − 1|.
+/// an infinite slope). The bound is set from the f32 half vector's error, a few ε_f32 in
+/// direction, which D turns into ≈ 4 tan θh/α² × that (relative) and the transmission half
+/// vector's cancellation |η_i wi + η_o wo| amplifies by 1/|η − 1|, plus 1 − F's
+/// conditioning ([`facet_conditioning`]); the worst ratio to it is printed.
 #[test]
 fn f32_and_f64_agree() {
     let mut rng = Pcg64::seed_from_u64(8);
@@ -650,7 +781,10 @@ fn f32_and_f64_agree() {
         let m32 = RoughDielectric::<f32>::new(d, a as f32, eta as f32).unwrap();
         let eta = eta as f32 as f64;
         for k in 0..5000 {
-            let (i, o) = (random_dir(&mut rng, 1e-2, k % 2 == 0), random_dir(&mut rng, 1e-2, k % 3 == 0));
+            let (i, o) = (
+                random_dir(&mut rng, 1e-2, k % 2 == 0),
+                random_dir(&mut rng, 1e-2, k % 3 == 0),
+            );
             let back = |w: Vec3<f32>| Vec3::new(w.x as f64, w.y as f64, w.z as f64);
             let (i32_, o32) = (c32(i), c32(o));
             let (i, o) = (back(i32_), back(o32));
@@ -659,7 +793,10 @@ fn f32_and_f64_agree() {
                 continue;
             }
             if i.z * o.z < 0.0 {
-                let (ei, eo) = (if i.z > 0.0 { 1.0 } else { eta }, if o.z > 0.0 { 1.0 } else { eta });
+                let (ei, eo) = (
+                    if i.z > 0.0 { 1.0 } else { eta },
+                    if o.z > 0.0 { 1.0 } else { eta },
+                );
                 let s = i.scale(ei).add(o.scale(eo));
                 let h = s.scale(1.0 / s.length_sq().sqrt());
                 if fresnel_ref(i.dot(h).abs(), eo / ei) > 0.9 {
@@ -670,13 +807,25 @@ fn f32_and_f64_agree() {
             let h = if i.z * o.z > 0.0 {
                 i.add(o)
             } else {
-                let (ei, eo) = (if i.z > 0.0 { 1.0 } else { eta }, if o.z > 0.0 { 1.0 } else { eta });
+                let (ei, eo) = (
+                    if i.z > 0.0 { 1.0 } else { eta },
+                    if o.z > 0.0 { 1.0 } else { eta },
+                );
                 i.scale(ei).add(o.scale(eo))
             };
             let tan_h = (h.x * h.x + h.y * h.y).sqrt() / h.z.abs();
-            let bound = 64.0 * eps * (1.0 + 4.0 * tan_h / (a * a)) / (eta - 1.0).abs().min(1.0);
+            let cond = if i.z * o.z > 0.0 {
+                1.0
+            } else {
+                facet_conditioning(i, o, eta)
+            };
+            let bound = 64.0 * eps * (1.0 + 4.0 * tan_h / (a * a)) / (eta - 1.0).abs().min(1.0)
+                + 16.0 * eps / cond;
             worst = worst.max(e / bound);
-            assert!(e < bound, "{d:?} α {a} η {eta} {i:?} {o:?}: {e:e} (bound {bound:e})");
+            assert!(
+                e < bound,
+                "{d:?} α {a} η {eta} {i:?} {o:?}: {e:e} (bound {bound:e})"
+            );
         }
     }
     println!("f32 vs f64: worst relative difference / bound {worst:.3}");

@@ -1121,7 +1121,8 @@ pub const MODELS: &[ModelSpec] = &[
         ],
         flags: flags(false, false, false),
         id: ModelId::Sheen,
-    },    ModelSpec {
+    },
+    ModelSpec {
         name: "rough-dielectric",
         aliases: &["walter", "rough-glass"],
         #[cfg(feature = "catalogue-text")]

@@ -158,7 +158,14 @@ impl<T: Real> RoughDielectric<T> {
     pub fn new(distribution: DielectricDistribution, alpha: T, eta: T) -> Result<Self, ParamError> {
         let a = check_range("alpha", alpha, T::ZERO, false, T::from_f64(1e4), "[0, 1e4]")?;
         let a = a.max(T::from_f64(ALPHA_FLOOR));
-        let eta = check_range("eta", eta, T::from_f64(0.1), false, T::from_f64(10.0), "[0.1, 10]")?;
+        let eta = check_range(
+            "eta",
+            eta,
+            T::from_f64(0.1),
+            false,
+            T::from_f64(10.0),
+            "[0.1, 10]",
+        )?;
         let dist = match distribution {
             DielectricDistribution::Ggx => Micro::Ggx(TrowbridgeReitz::isotropic(a)?),
             DielectricDistribution::Beckmann => Micro::Beckmann(Beckmann::isotropic(a)?),
@@ -258,7 +265,8 @@ impl<T: Real> RoughDielectric<T> {
         let (ei, eo) = (self.side_eta(ci), self.side_eta(co));
         let f = f_dielectric(eo / ei, ih);
         let g = self.dist.g1(up(wi)) * self.dist.g1(up(wo));
-        let v = (ih * oh / (ci.abs() * co.abs())) * (eo * eo / den)
+        let v = (ih * oh / (ci.abs() * co.abs()))
+            * (eo * eo / den)
             * ((T::ONE - f) * self.dist.d(h) * g);
         if v.is_finite() {
             v
@@ -383,7 +391,11 @@ impl<T: Real> Brdf<T> for RoughDielectric<T> {
         }
     }
     fn sample(&self, wo: Vec3<T>, u: [T; 2]) -> Option<BrdfSample<T>> {
-        let k = if T::EPSILON.to_f64() > 1e-10 { 4096.0 } else { 1048576.0 };
+        let k = if T::EPSILON.to_f64() > 1e-10 {
+            4096.0
+        } else {
+            1048576.0
+        };
         let x = crate::sampling::unit(u[0]) * T::from_f64(k);
         self.sample_with_choice(wo, u, x - x.floor())
     }
