@@ -737,6 +737,11 @@ fn bad_inputs() {
 fn catalogue_entry_builds_the_model() {
     let spec = catalogue::find("rough-dielectric").unwrap();
     assert_eq!(
+        catalogue::MODELS[15].name,
+        "rough-dielectric",
+        "appended after the sheen (the WASM model ids of the others unchanged)"
+    );
+    assert_eq!(
         catalogue::find("rough-glass").unwrap().name,
         "rough-dielectric"
     );
