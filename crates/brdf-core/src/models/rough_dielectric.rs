@@ -20,11 +20,11 @@
 //! refraction pair only when wi·h_t and wo·h_t have the signs of wi·n and wo·n (else 0).
 //! `wi` is toward the light and `wo` toward the viewer, so L(wo) = ∫ f L(wi) |cos θi| dωi
 //! transports radiance: crossing into the denser medium multiplies radiance by (η_o/η_i)².
-//! The **adjoint** (importance, the BTDF without the η² factor's direction dependence) is
-//! f_t*(wi, wo) = f_t(wo, wi) = (η_i/η_o)² f_t(wi, wo) ([`RoughDielectric::eval_adjoint`]):
-//! the generalised reciprocity f_t(wi, wo)/η_o² = f_t(wo, wi)/η_i² (paper §5.2; Veach's
-//! thesis §5.2). ∫ f_t* |cos θi| dωi is the fraction of the energy arriving along wo that
-//! is transmitted (≤ 1 − reflected).
+//! The **adjoint** (importance transport) is f_t*(wi, wo) = f_t(wo, wi) = (η_i/η_o)² f_t(wi,
+//! wo) ([`RoughDielectric::eval_adjoint`]): the generalised reciprocity
+//! f_t(wi, wo)/η_o² = f_t(wo, wi)/η_i² (paper §5.2; Veach's thesis §5.2).
+//! ∫ f_t* |cos θi| dωi is the fraction of the energy arriving along wo that is transmitted
+//! (≤ 1 − reflected).
 //!
 //! F is the exact dielectric Fresnel from wi's side, with relative index η_o/η_i (for a
 //! refraction pair F(|wi·h|) = F(|wo·h|) from wo's side: the Fresnel equations are symmetric
@@ -58,8 +58,8 @@
 //! f |cos θi|/pdf (both hemispheres). The choice needs a third uniform number:
 //! [`RoughDielectric::sample_with_choice`] takes it; the two-number [`Brdf::sample`] derives
 //! it from the low-order digits of u0, c = frac(2^k u0) (k = 20 in f64, 12 in f32), so the
-//! choice is exact only to the variation of F across a 2^−k-wide strip of u0 (module docs of
-//! the tests measure it: below the chi-square resolution).
+//! choice is exact only to the variation of F across a 2^−k-wide strip of u0 (below what the
+//! chi-square test of 10⁶ samples resolves, docs/conventions.md §12).
 
 use super::{u_ok, valid_wo, Brdf, BrdfFlags, BrdfSample, DeltaLobe, LobeHint, Rgb};
 use crate::error::check_range;
