@@ -197,125 +197,85 @@ impl<T: Real> RoughDielectric<T> {
             self.eta
         }
     }
-    /// Reflection part f_r(wi, wo) (module docs, paper eq 20), both directions on the same
-    /// side; 0 for a pair on opposite sides, at the horizon (|cos| < [`min_cos`]), with a NaN,
-    /// or for η = 1.
-    pub fn eval_reflection(&self, wi: Vec3<T>, wo: Vec3<T>) -> T {
-        let (ci, co) = (wi.z, wo.z);
-        if !(ci.abs() >= min_cos()) || !(co.abs() >= min_cos()) || (ci > T::ZERO) != (co > T::ZERO)
-        {
-            return T::ZERO;
-        }
-        if self.eta == T::ONE {
-            return T::ZERO;
-        }
-        let s = wi.add(wo);
-        let Some(h) = s.normalize() else {
-            return T::ZERO;
-        };
-        let h = if ci > T::ZERO { h } else { h.scale(-T::ONE) };
-        let ih = s.length_sq().sqrt() * T::HALF;
-        if !(h.z > T::ZERO) || !ih.is_finite() {
-            return T::ZERO;
-        }
-        let f = f_dielectric(self.side_eta(-ci) / self.side_eta(ci), ih);
-        let g = self.dist.g1(up(wi)) * self.dist.g1(up(wo));
-        let v = f * self.dist.d(h) * g / (T::from_f64(4.0) * ci.abs() * co.abs());
-        if v.is_finite() {
-            v
-        } else {
-            T::ZERO
-        }
-    }
-    /// The transmission half vector h_t = −(η_i wi + η_o wo)/|η_i wi + η_o wo| flipped to the
-    /// +n side, and |η_i wi + η_o wo|² (the squared denominator of eqs 17, 21); `None` when it
-    /// is undefined or horizontal.
+    /// The half vector of a pair, −(η_i wi + η_o wo)/|η_i wi + η_o wo| flipped to the +n side
+    /// (for a same-side pair, η_i = η_o, this is sign(wi·n)(wi + wo)/|wi + wo|, eq 13; across
+    /// the interface h_t, eq 16), and |η_i wi + η_o wo|² (the squared denominator of eqs 17,
+    /// 21); `None` when it is undefined or horizontal.
     fn half_t(wi: Vec3<T>, ei: T, wo: Vec3<T>, eo: T) -> Option<(Vec3<T>, T)> {
         let s = wi.scale(ei).add(wo.scale(eo));
         let h = s.normalize()?;
         let h = if h.z < T::ZERO { h.scale(-T::ONE) } else { h };
         (h.z > T::ZERO).then(|| (h, s.length_sq()))
     }
-    /// [`Self::half_t`] with the media of the two directions, for a refraction pair only: the
-    /// signs of wi·h_t and wo·h_t must be those of wi·n and wo·n (paper eq 21's χ+ terms).
-    fn h_transmit(&self, wi: Vec3<T>, wo: Vec3<T>) -> Option<(Vec3<T>, T)> {
-        let (h, den) = Self::half_t(wi, self.side_eta(wi.z), wo, self.side_eta(wo.z))?;
+    /// The BSDF f(wi, wo) in the radiance convention (module docs): f_r (eq 20) for a
+    /// same-side pair, f_t (eq 21) across the interface. 0 at the horizon (|cos| below
+    /// [`min_cos`]), with a NaN, for η = 1 (the Dirac is [`Brdf::delta`]), and when wi·h or
+    /// wo·h does not have the sign of wi·n or wo·n (no reflection or refraction pair: eq 21's
+    /// χ+ terms). For a reflection pair wi·h = |wi + wo|/2 (symmetric: reciprocal to the bit).
+    pub fn eval_bsdf(&self, wi: Vec3<T>, wo: Vec3<T>) -> T {
+        let (ci, co) = (wi.z, wo.z);
+        if !(ci.abs() >= min_cos()) || !(co.abs() >= min_cos()) || self.eta == T::ONE {
+            return T::ZERO;
+        }
+        let (ei, eo) = (self.side_eta(ci), self.side_eta(co));
+        let Some((h, den)) = Self::half_t(wi, ei, wo, eo) else {
+            return T::ZERO;
+        };
         let side = |w: Vec3<T>| {
             let d = w.dot(h);
             d != T::ZERO && (d > T::ZERO) == (w.z > T::ZERO)
         };
-        (side(wi) && side(wo)).then_some((h, den))
-    }
-    /// Transmission part f_t(wi, wo) in the radiance convention (module docs, paper eq 21),
-    /// directions on opposite sides; 0 for a same-side pair, at the horizon, with a NaN, for
-    /// a pair that is no refraction pair, and for η = 1 (a Dirac, [`Brdf::delta`]).
-    pub fn eval_transmission(&self, wi: Vec3<T>, wo: Vec3<T>) -> T {
-        let (ci, co) = (wi.z, wo.z);
-        if !(ci.abs() >= min_cos()) || !(co.abs() >= min_cos()) || (ci > T::ZERO) == (co > T::ZERO)
-        {
+        if !(side(wi) && side(wo)) {
             return T::ZERO;
         }
-        if self.eta == T::ONE {
-            return T::ZERO;
-        }
-        let Some((h, den)) = self.h_transmit(wi, wo) else {
-            return T::ZERO;
+        let reflect = (ci > T::ZERO) == (co > T::ZERO);
+        let ih = if reflect {
+            den.sqrt() / (T::TWO * ei)
+        } else {
+            wi.dot(h).abs()
         };
-        let (ih, oh) = (wi.dot(h).abs(), wo.dot(h).abs());
-        let (ei, eo) = (self.side_eta(ci), self.side_eta(co));
-        let f = f_dielectric(eo / ei, ih);
+        // Relative index from wi's side: the medium across the interface over wi's.
+        let f = f_dielectric(self.side_eta(-ci) / ei, ih);
+        let lobe = if reflect {
+            f / T::from_f64(4.0)
+        } else {
+            ih * wo.dot(h).abs() * (eo * eo / den) * (T::ONE - f)
+        };
         let g = self.dist.g1(up(wi)) * self.dist.g1(up(wo));
-        let v = (ih * oh / (ci.abs() * co.abs()))
-            * (eo * eo / den)
-            * ((T::ONE - f) * self.dist.d(h) * g);
+        let v = lobe * self.dist.d(h) * g / (ci.abs() * co.abs());
         if v.is_finite() {
             v
         } else {
             T::ZERO
         }
     }
-    /// The full BSDF f_r + f_t (radiance convention): whichever part the sides select.
-    pub fn eval_bsdf(&self, wi: Vec3<T>, wo: Vec3<T>) -> T {
-        if (wi.z > T::ZERO) == (wo.z > T::ZERO) {
-            self.eval_reflection(wi, wo)
-        } else {
-            self.eval_transmission(wi, wo)
-        }
-    }
     /// The adjoint BSDF f*(wi, wo) = f(wo, wi) (importance transport): f_r unchanged,
     /// f_t* = (η_i/η_o)² f_t(wi, wo) (generalised reciprocity, module docs).
     pub fn eval_adjoint(&self, wi: Vec3<T>, wo: Vec3<T>) -> T {
         let r = self.side_eta(wi.z) / self.side_eta(wo.z);
-        if (wi.z > T::ZERO) == (wo.z > T::ZERO) {
-            self.eval_reflection(wi, wo)
-        } else {
-            self.eval_transmission(wi, wo) * r * r
-        }
+        self.eval_bsdf(wi, wo) * r * r
     }
-    /// The reflected part of the sampler's density at wi (either hemisphere: a reflection
-    /// about a tilted facet may go below the surface): F(wo·h) D_v(h)/(4 wo·h),
-    /// h = (wi + wo)/|wi + wo| (paper eq 14 with visible normals).
-    fn pdf_reflect(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
-        let Some(h) = wi.add(wo).normalize() else {
-            return T::ZERO;
-        };
-        let c = wo.dot(h);
-        let pv = self.dist.visible_normal_pdf(wo, h);
-        crate::sampling::wi_pdf_from_h(f_dielectric(self.eta, c) * pv, c)
-    }
-    /// The refracted part of the sampler's density at wi (wo outside, the refracted ray in
-    /// the medium η whichever side wi lies on): (1 − F(wo·h)) D_v(h) η² |wi·h|/|η wi + wo|²
-    /// (paper eq 17), h = h_t of (wi, η; wo, 1), 0 unless wo·h > 0 > wi·h.
-    fn pdf_refract(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
-        let Some((h, den)) = Self::half_t(wi, self.eta, wo, T::ONE) else {
+    /// One part of the sampler's density at wi (either hemisphere: a reflection about a tilted
+    /// facet may go below the surface, a refraction above), h = h_t of (wi, e_i; wo, 1):
+    /// reflection (e_i = 1, h = (wi + wo)/|wi + wo|) F(wo·h) D_v(h)/(4 wo·h) (paper eq 14 with
+    /// visible normals); refraction (e_i = η, the refracted ray in the medium η whichever side
+    /// wi lies on) (1 − F(wo·h)) D_v(h) η² |wi·h|/|η wi + wo|² (eq 17), 0 unless wi·h < 0.
+    fn pdf_part(&self, wo: Vec3<T>, wi: Vec3<T>, refract: bool) -> T {
+        let ei = if refract { self.eta } else { T::ONE };
+        let Some((h, den)) = Self::half_t(wi, ei, wo, T::ONE) else {
             return T::ZERO;
         };
         let (c, ih) = (wo.dot(h), wi.dot(h));
-        if !(c > T::ZERO) || !(ih < T::ZERO) {
+        if !(c > T::ZERO) || (refract && !(ih < T::ZERO)) {
             return T::ZERO;
         }
+        let f = f_dielectric(self.eta, c);
         let pv = self.dist.visible_normal_pdf(wo, h);
-        (T::ONE - f_dielectric(self.eta, c)) * pv * self.eta * self.eta * (-ih) / den
+        if refract {
+            (T::ONE - f) * pv * ei * ei * (-ih) / den
+        } else {
+            f * pv / (T::from_f64(4.0) * c)
+        }
     }
     /// Sampling with an explicit third uniform number `uc` for the choice between reflection
     /// (uc < F(wo·h)) and refraction (module docs); exact. `None` for wo not outside
@@ -383,7 +343,7 @@ impl<T: Real> Brdf<T> for RoughDielectric<T> {
         if !valid_wo(wo) || self.eta == T::ONE || wi.z.is_nan() {
             return T::ZERO;
         }
-        let p = self.pdf_reflect(wo, wi) + self.pdf_refract(wo, wi);
+        let p = self.pdf_part(wo, wi, false) + self.pdf_part(wo, wi, true);
         if p.is_finite() {
             p
         } else {
