@@ -371,11 +371,9 @@ fn chi_square(b: &dyn Brdf<f64>, wo: Vec3<f64>, seed: u64) -> ChiResult {
         }
         let pdf = b.pdf(wo, wi);
         let f = b.eval(wi, wo);
-        let want_w = if wi.z > 0.0 {
-            f.scale(wi.z / pdf)
-        } else {
-            Rgb::zero()
-        };
+        // f |cos θi|/pdf: below the horizon eval is 0 for a BRDF, the transmitted part for
+        // a BSDF (rough-dielectric).
+        let want_w = f.scale(wi.z.abs() / pdf);
         let ok = unit_ok
             && s.pdf > 0.0
             && (s.pdf - pdf).abs() <= 1e-9 * pdf

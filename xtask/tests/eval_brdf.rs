@@ -38,6 +38,7 @@ fn list_names_every_model_and_parameter() {
         "ggx-anisotropic",
         "ashikhmin-shirley",
         "bank",
+        "rough-dielectric",
         "ward",
         "ggx",
     ] {
@@ -132,6 +133,39 @@ fn ggx_matches_its_formula() {
     assert!(o.status.success(), "{}", stderr(&o));
     let got = rows(&o)[0][6];
     assert!((got - want).abs() < 1e-12 * want, "{got} vs {want}");
+}
+
+/// `rough-dielectric` accepts wo below the surface and returns the transmitted part there.
+/// At normal incidence everything is closed form: h = n, D(n) = 1/(π α²), G1 = 1,
+/// F = ((η − 1)/(η + 1))², reflection F D/4 (Walter eq 20) and transmission
+/// η_o² (1 − F) D/(η_i − η_o)² (eq 21 with i·h = 1, o·h = −1), in both directions of travel.
+#[test]
+fn rough_dielectric_transmits_below_the_surface() {
+    let (a, eta) = (0.3f64, 1.5f64);
+    let d = 1.0 / (std::f64::consts::PI * a * a);
+    let f = ((eta - 1.0) / (eta + 1.0)).powi(2);
+    let refl = f * d / 4.0;
+    let into = eta * eta * (1.0 - f) * d / (1.0 - eta).powi(2);
+    let out = (1.0 - f) * d / (eta - 1.0).powi(2);
+    let input = "0,0,1,0,0,1\n0,0,1,0,0,-1\n0,0,-1,0,0,1\n0,0,-1,0,0,-1\n";
+    let args = [
+        "--model",
+        "rough-dielectric",
+        "--param",
+        "alpha=0.3",
+        "--param",
+        "eta=1.5",
+    ];
+    let o = run(&args, input);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let r = rows(&o);
+    for (row, want) in r.iter().zip([refl, into, out, refl]) {
+        assert!((row[6] - want).abs() < 1e-12 * want, "{row:?} vs {want}");
+    }
+    // η = 1: an invisible interface, its straight-through Dirac not in r,g,b.
+    let o = run(&["--model", "rough-glass", "--param", "eta=1"], input);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(rows(&o).iter().all(|row| row[6] == 0.0));
 }
 
 #[test]

@@ -139,6 +139,8 @@ pub enum ModelId {
     Standard,
     /// [`Sheen`]: the Charlie microfacet sheen (Estevez–Kulla 2017, glTF).
     Sheen,
+    /// [`RoughDielectric`]: Walter et al. 2007, reflection and refraction (a BSDF).
+    RoughDielectric,
 }
 
 /// One model of the catalogue.
@@ -279,6 +281,11 @@ impl ModelSpec {
                 })
             }
             ModelId::Sheen => AnyBrdf::Sheen(Sheen::new(c(0), x(3), SheenVisibility::ALL[i(4)])?),
+            ModelId::RoughDielectric => AnyBrdf::RoughDielectric(RoughDielectric::new(
+                DielectricDistribution::ALL[i(2)],
+                x(0),
+                x(1),
+            )?),
         })
     }
 }
@@ -373,6 +380,8 @@ pub enum AnyBrdf<T> {
     Standard(StandardLit<T>),
     /// A [`Sheen`] (from [`ModelId::Sheen`]).
     Sheen(Sheen<T>),
+    /// A [`RoughDielectric`] (from [`ModelId::RoughDielectric`]).
+    RoughDielectric(RoughDielectric<T>),
 }
 
 macro_rules! dispatch {
@@ -392,6 +401,7 @@ macro_rules! dispatch {
             AnyBrdf::Ggx($m) => $e,
             AnyBrdf::Standard($m) => $e,
             AnyBrdf::Sheen($m) => $e,
+            AnyBrdf::RoughDielectric($m) => $e,
         }
     };
 }
@@ -1111,5 +1121,44 @@ pub const MODELS: &[ModelSpec] = &[
         ],
         flags: flags(false, false, false),
         id: ModelId::Sheen,
+    },
+    ModelSpec {
+        name: "rough-dielectric",
+        aliases: &["walter", "rough-glass"],
+        #[cfg(feature = "catalogue-text")]
+        about: "rough dielectric BSDF (Walter et al. 2007): reflection F D G/(4|cos i cos o|) \
+                and refraction (eq 21, radiance convention, eta_o^2) with exact Fresnel and \
+                total internal reflection, separable Smith G; wo below the surface (z < 0) \
+                gives the transmitted part",
+        params: &[
+            num(
+                "alpha",
+                "1",
+                "[0, 1e4]",
+                (0.0, 1.0),
+                0.01,
+                0.3,
+                "microfacet width alpha (floored to 1e-4)",
+            ),
+            num(
+                "eta",
+                "1",
+                "[0.1, 10]",
+                (0.5, 2.5),
+                0.01,
+                1.5,
+                "eta_inside/eta_outside (below 1: the outside is denser, total internal \
+                 reflection; 1: invisible interface, a straight-through Dirac)",
+            ),
+            choice(
+                "distribution",
+                DielectricDistribution::NAMES,
+                DielectricDistribution::RANGE,
+                0,
+                "microfacet distribution D, in option order",
+            ),
+        ],
+        flags: flags(false, true, false),
+        id: ModelId::RoughDielectric,
     },
 ];

@@ -185,6 +185,8 @@ impl Kernel for ModelKernel {
 /// wi, wo : array_like, shape (..., 3)
 ///     Directions toward the light and the viewer in the local frame (z = normal);
 ///     normalised here; the leading shapes broadcast. A zero or non-finite vector gives NaN.
+///     Below the surface (z < 0) a BRDF gives 0; the BSDF "rough-dielectric" gives its
+///     transmitted part when wi and wo lie on opposite sides (radiance convention).
 /// **params
 ///     The model's parameters by name (defaults for the others); a colour takes one number
 ///     or three, a choice its option name.
@@ -230,8 +232,8 @@ pub fn eval<'py>(
 /// wi : numpy.ndarray, shape (..., 3)
 ///     The sampled direction toward the light.
 /// weight : numpy.ndarray, shape (..., 3)
-///     f(wi, wo) cos θi / pdf per channel (for a sample of a mirror part: its reflectance
-///     divided by the probability of choosing it).
+///     f(wi, wo) |cos θi| / pdf per channel (for a sample of a mirror or other Dirac part:
+///     its reflectance or transmittance divided by the probability of choosing it).
 /// pdf : numpy.ndarray
 ///     The pdf of wi per unit solid angle (mirror part: the probability of choosing it).
 ///

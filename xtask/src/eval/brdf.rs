@@ -4,7 +4,10 @@
 //! model catalogue `brdf_core::catalogue` (old spellings such as `shirley` and `coupled` are
 //! accepted). `--list` prints every model with its parameters, units, ranges and defaults. A Dirac part (mirror) is not in r,g,b: the
 //! columns are the model's `eval`, i.e. f in 1/sr (the standard lighting model gives its lit
-//! colour, see `--list`).
+//! colour, see `--list`). Directions below the surface (z < 0) are accepted: a BRDF gives 0
+//! there, the BSDF `rough-dielectric` its transmitted part when wi and wo lie on opposite
+//! sides (radiance convention, with the η_o² factor; docs/conventions.md §12) and its internal
+//! reflection when both lie below.
 
 use anyhow::{anyhow, bail, Context, Result};
 use brdf_core::catalogue::{self, ModelSpec, ParamKind, ParamSpec, MODELS};

@@ -17,6 +17,7 @@
 //! | [`Ggx`] | Trowbridge–Reitz, isotropic or anisotropic, with Smith masking (docs/conventions.md §8) |
 //! | [`TorranceSparrow`] | paper eq 3: Beckmann D, any [`GeometricTerm`], a [`crate::fresnel::Fresnel`] |
 //! | [`Sheen`] | Estevez and Kulla 2017 (Charlie sheen), glTF `KHR_materials_sheen` (docs/conventions.md §11) |
+//! | [`RoughDielectric`] | Walter et al. 2007, a BSDF: reflection and refraction through a rough interface (docs/conventions.md §12) |
 //!
 //! The microfacet models compose a distribution of [`crate::microfacet`] with a G and a
 //! Fresnel term; every model is listed, with its parameters, in [`crate::catalogue`].
@@ -33,6 +34,7 @@ pub mod lambert;
 pub mod mix;
 pub mod phong;
 pub mod rgb;
+pub mod rough_dielectric;
 pub mod sheen;
 pub mod shirley;
 pub mod standard;
@@ -48,6 +50,7 @@ pub use lambert::Lambert;
 pub use mix::LambertSpecularMix;
 pub use phong::{BlinnPhongNormalized, PhongNormalized};
 pub use rgb::Rgb;
+pub use rough_dielectric::{DielectricDistribution, RoughDielectric};
 pub use sheen::{Sheen, SheenVisibility};
 pub use shirley::ShirleyDamped;
 pub use standard::{Highlight, Light, StandardLighting};
