@@ -281,10 +281,10 @@ fn bad_input_gives_typed_errors() {
         LutError::BadMagic
     );
     let mut v = good.clone();
-    v[4] = 2; // version 2
+    v[4] = 3; // version 3 (1 and 2 are read)
     assert_eq!(
         LutView::parse(&v).unwrap_err(),
-        LutError::UnsupportedVersion { found: 2 }
+        LutError::UnsupportedVersion { found: 3 }
     );
     for cut in [5, 20, 60, good.len() - 1] {
         assert!(LutView::parse(&good[..cut]).is_err(), "cut {cut}");
