@@ -180,12 +180,10 @@ impl<'a> Reader<'a> {
             seed: self.u64()?,
         };
         // Version 2 added the integration error bound.
-        let integration = if self.version >= 2 {
-            match self.byte()? {
-                0 => None,
-                1 => Some(self.f32()?),
-                _ => return Err(LutError::MalformedHeader),
-            }
+        // Version 2 added the integration bound: an option tag 0 or 1 (one byte, read as a
+        // two-variant tag, which refuses anything else) and the f32.
+        let integration = if self.version >= 2 && self.tag(2)? == 1 {
+            Some(self.f32()?)
         } else {
             None
         };

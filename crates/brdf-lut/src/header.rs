@@ -311,15 +311,14 @@ pub struct Header<'a> {
 }
 
 /// The rule for the recorded integration error (docs/lut-format.md §3, the claim rule):
-/// finite and ≥ 0 (−0 counts as 0); `None` (a version 1 file) passes.
+/// finite and ≥ 0 (−0 counts as 0); `None` (a version 1 file) passes. The same comparison
+/// chain as [`ErrorStats::check`], with the bound as the maximum and 0 as the RMS.
 pub fn check_integration(e: Option<f32>) -> Result<(), crate::LutError> {
-    match e {
-        // NaN, +inf and negative values are outside the range.
-        Some(x) if !(0.0..=f32::MAX).contains(&x) => Err(crate::LutError::BadErrorStats {
-            field: "the integration error bound must be finite and >= 0",
-        }),
-        _ => Ok(()),
+    ErrorStats {
+        max_abs: e.unwrap_or(0.0),
+        ..ErrorStats::default()
     }
+    .check()
 }
 
 impl Header<'_> {
