@@ -281,10 +281,10 @@ fn bad_input_gives_typed_errors() {
         LutError::BadMagic
     );
     let mut v = good.clone();
-    v[4] = 2; // version 2
+    v[4] = 3; // version 3 (1 and 2 are read)
     assert_eq!(
         LutView::parse(&v).unwrap_err(),
-        LutError::UnsupportedVersion { found: 2 }
+        LutError::UnsupportedVersion { found: 3 }
     );
     for cut in [5, 20, 60, good.len() - 1] {
         assert!(LutView::parse(&good[..cut]).is_err(), "cut {cut}");
@@ -446,13 +446,13 @@ fn f32_degenerate_axes_are_rejected() {
     assert!(LutView::parse(&b).is_ok());
 }
 
-/// A varint not in its shortest form (`81 00` for version 1) is rejected.
+/// A varint not in its shortest form (`82 00` for version 2) is rejected.
 #[test]
 fn non_canonical_varints_are_rejected() {
     let good = asset("kc_eavg_ggx.blut");
-    assert_eq!(good[4], 1);
+    assert_eq!(good[4], 2);
     let mut b = good[..4].to_vec();
-    b.extend_from_slice(&[0x81, 0x00]);
+    b.extend_from_slice(&[0x82, 0x00]);
     b.extend_from_slice(&good[5..]);
     assert_eq!(LutView::parse(&b).unwrap_err(), LutError::NonCanonical);
 }

@@ -169,7 +169,7 @@ pub fn exr(g: &SplitSumTexels) -> Result<Vec<File>> {
         exr_rg32f(g)?,
         "OpenEXR, 32-bit float channels R = A, G = B, ZIP compression, one part",
     );
-    d.key("encoding", "IEEE binary32, round to nearest even, of the f64 quadrature value (its measured error against a converged reference: `accuracy`)");
+    d.key("encoding", "IEEE binary32, round to nearest even, of the f64 quadrature value (its measured error against an independent converged reference: `accuracy`)");
     d.key("orientation", "column x: mu = (x + 0.5)/N; row y (data window top = y 0): r = (y + 0.5)/N. Uploaded with row 0 at t = 0, the shader samples uv = (mu, r).");
     finish(Engine::Exr, g, "dfg_ggx", d)
 }
@@ -212,7 +212,7 @@ fn finish(e: Engine, g: &SplitSumTexels, stem: &str, d: Described) -> Result<Vec
         "sampler".into(),
         json!("bilinear (LINEAR), clamp-to-edge on both axes, one level (no mipmaps)"),
     );
-    side.insert("texel_values".into(), json!("each texel = the split-sum integral at its own centre, computed in f64 by the table generator's fixed Gauss–Legendre rule (32-point outer rule on 3 × 4 panels × 16-point azimuth rule), rounded to nearest in the encoding; its error is not assumed but measured: see `accuracy`"));
+    side.insert("texel_values".into(), json!("each texel = the split-sum integral at its own centre, computed in f64 by the table generator's converged rule (brdf-core split_sum::polar: product rule in polar coordinates of the half vector with the horizon cut in closed form, refined per texel until its error estimate is below 2e-6 per channel), rounded to nearest in the encoding; its error is not assumed but measured against an independent integrator: see `accuracy`"));
     side.insert("accuracy".into(), accuracy(e, g));
     side.extend(d.extra);
     side.insert(
@@ -241,7 +241,7 @@ fn finish(e: Engine, g: &SplitSumTexels, stem: &str, d: Described) -> Result<Vec
 /// Absolute tolerance per channel asked of the reference integrals.
 const REFERENCE_TOL: f64 = 1e-8;
 /// Columns whose centre μ lies below this are all measured (the grazing columns, where the
-/// fixed rule is least accurate).
+/// integrand is sharpest and the horizon cuts it).
 const GRAZING_MU: f64 = 0.025;
 
 /// The measured texels of an n × n table: (columns μ, rows r). Columns: every column whose

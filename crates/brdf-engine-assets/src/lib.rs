@@ -6,8 +6,9 @@
 //! is the caller's (`cargo xtask lut engine` writes them safely).
 //!
 //! Every texel holds the integral at its own texel centre, computed in f64 by the one table
-//! generator ([`brdf_lut::generate`], 32-point outer × 16-point inner Gauss–Legendre), then
-//! rounded to nearest in the target encoding.
+//! generator ([`brdf_lut::generate`]: brdf-core's converged polar rule, each texel refined
+//! until its error estimate is below 2e-6 per channel), then rounded to nearest in the
+//! target encoding.
 //!
 //! ```
 //! let t = brdf_engine_assets::split_sum_texels(4, &|_| {}).unwrap();

@@ -1,10 +1,12 @@
-//! The texels come from the one generator and equal the dedicated split-sum kernel at each
-//! texel centre; bad sizes are refused before any work. The layouts themselves are checked
+//! The texels come from the one generator and agree with brdf-core's independent converged
+//! split-sum integrator at each texel centre; bad sizes are refused before any work. The layouts themselves are checked
 //! end to end, file by file with independent decoders, in `xtask/tests/lut_engine.rs`.
 
-use brdf_core::split_sum::{dfg_ggx, InnerRule, OuterRule};
+use brdf_core::split_sum::converged::dfg_ggx_converged;
 use brdf_engine_assets::{split_sum_texels, Engine, Error, MAX_SIZE};
 
+/// Every texel of an 8² table is within the generator's tolerance (2e-6 per channel) plus
+/// the reference's own estimate of the adaptive visible-normal integrator at 1e-9.
 #[test]
 fn texels_are_the_kernel_at_texel_centres() {
     let n = 8;
@@ -13,9 +15,13 @@ fn texels_are_the_kernel_at_texel_centres() {
     for row in 0..n {
         for col in 0..n {
             let c = |i: usize| (i as f64 + 0.5) / n as f64;
-            let want = dfg_ggx::<f64, OuterRule, InnerRule>(c(col), c(row));
+            let want = dfg_ggx_converged(c(col), c(row), 1e-9);
             let i = row * n + col;
-            assert_eq!((t.a[i], t.b[i]), want, "texel (col {col}, row {row})");
+            for (k, v) in [t.a[i], t.b[i]].into_iter().enumerate() {
+                let d = (v - want.value[k]).abs();
+                let tol = brdf_lut::generate::INTEGRATION_TOL + want.error[k];
+                assert!(d <= tol, "texel (col {col}, row {row}) channel {k}: {d:e}");
+            }
         }
     }
 }

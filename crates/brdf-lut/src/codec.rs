@@ -13,11 +13,17 @@ use crate::LutError;
 pub(crate) struct Reader<'a> {
     bytes: &'a [u8],
     pos: usize,
+    /// The format version being decoded (fields added by a version are read from it on).
+    pub(crate) version: u16,
 }
 
 impl<'a> Reader<'a> {
     pub(crate) fn new(bytes: &'a [u8]) -> Self {
-        Self { bytes, pos: 0 }
+        Self {
+            bytes,
+            pos: 0,
+            version: FORMAT_VERSION,
+        }
     }
     /// Bytes consumed so far.
     pub(crate) fn pos(&self) -> usize {
@@ -173,6 +179,14 @@ impl<'a> Reader<'a> {
             samples: self.u32()?,
             seed: self.u64()?,
         };
+        // Version 2 added the integration error bound.
+        // Version 2 added the integration bound: an option tag 0 or 1 (one byte, read as a
+        // two-variant tag, which refuses anything else) and the f32.
+        let integration = if self.version >= 2 && self.tag(2)? == 1 {
+            Some(self.f32()?)
+        } else {
+            None
+        };
         let c = self.take(4)?;
         Ok(Header {
             kind,
@@ -188,6 +202,7 @@ impl<'a> Reader<'a> {
                 tool,
             },
             error,
+            integration,
             checksum: u32::from_le_bytes([c[0], c[1], c[2], c[3]]),
         })
     }
@@ -271,6 +286,13 @@ impl<'b> Writer<'b> {
         self.bytes(&h.error.rms.to_le_bytes())?;
         self.varint(h.error.samples as u64)?;
         self.varint(h.error.seed)?;
+        match h.integration {
+            None => self.bytes(&[0])?,
+            Some(e) => {
+                self.bytes(&[1])?;
+                self.bytes(&e.to_le_bytes())?;
+            }
+        }
         self.bytes(&[0; 4])
     }
 }

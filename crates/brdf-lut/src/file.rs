@@ -379,6 +379,13 @@ pub fn summary(v: &LutView<'_>, file_len: usize) -> String {
         "error       max |err| {:.3e}, RMS {:.3e} over {} random points (seed {})",
         h.error.max_abs, h.error.rms, h.error.samples, h.error.seed
     );
+    let _ = match h.integration {
+        Some(e) => writeln!(
+            s,
+            "integration max estimated |node value - integral| {e:.3e} (over all nodes and channels)"
+        ),
+        None => writeln!(s, "integration not recorded (a version 1 file)"),
+    };
     let _ = writeln!(s, "checksum    CRC-32 {:#010x}", h.checksum);
     s
 }

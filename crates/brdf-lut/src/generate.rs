@@ -32,24 +32,25 @@
 //! The kinds it knows are one list ([`Kind::def`], `generate/kinds.rs`).
 
 mod defaults;
+mod integrate;
 mod kinds;
 mod measure;
+mod verify;
 
 pub use defaults::{default_set, Asset, DEFAULT_SET_TOOL};
+pub use integrate::{
+    ggx_converged, reference, GgxQuery, Work, REFERENCE_TOL, TOL as INTEGRATION_TOL,
+};
 pub use kinds::{Check, KindDef, Role};
 pub use measure::measure;
+pub use verify::{check_nodes, sample_nodes, NodeCheck};
 
 use crate::write;
 use crate::{
     Axis, Convention, Encoding, ErrorStats, Generator, Header, Interpolation, List, Model,
     Placement, TableKind, Warp, MAX_AXIS_COUNT,
 };
-use brdf_core::geometry::Dots;
-use brdf_core::masking::{
-    g_blinn_dots, g_smith_beckmann_correlated, g_smith_beckmann_separable, g_smith_ggx_correlated,
-    g_smith_ggx_separable, ModifiedG,
-};
-use brdf_core::split_sum::{split_sum, InnerRule, Ndf, OuterRule};
+use brdf_core::masking::ModifiedG;
 use core::f64::consts::{FRAC_PI_2, SQRT_2};
 use std::fmt;
 use std::format;
@@ -213,6 +214,10 @@ pub struct Generated {
     pub bytes: Vec<u8>,
     /// The measured error (also in the header).
     pub error: ErrorStats,
+    /// The largest integration error estimate over all nodes, as recorded in the header.
+    pub integration: f32,
+    /// Integrand evaluations over all nodes (as [`Evaluated::evals`]).
+    pub evals: u64,
 }
 
 impl Spec {
@@ -416,48 +421,38 @@ impl Spec {
         }
     }
 
-    /// The split sum (A, B) at μ for roughness-axis value `x`.
-    fn ab(&self, mu: f64, x: f64) -> (f64, f64) {
-        let (w, sigma) = self.width_sigma(x);
-        if w <= 1e-7 && self.masking != Masking::Modified {
-            // Mirror limit: D → δ, G → 1: A = 1 − (1 − μ)⁵, B = (1 − μ)⁵.
-            if mu <= 0.0 {
-                return (0.0, 0.0);
-            }
-            let fc = (1.0 - mu.min(1.0)).powi(5);
-            return (1.0 - fc, fc);
-        }
-        type Ss = fn(f64, Ndf<f64>, &dyn Fn(Dots<f64>) -> f64) -> (f64, f64);
-        let ss: Ss = |mu, ndf, g| split_sum::<f64, OuterRule, InnerRule>(mu, ndf, g);
-        let ndf = match self.distribution {
-            Distribution::Ggx => Ndf::Ggx(w),
-            _ => Ndf::Beckmann(w),
-        };
-        match (self.distribution, self.masking) {
-            (Distribution::Ggx, Masking::SmithSeparable) => {
-                ss(mu, ndf, &|d| g_smith_ggx_separable(d.n_i, d.n_o, w))
-            }
-            (Distribution::Ggx, _) => ss(mu, ndf, &|d| g_smith_ggx_correlated(d.n_i, d.n_o, w)),
-            (_, Masking::SmithSeparable) => {
-                ss(mu, ndf, &|d| g_smith_beckmann_separable(d.n_i, d.n_o, w))
-            }
-            (_, Masking::SmithCorrelated) => {
-                ss(mu, ndf, &|d| g_smith_beckmann_correlated(d.n_i, d.n_o, w))
-            }
-            (_, Masking::VCavity) => ss(mu, ndf, &g_blinn_dots),
-            (_, Masking::Modified) => match ModifiedG::<f64>::new(sigma) {
-                Ok(g) => ss(mu, ndf, &|d| g.g_dots(d)),
-                Err(_) => (f64::NAN, f64::NAN),
-            },
-        }
-    }
-
     /// The direct f64 kernel at a point of the table's domain: one value per channel.
     pub fn value(&self, x: &[f64]) -> Vec<f64> {
+        let mut out = vec![0.0; self.kind.def().channels.len()];
+        integrate::value(self, x, &mut out);
+        out
+    }
+
+    /// The direct f64 kernel at a point of the table's domain (one value per channel) and
+    /// its integration [`Work`]: the estimate of its error and the evaluations it took
+    /// (`generate/integrate.rs`).
+    pub fn integral(&self, x: &[f64]) -> (Vec<f64>, Work) {
         let def = self.kind.def();
         let mut out = vec![0.0; def.channels.len()];
-        (def.value)(self, x, &mut out);
-        out
+        let w = (def.value)(self, x, &mut out);
+        (out, w)
+    }
+
+    /// The quadrature node counts the header records: empty for the converged GGX rule
+    /// (adaptive, to [`integrate::TOL`]); otherwise the stored rule's — split
+    /// sums: outer nodes, inner nodes, outer panels; E_avg: μ nodes first; the modified G:
+    /// nodes per integral.
+    fn nodes_record(&self) -> &'static [u16] {
+        use brdf_core::split_sum::OUTER_PANELS;
+        let polar_axis = self.axes.last().is_some_and(|a| {
+            integrate::polar_r(self, a.lo).is_some() && integrate::polar_r(self, a.hi).is_some()
+        });
+        match self.kind {
+            Kind::GPerSigma { .. } | Kind::GOverSigma => &[20],
+            _ if polar_axis => &[],
+            Kind::AverageAlbedo => &[24, 32, 16, OUTER_PANELS as u16],
+            _ => &[32, 16, OUTER_PANELS as u16],
+        }
     }
 
     fn header_axes(&self) -> Vec<Axis<'static>> {
@@ -532,19 +527,41 @@ impl Spec {
 }
 
 /// The modified G's one-sided passing factor F(θ, φ) = M(θ, (θ − φ)/2) for RMS slope σ
-/// (the 2015 Acta Physica Sinica paper, eqs 6–13).
-fn passing(sigma: f64, theta: f64, phi: f64) -> f64 {
-    ModifiedG::<f64>::new(sigma)
+/// (the 2015 Acta Physica Sinica paper, eqs 6–13), its integral by the rule `R`.
+fn passing_with<R: brdf_core::quadrature::Rule>(sigma: f64, theta: f64, phi: f64) -> f64 {
+    ModifiedG::<f64, R>::new(sigma)
         .map(|g| g.passing(theta, (theta - phi) * 0.5))
         .unwrap_or(f64::NAN)
 }
 
-/// Calls `f(k, chunk)` for every `len`-long chunk `k` of `out`, on all cores; each worker
-/// takes one contiguous run of chunks, so results land in order whatever the thread count.
+/// The worker threads of [`par_chunks`]: `RAYON_NUM_THREADS` when set to a whole number
+/// ≥ 1 (the usual spelling, though this is not rayon), else every core. The results do not
+/// depend on it (each value is computed alone and lands in its own slot).
+pub fn threads() -> usize {
+    std::env::var("RAYON_NUM_THREADS")
+        .ok()
+        .and_then(|v| v.trim().parse::<usize>().ok())
+        .filter(|&n| n >= 1)
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
+}
+
+/// Calls `f(k, chunk)` for every `len`-long chunk `k` of `out`, on [`threads`] workers;
+/// each worker takes one contiguous run of chunks, so results land in order whatever the
+/// thread count.
 pub(crate) fn par_chunks<T: Send>(out: &mut [T], len: usize, f: &(dyn Fn(usize, &mut [T]) + Sync)) {
+    par_chunks_on(threads(), out, len, f)
+}
+
+/// [`par_chunks`] on `threads` workers (at least 1).
+fn par_chunks_on<T: Send>(
+    threads: usize,
+    out: &mut [T],
+    len: usize,
+    f: &(dyn Fn(usize, &mut [T]) + Sync),
+) {
     let len = len.max(1);
     let chunks = out.len().div_ceil(len);
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let threads = threads.max(1);
     let per = chunks.div_ceil(threads).max(1);
     std::thread::scope(|s| {
         for (t, block) in out.chunks_mut(per * len).enumerate() {
@@ -557,37 +574,83 @@ pub(crate) fn par_chunks<T: Send>(out: &mut [T], len: usize, f: &(dyn Fn(usize, 
     });
 }
 
+/// A table's node values with their integration record.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Evaluated {
+    /// Node-major (axis 0 fastest), channels interleaved (`values[node × C + c]`).
+    pub values: Vec<f64>,
+    /// The largest integration error estimate over all nodes and channels.
+    pub integration: f64,
+    /// Integrand evaluations over all nodes (those the rule counts: not the polar E_avg).
+    pub evals: u64,
+}
+
 /// Validates the spec and computes every node's values on all cores: node-major (axis 0
 /// fastest), channels interleaved (`values[node × C + c]`). `progress(k)` is called with
 /// the number of nodes just finished. A non-finite value is an error naming its node.
 pub fn evaluate(spec: &Spec, progress: &(dyn Fn(u64) + Sync)) -> Result<Vec<f64>, GenError> {
+    Ok(evaluate_with_error(spec, progress)?.values)
+}
+
+/// [`evaluate`], with each node's integration estimate and work ([`Evaluated`]).
+pub fn evaluate_with_error(
+    spec: &Spec,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<Evaluated, GenError> {
+    evaluate_on(threads(), spec, progress)
+}
+
+/// [`evaluate_with_error`] on `threads` workers. The values, the maximum and the sum do
+/// not depend on the thread count: each node is computed alone into its own slot, and the
+/// reductions (max, integer sum) are exact in any order.
+fn evaluate_on(
+    threads: usize,
+    spec: &Spec,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<Evaluated, GenError> {
     spec.validate()?;
     let axes = spec.header_axes();
     let def = spec.kind.def();
     let nc = def.channels.len();
     let total: usize = axes.iter().map(|a| a.count as usize).product();
-    // Rows along axis 0, so a worker's unit of work shares everything but the fastest axis.
-    let row = axes[0].count as usize * nc;
-    let mut flat = vec![0.0; total * nc];
-    par_chunks(&mut flat, row, &|r, v| {
-        for (i, out) in v.chunks_mut(nc).enumerate() {
-            (def.value)(spec, &write::node_coords(&axes, r * (row / nc) + i), out);
+    let n0 = axes[0].count as usize;
+    // Rows along axis 0, so a worker's unit of work shares everything but the fastest
+    // axis. Each node's slot: its channels, then its estimate and evaluations.
+    let stride = nc + 2;
+    let mut flat = vec![0.0; total * stride];
+    par_chunks_on(threads, &mut flat, n0 * stride, &|r, v| {
+        for (i, out) in v.chunks_mut(stride).enumerate() {
+            let x = write::node_coords(&axes, r * n0 + i);
+            let w = (def.value)(spec, &x, &mut out[..nc]);
+            (out[nc], out[nc + 1]) = (w.error, w.evals as f64);
         }
-        progress((row / nc) as u64);
+        progress(n0 as u64);
     });
-    if let Some(k) = flat.iter().position(|x| !x.is_finite()) {
-        return Err(GenError::NonFinite {
-            at: write::node_coords(&axes, k / nc).to_vec(),
-        });
+    let mut values = Vec::with_capacity(total * nc);
+    let (mut integration, mut evals) = (0f64, 0u64);
+    for (k, node) in flat.chunks_exact(stride).enumerate() {
+        if node.iter().any(|x| !x.is_finite()) {
+            return Err(GenError::NonFinite {
+                at: write::node_coords(&axes, k).to_vec(),
+            });
+        }
+        values.extend_from_slice(&node[..nc]);
+        integration = integration.max(node[nc]);
+        evals += node[nc + 1] as u64;
     }
-    Ok(flat)
+    Ok(Evaluated {
+        values,
+        integration,
+        evals,
+    })
 }
 
-/// Builds the table: validates, computes every node ([`evaluate`]), quantises, measures the
-/// error at `samples` random points ([`measure`]) and encodes. Deterministic: the same spec
-/// gives the same bytes.
+/// Builds the table: validates, computes every node ([`evaluate_with_error`]), quantises,
+/// measures the interpolation error at `samples` random points ([`measure`]), records the
+/// largest integration error estimate (rounded up to f32) and encodes. Deterministic: the
+/// same spec gives the same bytes, whatever the thread count.
 pub fn generate(spec: &Spec, progress: &(dyn Fn(u64) + Sync)) -> Result<Generated, GenError> {
-    let values = evaluate(spec, progress)?;
+    let ev = evaluate_with_error(spec, progress)?;
     let axes = spec.header_axes();
     let def = spec.kind.def();
     let ws = write::Spec {
@@ -600,15 +663,61 @@ pub fn generate(spec: &Spec, progress: &(dyn Fn(u64) + Sync)) -> Result<Generate
             model: spec.model()?,
             convention: Convention::Reciprocal,
             sigma: spec.fixed_sigma(),
-            nodes: List::from_slice(def.nodes).unwrap_or_default(),
+            nodes: List::from_slice(spec.nodes_record()).unwrap_or_default(),
             tool: &spec.tool,
         },
     };
     let mut error = ErrorStats::default();
-    let bytes = write::build(&ws, &values, |view| {
+    let bound = f32_up(ev.integration);
+    let bytes = write::build_with_bound(&ws, &ev.values, Some(bound), |view| {
         error = measure(spec, view, &view.header().axes);
         error
     })
     .map_err(|e| GenError::Encode(e.to_string()))?;
-    Ok(Generated { bytes, error })
+    Ok(Generated {
+        bytes,
+        error,
+        integration: bound,
+        evals: ev.evals,
+    })
+}
+
+/// The smallest f32 ≥ x (x finite, ≥ 0), so the recorded bound never rounds below the
+/// estimate.
+fn f32_up(x: f64) -> f32 {
+    let f = x as f32;
+    if (f as f64) < x {
+        f32::from_bits(f.to_bits() + 1)
+    } else {
+        f
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The node values, the bound and the evaluation count are the same on 1, 2 and 3
+    /// workers (each node alone in its slot): a GGX split sum (converged rule) and a
+    /// Beckmann albedo (fixed and refined rules), on grids that do not split evenly.
+    #[test]
+    fn evaluation_does_not_depend_on_the_thread_count() {
+        let mut a = Spec::new(Kind::SplitSum, Distribution::Ggx, Masking::SmithCorrelated);
+        a.axes[0].count = 7;
+        a.axes[1].count = 5;
+        let mut b = Spec::new(
+            Kind::Albedo,
+            Distribution::Beckmann,
+            Masking::SmithCorrelated,
+        );
+        b.axes[0].count = 3;
+        b.axes[1].count = 5;
+        for s in [a, b] {
+            let one = evaluate_on(1, &s, &|_| {}).unwrap();
+            for t in [2, 3] {
+                assert_eq!(evaluate_on(t, &s, &|_| {}).unwrap(), one, "{t} threads");
+            }
+            assert!(one.integration > 0.0 && one.evals > 0);
+        }
+    }
 }

@@ -6,8 +6,12 @@ use core::fmt;
 
 /// The four bytes every LUT file starts with.
 pub const MAGIC: [u8; 4] = *b"BLUT";
-/// The format version this crate reads and writes.
-pub const FORMAT_VERSION: u16 = 1;
+/// The format version this crate writes. Version 2 added the header's `integration` field
+/// (docs/lut-format.md §3); version 1 files (without it) are still read, with
+/// [`Header::integration`] `None`.
+pub const FORMAT_VERSION: u16 = 2;
+/// The oldest format version this crate reads.
+pub const MIN_FORMAT_VERSION: u16 = 1;
 /// Most axes a table may have.
 pub const MAX_AXES: usize = 3;
 /// Most channels a table may have.
@@ -278,8 +282,8 @@ impl ErrorStats {
     }
 }
 
-/// The decoded header (without the magic and version, which are always [`MAGIC`] and
-/// [`FORMAT_VERSION`]). `checksum` is the CRC-32 of the encoded header bytes that precede it
+/// The decoded header (without the magic and version, which are always [`MAGIC`] and a
+/// version in [`MIN_FORMAT_VERSION`]..=[`FORMAT_VERSION`]). `checksum` is the CRC-32 of the encoded header bytes that precede it
 /// followed by the whole payload; the writer fills it in.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Header<'a> {
@@ -297,8 +301,24 @@ pub struct Header<'a> {
     pub generator: Generator<'a>,
     /// Measured error.
     pub error: ErrorStats,
+    /// The largest estimated integration error of a node value over all nodes and channels
+    /// (absolute, in the channels' units): how far each stored value may be from the exact
+    /// integral before quantisation, as the generator's error estimate states it. `None`
+    /// in version 1 files, which do not record it; the writer always writes it.
+    pub integration: Option<f32>,
     /// CRC-32 of the file (see above).
     pub checksum: u32,
+}
+
+/// The rule for the recorded integration error (docs/lut-format.md §3, the claim rule):
+/// finite and ≥ 0 (−0 counts as 0); `None` (a version 1 file) passes. The same comparison
+/// chain as [`ErrorStats::check`], with the bound as the maximum and 0 as the RMS.
+pub fn check_integration(e: Option<f32>) -> Result<(), crate::LutError> {
+    ErrorStats {
+        max_abs: e.unwrap_or(0.0),
+        ..ErrorStats::default()
+    }
+    .check()
 }
 
 impl Header<'_> {

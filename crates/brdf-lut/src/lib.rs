@@ -51,7 +51,7 @@ pub use f16::{f16_to_f32, f32_to_f16};
 pub use header::{
     Axis, Channel, Convention, Encoding, ErrorStats, Generator, Header, Interpolation, List, Model,
     Placement, TableKind, Warp, FORMAT_VERSION, MAGIC, MAX_AXES, MAX_AXIS_COUNT, MAX_CHANNELS,
-    MAX_GENERATOR_NODES, MAX_VALUES, MAX_VALUE_MAGNITUDE,
+    MAX_GENERATOR_NODES, MAX_VALUES, MAX_VALUE_MAGNITUDE, MIN_FORMAT_VERSION,
 };
 pub use lookup::Values;
 pub use tables::layout::TableLayout;

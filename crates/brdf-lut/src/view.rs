@@ -101,7 +101,8 @@ pub(crate) fn check_header(h: &Header<'_>) -> Result<(), LutError> {
     if !ok {
         return Err(I("axis or channel count does not fit the table kind"));
     }
-    h.error.check()
+    h.error.check()?;
+    check_integration(h.integration)
 }
 
 /// Magic and version; the reader positioned after them.
@@ -119,9 +120,10 @@ fn open(bytes: &[u8]) -> Result<Decoder<'_>, LutError> {
     }
     let mut r = Decoder::new(rest);
     let version = r.varint(16)? as u16;
-    if version != FORMAT_VERSION {
+    if !(MIN_FORMAT_VERSION..=FORMAT_VERSION).contains(&version) {
         return Err(LutError::UnsupportedVersion { found: version });
     }
+    r.version = version;
     Ok(r)
 }
 
@@ -368,6 +370,7 @@ mod tests {
                 samples: 0,
                 seed: 0,
             },
+            integration: None,
             checksum: 0,
         };
         encode_into(&h, &payload[..len], buf).unwrap()

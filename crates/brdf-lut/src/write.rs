@@ -188,19 +188,38 @@ pub fn header<'a>(
         interpolation: spec.interpolation,
         generator: spec.generator,
         error,
+        integration: None,
         checksum: 0,
     })
 }
 
 /// Quantises `values` ([`quantise`]), encodes the table, measures it with `measure` (given
-/// the table as it will be read) and encodes it again with the measured statistics.
+/// the table as it will be read) and encodes it again with the measured statistics. The
+/// header records no integration error bound ([`build_with_bound`] records one).
 pub fn build(
     spec: &Spec<'_>,
     values: &[f64],
     measure: impl FnOnce(&LutView<'_>) -> ErrorStats,
 ) -> Result<Vec<u8>, LutError> {
+    build_with_bound(spec, values, None, measure)
+}
+
+/// [`build`], with `integration` (the largest estimated integration error of a node value,
+/// docs/lut-format.md §3) recorded in the header; refused (`BadErrorStats`) unless finite
+/// and ≥ 0.
+pub fn build_with_bound(
+    spec: &Spec<'_>,
+    values: &[f64],
+    integration: Option<f32>,
+    measure: impl FnOnce(&LutView<'_>) -> ErrorStats,
+) -> Result<Vec<u8>, LutError> {
+    check_integration(integration)?;
     let (chans, payload) = quantise(spec, values)?;
     let first = encode(&header(spec, chans, ErrorStats::default())?, &payload)?;
     let stats = measure(&LutView::parse(&first)?);
-    encode(&header(spec, chans, stats)?, &payload)
+    let h = Header {
+        integration,
+        ..header(spec, chans, stats)?
+    };
+    encode(&h, &payload)
 }

@@ -14,10 +14,16 @@ pub struct Row {
     pub file: String,
     pub bytes: usize,
     pub stats: ErrorStats,
+    /// The recorded integration error bound (None: a version 1 file).
+    pub integration: Option<f32>,
+    /// Integrand evaluations per node (generation only).
+    pub evals: Option<f64>,
     pub secs: Option<f64>,
 }
 
-fn progress(len: u64, msg: String) -> ProgressBar {
+/// A progress bar over `len` nodes with the elapsed time and an ETA, on stderr when it is a
+/// terminal; hidden otherwise and when `CI` is `true` or `1`.
+pub fn progress(len: u64, msg: String) -> ProgressBar {
     let pb = ProgressBar::new(len);
     let hide = !std::io::stderr().is_terminal()
         || std::env::var("CI").is_ok_and(|v| v == "true" || v == "1");
@@ -25,7 +31,7 @@ fn progress(len: u64, msg: String) -> ProgressBar {
         pb.set_draw_target(ProgressDrawTarget::hidden());
     }
     pb.set_style(
-        ProgressStyle::with_template("{msg:28} [{bar:30}] {pos}/{len} {elapsed}")
+        ProgressStyle::with_template("{msg:28} [{bar:30}] {pos}/{len} nodes {elapsed}, ETA {eta}")
             .unwrap_or_else(|_| ProgressStyle::default_bar())
             .progress_chars("=> "),
     );
@@ -104,15 +110,17 @@ pub fn generate(g: GenArgs) -> Result<()> {
     let mut rows = Vec::new();
     for a in &assets {
         let t = Instant::now();
-        let bytes = build(a)?;
-        let stats = LutView::parse(&bytes)
+        let g = build(a)?;
+        let bytes = g.bytes;
+        let h = *LutView::parse(&bytes)
             .context("generated file does not parse")?
-            .header()
-            .error;
+            .header();
         rows.push(Row {
             file: a.file.clone(),
             bytes: bytes.len(),
-            stats,
+            stats: h.error,
+            integration: h.integration,
+            evals: Some(g.evals as f64 / h.nodes().max(1) as f64),
             secs: Some(t.elapsed().as_secs_f64()),
         });
         files.push((out.join(&a.file), bytes));
@@ -205,12 +213,12 @@ fn write_target(g: &GenArgs, check_dir: Option<&Path>) -> Result<(PathBuf, crate
 }
 
 /// One asset through the library generator, with a progress bar over its nodes.
-fn build(a: &Asset) -> Result<Vec<u8>> {
+fn build(a: &Asset) -> Result<generate::Generated> {
     let total: u64 = a.spec.axes.iter().map(|x| x.count as u64).product();
     let pb = progress(total, a.file.clone());
     let res = generate::generate(&a.spec, &|k| pb.inc(k));
     pb.finish_and_clear();
-    Ok(res.map_err(|e| anyhow!("{}: {e}", a.file))?.bytes)
+    res.map_err(|e| anyhow!("{}: {e}", a.file))
 }
 
 /// Max and RMS |table − direct kernel| at `n` random points (seeded), measured by the
@@ -231,20 +239,25 @@ pub fn measure(view: &LutView<'_>, n: u32, seed: u64) -> ErrorStats {
     }
 }
 
+/// The table of generated or verified files: size, interpolation error (max, RMS, points),
+/// the recorded integration bound, evaluations per node and time.
 pub fn print_table(rows: &[Row]) {
     println!(
-        "{:<28} {:>9} {:>11} {:>11} {:>8} {:>8}",
-        "table", "bytes", "max |err|", "RMS err", "points", "time s"
+        "{:<28} {:>9} {:>11} {:>11} {:>8} {:>11} {:>10} {:>8}",
+        "table", "bytes", "max |err|", "RMS err", "points", "integ. err", "evals/node", "time s"
     );
+    let dash = || "-".to_string();
     for r in rows {
         println!(
-            "{:<28} {:>9} {:>11.3e} {:>11.3e} {:>8} {:>8}",
+            "{:<28} {:>9} {:>11.3e} {:>11.3e} {:>8} {:>11} {:>10} {:>8}",
             r.file,
             r.bytes,
             r.stats.max_abs,
             r.stats.rms,
             r.stats.samples,
-            r.secs.map_or("-".to_string(), |s| format!("{s:.1}"))
+            r.integration.map_or_else(dash, |e| format!("{e:.3e}")),
+            r.evals.map_or_else(dash, |e| format!("{e:.0}")),
+            r.secs.map_or_else(dash, |s| format!("{s:.1}"))
         );
     }
 }

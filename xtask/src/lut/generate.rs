@@ -29,10 +29,8 @@ use super::GenArgs;
 use anyhow::{anyhow, bail, Context, Result};
 use brdf_lut::generate::{Distribution, Kind, Masking, Roughness, Spec};
 use brdf_lut::{Encoding, Interpolation, Placement, Warp};
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde::Deserialize;
 use std::collections::BTreeMap;
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
 #[derive(clap::Args)]
@@ -191,19 +189,22 @@ pub fn run(a: Args) -> Result<()> {
     spec.validate().map_err(|e| anyhow!("{e}"))?;
     check_limits(&spec)?;
     let total: u64 = spec.axes.iter().map(|x| x.count as u64).product();
-    let pb = progress_bar(total, out.display().to_string());
+    let pb = super::gen::progress(total, out.display().to_string());
     let t0 = std::time::Instant::now();
     let res = brdf_lut::generate::generate(&spec, &|k| pb.inc(k));
     pb.finish_and_clear();
     let t = res.map_err(|e| anyhow!("{e}"))?;
     let e = t.error;
     let summary = format!(
-        "{}: {} bytes, max |error| {:.3e}, RMS {:.3e} over {} random points ({:.1} s)",
+        "{}: {} bytes, max |error| {:.3e}, RMS {:.3e} over {} random points, integration \
+         bound {:.3e}, {:.0} integrand evaluations per node ({:.1} s)",
         out.display(),
         t.bytes.len(),
         e.max_abs,
         e.rms,
         e.samples,
+        t.integration,
+        t.evals as f64 / total.max(1) as f64,
         t0.elapsed().as_secs_f64()
     );
     if let Some(lim) = max_error {
@@ -240,22 +241,6 @@ fn check_limits(spec: &Spec) -> Result<()> {
     let model = spec.model().map_err(|e| anyhow!("{e}"))?;
     limits::check_generate(kind, model, nodes, spec.samples as u64)?;
     Ok(())
-}
-
-fn progress_bar(len: u64, msg: String) -> ProgressBar {
-    let pb = ProgressBar::new(len);
-    let hide = !std::io::stderr().is_terminal()
-        || std::env::var("CI").is_ok_and(|v| v == "true" || v == "1");
-    if hide {
-        pb.set_draw_target(ProgressDrawTarget::hidden());
-    }
-    pb.set_style(
-        ProgressStyle::with_template("{msg:28} [{bar:30}] {pos}/{len} nodes {elapsed}")
-            .unwrap_or_else(|_| ProgressStyle::default_bar())
-            .progress_chars("=> "),
-    );
-    pb.set_message(msg);
-    pb
 }
 
 fn choose<T: Copy>(what: &str, v: &str, options: &[(&str, T)]) -> Result<T> {

@@ -207,10 +207,13 @@ fn verify(files: Vec<PathBuf>, samples: Option<u32>, seed: u64, tolerance: f64) 
                 st.max_abs, recorded.max_abs
             ));
         }
+        worse.extend(verify_nodes(&name, &view));
         rows.push(gen::Row {
             file: name,
             bytes: lut.bytes().len(),
             stats: st,
+            integration: h.integration,
+            evals: None,
             secs: None,
         });
     }
@@ -222,6 +225,54 @@ fn verify(files: Vec<PathBuf>, samples: Option<u32>, seed: u64, tolerance: f64) 
         );
     }
     Ok(())
+}
+
+/// Nodes `lut verify` recomputes per table (plus the smallest-μ column's).
+pub const VERIFY_NODES: usize = 64;
+
+/// The recorded integration bound checked at [`VERIFY_NODES`] spread nodes (and the
+/// smallest-μ column) against an independent, much finer rule
+/// (`brdf_lut::generate::check_nodes`): the failures, each naming its node. A version 1
+/// file records no bound (a note, no failure); a header the generator cannot describe
+/// fails.
+fn verify_nodes(name: &str, view: &brdf_lut::LutView<'_>) -> Option<String> {
+    let h = view.header();
+    let Some(bound) = h.integration else {
+        eprintln!("note: {name}: no integration bound recorded (a version 1 file)");
+        return None;
+    };
+    let Some(spec) = brdf_lut::generate::Spec::from_header(h) else {
+        return Some(format!(
+            "{name}: the header describes no table the generator builds"
+        ));
+    };
+    let checks = brdf_lut::generate::check_nodes(&spec, view, bound as f64, VERIFY_NODES);
+    let excess = |c: &&brdf_lut::generate::NodeCheck| (c.stored - c.reference).abs() - c.allowed;
+    let worst = checks
+        .iter()
+        .max_by(|a, b| excess(a).total_cmp(&excess(b)))?;
+    eprintln!(
+        "{name}: {} node values within the recorded integration bound {bound:.3e} (closest: \
+         |diff| {:.3e} of {:.3e} allowed)",
+        checks.len(),
+        (worst.stored - worst.reference).abs(),
+        worst.allowed
+    );
+    if worst.ok() {
+        return None;
+    }
+    Some(format!(
+        "{name}: node {} at {:?}, channel {}: stored {:.9e}, reference {:.9e}, |diff| {:.3e} > \
+         {:.3e} allowed (recorded integration bound {bound:.3e} + half a quantisation step + \
+         the reference's estimate)",
+        worst.node,
+        worst.at,
+        worst.channel,
+        worst.stored,
+        worst.reference,
+        (worst.stored - worst.reference).abs(),
+        worst.allowed
+    ))
 }
 
 pub fn list_assets(dir: &Path) -> Result<Vec<PathBuf>> {

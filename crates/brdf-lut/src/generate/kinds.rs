@@ -1,13 +1,12 @@
 //! The one list of table kinds. Everything the generator knows about a kind — its name on
 //! the command line and in TOML files, its BLUT kind code, its axes (with their default
-//! grids and admissible domains), its channels, the quadrature it records, how its error is
+//! grids and admissible domains), its channels, how its error is
 //! measured and the f64 kernel at a node — is in its entry of [`Kind::def`]. A new kind is
 //! a new `Kind` variant and its entry there.
 
-use super::{passing, AxisSpec, Kind, Masking, Roughness, Spec, MU_MIN};
+use super::integrate::{node, Work};
+use super::{AxisSpec, Kind, Masking, Roughness, Spec, MU_MIN};
 use crate::{TableKind, Warp};
-use brdf_core::quadrature::{GaussLegendre, DEFAULT_NODES};
-use brdf_core::split_sum::{e_avg, OUTER_PANELS};
 use core::f64::consts::FRAC_PI_2;
 
 /// What an axis holds: its name, default range and warp, and admissible domain follow.
@@ -45,16 +44,12 @@ pub struct KindDef {
     pub axes: &'static [(Role, u32)],
     /// Its channels, in payload order.
     pub channels: &'static [&'static str],
-    /// The quadrature node counts recorded in the header.
-    pub nodes: &'static [u16],
     /// How its error is measured.
     pub check: Check,
-    /// The f64 kernel at a point `x` (one coordinate per axis): one value per channel.
-    pub value: fn(&Spec, &[f64], &mut [f64]),
+    /// The f64 kernel at a point `x` (one coordinate per axis): one value per channel in
+    /// `out`, with its integration estimate and work (`generate/integrate.rs`).
+    pub value: fn(&Spec, &[f64], &mut [f64]) -> Work,
 }
-
-const SPLIT_NODES: &[u16] = &[32, 16, OUTER_PANELS as u16];
-const G_NODES: &[u16] = &[DEFAULT_NODES as u16];
 
 impl Kind {
     /// This kind's entry in the one list of kinds.
@@ -66,55 +61,40 @@ impl Kind {
                 table: TableKind::PassingFactor,
                 axes: &[(Theta, 128), (Phi, 126)],
                 channels: &["F"],
-                nodes: G_NODES,
                 check: Check::ModifiedG,
-                value: |s, x, out| {
-                    out[0] = passing(s.fixed_sigma().unwrap_or(f64::NAN), x[0], x[1])
-                },
+                value: node,
             },
             Kind::GOverSigma => &KindDef {
                 name: "g-over-sigma",
                 table: TableKind::PassingFactor,
                 axes: &[(Theta, 64), (Phi, 64), (Sigma, 31)],
                 channels: &["F"],
-                nodes: G_NODES,
                 check: Check::ModifiedG,
-                value: |_, x, out| out[0] = passing(x[2], x[0], x[1]),
+                value: node,
             },
             Kind::SplitSum => &KindDef {
                 name: "split-sum",
                 table: TableKind::SplitSum,
                 axes: &[(Mu, 64), (Roughness, 64)],
                 channels: &["A", "B"],
-                nodes: SPLIT_NODES,
                 check: Check::Values,
-                value: |s, x, out| (out[0], out[1]) = s.ab(x[0], x[1]),
+                value: node,
             },
             Kind::Albedo => &KindDef {
                 name: "e",
                 table: TableKind::DirectionalAlbedo,
                 axes: &[(Mu, 64), (Roughness, 64)],
                 channels: &["E"],
-                nodes: SPLIT_NODES,
                 check: Check::Values,
-                value: |s, x, out| {
-                    let (a, b) = s.ab(x[0], x[1]);
-                    out[0] = a + b;
-                },
+                value: node,
             },
             Kind::AverageAlbedo => &KindDef {
                 name: "e-avg",
                 table: TableKind::AverageAlbedo,
                 axes: &[(Roughness, 32)],
                 channels: &["Eavg"],
-                nodes: &[24, 32, 16, OUTER_PANELS as u16],
                 check: Check::Values,
-                value: |s, x, out| {
-                    out[0] = e_avg::<f64, GaussLegendre<24>>(|mu| {
-                        let (a, b) = s.ab(mu, x[0]);
-                        a + b
-                    })
-                },
+                value: node,
             },
         }
     }
