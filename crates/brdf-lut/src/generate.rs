@@ -619,10 +619,14 @@ fn evaluate_on(
     let stride = nc + 2;
     let mut flat = vec![0.0; total * stride];
     par_chunks_on(threads, &mut flat, n0 * stride, &|r, v| {
-        for (i, out) in v.chunks_mut(stride).enumerate() {
-            let x = write::node_coords(&axes, r * n0 + i);
-            let w = (def.value)(spec, &x, &mut out[..nc]);
-            (out[nc], out[nc + 1]) = (w.error, w.evals as f64);
+        let coords = |i| write::node_coords(&axes, r * n0 + i);
+        let mus: Vec<f64> = (0..n0).map(|i| coords(i)[0]).collect();
+        let rx = coords(0).get(1).copied().unwrap_or(f64::NAN);
+        if integrate::ggx_row(spec, &mus, rx, stride, v).is_none() {
+            for (i, out) in v.chunks_mut(stride).enumerate() {
+                let w = (def.value)(spec, &coords(i), &mut out[..nc]);
+                (out[nc], out[nc + 1]) = (w.error, w.evals as f64);
+            }
         }
         progress(n0 as u64);
     });
