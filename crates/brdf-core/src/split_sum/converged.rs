@@ -52,6 +52,14 @@ pub trait CapIntegrand<T: Real> {
     fn support(&self, h: Vec3<T>) -> T;
     /// (f/p)(h) in both channels, given s = `support(h)` > 0 ([`CapIntegrand::support`]).
     fn value(&self, h: Vec3<T>, s: T) -> [T; 2];
+    /// A row form of the support (for the map the integrand is paired with): coefficients
+    /// k of P(θ) = k₀ + k₁ cos θ + k₂ sin θ + k₃ cos²θ + k₄ sin²θ + k₅ sin θ cos θ, a
+    /// function of the sign of s along the row (cos φ, sin φ) = `(cp, sp)`, from which the
+    /// cuts are found exactly ([`row_cuts`]). `None` (the default): the cuts are found by
+    /// scanning s ([`lit_intervals`]).
+    fn row_form(&self, _cp: T, _sp: T) -> Option<[T; 6]> {
+        None
+    }
 }
 
 /// A converged integral: the value, its error estimate and the work it took.
@@ -223,6 +231,130 @@ fn lit_intervals<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     (out, n)
 }
 
+/// Σ c_k x^k by Horner's rule.
+#[inline]
+fn horner<T: Real>(c: &[T], x: T) -> T {
+    c.iter().rev().fold(T::ZERO, |acc, &ck| acc * x + ck)
+}
+
+/// Bisection steps at most per polynomial root.
+pub const MAX_ROOT_STEPS: u32 = 80;
+
+/// The points of [lo, hi] where the polynomial Σ c_k x^k (degree ≤ 4) changes sign (between
+/// > 0 and ≤ 0), in increasing order: isolated by the derivative sequence (between
+/// consecutive sign changes of p′, found recursively, p is monotone, so it changes sign at
+/// most once there), each then bisected to the last bit or [`MAX_ROOT_STEPS`]. Touching zeros
+/// (no sign change) are not returned: they bound no region of either sign.
+fn poly_sign_changes<T: Real>(c: &[T], lo: T, hi: T, out: &mut [T; 4]) -> usize {
+    let deg = c.len().saturating_sub(1).min(4);
+    if deg == 0 {
+        return 0;
+    }
+    let mut d = [T::ZERO; 4];
+    for k in 1..=deg {
+        d[k - 1] = c[k] * T::from_f64(k as f64);
+    }
+    let mut crit = [T::ZERO; 4];
+    let nc = poly_sign_changes(&d[..deg], lo, hi, &mut crit);
+    let (mut n, mut a) = (0, lo);
+    let mut pa = horner(c, lo) > T::ZERO;
+    for i in 0..=nc {
+        let b = if i < nc { crit[i] } else { hi };
+        let pb = horner(c, b) > T::ZERO;
+        if pa != pb && n < 4 {
+            let (mut x0, mut x1) = (a, b);
+            for _ in 0..MAX_ROOT_STEPS {
+                let m = (x0 + x1) * T::HALF;
+                if !(m > x0 && m < x1) {
+                    break;
+                }
+                if (horner(c, m) > T::ZERO) == pa {
+                    x0 = m;
+                } else {
+                    x1 = m;
+                }
+            }
+            out[n] = (x0 + x1) * T::HALF;
+            n += 1;
+        }
+        (a, pa) = (b, pb);
+    }
+    n
+}
+
+/// The sign changes of P(θ) (the row form k of [`CapIntegrand::row_form`]) in (0, θ_max],
+/// unsorted: with t = tan(θ/2) on θ ≤ π/2 and t = tan((π − θ)/2) on θ ≥ π/2 (t ≤ 1 on
+/// both), (1 + t²)² P is the quartic q₀ + q₁t + … + q₄t⁴ with q₀ = k₀ ± k₁ + k₃,
+/// q₁ = 2(k₂ ± k₅), q₂ = 2k₀ − 2k₃ + 4k₄, q₃ = 2(k₂ ∓ k₅), q₄ = k₀ ∓ k₁ + k₃ (upper signs
+/// for θ ≤ π/2; cos θ = (1 − t²)/(1 + t²), sin θ = 2t/(1 + t²)), whose sign changes
+/// [`poly_sign_changes`] finds.
+fn row_cuts<T: Real>(k: [T; 6], tmax: T, out: &mut [T; 8]) -> usize {
+    let mut n = 0;
+    for (side, (lo, hi)) in [
+        (T::ONE, (T::ZERO, (tmax.min(T::FRAC_PI_2) * T::HALF).tan())),
+        (-T::ONE, (((T::PI - tmax) * T::HALF).tan(), T::ONE)),
+    ] {
+        if !(hi > lo) {
+            continue;
+        }
+        let (k1, k5) = (side * k[1], side * k[5]);
+        let q = [
+            k[0] + k1 + k[3],
+            T::TWO * (k[2] + k5),
+            T::TWO * (k[0] - k[3]) + T::from_f64(4.0) * k[4],
+            T::TWO * (k[2] - k5),
+            k[0] - k1 + k[3],
+        ];
+        let mut r = [T::ZERO; 4];
+        let nr = poly_sign_changes(&q, lo, hi, &mut r);
+        for &t in &r[..nr] {
+            let th = T::TWO * t.atan();
+            out[n] = if side > T::ZERO { th } else { T::PI - th };
+            n += 1;
+        }
+    }
+    n
+}
+
+/// The lit intervals of the row (cos φ, sin φ) from the exact cuts of the row form k
+/// ([`row_cuts`]): the breakpoints 0, the cuts and θ_max, sorted; a gap between two is lit
+/// where s > 0 at its midpoint; adjacent lit gaps are merged.
+fn lit_from_form<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
+    map: &M,
+    f: &F,
+    cs: (T, T),
+    k: [T; 6],
+    work: &mut Work,
+) -> ([(T, T); MAX_PIECES], usize) {
+    let tmax = map.theta_max();
+    let mut cuts = [T::ZERO; 8];
+    let nc = row_cuts(k, tmax, &mut cuts);
+    let mut br = [T::ZERO; 10];
+    br[1..=nc].copy_from_slice(&cuts[..nc]);
+    br[nc + 1] = tmax;
+    let br = &mut br[..nc + 2];
+    br.sort_unstable_by(|a, b| a.partial_cmp(b).unwrap_or(core::cmp::Ordering::Equal));
+    let mut out = [(T::ZERO, T::ZERO); MAX_PIECES];
+    let mut n = 0;
+    for w in br.windows(2) {
+        let (a, b) = (w[0].max(T::ZERO), w[1].min(tmax));
+        if !(b > a) {
+            continue;
+        }
+        work.cut_evals += 1;
+        if !(support_at(map, f, (a + b) * T::HALF, cs.0, cs.1) > T::ZERO) {
+            continue;
+        }
+        if n > 0 && out[n - 1].1 == a {
+            out[n - 1].1 = b;
+        } else if n < MAX_PIECES {
+            out[n] = (a, b);
+            n += 1;
+        }
+    }
+    (out, n)
+}
+
 /// Lit intervals per row at most.
 pub const MAX_PIECES: usize = 4;
 
@@ -269,7 +401,10 @@ fn row<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
 ) -> ([T; 2], [T; 2]) {
     let (sp, cp) = phi.sin_cos();
     work.rows += 1;
-    let (pieces, n) = lit_intervals(map, f, (cp, sp), work);
+    let (pieces, n) = match f.row_form(cp, sp) {
+        Some(k) => lit_from_form(map, f, (cp, sp), k, work),
+        None => lit_intervals(map, f, (cp, sp), work),
+    };
     let (mut v, mut e) = ([T::ZERO; 2], [T::ZERO; 2]);
     for &(a, b) in &pieces[..n] {
         let (pv, pe) = row_adapt(map, f, (cp, sp), a, b, tol, 0, work);
@@ -364,17 +499,27 @@ pub struct GgxSplitSum<T> {
     sv: T,
     a2: T,
     rv: T,
+    alpha: T,
+    /// The stretched view V = (vx, 0, vz) of [`GgxVisibleCap`] for the same (α, μ).
+    vx: T,
+    vz: T,
 }
 
 impl<T: Real> GgxSplitSum<T> {
     /// For width α > 0 and view cosine μ ∈ (0, 1].
     pub fn new(alpha: T, mu: T) -> Self {
         let a2 = alpha * alpha;
+        let sv = ((T::ONE - mu) * (T::ONE + mu)).max(T::ZERO).sqrt();
+        let (x, z) = (alpha * sv, mu);
+        let len = (x * x + z * z).sqrt();
         Self {
             mu,
-            sv: ((T::ONE - mu) * (T::ONE + mu)).max(T::ZERO).sqrt(),
+            sv,
             a2,
             rv: lambda_radicand(mu, iso_a2(mu, alpha)).sqrt(),
+            alpha,
+            vx: x / len,
+            vz: z / len,
         }
     }
 }
@@ -397,6 +542,24 @@ impl<T: Real> CapIntegrand<T> for GgxSplitSum<T> {
         let w = nl * (self.mu + self.rv) / (nl * self.rv + self.mu * rl);
         let fc = (T::ONE - vh).max(T::ZERO).powi(5);
         [w * (T::ONE - fc), w * fc]
+    }
+    /// For the map [`GgxVisibleCap`] of the same (α, μ): h ∝ h̃ = (αH_x, αH_y, H_z) with
+    /// H = c + V, so n·l = 2(v·h)(n·h) − μ has the sign of
+    /// P = 2(v·h̃)h̃_z − μ|h̃|² = μH_z² + 2s_vαH_xH_z − μα²(H_x² + H_y²), s_v = √(1 − μ²);
+    /// with H = (sin θ cos φ + V_x, sin θ sin φ, cos θ + V_z) the row form is
+    /// k = (μV_z² + 2s_vαV_xV_z − μα²V_x², 2μV_z + 2s_vαV_x, 2(s_vαV_z − μα²V_x) cos φ,
+    /// μ, −μα², 2s_vα cos φ).
+    fn row_form(&self, cp: T, _sp: T) -> Option<[T; 6]> {
+        let (mu, sa, ma2) = (self.mu, self.sv * self.alpha, self.mu * self.a2);
+        let (vx, vz) = (self.vx, self.vz);
+        Some([
+            mu * vz * vz + T::TWO * sa * vx * vz - ma2 * vx * vx,
+            T::TWO * (mu * vz + sa * vx),
+            T::TWO * (sa * vz - ma2 * vx) * cp,
+            mu,
+            -ma2,
+            T::TWO * sa * cp,
+        ])
     }
 }
 
