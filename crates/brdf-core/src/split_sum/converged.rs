@@ -391,6 +391,20 @@ fn row_adapt<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     )
 }
 
+/// The lit intervals of the row (cos φ, sin φ): from the exact cuts of the integrand's row
+/// form ([`lit_from_form`]) where it has one, else by scanning ([`lit_intervals`]).
+fn lit<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
+    map: &M,
+    f: &F,
+    cs: (T, T),
+    work: &mut Work,
+) -> ([(T, T); MAX_PIECES], usize) {
+    match f.row_form(cs.0, cs.1) {
+        Some(k) => lit_from_form(map, f, cs, k, work),
+        None => lit_intervals(map, f, cs, work),
+    }
+}
+
 /// One row at azimuth φ: its lit intervals, each by [`row_adapt`].
 fn row<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     map: &M,
@@ -401,10 +415,7 @@ fn row<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
 ) -> ([T; 2], [T; 2]) {
     let (sp, cp) = phi.sin_cos();
     work.rows += 1;
-    let (pieces, n) = match f.row_form(cp, sp) {
-        Some(k) => lit_from_form(map, f, (cp, sp), k, work),
-        None => lit_intervals(map, f, (cp, sp), work),
-    };
+    let (pieces, n) = lit(map, f, (cp, sp), work);
     let (mut v, mut e) = ([T::ZERO; 2], [T::ZERO; 2]);
     let tmax = map.theta_max();
     for &(a, b) in &pieces[..n] {
@@ -482,6 +493,61 @@ fn phi_adapt<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     )
 }
 
+/// Azimuths sampled for changes of the number of lit pieces per row ([`transitions`]).
+pub const TRANSITION_SCAN: usize = 64;
+/// Transitions located per integral at most.
+pub const MAX_TRANSITIONS: usize = 8;
+
+/// The lit pieces of the row at azimuth φ: (cos φ, sin φ) and how many.
+fn pieces_at<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
+    map: &M,
+    f: &F,
+    phi: T,
+    work: &mut Work,
+) -> usize {
+    let (sp, cp) = phi.sin_cos();
+    lit(map, f, (cp, sp), work).1
+}
+
+/// The breaks of [0, π] for the φ panels: 0, the azimuths where the number of lit pieces
+/// of a row changes (a piece is born or two merge: I(φ) is not smooth there, e.g. grows as
+/// (φ − φ₀)^{3/2}), and π, in order; returns their count. The count is sampled at
+/// [`TRANSITION_SCAN`] + 1 azimuths and each change bisected to the last bit (two changes
+/// between neighbouring samples go unseen).
+fn transitions<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
+    map: &M,
+    f: &F,
+    out: &mut [T; MAX_TRANSITIONS + 2],
+    work: &mut Work,
+) -> usize {
+    let step = T::PI / T::from_f64(TRANSITION_SCAN as f64);
+    let mut n = 1;
+    let mut prev = pieces_at(map, f, T::ZERO, work);
+    for k in 1..=TRANSITION_SCAN {
+        let phi = step * T::from_f64(k as f64);
+        let cur = pieces_at(map, f, phi, work);
+        if cur != prev && n <= MAX_TRANSITIONS {
+            let (mut a, mut b) = (phi - step, phi);
+            for _ in 0..MAX_ROOT_STEPS {
+                let m = (a + b) * T::HALF;
+                if !(m > a && m < b) {
+                    break;
+                }
+                if pieces_at(map, f, m, work) == prev {
+                    a = m;
+                } else {
+                    b = m;
+                }
+            }
+            out[n] = (a + b) * T::HALF;
+            n += 1;
+        }
+        prev = cur;
+    }
+    out[n] = T::PI;
+    n + 1
+}
+
 /// ∫ f dω_h = measure · ∫₀^π ∫₀^θc (f/p) sin θ dθ dφ for an f even in φ, to the absolute
 /// tolerance `tol` per channel (module docs: K15/G7 rows, K15/G7 panels in φ, both
 /// adaptive).
@@ -496,16 +562,17 @@ pub fn integrate_cap<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     // the rest.
     let inner = tol / scale;
     let row_tol = inner * T::from_f64(0.25) / T::PI;
-    let (v, e) = phi_adapt(
-        map,
-        f,
-        T::ZERO,
-        T::PI,
-        inner * T::from_f64(0.75),
-        row_tol,
-        0,
-        &mut work,
-    );
+    let mut brk = [T::ZERO; MAX_TRANSITIONS + 2];
+    let nb = transitions(map, f, &mut brk, &mut work);
+    let (mut v, mut e) = ([T::ZERO; 2], [T::ZERO; 2]);
+    for w in brk[..nb].windows(2) {
+        let t = inner * T::from_f64(0.75) * (w[1] - w[0]) / T::PI;
+        let (pv, pe) = phi_adapt(map, f, w[0], w[1], t, row_tol, 0, &mut work);
+        for c in 0..2 {
+            v[c] += pv[c];
+            e[c] += pe[c];
+        }
+    }
     let mut out = Converged::exact([v[0] * scale, v[1] * scale], [T::ZERO; 2]);
     for (err, (e, v)) in out.error.iter_mut().zip(e.iter().zip(out.value)) {
         *err = *e * scale + T::from_f64(64.0) * T::EPSILON * v.abs();
