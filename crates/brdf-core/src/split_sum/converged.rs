@@ -15,20 +15,22 @@
 //! φ ∈ [0, π] (the view in the x–z plane: even in φ), it is smooth except where the light
 //! crosses the horizon, n·l = 0.
 //!
-//! **Rule.** Each φ-row is cut exactly: the lit part is θ ∈ [0, θ_c(φ)], θ_c the root of the
-//! integrand's support function s (here n·l) along the row, found by the Illinois variant of
-//! regula falsi inside the bracket [0, θ_max] (assumption, checked by the tests against an
-//! independent reference: s > 0 at the pole θ = 0 and one sign change along a row). On
-//! [0, θ_c] the row integral ∫ g sin θ dθ is taken by the 15-point Gauss–Kronrod rule with its
-//! embedded 7-point Gauss–Legendre rule ([`crate::quadrature::kronrod`]); an interval whose
-//! |K15 − G7| exceeds its share of the tolerance is halved (locally adaptive). Along φ the
-//! row integral I(φ) is even and 2π-periodic and smooth (θ_c(φ) is smooth: a simple root),
-//! so the trapezoid rule on [0, π] converges geometrically and nests: the number of rows is
-//! doubled (4, 8, 16, … intervals, every row kept) until |T_2N − T_N| and the rows' own
-//! estimates are within the tolerance. The error estimate returned is
-//! measure · (|T_2N − T_N| + Σ w_k e_k) + 64ε|value|: a bound on the error of the
-//! returned T_2N as long as the coarser level's error exceeds the finer one's (geometric
-//! convergence) and |K15 − G7| exceeds the K15 error.
+//! **Rule.** Each φ-row is cut exactly. For the GGX split sum the sign of n·l along a row is
+//! that of a trigonometric quadratic P(θ) ([`CapIntegrand::row_form`]), a quartic in
+//! t = tan(θ/2) (or tan((π − θ)/2) past π/2), whose sign changes are isolated by the
+//! derivative sequence and bisected ([`row_cuts`]); a generic integrand falls back to a
+//! scan of s graded toward the cap edge refined by the Illinois method ([`lit_intervals`];
+//! it can miss a lit piece narrower than the scan spacing). On each lit piece the row
+//! integral ∫ g sin θ dθ is taken on panels graded toward the cap edge (breaks at
+//! θ_max − θ_max/4ᵏ: for small α the lobe's tail lies in a ring of width ~α there) by the
+//! 15-point Gauss–Kronrod rule with its embedded 7-point Gauss–Legendre rule
+//! ([`crate::quadrature::kronrod`]), halving where |K15 − G7| exceeds the panel's share of
+//! the tolerance. Along φ ∈ [0, π], broken where a row's number of lit pieces changes
+//! ([`transitions`]: I(φ) is not smooth there), the row integrals are taken by adaptive
+//! K15/G7 panels whose estimate adds the panel width × its largest row estimate. The error
+//! estimate returned is measure · Σ (panel estimates) + 64ε|value|: a bound as long as
+//! |K15 − G7| exceeds the K15 error (it can fall short by a few times at the loosest
+//! tolerances: tests/tests/split_sum_converged.rs reports such points).
 
 use crate::geometry::{min_cos, Vec3};
 use crate::microfacet::ggx::{iso_a2, lambda_radicand};
