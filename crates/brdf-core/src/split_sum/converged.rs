@@ -242,11 +242,12 @@ fn horner<T: Real>(c: &[T], x: T) -> T {
 /// Bisection steps at most per polynomial root.
 pub const MAX_ROOT_STEPS: u32 = 80;
 
-/// The points of [lo, hi] where the polynomial Σ c_k x^k (degree ≤ 4) changes sign (between
-/// > 0 and ≤ 0), in increasing order: isolated by the derivative sequence (between
-/// consecutive sign changes of p′, found recursively, p is monotone, so it changes sign at
-/// most once there), each then bisected to the last bit or [`MAX_ROOT_STEPS`]. Touching zeros
-/// (no sign change) are not returned: they bound no region of either sign.
+/// The points of [lo, hi] where the polynomial p = Σ c_k x^k (degree ≤ 4) changes sign
+/// (from positive to not positive or back), in increasing order: isolated by the derivative
+/// sequence (between consecutive sign changes of p′, found recursively, p is monotone, so
+/// it changes sign at most once there), each then bisected to the last bit or
+/// [`MAX_ROOT_STEPS`]. Touching zeros (no sign change) are not returned: they bound no
+/// region of either sign.
 fn poly_sign_changes<T: Real>(c: &[T], lo: T, hi: T, out: &mut [T; 4]) -> usize {
     let deg = c.len().saturating_sub(1).min(4);
     if deg == 0 {
@@ -260,8 +261,7 @@ fn poly_sign_changes<T: Real>(c: &[T], lo: T, hi: T, out: &mut [T; 4]) -> usize 
     let nc = poly_sign_changes(&d[..deg], lo, hi, &mut crit);
     let (mut n, mut a) = (0, lo);
     let mut pa = horner(c, lo) > T::ZERO;
-    for i in 0..=nc {
-        let b = if i < nc { crit[i] } else { hi };
+    for &b in crit[..nc].iter().chain(core::iter::once(&hi)) {
         let pb = horner(c, b) > T::ZERO;
         if pa != pb && n < 4 {
             let (mut x0, mut x1) = (a, b);
