@@ -422,14 +422,29 @@ fn row<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     let tmax = map.theta_max();
     for &(a, b) in &pieces[..n] {
         // Panels graded toward the cap edge (module docs): breaks at θ_max − θ_max/4ᵏ.
+        // Panel j gets tol · (length share + 1/K)/2 of the K panels (the shares sum to tol;
+        // the tiny panels at the edge are not held to a tiny tolerance).
+        let mut panels = 1u32;
+        let mut gap = tmax;
+        for _ in 0..MAX_GRADE {
+            gap *= T::from_f64(1.0 / EDGE_GRADE);
+            let x = tmax - gap;
+            if x >= b {
+                break;
+            }
+            if x > a {
+                panels += 1;
+            }
+        }
+        let even = T::ONE / T::from_f64(panels as f64);
+        let share = |len: T| tol * T::HALF * (len / (b - a) + even);
         let mut lo = a;
         let mut gap = tmax;
         for _ in 0..MAX_GRADE {
             gap *= T::from_f64(1.0 / EDGE_GRADE);
             let hi = (tmax - gap).min(b);
             if hi > lo {
-                let t = tol * (hi - lo) / (b - a);
-                let (pv, pe) = row_adapt(map, f, (cp, sp), lo, hi, t, 0, work);
+                let (pv, pe) = row_adapt(map, f, (cp, sp), lo, hi, share(hi - lo), 0, work);
                 for c in 0..2 {
                     v[c] += pv[c];
                     e[c] += pe[c];
@@ -441,8 +456,7 @@ fn row<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
             }
         }
         if b > lo {
-            let t = tol * (b - lo) / (b - a);
-            let (pv, pe) = row_adapt(map, f, (cp, sp), lo, b, t, 0, work);
+            let (pv, pe) = row_adapt(map, f, (cp, sp), lo, b, share(b - lo), 0, work);
             for c in 0..2 {
                 v[c] += pv[c];
                 e[c] += pe[c];
