@@ -15,20 +15,22 @@
 //! φ ∈ [0, π] (the view in the x–z plane: even in φ), it is smooth except where the light
 //! crosses the horizon, n·l = 0.
 //!
-//! **Rule.** Each φ-row is cut exactly: the lit part is θ ∈ [0, θ_c(φ)], θ_c the root of the
-//! integrand's support function s (here n·l) along the row, found by the Illinois variant of
-//! regula falsi inside the bracket [0, θ_max] (assumption, checked by the tests against an
-//! independent reference: s > 0 at the pole θ = 0 and one sign change along a row). On
-//! [0, θ_c] the row integral ∫ g sin θ dθ is taken by the 15-point Gauss–Kronrod rule with its
-//! embedded 7-point Gauss–Legendre rule ([`crate::quadrature::kronrod`]); an interval whose
-//! |K15 − G7| exceeds its share of the tolerance is halved (locally adaptive). Along φ the
-//! row integral I(φ) is even and 2π-periodic and smooth (θ_c(φ) is smooth: a simple root),
-//! so the trapezoid rule on [0, π] converges geometrically and nests: the number of rows is
-//! doubled (4, 8, 16, … intervals, every row kept) until |T_2N − T_N| and the rows' own
-//! estimates are within the tolerance. The error estimate returned is
-//! measure · (|T_2N − T_N| + Σ w_k e_k) + 64ε|value|: a bound on the error of the
-//! returned T_2N as long as the coarser level's error exceeds the finer one's (geometric
-//! convergence) and |K15 − G7| exceeds the K15 error.
+//! **Rule.** Each φ-row is cut exactly. For the GGX split sum the sign of n·l along a row is
+//! that of a trigonometric quadratic P(θ) ([`CapIntegrand::row_form`]), a quartic in
+//! t = tan(θ/2) (or tan((π − θ)/2) past π/2), whose sign changes are isolated by the
+//! derivative sequence and bisected ([`row_cuts`]); a generic integrand falls back to a
+//! scan of s graded toward the cap edge refined by the Illinois method ([`lit_intervals`];
+//! it can miss a lit piece narrower than the scan spacing). On each lit piece the row
+//! integral ∫ g sin θ dθ is taken on panels graded toward the cap edge (breaks at
+//! θ_max − θ_max/4ᵏ: for small α the lobe's tail lies in a ring of width ~α there) by the
+//! 15-point Gauss–Kronrod rule with its embedded 7-point Gauss–Legendre rule
+//! ([`crate::quadrature::kronrod`]), halving where |K15 − G7| exceeds the panel's share of
+//! the tolerance. Along φ ∈ [0, π], broken where a row's number of lit pieces changes
+//! ([`transitions`]: I(φ) is not smooth there), the row integrals are taken by adaptive
+//! K15/G7 panels whose estimate adds the panel width × its largest row estimate. The error
+//! estimate returned is measure · Σ (panel estimates) + 64ε|value|: a bound as long as
+//! |K15 − G7| exceeds the K15 error (it can fall short by a few times at the loosest
+//! tolerances: tests/tests/split_sum_converged.rs reports such points).
 
 use crate::geometry::{min_cos, Vec3};
 use crate::microfacet::ggx::{iso_a2, lambda_radicand};
@@ -52,6 +54,14 @@ pub trait CapIntegrand<T: Real> {
     fn support(&self, h: Vec3<T>) -> T;
     /// (f/p)(h) in both channels, given s = `support(h)` > 0 ([`CapIntegrand::support`]).
     fn value(&self, h: Vec3<T>, s: T) -> [T; 2];
+    /// A row form of the support (for the map the integrand is paired with): coefficients
+    /// k of P(θ) = k₀ + k₁ cos θ + k₂ sin θ + k₃ cos²θ + k₄ sin²θ + k₅ sin θ cos θ, a
+    /// function of the sign of s along the row (cos φ, sin φ) = `(cp, sp)`, from which the
+    /// cuts are found exactly ([`row_cuts`]). `None` (the default): the cuts are found by
+    /// scanning s ([`lit_intervals`]).
+    fn row_form(&self, _cp: T, _sp: T) -> Option<[T; 6]> {
+        None
+    }
 }
 
 /// A converged integral: the value, its error estimate and the work it took.
@@ -223,6 +233,130 @@ fn lit_intervals<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     (out, n)
 }
 
+/// Σ c_k x^k by Horner's rule.
+#[inline]
+fn horner<T: Real>(c: &[T], x: T) -> T {
+    c.iter().rev().fold(T::ZERO, |acc, &ck| acc * x + ck)
+}
+
+/// Bisection steps at most per polynomial root.
+pub const MAX_ROOT_STEPS: u32 = 80;
+
+/// The points of [lo, hi] where the polynomial p = Σ c_k x^k (degree ≤ 4) changes sign
+/// (from positive to not positive or back), in increasing order: isolated by the derivative
+/// sequence (between consecutive sign changes of p′, found recursively, p is monotone, so
+/// it changes sign at most once there), each then bisected to the last bit or
+/// [`MAX_ROOT_STEPS`]. Touching zeros (no sign change) are not returned: they bound no
+/// region of either sign.
+fn poly_sign_changes<T: Real>(c: &[T], lo: T, hi: T, out: &mut [T; 4]) -> usize {
+    let deg = c.len().saturating_sub(1).min(4);
+    if deg == 0 {
+        return 0;
+    }
+    let mut d = [T::ZERO; 4];
+    for k in 1..=deg {
+        d[k - 1] = c[k] * T::from_f64(k as f64);
+    }
+    let mut crit = [T::ZERO; 4];
+    let nc = poly_sign_changes(&d[..deg], lo, hi, &mut crit);
+    let (mut n, mut a) = (0, lo);
+    let mut pa = horner(c, lo) > T::ZERO;
+    for &b in crit[..nc].iter().chain(core::iter::once(&hi)) {
+        let pb = horner(c, b) > T::ZERO;
+        if pa != pb && n < 4 {
+            let (mut x0, mut x1) = (a, b);
+            for _ in 0..MAX_ROOT_STEPS {
+                let m = (x0 + x1) * T::HALF;
+                if !(m > x0 && m < x1) {
+                    break;
+                }
+                if (horner(c, m) > T::ZERO) == pa {
+                    x0 = m;
+                } else {
+                    x1 = m;
+                }
+            }
+            out[n] = (x0 + x1) * T::HALF;
+            n += 1;
+        }
+        (a, pa) = (b, pb);
+    }
+    n
+}
+
+/// The sign changes of P(θ) (the row form k of [`CapIntegrand::row_form`]) in (0, θ_max],
+/// unsorted: with t = tan(θ/2) on θ ≤ π/2 and t = tan((π − θ)/2) on θ ≥ π/2 (t ≤ 1 on
+/// both), (1 + t²)² P is the quartic q₀ + q₁t + … + q₄t⁴ with q₀ = k₀ ± k₁ + k₃,
+/// q₁ = 2(k₂ ± k₅), q₂ = 2k₀ − 2k₃ + 4k₄, q₃ = 2(k₂ ∓ k₅), q₄ = k₀ ∓ k₁ + k₃ (upper signs
+/// for θ ≤ π/2; cos θ = (1 − t²)/(1 + t²), sin θ = 2t/(1 + t²)), whose sign changes
+/// [`poly_sign_changes`] finds.
+fn row_cuts<T: Real>(k: [T; 6], tmax: T, out: &mut [T; 8]) -> usize {
+    let mut n = 0;
+    for (side, (lo, hi)) in [
+        (T::ONE, (T::ZERO, (tmax.min(T::FRAC_PI_2) * T::HALF).tan())),
+        (-T::ONE, (((T::PI - tmax) * T::HALF).tan(), T::ONE)),
+    ] {
+        if !(hi > lo) {
+            continue;
+        }
+        let (k1, k5) = (side * k[1], side * k[5]);
+        let q = [
+            k[0] + k1 + k[3],
+            T::TWO * (k[2] + k5),
+            T::TWO * (k[0] - k[3]) + T::from_f64(4.0) * k[4],
+            T::TWO * (k[2] - k5),
+            k[0] - k1 + k[3],
+        ];
+        let mut r = [T::ZERO; 4];
+        let nr = poly_sign_changes(&q, lo, hi, &mut r);
+        for &t in &r[..nr] {
+            let th = T::TWO * t.atan();
+            out[n] = if side > T::ZERO { th } else { T::PI - th };
+            n += 1;
+        }
+    }
+    n
+}
+
+/// The lit intervals of the row (cos φ, sin φ) from the exact cuts of the row form k
+/// ([`row_cuts`]): the breakpoints 0, the cuts and θ_max, sorted; a gap between two is lit
+/// where s > 0 at its midpoint; adjacent lit gaps are merged.
+fn lit_from_form<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
+    map: &M,
+    f: &F,
+    cs: (T, T),
+    k: [T; 6],
+    work: &mut Work,
+) -> ([(T, T); MAX_PIECES], usize) {
+    let tmax = map.theta_max();
+    let mut cuts = [T::ZERO; 8];
+    let nc = row_cuts(k, tmax, &mut cuts);
+    let mut br = [T::ZERO; 10];
+    br[1..=nc].copy_from_slice(&cuts[..nc]);
+    br[nc + 1] = tmax;
+    let br = &mut br[..nc + 2];
+    br.sort_unstable_by(|a, b| a.partial_cmp(b).unwrap_or(core::cmp::Ordering::Equal));
+    let mut out = [(T::ZERO, T::ZERO); MAX_PIECES];
+    let mut n = 0;
+    for w in br.windows(2) {
+        let (a, b) = (w[0].max(T::ZERO), w[1].min(tmax));
+        if !(b > a) {
+            continue;
+        }
+        work.cut_evals += 1;
+        if !(support_at(map, f, (a + b) * T::HALF, cs.0, cs.1) > T::ZERO) {
+            continue;
+        }
+        if n > 0 && out[n - 1].1 == a {
+            out[n - 1].1 = b;
+        } else if n < MAX_PIECES {
+            out[n] = (a, b);
+            n += 1;
+        }
+    }
+    (out, n)
+}
+
 /// Lit intervals per row at most.
 pub const MAX_PIECES: usize = 4;
 
@@ -259,6 +393,20 @@ fn row_adapt<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     )
 }
 
+/// The lit intervals of the row (cos φ, sin φ): from the exact cuts of the integrand's row
+/// form ([`lit_from_form`]) where it has one, else by scanning ([`lit_intervals`]).
+fn lit<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
+    map: &M,
+    f: &F,
+    cs: (T, T),
+    work: &mut Work,
+) -> ([(T, T); MAX_PIECES], usize) {
+    match f.row_form(cs.0, cs.1) {
+        Some(k) => lit_from_form(map, f, cs, k, work),
+        None => lit_intervals(map, f, cs, work),
+    }
+}
+
 /// One row at azimuth φ: its lit intervals, each by [`row_adapt`].
 fn row<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     map: &M,
@@ -269,17 +417,59 @@ fn row<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
 ) -> ([T; 2], [T; 2]) {
     let (sp, cp) = phi.sin_cos();
     work.rows += 1;
-    let (pieces, n) = lit_intervals(map, f, (cp, sp), work);
+    let (pieces, n) = lit(map, f, (cp, sp), work);
     let (mut v, mut e) = ([T::ZERO; 2], [T::ZERO; 2]);
+    let tmax = map.theta_max();
     for &(a, b) in &pieces[..n] {
-        let (pv, pe) = row_adapt(map, f, (cp, sp), a, b, tol, 0, work);
-        for c in 0..2 {
-            v[c] += pv[c];
-            e[c] += pe[c];
+        // Panels graded toward the cap edge (module docs): breaks at θ_max − θ_max/4ᵏ.
+        // Panel j gets tol · (length share + 1/K)/2 of the K panels (the shares sum to tol;
+        // the tiny panels at the edge are not held to a tiny tolerance).
+        let mut panels = 1u32;
+        let mut gap = tmax;
+        for _ in 0..MAX_GRADE {
+            gap *= T::from_f64(1.0 / EDGE_GRADE);
+            let x = tmax - gap;
+            if x >= b {
+                break;
+            }
+            if x > a {
+                panels += 1;
+            }
+        }
+        let even = T::ONE / T::from_f64(panels as f64);
+        let share = |len: T| tol * T::HALF * (len / (b - a) + even);
+        let mut lo = a;
+        let mut gap = tmax;
+        for _ in 0..MAX_GRADE {
+            gap *= T::from_f64(1.0 / EDGE_GRADE);
+            let hi = (tmax - gap).min(b);
+            if hi > lo {
+                let (pv, pe) = row_adapt(map, f, (cp, sp), lo, hi, share(hi - lo), 0, work);
+                for c in 0..2 {
+                    v[c] += pv[c];
+                    e[c] += pe[c];
+                }
+                lo = hi;
+            }
+            if lo >= b {
+                break;
+            }
+        }
+        if b > lo {
+            let (pv, pe) = row_adapt(map, f, (cp, sp), lo, b, share(b - lo), 0, work);
+            for c in 0..2 {
+                v[c] += pv[c];
+                e[c] += pe[c];
+            }
         }
     }
     (v, e)
 }
+
+/// The ratio of successive gaps θ_max − θ of the row panels' breaks ([`row`]).
+pub const EDGE_GRADE: f64 = 4.0;
+/// Graded breaks per row at most (θ_max/4³⁰ ≈ 3e-18: below the last bit).
+pub const MAX_GRADE: u32 = 30;
 
 /// ∫ₐᵇ I(φ) dφ of the row integrals I by K15 in φ, halving where the panel's estimate
 /// (|K15 − G7| plus (b − a) × the largest row estimate) exceeds `tol` in either channel.
@@ -319,6 +509,61 @@ fn phi_adapt<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     )
 }
 
+/// Azimuths sampled for changes of the number of lit pieces per row ([`transitions`]).
+pub const TRANSITION_SCAN: usize = 64;
+/// Transitions located per integral at most.
+pub const MAX_TRANSITIONS: usize = 8;
+
+/// The lit pieces of the row at azimuth φ: (cos φ, sin φ) and how many.
+fn pieces_at<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
+    map: &M,
+    f: &F,
+    phi: T,
+    work: &mut Work,
+) -> usize {
+    let (sp, cp) = phi.sin_cos();
+    lit(map, f, (cp, sp), work).1
+}
+
+/// The breaks of [0, π] for the φ panels: 0, the azimuths where the number of lit pieces
+/// of a row changes (a piece is born or two merge: I(φ) is not smooth there, e.g. grows as
+/// (φ − φ₀)^{3/2}), and π, in order; returns their count. The count is sampled at
+/// [`TRANSITION_SCAN`] + 1 azimuths and each change bisected to the last bit (two changes
+/// between neighbouring samples go unseen).
+fn transitions<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
+    map: &M,
+    f: &F,
+    out: &mut [T; MAX_TRANSITIONS + 2],
+    work: &mut Work,
+) -> usize {
+    let step = T::PI / T::from_f64(TRANSITION_SCAN as f64);
+    let mut n = 1;
+    let mut prev = pieces_at(map, f, T::ZERO, work);
+    for k in 1..=TRANSITION_SCAN {
+        let phi = step * T::from_f64(k as f64);
+        let cur = pieces_at(map, f, phi, work);
+        if cur != prev && n <= MAX_TRANSITIONS {
+            let (mut a, mut b) = (phi - step, phi);
+            for _ in 0..MAX_ROOT_STEPS {
+                let m = (a + b) * T::HALF;
+                if !(m > a && m < b) {
+                    break;
+                }
+                if pieces_at(map, f, m, work) == prev {
+                    a = m;
+                } else {
+                    b = m;
+                }
+            }
+            out[n] = (a + b) * T::HALF;
+            n += 1;
+        }
+        prev = cur;
+    }
+    out[n] = T::PI;
+    n + 1
+}
+
 /// ∫ f dω_h = measure · ∫₀^π ∫₀^θc (f/p) sin θ dθ dφ for an f even in φ, to the absolute
 /// tolerance `tol` per channel (module docs: K15/G7 rows, K15/G7 panels in φ, both
 /// adaptive).
@@ -333,16 +578,17 @@ pub fn integrate_cap<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     // the rest.
     let inner = tol / scale;
     let row_tol = inner * T::from_f64(0.25) / T::PI;
-    let (v, e) = phi_adapt(
-        map,
-        f,
-        T::ZERO,
-        T::PI,
-        inner * T::from_f64(0.75),
-        row_tol,
-        0,
-        &mut work,
-    );
+    let mut brk = [T::ZERO; MAX_TRANSITIONS + 2];
+    let nb = transitions(map, f, &mut brk, &mut work);
+    let (mut v, mut e) = ([T::ZERO; 2], [T::ZERO; 2]);
+    for w in brk[..nb].windows(2) {
+        let t = inner * T::from_f64(0.75) * (w[1] - w[0]) / T::PI;
+        let (pv, pe) = phi_adapt(map, f, w[0], w[1], t, row_tol, 0, &mut work);
+        for c in 0..2 {
+            v[c] += pv[c];
+            e[c] += pe[c];
+        }
+    }
     let mut out = Converged::exact([v[0] * scale, v[1] * scale], [T::ZERO; 2]);
     for (err, (e, v)) in out.error.iter_mut().zip(e.iter().zip(out.value)) {
         *err = *e * scale + T::from_f64(64.0) * T::EPSILON * v.abs();
@@ -364,17 +610,27 @@ pub struct GgxSplitSum<T> {
     sv: T,
     a2: T,
     rv: T,
+    alpha: T,
+    /// The stretched view V = (vx, 0, vz) of [`GgxVisibleCap`] for the same (α, μ).
+    vx: T,
+    vz: T,
 }
 
 impl<T: Real> GgxSplitSum<T> {
     /// For width α > 0 and view cosine μ ∈ (0, 1].
     pub fn new(alpha: T, mu: T) -> Self {
         let a2 = alpha * alpha;
+        let sv = ((T::ONE - mu) * (T::ONE + mu)).max(T::ZERO).sqrt();
+        let (x, z) = (alpha * sv, mu);
+        let len = (x * x + z * z).sqrt();
         Self {
             mu,
-            sv: ((T::ONE - mu) * (T::ONE + mu)).max(T::ZERO).sqrt(),
+            sv,
             a2,
             rv: lambda_radicand(mu, iso_a2(mu, alpha)).sqrt(),
+            alpha,
+            vx: x / len,
+            vz: z / len,
         }
     }
 }
@@ -397,6 +653,24 @@ impl<T: Real> CapIntegrand<T> for GgxSplitSum<T> {
         let w = nl * (self.mu + self.rv) / (nl * self.rv + self.mu * rl);
         let fc = (T::ONE - vh).max(T::ZERO).powi(5);
         [w * (T::ONE - fc), w * fc]
+    }
+    /// For the map [`GgxVisibleCap`] of the same (α, μ): h ∝ h̃ = (αH_x, αH_y, H_z) with
+    /// H = c + V, so n·l = 2(v·h)(n·h) − μ has the sign of
+    /// P = 2(v·h̃)h̃_z − μ|h̃|² = μH_z² + 2s_vαH_xH_z − μα²(H_x² + H_y²), s_v = √(1 − μ²);
+    /// with H = (sin θ cos φ + V_x, sin θ sin φ, cos θ + V_z) the row form is
+    /// k = (μV_z² + 2s_vαV_xV_z − μα²V_x², 2μV_z + 2s_vαV_x, 2(s_vαV_z − μα²V_x) cos φ,
+    /// μ, −μα², 2s_vα cos φ).
+    fn row_form(&self, cp: T, _sp: T) -> Option<[T; 6]> {
+        let (mu, sa, ma2) = (self.mu, self.sv * self.alpha, self.mu * self.a2);
+        let (vx, vz) = (self.vx, self.vz);
+        Some([
+            mu * vz * vz + T::TWO * sa * vx * vz - ma2 * vx * vx,
+            T::TWO * (mu * vz + sa * vx),
+            T::TWO * (sa * vz - ma2 * vx) * cp,
+            mu,
+            -ma2,
+            T::TWO * sa * cp,
+        ])
     }
 }
 
