@@ -12,6 +12,7 @@ use brdf_core::masking::ModifiedG;
 use brdf_core::quadrature::{GaussLegendre, NODE_COUNTS};
 use brdf_core::split_sum::{dfg_ggx, InnerRule, OuterRule};
 use brdf_lut::{DfgTable, GTable, GTable3};
+use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -38,6 +39,10 @@ pub struct Args {
     /// Report path (default: docs/benchmarks.md of the workspace).
     #[arg(long)]
     out: Option<PathBuf>,
+    /// Re-render the report from the raw results a run saved (`<target>/bench/report.json`)
+    /// instead of measuring.
+    #[arg(long)]
+    from: Option<PathBuf>,
 }
 
 /// The f32 benchmarks run a second time with micromath (criterion filter, a regex).
@@ -139,6 +144,12 @@ pub fn run(a: Args) -> Result<()> {
     if a.smoke {
         return smoke(&root, &cargo, &target);
     }
+    if let Some(from) = &a.from {
+        let data: Data = serde_json::from_slice(
+            &std::fs::read(from).with_context(|| format!("reading {}", from.display()))?,
+        )?;
+        return write_report(&root, &a, &data);
+    }
     let t_start = Instant::now();
     let crit_dir = target.join("criterion");
     if crit_dir.exists() {
@@ -179,18 +190,30 @@ pub fn run(a: Args) -> Result<()> {
         eprintln!("== generation of the default asset set");
         Some(time_generation()?)
     };
-    let machine = machine();
-    let md = report::render(&Report {
-        est: &est,
-        peer: &peer,
-        acc: &acc,
-        cg: &cg,
+    let python = report::python_bench(&root);
+    let data = Data {
+        est,
+        peer,
+        acc,
+        cg,
         gen,
-        machine: &machine,
-        args: &a,
+        machine: machine(),
+        warm_up: a.warm_up,
+        measurement: a.measurement,
+        sample_size: a.sample_size,
         secs: t_start.elapsed().as_secs_f64(),
         t_crit,
-    })?;
+        python,
+    };
+    let raw = target.join("bench").join("report.json");
+    std::fs::create_dir_all(target.join("bench"))?;
+    std::fs::write(&raw, serde_json::to_vec_pretty(&data)?)?;
+    eprintln!("raw results: {}", raw.display());
+    write_report(&root, &a, &data)
+}
+
+fn write_report(root: &Path, a: &Args, data: &Data) -> Result<()> {
+    let md = report::render(data)?;
     let out = a
         .out
         .clone()
@@ -199,11 +222,7 @@ pub fn run(a: Args) -> Result<()> {
         std::fs::create_dir_all(dir)?;
     }
     std::fs::write(&out, md).with_context(|| format!("writing {}", out.display()))?;
-    eprintln!(
-        "wrote {} ({:.0} s in all)",
-        out.display(),
-        t_start.elapsed().as_secs_f64()
-    );
+    eprintln!("wrote {}", out.display());
     Ok(())
 }
 
@@ -260,10 +279,13 @@ fn cargo_bench(
 
 /// One criterion result: median time per iteration (ns) with its 95 % interval, and the
 /// iteration's elements or bytes.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 struct Est {
+    #[serde(with = "nan")]
     mean: f64,
+    #[serde(with = "nan")]
     lo: f64,
+    #[serde(with = "nan")]
     hi: f64,
     elements: Option<f64>,
     bytes: Option<f64>,
@@ -321,8 +343,10 @@ fn read_estimates(dir: &Path) -> Result<BTreeMap<String, Est>> {
     Ok(out)
 }
 
+#[derive(Serialize, Deserialize)]
 enum Peer {
     Ran {
+        #[serde(with = "nan")]
         ns_per_g: f64,
         evaluations: u64,
         /// max |G_peer − G_direct(f64, default nodes)| over the peer's points.
@@ -462,6 +486,7 @@ fn run_peer(root: &Path, n: usize, repeat: usize) -> Peer {
 
 /// Accuracy on the benchmark's own domain, so that "matched accuracy" is measured, not
 /// assumed.
+#[derive(Serialize, Deserialize)]
 struct Accuracy {
     /// (node count, max |G_N − G_32| in f64, in f32).
     g_direct: Vec<(usize, f64, f64)>,
@@ -651,6 +676,7 @@ fn time_generation() -> Result<(f64, u64, usize)> {
     Ok((secs, bytes, files))
 }
 
+#[derive(Serialize, Deserialize)]
 struct Machine {
     cpu: String,
     cores: usize,
@@ -692,16 +718,36 @@ fn machine() -> Machine {
     }
 }
 
-struct Report<'a> {
-    est: &'a BTreeMap<String, Est>,
-    peer: &'a Peer,
-    acc: &'a Accuracy,
-    cg: &'a Counts,
+/// Everything one run measured: what the report is rendered from, saved as JSON.
+#[derive(Serialize, Deserialize)]
+struct Data {
+    est: BTreeMap<String, Est>,
+    peer: Peer,
+    acc: Accuracy,
+    cg: Counts,
     gen: Option<(f64, u64, usize)>,
-    machine: &'a Machine,
-    args: &'a Args,
+    machine: Machine,
+    warm_up: f64,
+    measurement: f64,
+    sample_size: usize,
     secs: f64,
     t_crit: f64,
+    python: std::result::Result<serde_json::Value, String>,
+}
+
+/// f64 fields that may be NaN (no figure): JSON `null` both ways.
+mod nan {
+    use serde::{Deserialize, Deserializer, Serializer};
+    pub fn serialize<S: Serializer>(x: &f64, s: S) -> Result<S::Ok, S::Error> {
+        if x.is_finite() {
+            s.serialize_f64(*x)
+        } else {
+            s.serialize_none()
+        }
+    }
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+        Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::NAN))
+    }
 }
 
 fn fmt_ns(x: f64) -> String {

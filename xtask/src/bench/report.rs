@@ -2,7 +2,7 @@
 //! lives in the template; this module computes the numbers, verdicts and table rows it
 //! fills in (rendered with minijinja, undefined names are errors).
 
-use super::{fmt_ns, Est, Peer, Report};
+use super::{fmt_ns, Data as Report, Est, Peer};
 use anyhow::{Context, Result};
 use brdf_bench::SIGMA;
 use brdf_core::quadrature::DEFAULT_NODES;
@@ -41,12 +41,12 @@ fn verdict(x: Option<f64>, t: f64) -> String {
     }
 }
 
-pub(super) fn render(r: &Report<'_>) -> Result<String> {
-    let e = r.est;
+pub(super) fn render(r: &Report) -> Result<String> {
+    let e = &r.est;
     let per = |id: &str| e.get(id).map(Est::per_call);
     let ns = |x: Option<f64>| x.map_or("–".into(), fmt_ns);
-    let m = r.machine;
-    let a = r.acc;
+    let m = &r.machine;
+    let a = &r.acc;
     let dn = DEFAULT_NODES;
 
     let direct32 = per(&format!("g_direct_f32_libm/n{dn:02}"));
@@ -58,7 +58,7 @@ pub(super) fn render(r: &Report<'_>) -> Result<String> {
     let dfg_lut = per("dfg/lut_f32");
     let dfg_direct = per("dfg_direct/split_sum_f64");
     let dfg_alb = per("dfg_direct/directional_albedo_f64");
-    let peer_ns = match r.peer {
+    let peer_ns = match &r.peer {
         Peer::Ran { ns_per_g, .. } => Some(*ns_per_g),
         Peer::Skipped(_) => None,
     };
@@ -150,7 +150,7 @@ pub(super) fn render(r: &Report<'_>) -> Result<String> {
         ]);
     }
 
-    let peer = match r.peer {
+    let peer = match &r.peer {
         Peer::Ran {
             ns_per_g,
             evaluations,
@@ -245,7 +245,7 @@ pub(super) fn render(r: &Report<'_>) -> Result<String> {
         }
     });
 
-    let cg = match r.cg {
+    let cg = match &r.cg {
         Ok(rows) => {
             let mut s = String::new();
             for (k, what, per) in rows {
@@ -273,9 +273,9 @@ pub(super) fn render(r: &Report<'_>) -> Result<String> {
 
     let ctx = context! {
         cpu => m.cpu, cores => m.cores, os => m.os, rustc => m.rustc,
-        warm_up => r.args.warm_up.to_string(),
-        measurement => r.args.measurement.to_string(),
-        sample_size => r.args.sample_size,
+        warm_up => r.warm_up.to_string(),
+        measurement => r.measurement.to_string(),
+        sample_size => r.sample_size,
         secs => format!("{:.0}", r.secs),
         t_crit => format!("{:.0}", r.t_crit),
         dn => dn,
@@ -303,7 +303,7 @@ pub(super) fn render(r: &Report<'_>) -> Result<String> {
         kernel_target_rows => kernel_target_rows(r, per("dfg/lut_linear_f32"), per("dfg/karis_approx_f32"), peer_ns, direct64),
         g_points => a.g_points,
         dfg_points => a.dfg_points,
-        python => python_context(&python_bench(&crate::fsio::workspace_root())),
+        python => python_context(&r.python),
         node_rows, table_rows, limits => Value::from_serialize(&limits), closed_rows, peer, dfg,
         model_rows, batch_rows, parse_rows, gen, cg, raw_rows,
     };
@@ -313,7 +313,7 @@ pub(super) fn render(r: &Report<'_>) -> Result<String> {
 /// One row per kernel target: instruction ratios against the floor or a twin, the DFG
 /// lookup's time against Karis's fit, the direct G's instruction budget, the SciPy peer.
 fn kernel_target_rows(
-    r: &Report<'_>,
+    r: &Report,
     dfg_lut_ns: Option<f64>,
     karis_ns: Option<f64>,
     peer_ns: Option<f64>,
@@ -370,7 +370,7 @@ fn kernel_target_rows(
     );
     // Every `_std` entry against its no_std twin: the named ones always, others when present.
     let mut std_names: Vec<String> = vec!["dfg_lut_std".into(), "g_lut2d_linear_std".into()];
-    if let Ok(cg) = r.cg {
+    if let Ok(cg) = &r.cg {
         for (k, _, _) in cg {
             if k.ends_with("_std") && !std_names.contains(k) {
                 std_names.push(k.clone());
@@ -462,7 +462,7 @@ fn package_python(root: &Path) -> std::result::Result<std::path::PathBuf, String
 
 /// Runs `crates/brdf-py/bench/bench.py --json` (the SciPy peer through `.cache/scipy-venv`
 /// when that exists) and returns its figures.
-fn python_bench(root: &Path) -> std::result::Result<serde_json::Value, String> {
+pub(super) fn python_bench(root: &Path) -> std::result::Result<serde_json::Value, String> {
     eprintln!("== Python package");
     let py = package_python(root)?;
     let mut cmd = Command::new(&py);
