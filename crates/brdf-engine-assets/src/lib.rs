@@ -22,6 +22,7 @@
 mod containers;
 pub mod export;
 mod layouts;
+pub mod report;
 mod shaders;
 pub mod table_shaders;
 
