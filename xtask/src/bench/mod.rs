@@ -7,6 +7,7 @@
 //! `cargo xtask bench --from FILE` re-renders the report from saved raw results.
 
 mod python;
+mod tablegen;
 
 use anyhow::{bail, Context, Result};
 use brdf_bench::report::{self, Counts, Data, Machine, Peer};
@@ -43,6 +44,11 @@ pub struct Args {
 
 /// The f32 benchmarks run a second time with micromath (criterion filter, a regex).
 const MICROMATH_FILTER: &str = "^(g_direct_f32|g_closed_f32|batch_f32)";
+
+/// The Khronos target and its peer are timed on every FULL_STRIDE-th roughness row in a
+/// full run, every SMOKE_STRIDE-th in the smoke run.
+const FULL_STRIDE: usize = 8;
+const SMOKE_STRIDE: usize = 64;
 
 /// The workspace, cargo and the target folder of this build.
 struct Env {
@@ -129,6 +135,7 @@ fn measure(env: &Env, a: &Args) -> Result<Data> {
         eprintln!("== generation of the default asset set");
         Some(time_generation()?)
     };
+    let tablegen = Some(tablegen::measure(env, FULL_STRIDE)?);
     let python = python::python_bench(&env.root);
     let data = Data {
         est,
@@ -143,6 +150,7 @@ fn measure(env: &Env, a: &Args) -> Result<Data> {
         secs: t_start.elapsed().as_secs_f64(),
         t_crit,
         python,
+        tablegen,
     };
     let raw = env.target.join("bench/report.json");
     std::fs::create_dir_all(env.target.join("bench"))?;
@@ -172,6 +180,14 @@ fn smoke(env: &Env) -> Result<()> {
         Peer::Ran { ns_per_g, .. } => eprintln!("SciPy peer ran ({ns_per_g:.0} ns per G)"),
         Peer::Skipped(why) => bail!("SciPy peer did not run: {why}"),
     }
+    let t = tablegen::measure(env, SMOKE_STRIDE)?;
+    if let Err(why) = &t.peer {
+        bail!("the Monte Carlo peer did not run: {why}");
+    }
+    let section = report::render_tablegen(&t)?;
+    let out = env.target.join("bench/table-generation.md");
+    std::fs::write(&out, &section).with_context(|| format!("writing {}", out.display()))?;
+    eprintln!("{section}(written to {})", out.display());
     eprintln!(
         "bench smoke test passed in {:.0} s",
         t0.elapsed().as_secs_f64()

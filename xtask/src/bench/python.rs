@@ -67,7 +67,7 @@ fn venv_python(
 }
 
 /// The Python with SciPy importable for the peer (`.cache/scipy-venv`).
-fn scipy_python(root: &Path) -> std::result::Result<PathBuf, String> {
+pub(super) fn scipy_python(root: &Path) -> std::result::Result<PathBuf, String> {
     venv_python(
         root,
         ".cache/scipy-venv",

@@ -9,13 +9,14 @@
 mod accuracy;
 mod harness;
 mod render;
+pub mod tablegen;
 mod targets;
 
 pub use accuracy::{accuracy, Accuracy};
 pub use harness::{
     callgrind_total, kernels_to_measure, CALLGRIND, EXTRA_CALLS, OPTIONAL_CALLGRIND,
 };
-pub use render::{fill, render};
+pub use render::{fill, render, render_tablegen};
 
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -140,6 +141,9 @@ pub struct Data {
     pub t_crit: f64,
     /// `crates/brdf-py/bench/bench.py --json`'s figures, or why it did not run.
     pub python: Result<serde_json::Value, String>,
+    /// Table generation beside the Monte Carlo peer (absent in runs saved before it).
+    #[serde(default)]
+    pub tablegen: Option<tablegen::TableGen>,
 }
 
 /// f64 fields that may be NaN (no figure): JSON `null` both ways.

@@ -2,10 +2,11 @@
 //! the tables' heads live in the template; this module computes the numbers, verdicts and
 //! table rows it fills in (minijinja, undefined names are errors).
 
+use super::tablegen::{self, TableGen, Timing};
 use super::{fmt_ns, targets, Data, Est, Peer};
 use crate::SIGMA;
 use brdf_core::quadrature::DEFAULT_NODES;
-use minijinja::{context, AutoEscape, Environment, UndefinedBehavior, Value};
+use minijinja::{context, Value};
 use std::collections::BTreeMap;
 
 pub(super) const TEMPLATE: &str = include_str!("../../templates/benchmarks.md");
@@ -362,20 +363,61 @@ pub fn render(d: &Data) -> Result<String, minijinja::Error> {
         peer => peer(d),
         dfg => dfg(d),
         parse_rows => parse_rows(d),
+        table_generation => d.tablegen.as_ref().map(render_tablegen).transpose()?,
         model_rows, batch_rows, gen, cg, raw_rows,
         ..head(d)
     };
     fill(TEMPLATE, ctx)
 }
 
-/// Renders a Markdown template: no escaping, undefined names are errors, a block tag's own
-/// line break is dropped (so `{% if %}` lines leave no blank lines).
-pub fn fill(template: &str, ctx: Value) -> Result<String, minijinja::Error> {
-    let mut env = Environment::new();
-    env.set_auto_escape_callback(|_| AutoEscape::None);
-    env.set_undefined_behavior(UndefinedBehavior::Strict);
-    env.set_trim_blocks(true);
-    env.set_keep_trailing_newline(true);
-    env.add_template("report.md", template)?;
-    env.get_template("report.md")?.render(ctx)
+const TABLE_GENERATION: &str = include_str!("../../templates/table_generation.md");
+
+/// One generation row's cells: wall time, µs per node (wall and per core), evaluations per
+/// node.
+fn timing(t: &Timing, threads: usize) -> Value {
+    let us = t.secs / t.nodes as f64 * 1e6;
+    context! {
+        name => format!("`{}`", t.name),
+        nodes => t.nodes,
+        secs => format!("{:.2} s", t.secs),
+        us => format!("{us:.2}"),
+        us_core => format!("{:.2}", us * threads as f64),
+        evals => t.evals.map_or("—".into(), |e| format!("{:.0}", e as f64 / t.nodes as f64)),
+    }
 }
+
+/// The "Table generation" section (template `templates/table_generation.md`).
+pub fn render_tablegen(t: &TableGen) -> Result<String, minijinja::Error> {
+    let tables: Vec<Value> = t.tables.iter().map(|x| timing(x, t.threads)).collect();
+    let (nodes, secs) = t
+        .tables
+        .iter()
+        .fold((0, 0.0), |a, x| (a.0 + x.nodes, a.1 + x.secs));
+    let k_us = t.khronos.secs / t.khronos.nodes as f64 * 1e6;
+    let x = |r: f64| format!("{r:.2}×");
+    let peer = match &t.peer {
+        Ok(p) => context! {
+            ran => true, versions => p.versions, us => format!("{:.2}", p.us_per_texel),
+            max_error => format!("{:.1e}", p.max_error),
+            grazing => format!("{:.1e}", p.grazing_max_error),
+        },
+        Err(why) => context! { ran => false, why => why },
+    };
+    let p_us = t.peer.as_ref().map_or(f64::NAN, |p| p.us_per_texel);
+    let ctx = context! {
+        threads => t.threads, stride => t.stride,
+        th => if t.stride == 1 { "" } else { "th" },
+        k_rows => tablegen::KHRONOS_SIZE.div_ceil(t.stride.max(1)),
+        tables, n_tables => t.tables.len(), total_nodes => nodes,
+        total_secs => format!("{secs:.2} s"),
+        total_us => format!("{:.2}", secs / nodes as f64 * 1e6),
+        khronos => timing(&t.khronos, t.threads),
+        samples => tablegen::PEER_SAMPLES,
+        tol => format!("{:.0e}", tablegen::REFERENCE_TOL),
+        peer, ratio_wall => x(k_us / p_us), ratio_core => x(k_us * t.threads as f64 / p_us),
+    };
+    fill(TABLE_GENERATION, ctx)
+}
+
+/// The one Markdown-template renderer of the workspace (`brdf_engine_assets::report::fill`).
+pub use brdf_engine_assets::report::fill;
