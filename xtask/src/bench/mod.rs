@@ -49,6 +49,8 @@ const MICROMATH_FILTER: &str = "^(g_direct_f32|g_closed_f32|batch_f32)";
 /// full run, every SMOKE_STRIDE-th in the smoke run.
 const FULL_STRIDE: usize = 8;
 const SMOKE_STRIDE: usize = 64;
+/// The smoke run's default set: at most this many nodes per axis (a check, not a timing).
+const SMOKE_NODES: u32 = 8;
 
 /// The workspace, cargo and the target folder of this build.
 struct Env {
@@ -135,7 +137,7 @@ fn measure(env: &Env, a: &Args) -> Result<Data> {
         eprintln!("== generation of the default asset set");
         Some(time_generation()?)
     };
-    let tablegen = Some(tablegen::measure(env, FULL_STRIDE)?);
+    let tablegen = Some(tablegen::measure(env, FULL_STRIDE, None)?);
     let python = python::python_bench(&env.root);
     let data = Data {
         est,
@@ -180,7 +182,7 @@ fn smoke(env: &Env) -> Result<()> {
         Peer::Ran { ns_per_g, .. } => eprintln!("SciPy peer ran ({ns_per_g:.0} ns per G)"),
         Peer::Skipped(why) => bail!("SciPy peer did not run: {why}"),
     }
-    let t = tablegen::measure(env, SMOKE_STRIDE)?;
+    let t = tablegen::measure(env, SMOKE_STRIDE, Some(SMOKE_NODES))?;
     if let Err(why) = &t.peer {
         bail!("the Monte Carlo peer did not run: {why}");
     }

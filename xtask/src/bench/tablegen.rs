@@ -6,11 +6,11 @@ use anyhow::Result;
 use brdf_bench::report::tablegen::{self as tg, TableGen, KHRONOS_SIZE, PEER_SAMPLES};
 use std::process::Command;
 
-/// Every table of the default set and every `stride`-th row of the Khronos target, timed;
-/// the peer on the same rows.
-pub(super) fn measure(env: &Env, stride: usize) -> Result<TableGen> {
+/// Every table of the default set (on grids of at most `shrink` nodes per axis when given)
+/// and every `stride`-th row of the Khronos target, timed; the peer on the same rows.
+pub(super) fn measure(env: &Env, stride: usize, shrink: Option<u32>) -> Result<TableGen> {
     eprintln!("== table generation: the default set");
-    let tables = tg::time_default_set()?;
+    let tables = tg::time_default_set(shrink)?;
     eprintln!("== table generation: Khronos 1024², every {stride}th row");
     let khronos = tg::time_table("Khronos `lut_ggx` 1024² (A, B)", &tg::khronos_spec(stride))?;
     eprintln!("== Monte Carlo peer (numpy)");
@@ -24,6 +24,7 @@ pub(super) fn measure(env: &Env, stride: usize) -> Result<TableGen> {
         stride,
         peer,
         threads: std::thread::available_parallelism().map_or(1, |n| n.get()),
+        shrunk: shrink,
     })
 }
 

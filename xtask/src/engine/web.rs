@@ -5,6 +5,7 @@
 use super::{centre, compute_grid, integral, write_set, File as OutFile};
 use anyhow::{bail, Context, Result};
 use brdf_engine_assets::report::Table;
+use brdf_engine_assets::sidecar::Mapping;
 use rand::{Rng, SeedableRng};
 use rayon::prelude::*;
 use std::path::Path;
@@ -162,7 +163,8 @@ fn read_export(out: &Path) -> Result<Export> {
         .as_array()
         .filter(|m| m.len() == 2)
         .context("sidecar: inverse_mapping of 2 axes")?;
-    let axes = [Mapping::from_json(&maps[0])?, Mapping::from_json(&maps[1])?];
+    let m = |j: &serde_json::Value| Mapping::from_json(j).map_err(anyhow::Error::msg);
+    let axes = [m(&maps[0])?, m(&maps[1])?];
     let decode: Vec<(f64, f64)> = side["channel_decode"]
         .as_array()
         .context("sidecar: channel_decode")?
@@ -361,93 +363,6 @@ fn half_ulp_f16(v: f64) -> f64 {
     }
 }
 
-/// One axis of the sidecar's `inverse_mapping`, read from its stated fields (warp, lo, hi,
-/// count, placement) and evaluated in f64 — not from the exporter's f32 constants.
-struct Mapping {
-    lo: f64,
-    hi: f64,
-    count: usize,
-    warp: String,
-    endpoint: bool,
-}
-
-impl Mapping {
-    fn from_json(m: &serde_json::Value) -> Result<Self> {
-        let f = |k: &str| m[k].as_f64().with_context(|| format!("sidecar: {k}"));
-        let count = m["count"].as_u64().context("sidecar: count")? as usize;
-        if !(2..=4096).contains(&count) {
-            bail!("sidecar: axis count {count} outside 2..=4096");
-        }
-        let endpoint = match m["placement"].as_str() {
-            Some("endpoint") => true,
-            Some("texel-centre") => false,
-            p => bail!("sidecar: unknown placement {p:?}"),
-        };
-        Ok(Self {
-            lo: f("lo")?,
-            hi: f("hi")?,
-            count,
-            warp: match m["warp"].as_str() {
-                Some(w @ ("linear" | "log" | "sqrt" | "cos" | "sqrt-cos")) => w.to_string(),
-                w => bail!("sidecar: unknown warp {w:?}"),
-            },
-            endpoint,
-        })
-    }
-    /// Step 1: x clamped to [lo, hi].
-    fn clamp(&self, x: f64) -> f64 {
-        x.clamp(self.lo, self.hi)
-    }
-    /// Steps 2–3: the warped unit coordinate t of x.
-    fn t(&self, x: f64) -> f64 {
-        let (lo, hi) = (self.lo, self.hi);
-        let x = self.clamp(x);
-        let sc = |c: f64| c.max(0.0).sqrt();
-        match self.warp.as_str() {
-            "log" => (x / lo).ln() / (hi / lo).ln(),
-            "sqrt" => ((x - lo) / (hi - lo)).sqrt(),
-            "cos" => (lo.cos() - x.cos()) / (lo.cos() - hi.cos()),
-            "sqrt-cos" => (sc(lo.cos()) - sc(x.cos())) / (sc(lo.cos()) - sc(hi.cos())),
-            _ => (x - lo) / (hi - lo), // linear
-        }
-        .clamp(0.0, 1.0)
-    }
-    /// Step 4: the texture coordinate of x.
-    fn coord(&self, x: f64) -> f64 {
-        let (t, n) = (self.t(x), self.count as f64);
-        if self.endpoint {
-            (t * (n - 1.0) + 0.5) / n
-        } else {
-            t
-        }
-    }
-    /// The physical value at warped coordinate t (inverse of [`Mapping::t`]).
-    fn node_at(&self, t: f64) -> f64 {
-        let (lo, hi) = (self.lo, self.hi);
-        let sc = |c: f64| c.max(0.0).sqrt();
-        match self.warp.as_str() {
-            "log" => lo * (hi / lo).powf(t),
-            "sqrt" => lo + t * t * (hi - lo),
-            "cos" => (lo.cos() - t * (lo.cos() - hi.cos())).acos(),
-            "sqrt-cos" => {
-                let s = sc(lo.cos()) - t * (sc(lo.cos()) - sc(hi.cos()));
-                (s * s).acos()
-            }
-            _ => lo + t * (hi - lo), // linear
-        }
-    }
-    /// Node i: t = i/(N − 1) (endpoint) or (i + ½)/N (texel centre).
-    fn node(&self, i: usize) -> f64 {
-        let n = self.count as f64;
-        let t = if self.endpoint {
-            i as f64 / (n - 1.0)
-        } else {
-            (i as f64 + 0.5) / n
-        };
-        self.node_at(t)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -482,35 +397,5 @@ mod tests {
             assert!((r - v).abs() <= h, "{v}: {r} {h}");
             assert!(h <= v.abs() * 2f64.powi(-10) + 2f64.powi(-25), "{v}: {h}");
         }
-    }
-
-    /// The sidecar mapping of a log-warped endpoint axis (as in dfg_ggx.blut): node i lands on
-    /// texel centre (i + ½)/N, the ends clamp, and t is ln(x/lo)/ln(hi/lo) by the closed form.
-    #[test]
-    fn mapping_puts_nodes_on_texel_centres() {
-        let m = Mapping::from_json(&serde_json::json!({
-            "lo": 0.0174524064372835, "hi": 1.0, "count": 64,
-            "warp": "log", "placement": "endpoint"
-        }))
-        .unwrap();
-        for i in 0..64 {
-            let u = m.coord(m.node(i));
-            assert!((u - (i as f64 + 0.5) / 64.0).abs() < 1e-12, "{i}: {u}");
-        }
-        assert_eq!(m.coord(0.0), 0.5 / 64.0);
-        assert_eq!(m.coord(1.5), 63.5 / 64.0);
-        let x = 0.1;
-        let t = (x / 0.0174524064372835f64).ln() / (1.0 / 0.0174524064372835f64).ln();
-        assert!((m.t(x) - t).abs() < 1e-15);
-        let c = Mapping::from_json(&serde_json::json!({
-            "lo": 0.0, "hi": 2.0, "count": 8, "warp": "linear", "placement": "texel-centre"
-        }))
-        .unwrap();
-        assert!((c.node(3) - 2.0 * 3.5 / 8.0).abs() < 1e-15);
-        assert!((c.coord(c.node(3)) - 3.5 / 8.0).abs() < 1e-15);
-        assert!(Mapping::from_json(&serde_json::json!({
-            "lo": 0.0, "hi": 1.0, "count": 8, "warp": "cubic", "placement": "endpoint"
-        }))
-        .is_err());
     }
 }

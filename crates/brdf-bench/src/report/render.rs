@@ -405,7 +405,7 @@ pub fn render_tablegen(t: &TableGen) -> Result<String, minijinja::Error> {
     };
     let p_us = t.peer.as_ref().map_or(f64::NAN, |p| p.us_per_texel);
     let ctx = context! {
-        threads => t.threads, stride => t.stride,
+        threads => t.threads, stride => t.stride, shrunk => t.shrunk,
         th => if t.stride == 1 { "" } else { "th" },
         k_rows => tablegen::KHRONOS_SIZE.div_ceil(t.stride.max(1)),
         tables, n_tables => t.tables.len(), total_nodes => nodes,

@@ -56,6 +56,9 @@ pub struct TableGen {
     pub peer: Result<McPeer, String>,
     /// Worker threads of the generator.
     pub threads: usize,
+    /// The default set on shrunken grids (see [`time_default_set`]), when not a measurement.
+    #[serde(default)]
+    pub shrunk: Option<u32>,
 }
 
 /// Integrand evaluations of one generated table: `None` until the generator reports them.
@@ -76,12 +79,21 @@ pub fn time_table(name: &str, spec: &Spec) -> Result<Timing, GenError> {
     })
 }
 
-/// Each table of the default set, timed.
-pub fn time_default_set() -> Result<Vec<Timing>, GenError> {
-    brdf_lut::generate::default_set()
-        .iter()
-        .map(|a| time_table(&a.file, &a.spec))
-        .collect()
+/// Each table of the default set, timed; with `shrink`, on grids of at most `shrink` nodes
+/// per axis and as many error samples (a check that every table goes through, not a
+/// measurement: the smoke run).
+pub fn time_default_set(shrink: Option<u32>) -> Result<Vec<Timing>, GenError> {
+    let mut set = brdf_lut::generate::default_set();
+    if let Some(m) = shrink {
+        for a in &mut set {
+            a.spec
+                .axes
+                .iter_mut()
+                .for_each(|x| x.count = x.count.min(m));
+            a.spec.samples = a.spec.samples.min(m);
+        }
+    }
+    set.iter().map(|a| time_table(&a.file, &a.spec)).collect()
 }
 
 /// Texel centre k of the Khronos axes.
@@ -142,4 +154,98 @@ pub fn mc_peer_from_json(v: &serde_json::Value, versions: String) -> Result<McPe
         grazing_max_error: f("grazing_max_error")?,
         versions,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The strided spec's roughness nodes are the peer's rows, r = (j·s + ½)/1024 for
+    /// j = 0, s, 2s, … (`centres[::stride]` in dfg_mc_peer.py); stride 1 is the whole target.
+    #[test]
+    fn khronos_spec_samples_the_peer_rows() {
+        assert_eq!(khronos_spec(1), brdf_engine_assets::split_sum_spec(1024));
+        for s in [8, 64] {
+            let a = khronos_spec(s).axes[1];
+            let rows = 1024 / s;
+            assert_eq!(a.count as usize, rows);
+            for k in 0..rows {
+                let node = a.lo + (a.hi - a.lo) * k as f64 / (rows - 1) as f64;
+                let r = (k * s) as f64 / 1024.0 + 0.5 / 1024.0;
+                assert!((node - r).abs() < 1e-15, "{s} {k}: {node} {r}");
+            }
+        }
+    }
+
+    /// The reference rows are laid out as the peer reads them ([row][μ][A, B]) and agree with
+    /// the fixed-rule split sum away from grazing (there within its 3e-7 accuracy; 1e-6).
+    #[test]
+    fn converged_rows_hold_the_split_sum_in_the_peers_layout() {
+        let b = converged_rows(512);
+        assert_eq!(b.len(), 2 * 1024 * 16);
+        let at = |o: usize| f64::from_le_bytes(b[o..o + 8].try_into().unwrap());
+        for (row, j) in [(0usize, 0usize), (1, 512)] {
+            for i in [200usize, 700, 1023] {
+                let (mu, r) = ((i as f64 + 0.5) / 1024.0, (j as f64 + 0.5) / 1024.0);
+                let (ea, eb) = brdf_core::split_sum::dfg_ggx::<
+                    f64,
+                    brdf_core::split_sum::OuterRule,
+                    brdf_core::split_sum::InnerRule,
+                >(mu, r);
+                let o = (row * 1024 + i) * 16;
+                assert!((at(o) - ea).abs() < 1e-6, "A {i} {j}: {} {ea}", at(o));
+                assert!(
+                    (at(o + 8) - eb).abs() < 1e-6,
+                    "B {i} {j}: {} {eb}",
+                    at(o + 8)
+                );
+            }
+        }
+    }
+
+    fn timing(name: &str, nodes: u64, secs: f64) -> Timing {
+        Timing {
+            name: name.into(),
+            nodes,
+            secs,
+            evals: None,
+        }
+    }
+
+    /// The section's figures from made-up timings, computed by hand: 131,072 nodes in 1 s is
+    /// 7.63 µs per node; against a 30 µs peer 0.25× wall clock, 0.51× per core on 2 threads.
+    #[test]
+    fn section_states_rates_ratios_and_missing_counts() {
+        let mut t = TableGen {
+            tables: vec![timing("a.blut", 1000, 0.5), timing("b.blut", 3000, 0.5)],
+            khronos: timing("khronos", 131_072, 1.0),
+            stride: 8,
+            peer: Ok(McPeer {
+                us_per_texel: 30.0,
+                max_error: 1.1e-2,
+                grazing_max_error: 1.1e-2,
+                versions: "Python 3, NumPy 2".into(),
+            }),
+            threads: 2,
+            shrunk: None,
+        };
+        let md = super::super::render_tablegen(&t).unwrap();
+        assert!(
+            md.contains("| `a.blut` | 1000 | 0.50 s | 500.00 | — |"),
+            "{md}"
+        );
+        assert!(md.contains("| 4000 | 1.00 s | 250.00 | |"), "{md}");
+        assert!(md.contains("| 131072 | 1.00 s | 7.63 | — |"), "{md}");
+        assert!(
+            md.contains("**0.25×** wall clock, **0.51×** per core"),
+            "{md}"
+        );
+        assert!(
+            md.contains("128 of its 1,024 roughness rows (every 8th row"),
+            "{md}"
+        );
+        t.peer = Err("numpy missing".into());
+        let md = super::super::render_tablegen(&t).unwrap();
+        assert!(md.contains("The peer did not run: numpy missing."), "{md}");
+    }
 }
