@@ -74,10 +74,12 @@ fn rust_version(meta: &serde_json::Value, name: &str) -> Result<String> {
     Ok(toolchain_of(rv))
 }
 
-pub fn run(_a: Args) -> Result<()> {
-    let root = root();
+/// The toolchain of each crate to check: (crate, toolchain) for [`PUBLISHABLE`] and for
+/// [`ALSO_BUILT`], from `cargo metadata`.
+#[allow(clippy::type_complexity)]
+fn plan(root: &std::path::Path) -> Result<(Vec<(String, String)>, Vec<(String, String)>)> {
     let out = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()))
-        .current_dir(&root)
+        .current_dir(root)
         .args(["metadata", "--no-deps", "--format-version", "1"])
         .output()
         .context("running cargo metadata")?;
@@ -85,14 +87,72 @@ pub fn run(_a: Args) -> Result<()> {
         bail!("cargo metadata failed");
     }
     let meta: serde_json::Value = serde_json::from_slice(&out.stdout)?;
-    let mut plan: Vec<(String, String)> = Vec::new();
-    for name in PUBLISHABLE {
-        plan.push((name.to_string(), rust_version(&meta, name)?));
+    let of = |names: &[&str]| -> Result<Vec<(String, String)>> {
+        names
+            .iter()
+            .map(|n| Ok((n.to_string(), rust_version(&meta, n)?)))
+            .collect()
+    };
+    Ok((of(PUBLISHABLE)?, of(ALSO_BUILT)?))
+}
+
+/// `cargo` of toolchain `tc` (its own, not the rustup proxy's choice from the environment),
+/// building into `tdir`.
+fn toolchain_cargo(root: &std::path::Path, tc: &str, tdir: &std::path::Path) -> Command {
+    let mut c = Command::new("rustup");
+    c.current_dir(root)
+        .args(["run", tc, "cargo"])
+        .env("CARGO_TARGET_DIR", tdir)
+        .env_remove("RUSTC")
+        .env_remove("CARGO")
+        .env_remove("RUSTDOC")
+        .env_remove("RUSTFLAGS")
+        .env_remove("RUSTDOCFLAGS");
+    c
+}
+
+/// Steps 2–3 for the publishable crates `names` on toolchain `tc`.
+fn check_publishable(root: &std::path::Path, tc: &str, names: &[String]) -> Result<()> {
+    let tdir = root.join("target").join(format!("msrv-{tc}"));
+    let cargo = |args: &[&str]| {
+        let mut c = toolchain_cargo(root, tc, &tdir);
+        c.args(args);
+        c
+    };
+    let pkgs: Vec<&str> = names.iter().flat_map(|n| ["-p", n.as_str()]).collect();
+    let list = names.join(" ");
+    let mut args = vec!["test", "--locked", "--all-features"];
+    args.extend(&pkgs);
+    status(
+        &mut cargo(&args),
+        &format!("cargo +{tc} test --all-features {list}"),
+    )?;
+    let mut args = vec!["build", "--locked", "--no-default-features"];
+    args.extend(&pkgs);
+    args.extend(["--target", NO_STD_TARGET]);
+    let what = format!("cargo +{tc} build --no-default-features {list} --target {NO_STD_TARGET}");
+    status(&mut cargo(&args), &what)?;
+    if names.iter().any(|n| n == "brdf-lut") {
+        let args = [
+            "build",
+            "--locked",
+            "-p",
+            "brdf-lut",
+            "--no-default-features",
+            "--features",
+            "alloc,compact",
+            "--target",
+            NO_STD_TARGET,
+        ];
+        let what = format!("cargo +{tc} build brdf-lut --features alloc,compact (no_std)");
+        status(&mut cargo(&args), &what)?;
     }
-    let mut extra: Vec<(String, String)> = Vec::new();
-    for name in ALSO_BUILT {
-        extra.push((name.to_string(), rust_version(&meta, name)?));
-    }
+    Ok(())
+}
+
+pub fn run(_a: Args) -> Result<()> {
+    let root = root();
+    let (plan, extra) = plan(&root)?;
     let mut toolchains = group(&plan);
     for (_, tc) in &extra {
         if !toolchains.iter().any(|(t, _)| t == tc) {
@@ -100,83 +160,35 @@ pub fn run(_a: Args) -> Result<()> {
         }
     }
     for (tc, names) in &toolchains {
+        let install = [
+            "toolchain",
+            "install",
+            tc,
+            "--profile",
+            "minimal",
+            "--target",
+        ];
         status(
-            Command::new("rustup").args([
-                "toolchain",
-                "install",
-                tc,
-                "--profile",
-                "minimal",
-                "--target",
-                NO_STD_TARGET,
-            ]),
+            Command::new("rustup").args(install).arg(NO_STD_TARGET),
             &format!("rustup toolchain install {tc}"),
         )?;
-        let tdir = root.join("target").join(format!("msrv-{tc}"));
-        // A toolchain's own cargo, not the rustup proxy's choice from the environment.
-        let cargo = |args: &[&str]| {
-            let mut c = Command::new("rustup");
-            c.current_dir(&root)
-                .args(["run", tc, "cargo"])
-                .args(args)
-                .env("CARGO_TARGET_DIR", &tdir)
-                .env_remove("RUSTC")
-                .env_remove("CARGO")
-                .env_remove("RUSTDOC")
-                .env_remove("RUSTFLAGS")
-                .env_remove("RUSTDOCFLAGS");
-            c
-        };
-        let pkgs: Vec<&str> = names.iter().flat_map(|n| ["-p", n.as_str()]).collect();
         if !names.is_empty() {
-            let mut args = vec!["test", "--locked", "--all-features"];
-            args.extend(&pkgs);
-            status(
-                &mut cargo(&args),
-                &format!("cargo +{tc} test --all-features {}", names.join(" ")),
-            )?;
-            let mut args = vec!["build", "--locked", "--no-default-features"];
-            args.extend(&pkgs);
-            args.extend(["--target", NO_STD_TARGET]);
-            status(
-                &mut cargo(&args),
-                &format!(
-                    "cargo +{tc} build --no-default-features {} --target {NO_STD_TARGET}",
-                    names.join(" ")
-                ),
-            )?;
-            if names.iter().any(|n| n == "brdf-lut") {
-                status(
-                    &mut cargo(&[
-                        "build",
-                        "--locked",
-                        "-p",
-                        "brdf-lut",
-                        "--no-default-features",
-                        "--features",
-                        "alloc,compact",
-                        "--target",
-                        NO_STD_TARGET,
-                    ]),
-                    &format!("cargo +{tc} build brdf-lut --features alloc,compact (no_std)"),
-                )?;
-            }
+            check_publishable(&root, tc, names)?;
         }
+        let tdir = root.join("target").join(format!("msrv-{tc}"));
         for (name, _) in extra.iter().filter(|(_, t)| t == tc) {
             status(
-                &mut cargo(&["build", "--locked", "-p", name]),
+                toolchain_cargo(&root, tc, &tdir).args(["build", "--locked", "-p", name]),
                 &format!("cargo +{tc} build -p {name}"),
             )?;
         }
     }
-    eprintln!(
-        "msrv: OK ({})",
-        plan.iter()
-            .chain(&extra)
-            .map(|(n, t)| format!("{n} {t}"))
-            .collect::<Vec<_>>()
-            .join(", ")
-    );
+    let all: Vec<String> = plan
+        .iter()
+        .chain(&extra)
+        .map(|(n, t)| format!("{n} {t}"))
+        .collect();
+    eprintln!("msrv: OK ({})", all.join(", "));
     Ok(())
 }
 

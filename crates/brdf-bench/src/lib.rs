@@ -7,6 +7,8 @@
 //! Also holds the one kernel that exists only as a point of comparison: Karis's analytic
 //! approximation of the split-sum pair ([`env_brdf_approx`]).
 
+pub mod report;
+
 use brdf_core::{Dots, Real};
 use brdf_lut::LutView;
 use std::path::PathBuf;

@@ -23,7 +23,9 @@
 mod containers;
 pub mod export;
 mod layouts;
+pub mod report;
 mod shaders;
+pub mod sidecar;
 pub mod table_shaders;
 
 pub use containers::{half_bits, unorm16, unorm8};

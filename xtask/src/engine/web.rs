@@ -2,8 +2,10 @@
 //! table at 64² with its GLSL function, and random (μ, r) points with the f64 integral and
 //! the error bound the GPU sample must meet.
 
-use super::{centre, compute_grid, integral, report, write_set, File as OutFile};
+use super::{centre, compute_grid, integral, write_set, File as OutFile};
 use anyhow::{bail, Context, Result};
+use brdf_engine_assets::report::Table;
+use brdf_engine_assets::sidecar::Mapping;
 use rand::{Rng, SeedableRng};
 use rayon::prelude::*;
 use std::path::Path;
@@ -17,7 +19,7 @@ pub const POINTS: usize = 2048;
 pub fn prepare(dir: &Path) -> Result<()> {
     let grid = compute_grid(N, true)?;
     let files = brdf_engine_assets::khronos(&grid)?;
-    let exact = report::Table {
+    let exact = Table {
         n: N,
         a: grid.a.clone(),
         b: grid.b.clone(),
@@ -55,7 +57,7 @@ pub fn prepare(dir: &Path) -> Result<()> {
     write_set(dir, &files, true)
 }
 
-fn spread(t: &report::Table, mu: f64, r: f64) -> (f64, f64) {
+fn spread(t: &Table, mu: f64, r: f64) -> (f64, f64) {
     let n = t.n;
     let ax = |x: f64| {
         let p = (x * n as f64 - 0.5).clamp(0.0, (n - 1) as f64);
@@ -113,145 +115,12 @@ pub fn prepare_native(dir: &Path) -> Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
     let out = dir.join(NATIVE_EXPORT);
     export_in_process(&asset, &out)?;
-    let side: serde_json::Value = serde_json::from_slice(
-        &std::fs::read(format!("{}.json", out.display())).context("reading the sidecar")?,
-    )?;
-    let maps = side["inverse_mapping"]
-        .as_array()
-        .filter(|m| m.len() == 2)
-        .context("sidecar: inverse_mapping of 2 axes")?;
-    let axes = [Mapping::from_json(&maps[0])?, Mapping::from_json(&maps[1])?];
-    let decode: Vec<(f64, f64)> = side["channel_decode"]
-        .as_array()
-        .context("sidecar: channel_decode")?
-        .iter()
-        .map(|c| (c["offset"].as_f64(), c["scale"].as_f64()))
-        .map(|(o, s)| o.zip(s).context("sidecar: channel_decode offset/scale"))
-        .collect::<Result<_>>()?;
-    if decode.len() != 2 || side["format"] != "raw-f16" {
-        bail!("sidecar: expected a 2-channel raw-f16 export");
-    }
-    let (w, h) = (axes[0].count, axes[1].count);
-    let raw = std::fs::read(&out)?;
-    if raw.len() != w * h * 2 * 2 {
-        bail!(
-            "{}: {} bytes, expected {w}×{h}×2 f16",
-            out.display(),
-            raw.len()
-        );
-    }
-    // Decoded texels, channel-planar, with the `half` crate (not the exporter's converter).
-    let mut tex = [vec![0.0f64; w * h], vec![0.0f64; w * h]];
-    for (k, b) in raw.chunks_exact(2).enumerate() {
-        let x = half::f16::from_le_bytes([b[0], b[1]]).to_f64();
-        let c = k % 2;
-        tex[c][k / 2] = decode[c].0 + decode[c].1 * x;
-    }
-    // The exact grid: the integral at the sidecar's nodes (axis 0 = columns, fastest).
-    let nodes: Vec<(f64, f64)> = (0..w * h)
-        .into_par_iter()
-        .map(|k| integral(axes[0].node(k % w), axes[1].node(k / w)))
-        .collect();
-    if w != h {
-        bail!("the native export test expects a square table, got {w}×{h}");
-    }
-    let exact = report::Table {
-        n: w,
-        a: nodes.iter().map(|v| v.0).collect(),
-        b: nodes.iter().map(|v| v.1).collect(),
-    };
-    let lut = crate::fsio::load_lut(&asset)?;
-    let node_half_unit = match lut.view()?.header().encoding {
-        brdf_lut::Encoding::Unorm16 => 0.5 / 65535.0,
-        brdf_lut::Encoding::F16 => 2f64.powi(-12),
-        brdf_lut::Encoding::F32 => 2f64.powi(-24),
-    };
-    // Half an f16 ulp at |v| (normal range; 2⁻²⁵ in the subnormals), plus 1e-7 for the f32
-    // node values the exporter rounds.
-    let enc = |v: f64| node_half_unit + half_ulp_f16(v) + 1e-7;
-    let mut worst_texel = 0.0f64;
-    for k in 0..w * h {
-        for (c, ex) in [&exact.a, &exact.b].into_iter().enumerate() {
-            let e = (tex[c][k] - ex[k]).abs();
-            if e > enc(ex[k]) {
-                bail!(
-                    "{}: texel ({}, {}) channel {c} is {}, the integral at its node {} \
-                     (error {e:e} > encoding bound {:e}): wrong value or placement",
-                    out.display(),
-                    k % w,
-                    k / w,
-                    tex[c][k],
-                    ex[k],
-                    enc(ex[k])
-                );
-            }
-            worst_texel = worst_texel.max(e);
-        }
-    }
-    let mut rng = rand_pcg::Pcg64::seed_from_u64(0x0EB6_1012);
-    let (m0, m1) = (&axes[0], &axes[1]);
-    let pts: Vec<(f64, f64)> = (0..POINTS)
-        .map(|k| {
-            let (x, y) = if k % 20 == 19 {
-                // Outside the table: the function clamps to the axis ranges.
-                let x = if rng.random_bool(0.5) {
-                    rng.random_range(0.0..m0.lo)
-                } else {
-                    rng.random_range(m0.hi..m0.hi + 0.05)
-                };
-                (x, rng.random_range(m1.lo - 0.05..m1.hi + 0.05))
-            } else if k % 2 == 0 {
-                // Uniform in the warped coordinate (dense at grazing μ) ...
-                (
-                    m0.node_at(rng.random_range(0.0..1.0)),
-                    rng.random_range(m1.lo..m1.hi),
-                )
-            } else {
-                // ... and uniform in μ.
-                (
-                    rng.random_range(m0.lo..m0.hi),
-                    rng.random_range(m1.lo..m1.hi),
-                )
-            };
-            // The shader receives f32 values: compute everything at those.
-            (x as f32 as f64, y as f32 as f64)
-        })
-        .collect();
-    let spread = |u: f64, v: f64| {
-        let ix = |c: f64| {
-            let p = (c * w as f64 - 0.5).clamp(0.0, (w - 1) as f64);
-            let i0 = p.floor() as usize;
-            (i0, (i0 + 1).min(w - 1))
-        };
-        let ((x0, x1), (y0, y1)) = (ix(u), ix(v));
-        let idx = [y0 * w + x0, y0 * w + x1, y1 * w + x0, y1 * w + x1];
-        let f = |t: &[f64]| {
-            let s = idx.map(|i| t[i]);
-            let mx = s.iter().cloned().fold(f64::MIN, f64::max);
-            let mn = s.iter().cloned().fold(f64::MAX, f64::min);
-            mx - mn
-        };
-        let g = |t: &[f64]| idx.iter().map(|&i| enc(t[i])).fold(0.0, f64::max);
-        ((f(&tex[0]), f(&tex[1])), (g(&exact.a), g(&exact.b)))
-    };
-    let rows: Vec<(serde_json::Value, f64, f64)> = pts
-        .par_iter()
-        .map(|&(x, y)| {
-            let (xc, yc) = (m0.clamp(x), m1.clamp(y));
-            let (a, b) = integral(xc, yc);
-            let (u, v) = (m0.coord(xc), m1.coord(yc));
-            let (xa, xb) = exact.sample(u, v);
-            let ((sa, sb), (ea, eb)) = spread(u, v);
-            let k = 2.0 * 2f64.powi(-9) + 2.0 * COORD_TEXELS;
-            let bound_a = (xa - a).abs() + ea + sa * k + 1e-6;
-            let bound_b = (xb - b).abs() + eb + sb * k + 1e-6;
-            (
-                serde_json::json!([x, y, a, b, bound_a, bound_b, xa, xb]),
-                bound_a.max(bound_b),
-                (xa - a).abs().max((xb - b).abs()),
-            )
-        })
-        .collect();
+    let ex = read_export(&out)?;
+    let exact = exact_grid(&ex.axes)?;
+    let half_unit = node_half_unit(&asset)?;
+    let worst_texel = check_texels(&ex, &exact, half_unit, &out)?;
+    let pts = random_points(&ex.axes);
+    let rows = point_rows(&ex, &exact, half_unit, &pts);
     let max_bound = rows.iter().map(|r| r.1).fold(0.0, f64::max);
     let max_interp = rows.iter().map(|r| r.2).fold(0.0, f64::max);
     let doc = serde_json::json!({
@@ -275,6 +144,195 @@ pub fn prepare_native(dir: &Path) -> Result<()> {
         }],
         true,
     )
+}
+
+/// The exported table as its sidecar describes it: the two axes and the decoded texels,
+/// channel-planar (axis 0 fastest).
+struct Export {
+    axes: [Mapping; 2],
+    tex: [Vec<f64>; 2],
+}
+
+/// Reads the export `out` and its sidecar `out.json`; decodes the texels with the `half`
+/// crate (not the exporter's converter) and the sidecar's `channel_decode`.
+fn read_export(out: &Path) -> Result<Export> {
+    let side: serde_json::Value = serde_json::from_slice(
+        &std::fs::read(format!("{}.json", out.display())).context("reading the sidecar")?,
+    )?;
+    let maps = side["inverse_mapping"]
+        .as_array()
+        .filter(|m| m.len() == 2)
+        .context("sidecar: inverse_mapping of 2 axes")?;
+    let m = |j: &serde_json::Value| Mapping::from_json(j).map_err(anyhow::Error::msg);
+    let axes = [m(&maps[0])?, m(&maps[1])?];
+    let decode: Vec<(f64, f64)> = side["channel_decode"]
+        .as_array()
+        .context("sidecar: channel_decode")?
+        .iter()
+        .map(|c| (c["offset"].as_f64(), c["scale"].as_f64()))
+        .map(|(o, s)| o.zip(s).context("sidecar: channel_decode offset/scale"))
+        .collect::<Result<_>>()?;
+    if decode.len() != 2 || side["format"] != "raw-f16" {
+        bail!("sidecar: expected a 2-channel raw-f16 export");
+    }
+    let (w, h) = (axes[0].count, axes[1].count);
+    let raw = std::fs::read(out)?;
+    if raw.len() != w * h * 2 * 2 {
+        bail!(
+            "{}: {} bytes, expected {w}×{h}×2 f16",
+            out.display(),
+            raw.len()
+        );
+    }
+    let mut tex = [vec![0.0f64; w * h], vec![0.0f64; w * h]];
+    for (k, b) in raw.chunks_exact(2).enumerate() {
+        let x = half::f16::from_le_bytes([b[0], b[1]]).to_f64();
+        let c = k % 2;
+        tex[c][k / 2] = decode[c].0 + decode[c].1 * x;
+    }
+    Ok(Export { axes, tex })
+}
+
+/// The exact grid: the integral at the sidecar's nodes (axis 0 = columns, fastest).
+fn exact_grid(axes: &[Mapping; 2]) -> Result<Table> {
+    let (w, h) = (axes[0].count, axes[1].count);
+    if w != h {
+        bail!("the native export test expects a square table, got {w}×{h}");
+    }
+    let nodes: Vec<(f64, f64)> = (0..w * h)
+        .into_par_iter()
+        .map(|k| integral(axes[0].node(k % w), axes[1].node(k / w)))
+        .collect();
+    Ok(Table {
+        n: w,
+        a: nodes.iter().map(|v| v.0).collect(),
+        b: nodes.iter().map(|v| v.1).collect(),
+    })
+}
+
+/// Half a unit of the asset's stored encoding.
+fn node_half_unit(asset: &Path) -> Result<f64> {
+    let lut = crate::fsio::load_lut(asset)?;
+    Ok(match lut.view()?.header().encoding {
+        brdf_lut::Encoding::Unorm16 => 0.5 / 65535.0,
+        brdf_lut::Encoding::F16 => 2f64.powi(-12),
+        brdf_lut::Encoding::F32 => 2f64.powi(-24),
+    })
+}
+
+/// The encoding bound of an exported texel of value v: half a unit of the asset's encoding,
+/// half an f16 ulp at |v| (normal range; 2⁻²⁵ in the subnormals), plus 1e-7 for the f32 node
+/// values the exporter rounds.
+fn enc(half_unit: f64, v: f64) -> f64 {
+    half_unit + half_ulp_f16(v) + 1e-7
+}
+
+/// Checks every exported texel against the integral at its node within [`enc`]; returns the
+/// largest difference.
+fn check_texels(ex: &Export, exact: &Table, half_unit: f64, out: &Path) -> Result<f64> {
+    let w = ex.axes[0].count;
+    let mut worst = 0.0f64;
+    for k in 0..w * ex.axes[1].count {
+        for (c, exv) in [&exact.a, &exact.b].into_iter().enumerate() {
+            let (t, x) = (ex.tex[c][k], exv[k]);
+            let e = (t - x).abs();
+            if e > enc(half_unit, x) {
+                bail!(
+                    "{}: texel ({}, {}) channel {c} is {t}, the integral at its node {x} \
+                     (error {e:e} > encoding bound {:e}): wrong value or placement",
+                    out.display(),
+                    k % w,
+                    k / w,
+                    enc(half_unit, x)
+                );
+            }
+            worst = worst.max(e);
+        }
+    }
+    Ok(worst)
+}
+
+/// The test's points, as the f32 values the shader receives: every 20th outside the table
+/// (the function clamps to the axis ranges), the rest alternately uniform in the warped
+/// coordinate (dense at grazing μ) and uniform in μ.
+fn random_points(axes: &[Mapping; 2]) -> Vec<(f64, f64)> {
+    let mut rng = rand_pcg::Pcg64::seed_from_u64(0x0EB6_1012);
+    let (m0, m1) = (&axes[0], &axes[1]);
+    (0..POINTS)
+        .map(|k| {
+            let (x, y) = if k % 20 == 19 {
+                let x = if rng.random_bool(0.5) {
+                    rng.random_range(0.0..m0.lo)
+                } else {
+                    rng.random_range(m0.hi..m0.hi + 0.05)
+                };
+                (x, rng.random_range(m1.lo - 0.05..m1.hi + 0.05))
+            } else if k % 2 == 0 {
+                (
+                    m0.node_at(rng.random_range(0.0..1.0)),
+                    rng.random_range(m1.lo..m1.hi),
+                )
+            } else {
+                (
+                    rng.random_range(m0.lo..m0.hi),
+                    rng.random_range(m1.lo..m1.hi),
+                )
+            };
+            (x as f32 as f64, y as f32 as f64)
+        })
+        .collect()
+}
+
+/// Per point: the JSON row `[x, y, A, B, bound A, bound B, A_lin, B_lin]`, the larger bound
+/// and the larger bilinear error of the exact grid (the bound is the doc of
+/// [`prepare_native`]).
+fn point_rows(
+    ex: &Export,
+    exact: &Table,
+    half_unit: f64,
+    pts: &[(f64, f64)],
+) -> Vec<(serde_json::Value, f64, f64)> {
+    let (m0, m1) = (&ex.axes[0], &ex.axes[1]);
+    let w = m0.count;
+    // Spread of the four texels the filter reads, and their largest encoding bound.
+    let spread = |u: f64, v: f64| {
+        let ix = |c: f64| {
+            let p = (c * w as f64 - 0.5).clamp(0.0, (w - 1) as f64);
+            let i0 = p.floor() as usize;
+            (i0, (i0 + 1).min(w - 1))
+        };
+        let ((x0, x1), (y0, y1)) = (ix(u), ix(v));
+        let idx = [y0 * w + x0, y0 * w + x1, y1 * w + x0, y1 * w + x1];
+        let f = |t: &[f64]| {
+            let s = idx.map(|i| t[i]);
+            let mx = s.iter().cloned().fold(f64::MIN, f64::max);
+            let mn = s.iter().cloned().fold(f64::MAX, f64::min);
+            mx - mn
+        };
+        let g = |t: &[f64]| {
+            idx.iter()
+                .map(|&i| enc(half_unit, t[i]))
+                .fold(0.0, f64::max)
+        };
+        ((f(&ex.tex[0]), f(&ex.tex[1])), (g(&exact.a), g(&exact.b)))
+    };
+    pts.par_iter()
+        .map(|&(x, y)| {
+            let (xc, yc) = (m0.clamp(x), m1.clamp(y));
+            let (a, b) = integral(xc, yc);
+            let (u, v) = (m0.coord(xc), m1.coord(yc));
+            let (xa, xb) = exact.sample(u, v);
+            let ((sa, sb), (ea, eb)) = spread(u, v);
+            let k = 2.0 * 2f64.powi(-9) + 2.0 * COORD_TEXELS;
+            let bound_a = (xa - a).abs() + ea + sa * k + 1e-6;
+            let bound_b = (xb - b).abs() + eb + sb * k + 1e-6;
+            (
+                serde_json::json!([x, y, a, b, bound_a, bound_b, xa, xb]),
+                bound_a.max(bound_b),
+                (xa - a).abs().max((xb - b).abs()),
+            )
+        })
+        .collect()
 }
 
 /// Runs `cargo xtask lut export ASSET --raw-f16 -o OUT --force` in this process.
@@ -302,93 +360,6 @@ fn half_ulp_f16(v: f64) -> f64 {
         2f64.powi(-25)
     } else {
         2f64.powi(a.log2().floor() as i32 - 11)
-    }
-}
-
-/// One axis of the sidecar's `inverse_mapping`, read from its stated fields (warp, lo, hi,
-/// count, placement) and evaluated in f64 — not from the exporter's f32 constants.
-struct Mapping {
-    lo: f64,
-    hi: f64,
-    count: usize,
-    warp: String,
-    endpoint: bool,
-}
-
-impl Mapping {
-    fn from_json(m: &serde_json::Value) -> Result<Self> {
-        let f = |k: &str| m[k].as_f64().with_context(|| format!("sidecar: {k}"));
-        let count = m["count"].as_u64().context("sidecar: count")? as usize;
-        if !(2..=4096).contains(&count) {
-            bail!("sidecar: axis count {count} outside 2..=4096");
-        }
-        let endpoint = match m["placement"].as_str() {
-            Some("endpoint") => true,
-            Some("texel-centre") => false,
-            p => bail!("sidecar: unknown placement {p:?}"),
-        };
-        Ok(Self {
-            lo: f("lo")?,
-            hi: f("hi")?,
-            count,
-            warp: match m["warp"].as_str() {
-                Some(w @ ("linear" | "log" | "sqrt" | "cos" | "sqrt-cos")) => w.to_string(),
-                w => bail!("sidecar: unknown warp {w:?}"),
-            },
-            endpoint,
-        })
-    }
-    /// Step 1: x clamped to [lo, hi].
-    fn clamp(&self, x: f64) -> f64 {
-        x.clamp(self.lo, self.hi)
-    }
-    /// Steps 2–3: the warped unit coordinate t of x.
-    fn t(&self, x: f64) -> f64 {
-        let (lo, hi) = (self.lo, self.hi);
-        let x = self.clamp(x);
-        let sc = |c: f64| c.max(0.0).sqrt();
-        match self.warp.as_str() {
-            "log" => (x / lo).ln() / (hi / lo).ln(),
-            "sqrt" => ((x - lo) / (hi - lo)).sqrt(),
-            "cos" => (lo.cos() - x.cos()) / (lo.cos() - hi.cos()),
-            "sqrt-cos" => (sc(lo.cos()) - sc(x.cos())) / (sc(lo.cos()) - sc(hi.cos())),
-            _ => (x - lo) / (hi - lo), // linear
-        }
-        .clamp(0.0, 1.0)
-    }
-    /// Step 4: the texture coordinate of x.
-    fn coord(&self, x: f64) -> f64 {
-        let (t, n) = (self.t(x), self.count as f64);
-        if self.endpoint {
-            (t * (n - 1.0) + 0.5) / n
-        } else {
-            t
-        }
-    }
-    /// The physical value at warped coordinate t (inverse of [`Mapping::t`]).
-    fn node_at(&self, t: f64) -> f64 {
-        let (lo, hi) = (self.lo, self.hi);
-        let sc = |c: f64| c.max(0.0).sqrt();
-        match self.warp.as_str() {
-            "log" => lo * (hi / lo).powf(t),
-            "sqrt" => lo + t * t * (hi - lo),
-            "cos" => (lo.cos() - t * (lo.cos() - hi.cos())).acos(),
-            "sqrt-cos" => {
-                let s = sc(lo.cos()) - t * (sc(lo.cos()) - sc(hi.cos()));
-                (s * s).acos()
-            }
-            _ => lo + t * (hi - lo), // linear
-        }
-    }
-    /// Node i: t = i/(N − 1) (endpoint) or (i + ½)/N (texel centre).
-    fn node(&self, i: usize) -> f64 {
-        let n = self.count as f64;
-        let t = if self.endpoint {
-            i as f64 / (n - 1.0)
-        } else {
-            (i as f64 + 0.5) / n
-        };
-        self.node_at(t)
     }
 }
 
@@ -426,35 +397,5 @@ mod tests {
             assert!((r - v).abs() <= h, "{v}: {r} {h}");
             assert!(h <= v.abs() * 2f64.powi(-10) + 2f64.powi(-25), "{v}: {h}");
         }
-    }
-
-    /// The sidecar mapping of a log-warped endpoint axis (as in dfg_ggx.blut): node i lands on
-    /// texel centre (i + ½)/N, the ends clamp, and t is ln(x/lo)/ln(hi/lo) by the closed form.
-    #[test]
-    fn mapping_puts_nodes_on_texel_centres() {
-        let m = Mapping::from_json(&serde_json::json!({
-            "lo": 0.0174524064372835, "hi": 1.0, "count": 64,
-            "warp": "log", "placement": "endpoint"
-        }))
-        .unwrap();
-        for i in 0..64 {
-            let u = m.coord(m.node(i));
-            assert!((u - (i as f64 + 0.5) / 64.0).abs() < 1e-12, "{i}: {u}");
-        }
-        assert_eq!(m.coord(0.0), 0.5 / 64.0);
-        assert_eq!(m.coord(1.5), 63.5 / 64.0);
-        let x = 0.1;
-        let t = (x / 0.0174524064372835f64).ln() / (1.0 / 0.0174524064372835f64).ln();
-        assert!((m.t(x) - t).abs() < 1e-15);
-        let c = Mapping::from_json(&serde_json::json!({
-            "lo": 0.0, "hi": 2.0, "count": 8, "warp": "linear", "placement": "texel-centre"
-        }))
-        .unwrap();
-        assert!((c.node(3) - 2.0 * 3.5 / 8.0).abs() < 1e-15);
-        assert!((c.coord(c.node(3)) - 3.5 / 8.0).abs() < 1e-15);
-        assert!(Mapping::from_json(&serde_json::json!({
-            "lo": 0.0, "hi": 1.0, "count": 8, "warp": "cubic", "placement": "endpoint"
-        }))
-        .is_err());
     }
 }
