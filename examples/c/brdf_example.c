@@ -315,6 +315,103 @@ static void kernels(void) {
     check("ggx_channels_ordered_and_albedo", ggx_ok);
 }
 
+/* ---- rough dielectric BSDF ---- */
+
+/* Unit (wi, wo) pairs over the whole sphere: a mirror reflection pair, wi inside (light
+ * transmitted up to the viewer), wo inside (light transmitted down), an off-plane pair. */
+static const float RD_DIRS[][2][3] = {
+    {{0.5f, 0.0f, 0.8660254f}, {-0.5f, 0.0f, 0.8660254f}},
+    {{0.3f, 0.1f, -0.9486833f}, {-0.5f, 0.0f, 0.8660254f}},
+    {{-0.5f, 0.0f, 0.8660254f}, {0.2f, 0.0f, -0.9797959f}},
+    {{0.6830127f, 0.6830127f, 0.25881904f}, {-0.6040228f, -0.21984631f, 0.76604444f}},
+};
+/* (alpha, eta): air over glass, and glass over air (eta = 1/1.5). */
+static const float RD_PARAMS[][2] = {{0.3f, 1.5f}, {0.5f, 0.6666667f}};
+
+static BrdfVec3F32 v3(const float *p) {
+    BrdfVec3F32 v = {p[0], p[1], p[2]};
+    return v;
+}
+static float rel_f(float a, float b) {
+    float d = a - b, m = a > b ? a : b;
+    return (d < 0 ? -d : d) / (m > 1e-30f ? m : 1e-30f);
+}
+
+/* Values for the bit-exact comparison, plus the generalised reciprocity f*(wi, wo) =
+ * f(wo, wi) (Walter et al. 2007 sec. 5.2; both sides are separate f32 evaluations, so
+ * 1e-5 relative allows a few roundings) and the sampler's pdf equal to the pdf export. */
+static void rough_dielectric_values(void) {
+    int ok = 1, recip = 1, pdf_ok = 1;
+    for (uint32_t d = 0; d < 2; d++) {
+        for (size_t q = 0; q < N_OF(RD_PARAMS); q++) {
+            float a = RD_PARAMS[q][0], eta = RD_PARAMS[q][1];
+            BrdfRoughDielectricF32 m;
+            ok &= brdf_rough_dielectric_init_f32(&m, d, a, eta) == BRDF_STATUS_OK;
+            for (size_t k = 0; k < N_OF(RD_DIRS); k++) {
+                BrdfVec3F32 wi = v3(RD_DIRS[k][0]), wo = v3(RD_DIRS[k][1]);
+                float f = brdf_rough_dielectric_eval_f32(&m, wi, wo);
+                float fa = brdf_rough_dielectric_eval_adjoint_f32(&m, wi, wo);
+                float p = brdf_rough_dielectric_pdf_f32(&m, wo, wi);
+                rec("rd_f32"), au(d), af(a), af(eta);
+                af(wi.x), af(wi.y), af(wi.z), af(wo.x), af(wo.y), af(wo.z), eq();
+                af(f), af(fa), af(p), flush_line();
+                ok &= f > 0.0f && p >= 0.0f;
+                recip &= rel_f(fa, brdf_rough_dielectric_eval_f32(&m, wo, wi)) < 1e-5f;
+            }
+            BrdfVec3F32 wo = v3(RD_DIRS[3][1]);
+            for (int k = 0; k < 4; k++) {
+                float u0 = 0.15f + 0.23f * k, u1 = 0.8f - 0.19f * k, uc = 0.02f + 0.3f * k;
+                BrdfBsdfSampleF32 s;
+                int st = brdf_rough_dielectric_sample_f32(&m, wo, u0, u1, uc, &s);
+                ok &= st == BRDF_STATUS_OK;
+                if (st != BRDF_STATUS_OK) continue;
+                rec("rd_sample_f32"), au(d), af(a), af(eta), af(wo.x), af(wo.y), af(wo.z);
+                af(u0), af(u1), af(uc), eq(), af(s.wi.x), af(s.wi.y), af(s.wi.z), af(s.pdf);
+                af(s.weight.r), af(s.weight.g), af(s.weight.b), flush_line();
+                pdf_ok &= s.specular == 0 &&
+                          same_f(s.pdf, brdf_rough_dielectric_pdf_f32(&m, wo, s.wi));
+            }
+        }
+    }
+    BrdfRoughDielectricF64 m64;
+    BrdfVec3F64 wi = {0.3, 0.1, -0.9486832980505138}, wo = {-0.5, 0.0, 0.8660254037844386};
+    ok &= brdf_rough_dielectric_init_f64(&m64, 1, 0.3, 1.5) == BRDF_STATUS_OK;
+    double f = brdf_rough_dielectric_eval_f64(&m64, wi, wo);
+    rec("rd_f64"), au(1), ad(0.3), ad(1.5), ad(wi.x), ad(wi.y), ad(wi.z), ad(wo.x), ad(wo.y);
+    ad(wo.z), eq(), ad(f), flush_line();
+    check("rough_dielectric_values", ok && f > 0.0);
+    check("rough_dielectric_generalised_reciprocity", recip);
+    check("rough_dielectric_sample_pdf", pdf_ok);
+}
+
+/* Closed form: at normal incidence on a smooth interface (alpha 0, raised to the 1e-4 floor)
+ * the reflected fraction is the Fresnel reflectance R0 = ((eta - 1)/(eta + 1))^2 and, in
+ * the radiance convention, eta^2 times the transmitted integral is 1 - R0. Estimated with
+ * N samples whose choice numbers are stratified, uc = (k + 1/2)/N: each estimate is a count
+ * over N (weights G1 = 1 to f32 at the floor), within 1/(2N) of the exact fraction, so
+ * |E_r - R0| <= 1/N; the sum adds only f32 rounding (1e-4). */
+static void rough_dielectric_energy(void) {
+    const int n = 1024;
+    const float eta = 1.5f, r0 = (eta - 1.0f) * (eta - 1.0f) / ((eta + 1.0f) * (eta + 1.0f));
+    BrdfRoughDielectricF32 m;
+    int ok = brdf_rough_dielectric_init_f32(&m, BRDF_DIELECTRIC_DISTRIBUTION_GGX, 0.0f, eta) ==
+             BRDF_STATUS_OK;
+    BrdfVec3F32 wo = {0.0f, 0.0f, 1.0f};
+    float er = 0.0f, et = 0.0f;
+    for (int k = 0; k < n; k++) {
+        float g = 0.61803398875f * (float)k;
+        float u0 = g - (float)(int)g, u1 = ((float)k + 0.25f) / (float)n;
+        BrdfBsdfSampleF32 s;
+        ok &= brdf_rough_dielectric_sample_f32(&m, wo, u0, u1, ((float)k + 0.5f) / (float)n,
+                                               &s) == BRDF_STATUS_OK;
+        if (s.wi.z > 0.0f) er += s.weight.r; else et += s.weight.r;
+    }
+    er /= (float)n, et /= (float)n;
+    float de = er - r0, dt = er + eta * eta * et - 1.0f;
+    check("rough_dielectric_normal_incidence_fresnel",
+          ok && de < 1.0f / n && -de < 1.0f / n && dt < 1e-4f && -dt < 1e-4f);
+}
+
 /* ---- tables ---- */
 
 static void tables(void) {
@@ -479,6 +576,65 @@ static void bad_input(void) {
               is_nan_f(brdf_torrance_sparrow_eval_f32(&ts, 0.5f, -inf, 0.2f)));
         check("ts_below_horizon", brdf_torrance_sparrow_eval_f32(&ts, 0.5f, -0.1f, 0.2f) == 0.0f);
     }
+    {
+        BrdfRoughDielectricF32 rd;
+        BrdfBsdfSampleF32 s;
+        BrdfDeltaLobeF32 dl;
+        BrdfVec3F32 up = {0.0f, 0.0f, 1.0f}, down = {0.0f, 0.6f, -0.8f};
+        BrdfVec3F32 grazing = {1.0f, 0.0f, 1e-30f}, bad_v = {nan, 0.0f, 1.0f};
+        check("rd_unknown_distribution",
+              brdf_rough_dielectric_init_f32(&rd, 2, 0.3f, 1.5f) == BRDF_STATUS_INVALID_ARGUMENT);
+        check("rd_eta_out_of_range",
+              brdf_rough_dielectric_init_f32(&rd, 0, 0.3f, 0.05f) ==
+                      BRDF_STATUS_INVALID_ARGUMENT &&
+                  brdf_rough_dielectric_init_f32(&rd, 0, 0.3f, nan) ==
+                      BRDF_STATUS_INVALID_ARGUMENT);
+        check("rd_alpha_bad",
+              brdf_rough_dielectric_init_f32(&rd, 0, -0.1f, 1.5f) ==
+                      BRDF_STATUS_INVALID_ARGUMENT &&
+                  brdf_rough_dielectric_init_f32(&rd, 0, inf, 1.5f) ==
+                      BRDF_STATUS_INVALID_ARGUMENT);
+        check("rd_failed_init_unusable",
+              is_nan_f(brdf_rough_dielectric_eval_f32(&rd, up, up)) &&
+                  brdf_rough_dielectric_sample_f32(&rd, up, 0.5f, 0.5f, 0.5f, &s) ==
+                      BRDF_STATUS_NOT_INITIALISED);
+        check("rd_null_handle", is_nan_f(brdf_rough_dielectric_pdf_f32(NULL, up, up)) &&
+                                    is_nan_d(brdf_rough_dielectric_eval_adjoint_f64(
+                                        NULL, (BrdfVec3F64){0, 0, 1}, (BrdfVec3F64){0, 0, 1})));
+        brdf_rough_dielectric_init_f32(&rd, 0, 0.3f, 1.5f);
+        check("rd_eval_nonfinite", is_nan_f(brdf_rough_dielectric_eval_f32(&rd, bad_v, up)));
+        check("rd_sample_null_out", brdf_rough_dielectric_sample_f32(&rd, up, 0.5f, 0.5f, 0.5f,
+                                                                     NULL) ==
+                                        BRDF_STATUS_NULL_POINTER);
+        check("rd_sample_bad_input",
+              brdf_rough_dielectric_sample_f32(&rd, down, 0.5f, 0.5f, 0.5f, &s) ==
+                      BRDF_STATUS_INVALID_ARGUMENT &&
+                  brdf_rough_dielectric_sample_f32(&rd, up, 0.5f, 0.5f, nan, &s) ==
+                      BRDF_STATUS_INVALID_ARGUMENT);
+        s.pdf = 7.0f;
+        check("rd_sample_grazing_no_sample",
+              brdf_rough_dielectric_sample_f32(&rd, grazing, 0.5f, 0.5f, 0.5f, &s) ==
+                      BRDF_STATUS_NO_SAMPLE && s.pdf == 7.0f);
+        check("rd_no_delta_for_eta_not_1",
+              brdf_rough_dielectric_delta_f32(&rd, up, &dl) == BRDF_STATUS_OK && dl.prob == 0.0f);
+        BrdfGgxF32 gx;
+        brdf_ggx_init_f32(&gx, (BrdfRgbF32){0.5f, 0.5f, 0.5f}, 0.3f, 0);
+        check("rd_handle_of_other_type",
+              is_nan_f(brdf_rough_dielectric_eval_f32((const BrdfRoughDielectricF32 *)(void *)&gx,
+                                                      up, up)));
+        /* eta = 1: the interface is invisible; all light goes straight through. */
+        brdf_rough_dielectric_init_f32(&rd, 1, 0.3f, 1.0f);
+        BrdfVec3F32 wo = {0.6f, 0.0f, 0.8f};
+        check("rd_eta_1_delta",
+              brdf_rough_dielectric_delta_f32(&rd, wo, &dl) == BRDF_STATUS_OK &&
+                  dl.prob == 1.0f && dl.reflectance.g == 1.0f && dl.wi.x == -0.6f &&
+                  dl.wi.z == -0.8f && brdf_rough_dielectric_eval_f32(&rd, dl.wi, wo) == 0.0f &&
+                  brdf_rough_dielectric_sample_f32(&rd, wo, 0.3f, 0.3f, 0.3f, &s) ==
+                      BRDF_STATUS_OK &&
+                  s.specular == 1 && s.wi.z == -0.8f && s.weight.r == 1.0f);
+        check("rd_delta_null_out",
+              brdf_rough_dielectric_delta_f32(&rd, wo, NULL) == BRDF_STATUS_NULL_POINTER);
+    }
     check("smith_unknown_distribution", is_nan_f(brdf_g1_smith_f32(5, 0.5f, 0.3f)));
     check("smith_unknown_form", is_nan_f(brdf_g_smith_f32(0, 5, 0.5f, 0.5f, 0.3f)));
     check("smith_roughness_bad", is_nan_f(brdf_g1_smith_f32(1, 0.5f, 0.0f)) &&
@@ -566,6 +722,8 @@ int main(void) {
     put(" " PLATFORM);
     flush_line();
     kernels();
+    rough_dielectric_values();
+    rough_dielectric_energy();
     tables();
     bad_input();
 #ifdef BRDF_DEVICE

@@ -37,6 +37,9 @@
 // Storage words (8 bytes each) of the sheen handles.
 #define BRDF_SHEEN_WORDS 16
 
+// Storage words (8 bytes each) of the rough dielectric handles.
+#define BRDF_ROUGH_DIELECTRIC_WORDS 8
+
 // Storage words (8 bytes each) of every table handle.
 #define BRDF_TABLE_WORDS 56
 
@@ -181,6 +184,75 @@ typedef struct BrdfSheenF64 {
     uint64_t storage[BRDF_SHEEN_WORDS];
 } BrdfSheenF64;
 
+// A prepared rough dielectric BSDF. Fill it with `brdf_rough_dielectric_init_f32`; the fields are
+// private to the library.
+typedef struct BrdfRoughDielectricF32 {
+    uint64_t tag;
+    uint64_t storage[BRDF_ROUGH_DIELECTRIC_WORDS];
+} BrdfRoughDielectricF32;
+
+// The microfacet distribution of the rough dielectric BSDF (a
+// `BRDF_DIELECTRIC_DISTRIBUTION_*` value): the index of the option in the model catalogue's
+// `distribution` choice.
+typedef uint32_t BrdfDielectricDistribution;
+
+// A sampled direction of a BSDF for a given wo.
+typedef struct BrdfBsdfSampleF32 {
+    // The sampled direction toward the light (unit, local frame; either hemisphere).
+    struct BrdfVec3F32 wi;
+    // For a continuous sample the pdf of `wi` per unit solid angle (the pdf export's
+    // value); for a Dirac sample the probability of choosing the Dirac.
+    float pdf;
+    // f(wi, wo) |n·wi| / pdf per channel (for a Dirac sample: its transmittance or
+    // reflectance over its probability).
+    struct BrdfRgbF32 weight;
+    // 1 when the sample is the Dirac part, else 0.
+    uint32_t specular;
+} BrdfBsdfSampleF32;
+
+// The Dirac part of a BSDF for a given wo: `prob` 0 (and the other fields 0) when it
+// has none.
+typedef struct BrdfDeltaLobeF32 {
+    // The Dirac direction toward the light.
+    struct BrdfVec3F32 wi;
+    // Its contribution to ∫ f |n·wi| dωi per channel.
+    struct BrdfRgbF32 reflectance;
+    // The probability that the sampler returns it.
+    float prob;
+} BrdfDeltaLobeF32;
+
+// A prepared rough dielectric BSDF. Fill it with `brdf_rough_dielectric_init_f64`; the fields are
+// private to the library.
+typedef struct BrdfRoughDielectricF64 {
+    uint64_t tag;
+    uint64_t storage[BRDF_ROUGH_DIELECTRIC_WORDS];
+} BrdfRoughDielectricF64;
+
+// A sampled direction of a BSDF for a given wo.
+typedef struct BrdfBsdfSampleF64 {
+    // The sampled direction toward the light (unit, local frame; either hemisphere).
+    struct BrdfVec3F64 wi;
+    // For a continuous sample the pdf of `wi` per unit solid angle (the pdf export's
+    // value); for a Dirac sample the probability of choosing the Dirac.
+    double pdf;
+    // f(wi, wo) |n·wi| / pdf per channel (for a Dirac sample: its transmittance or
+    // reflectance over its probability).
+    struct BrdfRgbF64 weight;
+    // 1 when the sample is the Dirac part, else 0.
+    uint32_t specular;
+} BrdfBsdfSampleF64;
+
+// The Dirac part of a BSDF for a given wo: `prob` 0 (and the other fields 0) when it
+// has none.
+typedef struct BrdfDeltaLobeF64 {
+    // The Dirac direction toward the light.
+    struct BrdfVec3F64 wi;
+    // Its contribution to ∫ f |n·wi| dωi per channel.
+    struct BrdfRgbF64 reflectance;
+    // The probability that the sampler returns it.
+    double prob;
+} BrdfDeltaLobeF64;
+
 // A parsed per-σ modified-G table (2-D passing-factor table, reciprocal convention). Fill
 // it with `brdf_g_table_parse`; the fields are private to the library.
 typedef struct BrdfGTable {
@@ -238,6 +310,10 @@ typedef struct BrdfAverageAlbedoTable {
 
 // A length does not fit (e.g. larger than the address space allows).
 #define BRDF_STATUS_BAD_LENGTH 4
+
+// A sampler found no direction for these inputs (e.g. a viewer at the horizon); the output
+// is not written.
+#define BRDF_STATUS_NO_SAMPLE 5
 
 // Table: the buffer ends before the header or payload does.
 #define BRDF_STATUS_TABLE_TRUNCATED 10
@@ -321,6 +397,12 @@ typedef struct BrdfAverageAlbedoTable {
 
 // Ashikhmin's V = 1/(4 (n·wi + n·wo − (n·wi)(n·wo))) (Filament's cloth).
 #define BRDF_SHEEN_VISIBILITY_ASHIKHMIN 1
+
+// Trowbridge–Reitz (GGX), width α.
+#define BRDF_DIELECTRIC_DISTRIBUTION_GGX 0
+
+// Beckmann, width α.
+#define BRDF_DIELECTRIC_DISTRIBUTION_BECKMANN 1
 
 #ifdef __cplusplus
 extern "C" {
@@ -579,6 +661,96 @@ struct BrdfRgbF64 brdf_sheen_eval_dots_f64(const struct BrdfSheenF64 *s, double 
 // Directional albedo per channel of the sheen BRDF for a viewer at μ = n·wo ∈ (0, 1]
 // (clamped above); 0 for μ ≤ 0; all NaN for NaN or a bad handle.
 struct BrdfRgbF64 brdf_sheen_albedo_f64(const struct BrdfSheenF64 *s, double mu);
+
+// Prepares the rough dielectric BSDF of Walter, Marschner, Li and Torrance (EGSR 2007):
+// reflection (eq 20) and refraction (eq 21) at a rough interface, exact dielectric
+// Fresnel, separable Smith G (eq 23), radiance convention (f_t carries η_o²;
+// docs/conventions.md §12). `distribution` is a `BRDF_DIELECTRIC_DISTRIBUTION_*`
+// value, α ∈ [0, 1e4] (floored to 1e-4), η = η_inside/η_outside ∈ [0.1, 10] (the +z side
+// is outside). Returns `BRDF_STATUS_OK`, `BRDF_STATUS_NULL_POINTER` or
+// `BRDF_STATUS_INVALID_ARGUMENT`; on error `*out` is left not initialised.
+BrdfStatus brdf_rough_dielectric_init_f32(struct BrdfRoughDielectricF32 *out, BrdfDielectricDistribution distribution, float alpha, float eta);
+
+// The BSDF f(wi, wo) in 1/sr over the whole sphere, `wi` toward the light and `wo`
+// toward the viewer (unit, local frame): f_r for a pair on one side, f_t for a pair
+// across the surface (wo below the surface gives the part transmitted from outside).
+// 0 at the horizon (|n·w| below 2^−63 in f32, 2^−511 in f64), for η = 1 (see the
+// delta export)
+// and for a pair no facet connects; NaN for a non-finite component or a bad handle.
+float brdf_rough_dielectric_eval_f32(const struct BrdfRoughDielectricF32 *m, struct BrdfVec3F32 wi, struct BrdfVec3F32 wo);
+
+// The adjoint BSDF f*(wi, wo) = f(wo, wi) (importance transport): f_r unchanged,
+// f_t* = (η_i/η_o)² f_t; arguments and bad input as for
+// `brdf_rough_dielectric_eval_f32`.
+float brdf_rough_dielectric_eval_adjoint_f32(const struct BrdfRoughDielectricF32 *m, struct BrdfVec3F32 wi, struct BrdfVec3F32 wo);
+
+// The density of `brdf_rough_dielectric_sample_f32` per unit solid angle of `wi` (either
+// hemisphere) for a viewer at `wo` (note the order: wo first); 0 for wo not above the
+// surface and for η = 1; NaN for a non-finite component or a bad handle.
+float brdf_rough_dielectric_pdf_f32(const struct BrdfRoughDielectricF32 *m, struct BrdfVec3F32 wo, struct BrdfVec3F32 wi);
+
+// Samples wi for a viewer at `wo` (above the surface): a visible normal h from
+// (u0, u1), then reflection about h when `uc` < F(wo·h), refraction through h
+// otherwise (Walter §5.3 with Heitz 2018's visible normals); u0, u1, uc ∈ [0, 1). For
+// η = 1 the Dirac −wo (`specular` = 1). Returns `BRDF_STATUS_OK` (sample in `*out`),
+// `BRDF_STATUS_NULL_POINTER` (`out` null), `BRDF_STATUS_NOT_INITIALISED`,
+// `BRDF_STATUS_INVALID_ARGUMENT` (a non-finite input, n·wo ≤ 0) or
+// `BRDF_STATUS_NO_SAMPLE` (the sampler found none, e.g. n·wo below 2^−63 in f32,
+// 2^−511 in f64); `*out` is written only on success.
+BrdfStatus brdf_rough_dielectric_sample_f32(const struct BrdfRoughDielectricF32 *m, struct BrdfVec3F32 wo, float u0, float u1, float uc, struct BrdfBsdfSampleF32 *out);
+
+// The Dirac part for a viewer at `wo`: for η = 1 (an index-matched, invisible interface)
+// and wo above the surface the straight-through −wo with transmittance 1 and
+// probability 1; otherwise all zero (prob 0). Returns `BRDF_STATUS_OK`,
+// `BRDF_STATUS_NULL_POINTER`, `BRDF_STATUS_NOT_INITIALISED` or
+// `BRDF_STATUS_INVALID_ARGUMENT` (a non-finite component); `*out` is written only on
+// success.
+BrdfStatus brdf_rough_dielectric_delta_f32(const struct BrdfRoughDielectricF32 *m, struct BrdfVec3F32 wo, struct BrdfDeltaLobeF32 *out);
+
+// Prepares the rough dielectric BSDF of Walter, Marschner, Li and Torrance (EGSR 2007):
+// reflection (eq 20) and refraction (eq 21) at a rough interface, exact dielectric
+// Fresnel, separable Smith G (eq 23), radiance convention (f_t carries η_o²;
+// docs/conventions.md §12). `distribution` is a `BRDF_DIELECTRIC_DISTRIBUTION_*`
+// value, α ∈ [0, 1e4] (floored to 1e-4), η = η_inside/η_outside ∈ [0.1, 10] (the +z side
+// is outside). Returns `BRDF_STATUS_OK`, `BRDF_STATUS_NULL_POINTER` or
+// `BRDF_STATUS_INVALID_ARGUMENT`; on error `*out` is left not initialised.
+BrdfStatus brdf_rough_dielectric_init_f64(struct BrdfRoughDielectricF64 *out, BrdfDielectricDistribution distribution, double alpha, double eta);
+
+// The BSDF f(wi, wo) in 1/sr over the whole sphere, `wi` toward the light and `wo`
+// toward the viewer (unit, local frame): f_r for a pair on one side, f_t for a pair
+// across the surface (wo below the surface gives the part transmitted from outside).
+// 0 at the horizon (|n·w| below 2^−63 in f32, 2^−511 in f64), for η = 1 (see the
+// delta export)
+// and for a pair no facet connects; NaN for a non-finite component or a bad handle.
+double brdf_rough_dielectric_eval_f64(const struct BrdfRoughDielectricF64 *m, struct BrdfVec3F64 wi, struct BrdfVec3F64 wo);
+
+// The adjoint BSDF f*(wi, wo) = f(wo, wi) (importance transport): f_r unchanged,
+// f_t* = (η_i/η_o)² f_t; arguments and bad input as for
+// `brdf_rough_dielectric_eval_f64`.
+double brdf_rough_dielectric_eval_adjoint_f64(const struct BrdfRoughDielectricF64 *m, struct BrdfVec3F64 wi, struct BrdfVec3F64 wo);
+
+// The density of `brdf_rough_dielectric_sample_f64` per unit solid angle of `wi` (either
+// hemisphere) for a viewer at `wo` (note the order: wo first); 0 for wo not above the
+// surface and for η = 1; NaN for a non-finite component or a bad handle.
+double brdf_rough_dielectric_pdf_f64(const struct BrdfRoughDielectricF64 *m, struct BrdfVec3F64 wo, struct BrdfVec3F64 wi);
+
+// Samples wi for a viewer at `wo` (above the surface): a visible normal h from
+// (u0, u1), then reflection about h when `uc` < F(wo·h), refraction through h
+// otherwise (Walter §5.3 with Heitz 2018's visible normals); u0, u1, uc ∈ [0, 1). For
+// η = 1 the Dirac −wo (`specular` = 1). Returns `BRDF_STATUS_OK` (sample in `*out`),
+// `BRDF_STATUS_NULL_POINTER` (`out` null), `BRDF_STATUS_NOT_INITIALISED`,
+// `BRDF_STATUS_INVALID_ARGUMENT` (a non-finite input, n·wo ≤ 0) or
+// `BRDF_STATUS_NO_SAMPLE` (the sampler found none, e.g. n·wo below 2^−63 in f32,
+// 2^−511 in f64); `*out` is written only on success.
+BrdfStatus brdf_rough_dielectric_sample_f64(const struct BrdfRoughDielectricF64 *m, struct BrdfVec3F64 wo, double u0, double u1, double uc, struct BrdfBsdfSampleF64 *out);
+
+// The Dirac part for a viewer at `wo`: for η = 1 (an index-matched, invisible interface)
+// and wo above the surface the straight-through −wo with transmittance 1 and
+// probability 1; otherwise all zero (prob 0). Returns `BRDF_STATUS_OK`,
+// `BRDF_STATUS_NULL_POINTER`, `BRDF_STATUS_NOT_INITIALISED` or
+// `BRDF_STATUS_INVALID_ARGUMENT` (a non-finite component); `*out` is written only on
+// success.
+BrdfStatus brdf_rough_dielectric_delta_f64(const struct BrdfRoughDielectricF64 *m, struct BrdfVec3F64 wo, struct BrdfDeltaLobeF64 *out);
 
 // Parses a per-σ modified-G table from `len` bytes at `bytes` into `*out`. The bytes are
 // borrowed, not copied: keep them alive and unchanged while `*out` is used. Returns

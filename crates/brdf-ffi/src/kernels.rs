@@ -1,6 +1,7 @@
 //! Kernel exports: the modified G, Blinn's and Smith's G, the Torrance–Sparrow, GGX and
-//! sheen BRDFs and their directional albedo, each in `f32` and `f64`: one definition (the
-//! `typed_abi!` and `sheen_abi!` macros below, over generic helpers) instantiated for each
+//! sheen BRDFs and their directional albedo, and the rough dielectric BSDF (eval, adjoint,
+//! pdf, sampling), each in `f32` and `f64`: one definition (the `typed_abi!`, `sheen_abi!`
+//! and `rough_dielectric_abi!` macros below, over generic helpers) instantiated for each
 //! scalar type.
 //!
 //! Conventions (docs/conventions.md): local frame with z the normal, both directions
@@ -15,14 +16,14 @@
 
 use crate::{
     handle, rd, wr, BrdfStatus, BRDF_STATUS_INVALID_ARGUMENT, BRDF_STATUS_NOT_INITIALISED,
-    BRDF_STATUS_NULL_POINTER, BRDF_STATUS_OK,
+    BRDF_STATUS_NO_SAMPLE, BRDF_STATUS_NULL_POINTER, BRDF_STATUS_OK,
 };
 use brdf_core::albedo::directional_albedo;
 use brdf_core::fresnel::Fresnel;
 use brdf_core::masking::{self, Convention, ModifiedG};
 use brdf_core::models::{
-    Brdf, BrdfFlags, BrdfSample, GeometricTerm, Ggx, LobeHint, MicrofacetSampling, Rgb, Sheen,
-    SheenVisibility, SmithForm, TorranceSparrow,
+    Brdf, BrdfFlags, BrdfSample, DeltaLobe, DielectricDistribution, GeometricTerm, Ggx, LobeHint,
+    MicrofacetSampling, Rgb, RoughDielectric, Sheen, SheenVisibility, SmithForm, TorranceSparrow,
 };
 use brdf_core::{Dots, Real, Vec3};
 
@@ -84,6 +85,29 @@ pub const BRDF_SHEEN_VISIBILITY_ESTEVEZ_KULLA: BrdfSheenVisibility = 0;
 /// Ashikhmin's V = 1/(4 (n·wi + n·wo − (n·wi)(n·wo))) (Filament's cloth).
 pub const BRDF_SHEEN_VISIBILITY_ASHIKHMIN: BrdfSheenVisibility = 1;
 
+/// The microfacet distribution of the rough dielectric BSDF (a
+/// `BRDF_DIELECTRIC_DISTRIBUTION_*` value): the index of the option in the model catalogue's
+/// `distribution` choice.
+pub type BrdfDielectricDistribution = u32;
+/// Trowbridge–Reitz (GGX), width α.
+pub const BRDF_DIELECTRIC_DISTRIBUTION_GGX: BrdfDielectricDistribution = 0;
+/// Beckmann, width α.
+pub const BRDF_DIELECTRIC_DISTRIBUTION_BECKMANN: BrdfDielectricDistribution = 1;
+
+// The constants are the catalogue's option indices (checked when the crate compiles).
+const _: () = {
+    let all = DielectricDistribution::ALL;
+    assert!(all.len() == 2);
+    assert!(matches!(
+        all[BRDF_DIELECTRIC_DISTRIBUTION_GGX as usize],
+        DielectricDistribution::Ggx
+    ));
+    assert!(matches!(
+        all[BRDF_DIELECTRIC_DISTRIBUTION_BECKMANN as usize],
+        DielectricDistribution::Beckmann
+    ));
+};
+
 /// Storage words (8 bytes each) of the modified-G handles.
 pub const BRDF_MODIFIED_G_WORDS: usize = 8;
 /// Storage words (8 bytes each) of the Torrance–Sparrow handles.
@@ -92,6 +116,8 @@ pub const BRDF_TORRANCE_SPARROW_WORDS: usize = 16;
 pub const BRDF_GGX_WORDS: usize = 8;
 /// Storage words (8 bytes each) of the sheen handles.
 pub const BRDF_SHEEN_WORDS: usize = 16;
+/// Storage words (8 bytes each) of the rough dielectric handles.
+pub const BRDF_ROUGH_DIELECTRIC_WORDS: usize = 8;
 
 const TAG_MODIFIED_G_F32: u64 = 0x4252_4446_4d47_3332;
 const TAG_MODIFIED_G_F64: u64 = 0x4252_4446_4d47_3634;
@@ -101,6 +127,8 @@ const TAG_GGX_F32: u64 = 0x4252_4446_4758_3332;
 const TAG_GGX_F64: u64 = 0x4252_4446_4758_3634;
 const TAG_SHEEN_F32: u64 = 0x4252_4446_5348_3332;
 const TAG_SHEEN_F64: u64 = 0x4252_4446_5348_3634;
+const TAG_RD_F32: u64 = 0x4252_4446_5244_3332;
+const TAG_RD_F64: u64 = 0x4252_4446_5244_3634;
 
 fn convention(c: BrdfConvention) -> Option<Convention> {
     match c {
@@ -269,6 +297,92 @@ fn sheen_albedo<T: Real>(m: &Sheen<T>, mu: T) -> Rgb<T> {
 
 fn finite3<T: Real>(a: T, b: T, c: T) -> bool {
     a.is_finite() && b.is_finite() && c.is_finite()
+}
+
+fn vec_ok<T: Real>(v: Vec3<T>) -> bool {
+    finite3(v.x, v.y, v.z)
+}
+
+fn dielectric_new<T: Real>(
+    d: BrdfDielectricDistribution,
+    alpha: T,
+    eta: T,
+) -> Result<RoughDielectric<T>, BrdfStatus> {
+    let d = *DielectricDistribution::ALL
+        .get(d as usize)
+        .ok_or(BRDF_STATUS_INVALID_ARGUMENT)?;
+    RoughDielectric::new(d, alpha, eta).map_err(|_| BRDF_STATUS_INVALID_ARGUMENT)
+}
+
+/// `f(m, a, b)` of a prepared rough dielectric at two directions; NaN for a missing handle or
+/// a non-finite component.
+fn dielectric_at<T: Real>(
+    m: Option<&RoughDielectric<T>>,
+    a: Vec3<T>,
+    b: Vec3<T>,
+    f: impl Fn(&RoughDielectric<T>, Vec3<T>, Vec3<T>) -> T,
+) -> T {
+    match m {
+        Some(m) if vec_ok(a) && vec_ok(b) => f(m, a, b),
+        _ => T::NAN,
+    }
+}
+
+/// [`RoughDielectric::sample_with_choice`] with the C status codes: not initialised (bad
+/// handle), invalid argument (a non-finite input, or wo at or below the surface, n·wo ≤ 0),
+/// no sample (the sampler returned none: wo within brdf-core's `min_cos` of the horizon, or
+/// a sampled direction the pdf does not cover).
+fn dielectric_sample<T: Real>(
+    m: Option<&RoughDielectric<T>>,
+    wo: Vec3<T>,
+    u: [T; 2],
+    uc: T,
+) -> Result<BrdfSample<T>, BrdfStatus> {
+    let m = m.ok_or(BRDF_STATUS_NOT_INITIALISED)?;
+    if !vec_ok(wo) || !finite3(u[0], u[1], uc) || !(wo.z > T::ZERO) {
+        return Err(BRDF_STATUS_INVALID_ARGUMENT);
+    }
+    m.sample_with_choice(wo, u, uc).ok_or(BRDF_STATUS_NO_SAMPLE)
+}
+
+/// The Dirac part of a prepared rough dielectric for wo (η = 1 only), or a zero lobe
+/// (probability 0) when it has none; statuses as for [`dielectric_sample`].
+fn dielectric_delta<T: Real>(
+    m: Option<&RoughDielectric<T>>,
+    wo: Vec3<T>,
+) -> Result<DeltaLobe<T>, BrdfStatus> {
+    let m = m.ok_or(BRDF_STATUS_NOT_INITIALISED)?;
+    if !vec_ok(wo) {
+        return Err(BRDF_STATUS_INVALID_ARGUMENT);
+    }
+    Ok(m.delta(wo).unwrap_or(DeltaLobe {
+        wi: Vec3::new(T::ZERO, T::ZERO, T::ZERO),
+        reflectance: Rgb::zero(),
+        prob: T::ZERO,
+    }))
+}
+
+/// Writes `r`'s value through `out` (converted) and returns its status; writes nothing on an
+/// error or for a null `out` (`BRDF_STATUS_NULL_POINTER`, checked first).
+///
+/// # Safety
+/// `out` is null or valid for writes of one `C`.
+unsafe fn put_result<V, C: From<V>>(
+    out: *mut C,
+    r: impl FnOnce() -> Result<V, BrdfStatus>,
+) -> BrdfStatus {
+    if out.is_null() {
+        return BRDF_STATUS_NULL_POINTER;
+    }
+    match r() {
+        Ok(v) => {
+            // SAFETY: `out` is non-null and valid for writes (this function's contract);
+            // `write_unaligned` needs no alignment.
+            unsafe { out.write_unaligned(C::from(v)) };
+            BRDF_STATUS_OK
+        }
+        Err(s) => s,
+    }
 }
 
 /// `f` of a prepared Torrance–Sparrow BRDF at the dot products `d`; NaN for a missing handle
@@ -834,4 +948,182 @@ sheen_abi! {
 sheen_abi! {
     f64; BrdfVec3F64, BrdfRgbF64; BrdfSheenF64 = TAG_SHEEN_F64;
     brdf_sheen_init_f64, brdf_sheen_eval_f64, brdf_sheen_eval_dots_f64, brdf_sheen_albedo_f64,
+}
+
+/// Emits the rough dielectric handle, its sample and Dirac structs and its exports for one
+/// scalar type `$t` (the vector and colour structs come from `typed_abi!`).
+macro_rules! rough_dielectric_abi {
+    (
+        $t:ident; $Vec3:ident, $Rgb:ident; $RD:ident = $tag:ident, $Sample:ident, $Delta:ident;
+        $init:ident, $eval:ident, $eval_adjoint:ident, $pdf:ident, $sample:ident,
+        $delta:ident $(,)?
+    ) => {
+        #[doc = concat!(" A prepared rough dielectric BSDF. Fill it with `", stringify!($init), "`; the fields are")]
+        /// private to the library.
+        #[repr(C)]
+        pub struct $RD {
+            tag: u64,
+            storage: [u64; BRDF_ROUGH_DIELECTRIC_WORDS],
+        }
+        handle!($RD, RoughDielectric<$t>, $tag);
+
+        /// A sampled direction of a BSDF for a given wo.
+        #[repr(C)]
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct $Sample {
+            /// The sampled direction toward the light (unit, local frame; either hemisphere).
+            pub wi: $Vec3,
+            /// For a continuous sample the pdf of `wi` per unit solid angle (the pdf export's
+            /// value); for a Dirac sample the probability of choosing the Dirac.
+            pub pdf: $t,
+            /// f(wi, wo) |n·wi| / pdf per channel (for a Dirac sample: its transmittance or
+            /// reflectance over its probability).
+            pub weight: $Rgb,
+            /// 1 when the sample is the Dirac part, else 0.
+            pub specular: u32,
+        }
+
+        /// The Dirac part of a BSDF for a given wo: `prob` 0 (and the other fields 0) when it
+        /// has none.
+        #[repr(C)]
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct $Delta {
+            /// The Dirac direction toward the light.
+            pub wi: $Vec3,
+            /// Its contribution to ∫ f |n·wi| dωi per channel.
+            pub reflectance: $Rgb,
+            /// The probability that the sampler returns it.
+            pub prob: $t,
+        }
+
+        impl From<Vec3<$t>> for $Vec3 {
+            fn from(v: Vec3<$t>) -> Self {
+                Self { x: v.x, y: v.y, z: v.z }
+            }
+        }
+
+        impl From<BrdfSample<$t>> for $Sample {
+            fn from(s: BrdfSample<$t>) -> Self {
+                let specular = u32::from(s.specular);
+                Self { wi: s.wi.into(), pdf: s.pdf, weight: s.weight.into(), specular }
+            }
+        }
+
+        impl From<DeltaLobe<$t>> for $Delta {
+            fn from(d: DeltaLobe<$t>) -> Self {
+                Self { wi: d.wi.into(), reflectance: d.reflectance.into(), prob: d.prob }
+            }
+        }
+
+        /// Prepares the rough dielectric BSDF of Walter, Marschner, Li and Torrance (EGSR 2007):
+        /// reflection (eq 20) and refraction (eq 21) at a rough interface, exact dielectric
+        /// Fresnel, separable Smith G (eq 23), radiance convention (f_t carries η_o²;
+        /// docs/conventions.md §12). `distribution` is a `BRDF_DIELECTRIC_DISTRIBUTION_*`
+        /// value, α ∈ [0, 1e4] (floored to 1e-4), η = η_inside/η_outside ∈ [0.1, 10] (the +z side
+        /// is outside). Returns `BRDF_STATUS_OK`, `BRDF_STATUS_NULL_POINTER` or
+        /// `BRDF_STATUS_INVALID_ARGUMENT`; on error `*out` is left not initialised.
+        #[cfg_attr(not(brdf_header), doc = crate::safety!(init))]
+        #[no_mangle]
+        pub unsafe extern "C" fn $init(
+            out: *mut $RD,
+            distribution: BrdfDielectricDistribution,
+            alpha: $t,
+            eta: $t,
+        ) -> BrdfStatus {
+            let new = || dielectric_new(distribution, alpha, eta);
+            // SAFETY: the caller's contract for `out` is the one `init` needs.
+            unsafe { init(out, $RD::clear, $RD::put, new) }
+        }
+
+        /// The BSDF f(wi, wo) in 1/sr over the whole sphere, `wi` toward the light and `wo`
+        /// toward the viewer (unit, local frame): f_r for a pair on one side, f_t for a pair
+        /// across the surface (wo below the surface gives the part transmitted from outside).
+        /// 0 at the horizon (|n·w| below 2^−63 in f32, 2^−511 in f64), for η = 1 (see the
+        /// delta export)
+        /// and for a pair no facet connects; NaN for a non-finite component or a bad handle.
+        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
+        #[no_mangle]
+        pub unsafe extern "C" fn $eval(m: *const $RD, wi: $Vec3, wo: $Vec3) -> $t {
+            // SAFETY: `m` is null or a readable handle (the caller's contract).
+            let m = unsafe { $RD::get(m) };
+            dielectric_at(m, wi.into(), wo.into(), RoughDielectric::eval_bsdf)
+        }
+
+        /// The adjoint BSDF f*(wi, wo) = f(wo, wi) (importance transport): f_r unchanged,
+        /// f_t* = (η_i/η_o)² f_t; arguments and bad input as for
+        #[doc = concat!(" `", stringify!($eval), "`.")]
+        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
+        #[no_mangle]
+        pub unsafe extern "C" fn $eval_adjoint(m: *const $RD, wi: $Vec3, wo: $Vec3) -> $t {
+            // SAFETY: `m` is null or a readable handle (the caller's contract).
+            let m = unsafe { $RD::get(m) };
+            dielectric_at(m, wi.into(), wo.into(), RoughDielectric::eval_adjoint)
+        }
+
+        #[doc = concat!(" The density of `", stringify!($sample), "` per unit solid angle of `wi` (either")]
+        /// hemisphere) for a viewer at `wo` (note the order: wo first); 0 for wo not above the
+        /// surface and for η = 1; NaN for a non-finite component or a bad handle.
+        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
+        #[no_mangle]
+        pub unsafe extern "C" fn $pdf(m: *const $RD, wo: $Vec3, wi: $Vec3) -> $t {
+            // SAFETY: `m` is null or a readable handle (the caller's contract).
+            let m = unsafe { $RD::get(m) };
+            dielectric_at(m, wo.into(), wi.into(), |m, wo, wi| m.pdf(wo, wi))
+        }
+
+        /// Samples wi for a viewer at `wo` (above the surface): a visible normal h from
+        /// (u0, u1), then reflection about h when `uc` < F(wo·h), refraction through h
+        /// otherwise (Walter §5.3 with Heitz 2018's visible normals); u0, u1, uc ∈ [0, 1). For
+        /// η = 1 the Dirac −wo (`specular` = 1). Returns `BRDF_STATUS_OK` (sample in `*out`),
+        /// `BRDF_STATUS_NULL_POINTER` (`out` null), `BRDF_STATUS_NOT_INITIALISED`,
+        /// `BRDF_STATUS_INVALID_ARGUMENT` (a non-finite input, n·wo ≤ 0) or
+        /// `BRDF_STATUS_NO_SAMPLE` (the sampler found none, e.g. n·wo below 2^−63 in f32,
+        /// 2^−511 in f64); `*out` is written only on success.
+        #[cfg_attr(not(brdf_header), doc = crate::safety!(sample))]
+        #[no_mangle]
+        pub unsafe extern "C" fn $sample(
+            m: *const $RD,
+            wo: $Vec3,
+            u0: $t,
+            u1: $t,
+            uc: $t,
+            out: *mut $Sample,
+        ) -> BrdfStatus {
+            // SAFETY: `m` is null or a readable handle (the caller's contract).
+            let m = unsafe { $RD::get(m) };
+            // SAFETY: `out` is null or valid for writes (the caller's contract).
+            unsafe { put_result(out, || dielectric_sample(m, wo.into(), [u0, u1], uc)) }
+        }
+
+        /// The Dirac part for a viewer at `wo`: for η = 1 (an index-matched, invisible interface)
+        /// and wo above the surface the straight-through −wo with transmittance 1 and
+        /// probability 1; otherwise all zero (prob 0). Returns `BRDF_STATUS_OK`,
+        /// `BRDF_STATUS_NULL_POINTER`, `BRDF_STATUS_NOT_INITIALISED` or
+        /// `BRDF_STATUS_INVALID_ARGUMENT` (a non-finite component); `*out` is written only on
+        /// success.
+        #[cfg_attr(not(brdf_header), doc = crate::safety!(sample))]
+        #[no_mangle]
+        pub unsafe extern "C" fn $delta(m: *const $RD, wo: $Vec3, out: *mut $Delta) -> BrdfStatus {
+            // SAFETY: `m` is null or a readable handle (the caller's contract).
+            let m = unsafe { $RD::get(m) };
+            // SAFETY: `out` is null or valid for writes (the caller's contract).
+            unsafe { put_result(out, || dielectric_delta(m, wo.into())) }
+        }
+    };
+}
+
+rough_dielectric_abi! {
+    f32; BrdfVec3F32, BrdfRgbF32;
+    BrdfRoughDielectricF32 = TAG_RD_F32, BrdfBsdfSampleF32, BrdfDeltaLobeF32;
+    brdf_rough_dielectric_init_f32, brdf_rough_dielectric_eval_f32,
+    brdf_rough_dielectric_eval_adjoint_f32, brdf_rough_dielectric_pdf_f32,
+    brdf_rough_dielectric_sample_f32, brdf_rough_dielectric_delta_f32,
+}
+
+rough_dielectric_abi! {
+    f64; BrdfVec3F64, BrdfRgbF64;
+    BrdfRoughDielectricF64 = TAG_RD_F64, BrdfBsdfSampleF64, BrdfDeltaLobeF64;
+    brdf_rough_dielectric_init_f64, brdf_rough_dielectric_eval_f64,
+    brdf_rough_dielectric_eval_adjoint_f64, brdf_rough_dielectric_pdf_f64,
+    brdf_rough_dielectric_sample_f64, brdf_rough_dielectric_delta_f64,
 }

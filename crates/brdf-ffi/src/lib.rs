@@ -67,6 +67,12 @@ macro_rules! safety {
             $crate::safety!(@arrays)
         )
     };
+    (sample) => {
+        concat!(
+            $crate::safety!(query),
+            " `out` is null or valid for writes of one result struct of its type."
+        )
+    };
     (parse) => {
         concat!(
             $crate::safety!(init),
@@ -102,6 +108,9 @@ pub const BRDF_STATUS_INVALID_ARGUMENT: BrdfStatus = 2;
 pub const BRDF_STATUS_NOT_INITIALISED: BrdfStatus = 3;
 /// A length does not fit (e.g. larger than the address space allows).
 pub const BRDF_STATUS_BAD_LENGTH: BrdfStatus = 4;
+/// A sampler found no direction for these inputs (e.g. a viewer at the horizon); the output
+/// is not written.
+pub const BRDF_STATUS_NO_SAMPLE: BrdfStatus = 5;
 /// Table: the buffer ends before the header or payload does.
 pub const BRDF_STATUS_TABLE_TRUNCATED: BrdfStatus = 10;
 /// Table: not a LUT (the magic bytes are wrong).
@@ -141,6 +150,7 @@ pub extern "C" fn brdf_status_str(status: BrdfStatus) -> *const core::ffi::c_cha
         BRDF_STATUS_INVALID_ARGUMENT => c"invalid argument",
         BRDF_STATUS_NOT_INITIALISED => c"handle not initialised",
         BRDF_STATUS_BAD_LENGTH => c"bad length",
+        BRDF_STATUS_NO_SAMPLE => c"no sample",
         BRDF_STATUS_TABLE_TRUNCATED => c"table truncated",
         BRDF_STATUS_TABLE_BAD_MAGIC => c"not a table (bad magic)",
         BRDF_STATUS_TABLE_UNSUPPORTED_VERSION => c"unsupported table version",

@@ -225,6 +225,61 @@ fn ggx(mut p: Args, albedo: bool) -> Result<Vec<Val>> {
     Ok(c.vals())
 }
 
+/// The rough dielectric exports of one scalar type, with its vector constructor.
+struct RdFns<H, T, V> {
+    init: unsafe extern "C" fn(*mut H, u32, T, T) -> BrdfStatus,
+    eval: unsafe extern "C" fn(*const H, V, V) -> T,
+    adjoint: unsafe extern "C" fn(*const H, V, V) -> T,
+    pdf: unsafe extern "C" fn(*const H, V, V) -> T,
+    vec: fn(T, T, T) -> V,
+}
+
+/// `rd_f32` (distribution, α, η, wi, wo → f, f*, pdf(wo, wi)) and `rd_f64` (→ f).
+fn rd<T: Scalar, H, V: Copy>(mut p: Args, f: RdFns<H, T, V>, all: bool) -> Result<Vec<Val>> {
+    let (d, a, eta) = (p.u()?, p.f()?, p.f()?);
+    let wi = (f.vec)(p.f()?, p.f()?, p.f()?);
+    let wo = (f.vec)(p.f()?, p.f()?, p.f()?);
+    // SAFETY: as in `mg_terms`.
+    let r = with_handle(
+        |h| unsafe { (f.init)(h, d, a, eta) },
+        |h| unsafe {
+            [
+                (f.eval)(h, wi, wo),
+                (f.adjoint)(h, wi, wo),
+                (f.pdf)(h, wo, wi),
+            ]
+        },
+    )?;
+    let n = if all { 3 } else { 1 };
+    Ok(r[..n].iter().map(|v| v.val()).collect())
+}
+
+/// `rd_sample_f32`: distribution, α, η, wo, u0, u1, uc → wi, pdf, weight (a failed sample
+/// is an error: the C program prints only successful ones).
+fn rd_sample(mut p: Args) -> Result<Vec<Val>> {
+    let (d, a, eta) = (p.u()?, p.f()?, p.f()?);
+    let wo = BrdfVec3F32 {
+        x: p.f()?,
+        y: p.f()?,
+        z: p.f()?,
+    };
+    let (u0, u1, uc) = (p.f()?, p.f()?, p.f()?);
+    let mut s = MaybeUninit::<BrdfBsdfSampleF32>::uninit();
+    let st = with_handle(
+        // SAFETY: as in `mg_terms`.
+        |h| unsafe { brdf_rough_dielectric_init_f32(h, d, a, eta) },
+        // SAFETY: as in `mg_terms`; `s` is valid for writes of one sample.
+        |h| unsafe { brdf_rough_dielectric_sample_f32(h, wo, u0, u1, uc, s.as_mut_ptr()) },
+    )?;
+    if st != BRDF_STATUS_OK {
+        bail!("sample failed with status {st}");
+    }
+    // SAFETY: a successful sample wrote `s`.
+    let s = unsafe { s.assume_init() };
+    let w = [s.wi.x, s.wi.y, s.wi.z, s.pdf];
+    Ok(w.iter().map(|v| v.val()).chain(s.weight.vals()).collect())
+}
+
 /// The tables the C program embedded, parsed on the host from `assets/`.
 #[derive(Default)]
 pub(crate) struct HostTables {
@@ -373,6 +428,29 @@ pub(crate) fn host_values(t: &HostTables, kernel: &str, a: &[Arg]) -> Result<Vec
         "ts_albedo_f32" => ts_albedo(n(7)?),
         "ggx_f32" => ggx(n(11)?, false),
         "ggx_albedo_f32" => ggx(n(6)?, true),
+        "rd_f32" => rd(
+            n(9)?,
+            RdFns {
+                init: brdf_rough_dielectric_init_f32,
+                eval: brdf_rough_dielectric_eval_f32,
+                adjoint: brdf_rough_dielectric_eval_adjoint_f32,
+                pdf: brdf_rough_dielectric_pdf_f32,
+                vec: |x, y, z| BrdfVec3F32 { x, y, z },
+            },
+            true,
+        ),
+        "rd_f64" => rd(
+            n(9)?,
+            RdFns {
+                init: brdf_rough_dielectric_init_f64,
+                eval: brdf_rough_dielectric_eval_f64,
+                adjoint: brdf_rough_dielectric_eval_adjoint_f64,
+                pdf: brdf_rough_dielectric_pdf_f64,
+                vec: |x, y, z| BrdfVec3F64 { x, y, z },
+            },
+            false,
+        ),
+        "rd_sample_f32" => rd_sample(n(9)?),
         _ => table_values(t, kernel, a),
     }
 }
