@@ -2,7 +2,11 @@
 //! 0xFFFFFFFF): the checksum of a LUT file (docs/lut-format.md §5). Check value:
 //! `crc32(b"123456789") == 0xCBF43926`.
 
+/// The reflected CRC-32 (IEEE 802.3) polynomial.
+const POLY: u32 = 0xEDB8_8320;
+
 /// The CRC register after shifting in the low `BITS` bits of every index (`N` = 2^BITS).
+#[cfg_attr(feature = "compact", allow(dead_code))]
 const fn make_table<const N: usize, const BITS: u32>() -> [u32; N] {
     let mut t = [0u32; N];
     let mut i = 0;
@@ -11,7 +15,7 @@ const fn make_table<const N: usize, const BITS: u32>() -> [u32; N] {
         let mut k = 0;
         while k < BITS {
             c = if c & 1 != 0 {
-                0xEDB8_8320 ^ (c >> 1)
+                POLY ^ (c >> 1)
             } else {
                 c >> 1
             };
@@ -27,8 +31,7 @@ const fn make_table<const N: usize, const BITS: u32>() -> [u32; N] {
 #[cfg(not(feature = "compact"))]
 static TABLE: [u32; 256] = make_table::<256, 8>();
 /// Nibble-at-a-time table (64 B) for size budgets: the same CRC, two steps per byte.
-#[cfg(feature = "compact")]
-static TABLE: [u32; 16] = make_table::<16, 4>();
+
 
 /// A running CRC-32: `Crc32::new().update(a).update(b).finish()` is the CRC of `a ++ b`.
 #[derive(Clone, Copy, Debug)]
@@ -54,9 +57,12 @@ impl Crc32 {
             }
             #[cfg(feature = "compact")]
             {
-                let c = self.0 ^ b as u32;
-                let c = TABLE[(c & 0xF) as usize] ^ (c >> 4);
-                self.0 = TABLE[(c & 0xF) as usize] ^ (c >> 4);
+                // Bit by bit, no table: the polynomial is XORed in where the low bit is 1.
+                let mut c = self.0 ^ b as u32;
+                for _ in 0..8 {
+                    c = (c >> 1) ^ (POLY & (c & 1).wrapping_neg());
+                }
+                self.0 = c;
             }
         }
         self

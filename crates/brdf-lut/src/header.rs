@@ -314,11 +314,13 @@ pub struct Header<'a> {
 /// finite and ≥ 0 (−0 counts as 0); `None` (a version 1 file) passes. The same comparison
 /// chain as [`ErrorStats::check`], with the bound as the maximum and 0 as the RMS.
 pub fn check_integration(e: Option<f32>) -> Result<(), crate::LutError> {
-    ErrorStats {
-        max_abs: e.unwrap_or(0.0),
-        ..ErrorStats::default()
+    match e {
+        // NaN fails both comparisons, +inf the second, a negative value the first.
+        Some(e) if !(0.0 <= e && e <= f32::MAX) => Err(crate::LutError::BadErrorStats {
+            field: "the integration error bound must be finite and >= 0",
+        }),
+        _ => Ok(()),
     }
-    .check()
 }
 
 impl Header<'_> {

@@ -176,7 +176,7 @@ fn print_sizes(s: &Sizes, stack: Option<u64>) {
     for (p, label) in [
         (
             Part::Kernels,
-            "libbrdf_ffi kernels (modified G, Blinn, Smith, Torrance–Sparrow, GGX, albedo; libm, soft-f64)",
+            "libbrdf_ffi kernels (modified G, Blinn, Smith, Torrance–Sparrow, GGX, sheen, rough dielectric, albedo; libm, soft-f64)",
         ),
         (
             Part::Readers,
