@@ -1,5 +1,5 @@
 //! `cargo xtask wasm`: builds the WebAssembly module (release, wasm32-unknown-unknown,
-//! size-optimised), shrinks it with `wasm-opt -Oz` (Debian's binaryen), prints the sizes
+//! size-optimised), shrinks it with `wasm-opt` ([`WASM_OPT_PASSES`], Debian's binaryen), prints the sizes
 //! against the 64 KiB budget, writes the native expected values and runs the Node tests
 //! (`node --test crates/brdf-wasm/test/`).
 //!
@@ -55,6 +55,9 @@ pub fn run(dir: &Path, cmd: &mut Command) -> Result<()> {
     Ok(())
 }
 
+/// The wasm-opt passes, in order.
+pub const WASM_OPT_PASSES: [&str; 5] = ["-Oz", "--flatten", "--rereloop", "-Oz", "-Oz"];
+
 fn cargo() -> Command {
     Command::new(std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into()))
 }
@@ -95,7 +98,11 @@ pub fn build(root: &Path) -> Result<(u64, u64)> {
     run(
         root,
         Command::new("wasm-opt")
-            .args(["-Oz", "--strip-debug", "--strip-producers"])
+            // -Oz, then flattened and re-reloop'ed and -Oz twice more: binaryen's own
+            // semantics-preserving passes, about 1 % smaller than -Oz alone (measured: 65,463
+            // against 66,182 bytes once the rough dielectric joined the catalogue).
+            .args(WASM_OPT_PASSES)
+            .args(["--strip-debug", "--strip-producers"])
             .arg(&raw)
             .arg("-o")
             .arg(&out),
@@ -103,9 +110,10 @@ pub fn build(root: &Path) -> Result<(u64, u64)> {
     let after = std::fs::metadata(&out)?.len();
     let report = format!(
         "brdf_wasm.wasm: {before} bytes ({:.1} KiB) from rustc (opt-level z, LTO), \
-         {after} bytes ({:.1} KiB) after wasm-opt -Oz; budget {BUDGET} bytes (64 KiB): {}\n",
+         {after} bytes ({:.1} KiB) after wasm-opt {}; budget {BUDGET} bytes (64 KiB): {}\n",
         before as f64 / 1024.0,
         after as f64 / 1024.0,
+        WASM_OPT_PASSES.join(" "),
         if after <= BUDGET { "within" } else { "OVER" }
     );
     print!("{report}");

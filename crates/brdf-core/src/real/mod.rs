@@ -353,10 +353,11 @@ impl Real for f64 {
 /// truncation errors (< 3e-9, < 2e-10) are below f32 rounding. Accuracy: within 2 ulp
 /// (1.2e-7 absolute) of the exact values for |x| ≤ 6400 (tested against f64 libm); beyond
 /// that the reduction is approximate but the result stays in [−1, 1]. NaN and ±∞ give NaN.
-/// On bare metal it is never inlined: the kernels and the LUT reader's cos-warped axes then
-/// share one copy (the firmware's 16 KiB flash budget).
-#[cfg_attr(target_os = "none", inline(never))]
-#[cfg_attr(not(target_os = "none"), inline)]
+/// On bare metal and WASM it is never inlined: every caller (the kernels, the LUT reader's
+/// cos-warped axes) then shares one copy (the firmware's 16 KiB flash and the WASM module's
+/// 64 KiB budgets).
+#[cfg_attr(any(target_os = "none", target_arch = "wasm32"), inline(never))]
+#[cfg_attr(not(any(target_os = "none", target_arch = "wasm32")), inline)]
 pub fn sin_cos_f32(x: f32) -> (f32, f32) {
     const FRAC_2_PI: f32 = 0.636_619_75;
     const P1: f32 = 1.570_312_5;
