@@ -14,11 +14,7 @@ const fn make_table<const N: usize, const BITS: u32>() -> [u32; N] {
         let mut c = i as u32;
         let mut k = 0;
         while k < BITS {
-            c = if c & 1 != 0 {
-                POLY ^ (c >> 1)
-            } else {
-                c >> 1
-            };
+            c = if c & 1 != 0 { POLY ^ (c >> 1) } else { c >> 1 };
             k += 1;
         }
         t[i] = c;
@@ -31,7 +27,6 @@ const fn make_table<const N: usize, const BITS: u32>() -> [u32; N] {
 #[cfg(not(feature = "compact"))]
 static TABLE: [u32; 256] = make_table::<256, 8>();
 /// Nibble-at-a-time table (64 B) for size budgets: the same CRC, two steps per byte.
-
 
 /// A running CRC-32: `Crc32::new().update(a).update(b).finish()` is the CRC of `a ++ b`.
 #[derive(Clone, Copy, Debug)]

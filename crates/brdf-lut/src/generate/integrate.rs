@@ -107,7 +107,11 @@ pub fn ggx_row(spec: &Spec, mus: &[f64], rx: f64, stride: usize, out: &mut [f64]
     };
     let r = polar_r(spec, rx)?;
     let mut p = vec![Polar::default(); mus.len()];
-    let row = if albedo { e_ggx_polar_row } else { dfg_ggx_polar_row };
+    let row = if albedo {
+        e_ggx_polar_row
+    } else {
+        dfg_ggx_polar_row
+    };
     let w = row(r, mus, TOL, &mut p).ok()?;
     let nc = stride.checked_sub(2)?.min(2);
     for (k, (slot, p)) in out.chunks_mut(stride).zip(&p).enumerate() {
