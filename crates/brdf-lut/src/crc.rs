@@ -26,7 +26,6 @@ const fn make_table<const N: usize, const BITS: u32>() -> [u32; N] {
 /// Byte-at-a-time table (1 KiB).
 #[cfg(not(feature = "compact"))]
 static TABLE: [u32; 256] = make_table::<256, 8>();
-/// Nibble-at-a-time table (64 B) for size budgets: the same CRC, two steps per byte.
 
 /// A running CRC-32: `Crc32::new().update(a).update(b).finish()` is the CRC of `a ++ b`.
 #[derive(Clone, Copy, Debug)]

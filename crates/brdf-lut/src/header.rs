@@ -315,8 +315,8 @@ pub struct Header<'a> {
 /// chain as [`ErrorStats::check`], with the bound as the maximum and 0 as the RMS.
 pub fn check_integration(e: Option<f32>) -> Result<(), crate::LutError> {
     match e {
-        // NaN fails both comparisons, +inf the second, a negative value the first.
-        Some(e) if !(0.0 <= e && e <= f32::MAX) => Err(crate::LutError::BadErrorStats {
+        // NaN, +inf and negative values are outside the range (−0 is inside).
+        Some(e) if !(0.0..=f32::MAX).contains(&e) => Err(crate::LutError::BadErrorStats {
             field: "the integration error bound must be finite and >= 0",
         }),
         _ => Ok(()),
