@@ -253,3 +253,61 @@ impl Machine {
         }
     }
 }
+
+/// A Markdown table row `| a | b | … |` with its newline.
+pub(crate) fn row<S: AsRef<str>>(cells: &[S]) -> String {
+    let mut s = String::from("|");
+    for c in cells {
+        s.push(' ');
+        s.push_str(c.as_ref());
+        s.push_str(" |");
+    }
+    s.push('\n');
+    s
+}
+
+/// a / b when both are known and b > 0.
+pub(crate) fn ratio(a: Option<f64>, b: Option<f64>) -> Option<f64> {
+    match (a, b) {
+        (Some(a), Some(b)) if b > 0.0 => Some(a / b),
+        _ => None,
+    }
+}
+
+/// `fmt_ns` of a figure that may be missing ("–").
+pub(crate) fn ns(x: Option<f64>) -> String {
+    x.map_or("–".into(), fmt_ns)
+}
+
+impl Data {
+    /// ns per call of criterion result `id`.
+    pub fn per(&self, id: &str) -> Option<f64> {
+        self.est.get(id).map(Est::per_call)
+    }
+    /// Callgrind instructions per call of kernel `k`.
+    pub fn ir(&self, k: &str) -> Option<f64> {
+        self.cg
+            .as_ref()
+            .ok()?
+            .iter()
+            .find(|x| x.0 == k)
+            .map(|x| x.2)
+    }
+    /// The SciPy peer's ns per G, when it ran.
+    fn peer_ns(&self) -> Option<f64> {
+        match &self.peer {
+            Peer::Ran { ns_per_g, .. } => Some(*ns_per_g),
+            Peer::Skipped(_) => None,
+        }
+    }
+    /// Criterion ids under `group/`, the rest of each id, sorted.
+    fn names(&self, group: &str) -> Vec<&str> {
+        let mut v: Vec<&str> = self
+            .est
+            .keys()
+            .filter_map(|k| k.strip_prefix(group))
+            .collect();
+        v.sort();
+        v
+    }
+}

@@ -3,33 +3,13 @@
 //! table rows it fills in (minijinja, undefined names are errors).
 
 use super::tablegen::{self, TableGen, Timing};
-use super::{fmt_ns, targets, Data, Est, Peer};
+use super::{fmt_ns, ns, ratio, row, targets, Data, Est, Peer};
 use crate::SIGMA;
 use brdf_core::quadrature::DEFAULT_NODES;
 use minijinja::{context, Value};
 use std::collections::BTreeMap;
 
 pub(super) const TEMPLATE: &str = include_str!("../../templates/benchmarks.md");
-
-/// A Markdown table row `| a | b | … |` with its newline.
-pub(super) fn row<S: AsRef<str>>(cells: &[S]) -> String {
-    let mut s = String::from("|");
-    for c in cells {
-        s.push(' ');
-        s.push_str(c.as_ref());
-        s.push_str(" |");
-    }
-    s.push('\n');
-    s
-}
-
-/// a / b when both are known and b > 0.
-pub(super) fn ratio(a: Option<f64>, b: Option<f64>) -> Option<f64> {
-    match (a, b) {
-        (Some(a), Some(b)) if b > 0.0 => Some(a / b),
-        _ => None,
-    }
-}
 
 /// "12.3× — **met**" when `x ≥ t`, else "0.45× — **missed**", or "not measured".
 fn verdict(x: Option<f64>, t: f64) -> String {
@@ -40,47 +20,9 @@ fn verdict(x: Option<f64>, t: f64) -> String {
     }
 }
 
-/// `fmt_ns` of a figure that may be missing ("–").
-pub(super) fn ns(x: Option<f64>) -> String {
-    x.map_or("–".into(), fmt_ns)
-}
-
 /// `{x:.1e}` or "–".
 fn e1(x: Option<f64>) -> String {
     x.map_or("–".into(), |x| format!("{x:.1e}"))
-}
-
-impl Data {
-    /// ns per call of criterion result `id`.
-    pub fn per(&self, id: &str) -> Option<f64> {
-        self.est.get(id).map(Est::per_call)
-    }
-    /// Callgrind instructions per call of kernel `k`.
-    pub fn ir(&self, k: &str) -> Option<f64> {
-        self.cg
-            .as_ref()
-            .ok()?
-            .iter()
-            .find(|x| x.0 == k)
-            .map(|x| x.2)
-    }
-    /// The SciPy peer's ns per G, when it ran.
-    fn peer_ns(&self) -> Option<f64> {
-        match &self.peer {
-            Peer::Ran { ns_per_g, .. } => Some(*ns_per_g),
-            Peer::Skipped(_) => None,
-        }
-    }
-    /// Criterion ids under `group/`, the rest of each id, sorted.
-    fn names(&self, group: &str) -> Vec<&str> {
-        let mut v: Vec<&str> = self
-            .est
-            .keys()
-            .filter_map(|k| k.strip_prefix(group))
-            .collect();
-        v.sort();
-        v
-    }
 }
 
 /// The direct G's error and time at each node count.

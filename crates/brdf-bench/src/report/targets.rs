@@ -1,7 +1,6 @@
 //! The kernel-target rows and the Python package's section of the report.
 
-use super::render::{ns, ratio, row};
-use super::{fmt_ns, Data};
+use super::{fmt_ns, ns, ratio, row, Data};
 use minijinja::{context, Value};
 
 /// "**met**" when `measured` is within `limit` (at most, or at least), else "**missed**";
