@@ -139,7 +139,16 @@ fn ci_sample_within_half_lsb() {
 #[test]
 fn reported_small_roughness_texels_match_polar() {
     use brdf_core::split_sum::polar::dfg_ggx_polar;
-    for (mu, r) in [(0.0039, 0.0625), (0.0977, 0.104), (0.0004, 0.021)] {
+    // The three reported small-roughness texels, then the table corner μ = 1, r = 1 (where
+    // the exact cuts' quartic degenerates: it once returned (0, 0)) and its neighbours.
+    for (mu, r) in [
+        (0.0039, 0.0625),
+        (0.0977, 0.104),
+        (0.0004, 0.021),
+        (1.0, 1.0),
+        (1.0, 0.999),
+        (0.9999, 1.0),
+    ] {
         let c: Converged<f64> = dfg_ggx_converged(mu, r, 1e-10);
         let p = dfg_ggx_polar(mu, r, 1e-10);
         for ch in 0..2 {

@@ -394,7 +394,10 @@ fn row_adapt<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
 }
 
 /// The lit intervals of the row (cos φ, sin φ): from the exact cuts of the integrand's row
-/// form ([`lit_from_form`]) where it has one, else by scanning ([`lit_intervals`]).
+/// form ([`lit_from_form`]) where it has one, else by scanning ([`lit_intervals`]). A form
+/// that finds nothing lit is checked by the scan: where the form degenerates (at μ = 1,
+/// α = 1 its quartic in tan(θ/2) loses its leading term and the only cut falls on the cap
+/// edge) the scan still finds the lit cap.
 fn lit<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     map: &M,
     f: &F,
@@ -402,7 +405,10 @@ fn lit<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     work: &mut Work,
 ) -> ([(T, T); MAX_PIECES], usize) {
     match f.row_form(cs.0, cs.1) {
-        Some(k) => lit_from_form(map, f, cs, k, work),
+        Some(k) => match lit_from_form(map, f, cs, k, work) {
+            (_, 0) => lit_intervals(map, f, cs, work),
+            found => found,
+        },
         None => lit_intervals(map, f, cs, work),
     }
 }
