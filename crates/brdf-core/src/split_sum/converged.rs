@@ -167,7 +167,7 @@ fn refine<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
             x = (a + b) * T::HALF;
         }
         let fx = sign * support_at(map, f, x, cp, sp);
-        work.cut_evals += 1;
+        work.cut_evals = work.cut_evals.saturating_add(1);
         if fx == T::ZERO {
             return x;
         }
@@ -210,7 +210,7 @@ fn lit_intervals<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
         let u = T::ONE - T::from_f64(k as f64) / T::from_f64(SCAN as f64);
         let t1 = tmax * (T::ONE - u * u);
         let s1 = support_at(map, f, t1, cs.0, cs.1);
-        work.cut_evals += 1;
+        work.cut_evals = work.cut_evals.saturating_add(1);
         if (s0 > T::ZERO) != (s1 > T::ZERO) {
             let x = refine(map, f, cs, (t0, s0), (t1, s1), work);
             match start.take() {
@@ -343,7 +343,7 @@ fn lit_from_form<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
         if !(b > a) {
             continue;
         }
-        work.cut_evals += 1;
+        work.cut_evals = work.cut_evals.saturating_add(1);
         if !(support_at(map, f, (a + b) * T::HALF, cs.0, cs.1) > T::ZERO) {
             continue;
         }
@@ -378,12 +378,16 @@ fn row_adapt<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     for (y, t) in y.iter_mut().zip(&t) {
         *y = node(map, f, *t, cp, sp);
     }
-    work.evals += 15;
+    work.evals = work.evals.saturating_add(15);
     let (v, e) = gk15_combine(&y, (b - a) * T::HALF);
-    if (e[0] <= tol && e[1] <= tol) || depth >= MAX_ROW_DEPTH {
+    // The tolerance halves with each split, so it is floored at the rounding level of the
+    // panel's value: below it the estimate cannot fall, and every branch would split to
+    // MAX_ROW_DEPTH (2^30 panels).
+    let tol = tol.max(T::from_f64(64.0) * T::EPSILON * (v[0].abs() + v[1].abs()));
+    let m = (a + b) * T::HALF;
+    if (e[0] <= tol && e[1] <= tol) || depth >= MAX_ROW_DEPTH || !(a < m && m < b) {
         return (v, e);
     }
-    let m = (a + b) * T::HALF;
     let h = tol * T::HALF;
     let (v0, e0) = row_adapt(map, f, (cp, sp), a, m, h, depth + 1, work);
     let (v1, e1) = row_adapt(map, f, (cp, sp), m, b, h, depth + 1, work);
