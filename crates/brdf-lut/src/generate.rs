@@ -534,7 +534,7 @@ fn passing_with<R: brdf_core::quadrature::Rule>(sigma: f64, theta: f64, phi: f64
         .unwrap_or(f64::NAN)
 }
 
-/// The worker threads of [`par_chunks`]: `RAYON_NUM_THREADS` when set to a whole number
+/// The worker threads of `par_chunks`: `RAYON_NUM_THREADS` when set to a whole number
 /// ≥ 1 (the usual spelling, though this is not rayon), else every core. The results do not
 /// depend on it (each value is computed alone and lands in its own slot).
 pub fn threads() -> usize {

@@ -18,15 +18,15 @@
 //! **Rule.** Each φ-row is cut exactly. For the GGX split sum the sign of n·l along a row is
 //! that of a trigonometric quadratic P(θ) ([`CapIntegrand::row_form`]), a quartic in
 //! t = tan(θ/2) (or tan((π − θ)/2) past π/2), whose sign changes are isolated by the
-//! derivative sequence and bisected ([`row_cuts`]); a generic integrand falls back to a
-//! scan of s graded toward the cap edge refined by the Illinois method ([`lit_intervals`];
+//! derivative sequence and bisected (`row_cuts`); a generic integrand falls back to a
+//! scan of s graded toward the cap edge refined by the Illinois method (`lit_intervals`;
 //! it can miss a lit piece narrower than the scan spacing). On each lit piece the row
 //! integral ∫ g sin θ dθ is taken on panels graded toward the cap edge (breaks at
 //! θ_max − θ_max/4ᵏ: for small α the lobe's tail lies in a ring of width ~α there) by the
 //! 15-point Gauss–Kronrod rule with its embedded 7-point Gauss–Legendre rule
 //! ([`crate::quadrature::kronrod`]), halving where |K15 − G7| exceeds the panel's share of
 //! the tolerance. Along φ ∈ [0, π], broken where a row's number of lit pieces changes
-//! ([`transitions`]: I(φ) is not smooth there), the row integrals are taken by adaptive
+//! (`transitions`: I(φ) is not smooth there), the row integrals are taken by adaptive
 //! K15/G7 panels whose estimate adds the panel width × its largest row estimate. The error
 //! estimate returned is measure · Σ (panel estimates) + 64ε|value|: a bound as long as
 //! |K15 − G7| exceeds the K15 error (it can fall short by a few times at the loosest
@@ -57,8 +57,8 @@ pub trait CapIntegrand<T: Real> {
     /// A row form of the support (for the map the integrand is paired with): coefficients
     /// k of P(θ) = k₀ + k₁ cos θ + k₂ sin θ + k₃ cos²θ + k₄ sin²θ + k₅ sin θ cos θ, a
     /// function of the sign of s along the row (cos φ, sin φ) = `(cp, sp)`, from which the
-    /// cuts are found exactly ([`row_cuts`]). `None` (the default): the cuts are found by
-    /// scanning s ([`lit_intervals`]).
+    /// cuts are found exactly (`row_cuts`). `None` (the default): the cuts are found by
+    /// scanning s (`lit_intervals`).
     fn row_form(&self, _cp: T, _sp: T) -> Option<[T; 6]> {
         None
     }
@@ -476,7 +476,7 @@ fn row<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     (v, e)
 }
 
-/// The ratio of successive gaps θ_max − θ of the row panels' breaks ([`row`]).
+/// The ratio of successive gaps θ_max − θ of the row panels' breaks (`row`).
 pub const EDGE_GRADE: f64 = 4.0;
 /// Graded breaks per row at most (θ_max/4³⁰ ≈ 3e-18: below the last bit).
 pub const MAX_GRADE: u32 = 30;
@@ -519,7 +519,7 @@ fn phi_adapt<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     )
 }
 
-/// Azimuths sampled for changes of the number of lit pieces per row ([`transitions`]).
+/// Azimuths sampled for changes of the number of lit pieces per row (`transitions`).
 pub const TRANSITION_SCAN: usize = 64;
 /// Transitions located per integral at most.
 pub const MAX_TRANSITIONS: usize = 8;

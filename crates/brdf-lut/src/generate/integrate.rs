@@ -70,7 +70,7 @@ pub enum GgxQuery {
 
 /// The one door to the converged GGX + height-correlated Smith rule: the node's values
 /// (E and E_avg in the first slot) and its [`Work`], for perceptual roughness `r` (α = r²).
-/// Whole rows of a table go through [`ggx_row`] instead, which shares the work along μ.
+/// Whole rows of a table go through `ggx_row` instead, which shares the work along μ.
 pub fn ggx_converged(q: GgxQuery, r: f64) -> ([f64; 2], Work) {
     let row = DfgGgxPolarRow::new(r);
     match q {
@@ -394,7 +394,7 @@ pub fn node(spec: &Spec, x: &[f64], out: &mut [f64]) -> Work {
 
 /// `lut verify`'s independent reference at `x`: (values, its own error estimate) — the
 /// adaptive visible-normal integrator at [`REFERENCE_TOL`] for the polar GGX kinds (E_avg:
-/// its E under the 32-point μ rule, with |32-point − 24-point| added), else the [`Fine`]
+/// its E under the 32-point μ rule, with |32-point − 24-point| added), else the `Fine`
 /// rule and |Fine − FineCheck| (module docs).
 pub fn reference(spec: &Spec, x: &[f64]) -> ([f64; 2], f64) {
     if let Some((q, r)) = ggx_query(spec, x) {
