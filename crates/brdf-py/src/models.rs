@@ -237,7 +237,9 @@ pub fn eval<'py>(
 /// pdf : numpy.ndarray
 ///     The pdf of wi per unit solid angle (mirror part: the probability of choosing it).
 ///
-/// All three are NaN where sampling fails (u outside [0, 1), wo below the horizon or zero).
+/// u is clamped into [0, 1) as the kernels do (u = 1.0, a routine output of a float
+/// random-number conversion, samples as the largest float below 1). All three are NaN
+/// where sampling fails (a NaN u, wo below the horizon or zero).
 ///
 /// Raises
 /// ------
