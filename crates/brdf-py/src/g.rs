@@ -13,46 +13,18 @@ use pyo3::prelude::*;
 use std::any::{Any, TypeId};
 use std::cell::RefCell;
 
-/// Calls `$body` with `$r` bound to the Gauss–Legendre rule of `$n` nodes.
+/// Calls `$body` with `$r` bound to the Gauss–Legendre rule of `$n` nodes (one arm per
+/// count of `brdf_core::quadrature::NODE_COUNTS`).
 macro_rules! with_rule {
     ($n:expr, $r:ident => $body:expr) => {
+        with_rule!(@arms $n, $r, $body, 4 6 8 10 12 16 20 24 32)
+    };
+    (@arms $n:expr, $r:ident, $body:expr, $($k:literal)*) => {
         match $n {
-            4 => {
-                type $r = GaussLegendre<4>;
+            $($k => {
+                type $r = GaussLegendre<$k>;
                 $body
-            }
-            6 => {
-                type $r = GaussLegendre<6>;
-                $body
-            }
-            8 => {
-                type $r = GaussLegendre<8>;
-                $body
-            }
-            10 => {
-                type $r = GaussLegendre<10>;
-                $body
-            }
-            12 => {
-                type $r = GaussLegendre<12>;
-                $body
-            }
-            16 => {
-                type $r = GaussLegendre<16>;
-                $body
-            }
-            20 => {
-                type $r = GaussLegendre<20>;
-                $body
-            }
-            24 => {
-                type $r = GaussLegendre<24>;
-                $body
-            }
-            32 => {
-                type $r = GaussLegendre<32>;
-                $body
-            }
+            })*
             n => Err(format!(
                 "argument `nodes` = {n} is not one of {NODE_COUNTS:?}"
             )),
