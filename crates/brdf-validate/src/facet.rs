@@ -9,8 +9,7 @@
 //! M(θr, α) and P(lit) must reproduce M(θi, −α) if eqs 6–12 are right about their own
 //! assumption; P(lit and seen) shows what taking min(GM, GS) (eq 13) costs.
 
-use crate::stats::Batches;
-use crate::surface::{mix_seed, GSample};
+use crate::surface::{mix_seed, GBatches, GSample};
 use rand::{Rng, SeedableRng};
 use rand_distr::StandardNormal;
 use rand_pcg::Pcg64;
@@ -66,11 +65,10 @@ pub fn g_single_neighbour(
     let a1 = [alpha.cos(), -alpha.sin()];
     let to_light = [-theta_i.sin(), theta_i.cos()];
     let to_view = [theta_r.sin(), theta_r.cos()];
-    let (mut bg, mut bm, mut bs) = (Batches::default(), Batches::default(), Batches::default());
+    let mut counts = GBatches::default();
     for b in 0..batches {
         let mut rng = Pcg64::seed_from_u64(mix_seed(&[seed, b, 3]));
-        let (mut ng, mut nm, mut ns) = (0u64, 0u64, 0u64);
-        for _ in 0..per_batch {
+        counts.batch(per_batch, || {
             let ul = sample_neighbour_slope(&mut rng, sigma);
             let ur = sample_neighbour_slope(&mut rng, sigma);
             let (cl, cr) = (1.0 / (1.0 + ul * ul).sqrt(), 1.0 / (1.0 + ur * ur).sqrt());
@@ -87,17 +85,8 @@ pub fn g_single_neighbour(
             } else {
                 true
             };
-            ns += lit as u64;
-            nm += seen as u64;
-            ng += (lit && seen) as u64;
-        }
-        bg.push(ng as f64, per_batch);
-        bm.push(nm as f64, per_batch);
-        bs.push(ns as f64, per_batch);
+            (lit, seen)
+        });
     }
-    GSample {
-        g: bg.estimate(),
-        gm: bm.estimate(),
-        gs: bs.estimate(),
-    }
+    counts.estimate()
 }

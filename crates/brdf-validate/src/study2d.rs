@@ -7,9 +7,9 @@
 //! absolute azimuth ψ is drawn uniformly per sample for isotropic surfaces, which averages
 //! out the grid's own directions (the triangles' slight anisotropy, §7.1 of the report).
 
-use crate::stats::{ratio_estimate, Batches, Estimate};
+use crate::stats::{ratio_estimate, Estimate};
 use crate::study::Model;
-use crate::surface::{mix_seed, GSample};
+use crate::surface::{mix_seed, GBatches, GSample};
 use crate::surface2d::{Conditioned, Field, Ray};
 use brdf_core::geometry::{Dots, Vec3};
 use brdf_core::masking::{
@@ -137,13 +137,12 @@ impl Surface2d<'_> {
     /// uniformly chosen triangle, conditions the field on its slope being −h_t/h_z exactly,
     /// takes a uniform point on it and traces both rays.
     pub fn g(&self, g: [f64; 3], per_batch: u64, batches: u64, seed: u64) -> GSample {
-        let (mut bg, mut bm, mut bs) = (Batches::default(), Batches::default(), Batches::default());
+        let mut counts = GBatches::default();
         for (fi, f) in self.fields.iter().enumerate() {
             let n = f.side() as i64;
             for b in 0..batches {
                 let mut rng = Pcg64::seed_from_u64(mix_seed(&[seed, fi as u64, b]));
-                let (mut ng, mut nm, mut ns) = (0u64, 0u64, 0u64);
-                for _ in 0..per_batch {
+                counts.batch(per_batch, || {
                     let psi = if self.random_azimuth {
                         rng.random::<f64>() * 2.0 * PI
                     } else {
@@ -182,20 +181,11 @@ impl Surface2d<'_> {
                         (ci, cj),
                         s,
                     );
-                    ns += lit as u64;
-                    nm += seen as u64;
-                    ng += (lit && seen) as u64;
-                }
-                bg.push(ng as f64, per_batch);
-                bm.push(nm as f64, per_batch);
-                bs.push(ns as f64, per_batch);
+                    (lit, seen)
+                });
             }
         }
-        GSample {
-            g: bg.estimate(),
-            gm: bm.estimate(),
-            gs: bs.estimate(),
-        }
+        counts.estimate()
     }
 
     /// Area-weighted one-sided masking toward polar angle θ at azimuth ψ (radians; ψ is

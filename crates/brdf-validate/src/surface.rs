@@ -43,6 +43,40 @@ pub struct GSample {
     pub gs: Estimate,
 }
 
+/// Batch counts of lit, seen and both (the batch-means estimate of [`GSample`]'s three
+/// probabilities), shared by every ray tracer of the crate.
+#[derive(Default)]
+pub struct GBatches {
+    g: Batches,
+    gm: Batches,
+    gs: Batches,
+}
+
+impl GBatches {
+    /// One batch of `n` samples, each `sample()` = (lit, seen), recorded as three counts.
+    pub fn batch(&mut self, n: u64, mut sample: impl FnMut() -> (bool, bool)) {
+        let (mut ng, mut nm, mut ns) = (0u64, 0u64, 0u64);
+        for _ in 0..n {
+            let (lit, seen) = sample();
+            ns += lit as u64;
+            nm += seen as u64;
+            ng += (lit && seen) as u64;
+        }
+        self.g.push(ng as f64, n);
+        self.gm.push(nm as f64, n);
+        self.gs.push(ns as f64, n);
+    }
+
+    /// G, GM and GS over all batches so far.
+    pub fn estimate(&self) -> GSample {
+        GSample {
+            g: self.g.estimate(),
+            gm: self.gm.estimate(),
+            gs: self.gs.estimate(),
+        }
+    }
+}
+
 /// Seeds derived from a base seed and a few indices (SplitMix64 mixing).
 pub fn mix_seed(parts: &[u64]) -> u64 {
     let mut z = 0x9E37_79B9_7F4A_7C15u64;
@@ -70,32 +104,22 @@ impl Surface<'_> {
         let s = -alpha.tan() / self.sigma; // required slope in scaled units
         let qi = rise_per_node(theta_i, self.sigma);
         let qr = rise_per_node(theta_r, self.sigma);
-        let (mut bg, mut bm, mut bs) = (Batches::default(), Batches::default(), Batches::default());
+        let mut counts = GBatches::default();
         for (pi, prof) in self.profiles.iter().enumerate() {
             for b in 0..batches_per_profile {
                 let mut rng = Pcg64::seed_from_u64(mix_seed(&[seed, pi as u64, b]));
-                let (mut ng, mut nm, mut ns) = (0u64, 0u64, 0u64);
-                for _ in 0..per_batch {
+                counts.batch(per_batch, || {
                     let i0 = rng.random_range(0..prof.len());
                     let t: f64 = rng.random();
                     let delta = s - prof.slope(i0);
                     let z0 = prof.heights()[i0] + prof.cond_weight(0) * delta + t * s * DX;
                     let lit = prof.visible(i0, t, z0, delta, qi, false);
                     let seen = prof.visible(i0, t, z0, delta, qr, theta_r > 0.0);
-                    ns += lit as u64;
-                    nm += seen as u64;
-                    ng += (lit && seen) as u64;
-                }
-                bg.push(ng as f64, per_batch);
-                bm.push(nm as f64, per_batch);
-                bs.push(ns as f64, per_batch);
+                    (lit, seen)
+                });
             }
         }
-        GSample {
-            g: bg.estimate(),
-            gm: bm.estimate(),
-            gs: bs.estimate(),
-        }
+        counts.estimate()
     }
 
     /// The same G measured the direct way: scan the unconditioned profile for facets whose
