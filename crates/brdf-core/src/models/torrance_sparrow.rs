@@ -47,20 +47,13 @@ impl GeometricTerm {
         GeometricTerm::Modified,
         GeometricTerm::ModifiedPrinted,
     ];
-    /// Short lower-case name used on command lines.
+    /// Its name in the catalogue ([`crate::catalogue::MASKINGS`]).
     pub const fn name(self) -> &'static str {
-        match self {
-            GeometricTerm::None => "none",
-            GeometricTerm::Blinn => "blinn",
-            GeometricTerm::SmithSeparable => "smith-separable",
-            GeometricTerm::SmithCorrelated => "smith-correlated",
-            GeometricTerm::Modified => "modified",
-            GeometricTerm::ModifiedPrinted => "modified-printed",
-        }
+        crate::catalogue::MASKINGS[self as usize].name
     }
-    /// Parses [`GeometricTerm::name`].
+    /// Parses a name or other spelling of the catalogue ([`crate::catalogue::find_masking`]).
     pub fn from_name(s: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|g| g.name() == s)
+        crate::catalogue::find_masking(s).map(|m| m.term)
     }
 }
 
