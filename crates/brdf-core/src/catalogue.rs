@@ -1339,3 +1339,70 @@ pub const MODELS: &[ModelSpec] = &[
         id: ModelId::RoughDielectric,
     },
 ];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each name of the masking list parses back to its term, old spellings included, and
+    /// the models' `g` choice offers exactly these names in this order: a choice index
+    /// builds the term its option names (checked through the built model's G at a point
+    /// where the six terms differ).
+    #[test]
+    fn masking_names_are_one_list() {
+        for g in GeometricTerm::ALL {
+            assert_eq!(GeometricTerm::from_name(g.name()), Some(g));
+        }
+        assert_eq!(
+            GeometricTerm::from_name("v-cavity"),
+            Some(GeometricTerm::Blinn)
+        );
+        assert_eq!(GeometricTerm::from_name("nonsense"), None);
+        let ts = find("torrance-sparrow").unwrap();
+        let ParamKind::Choice(options) = ts.params[1].kind else {
+            panic!("g is a choice")
+        };
+        assert_eq!(options.len(), MASKINGS.len());
+        let (wi, wo) = (
+            Vec3::new(0.6, 0.0, 0.8),
+            Vec3::new(-0.95, 0.1, 0.3).normalize().unwrap(),
+        );
+        let mut seen: [f64; 6] = [0.0; 6];
+        for (k, name) in options.iter().enumerate() {
+            let mut v = ts.defaults::<f64>();
+            v[1] = k as f64;
+            let AnyBrdf::TorranceSparrow(m) = ts.build(&v).unwrap() else {
+                panic!("a Torrance-Sparrow model")
+            };
+            let g = GeometricTerm::from_name(name).unwrap();
+            let f = Fresnel::schlick(v[2]).unwrap();
+            let want: TorranceSparrow<f64> = TorranceSparrow::new(v[0], g, f, v[3], v[4]).unwrap();
+            assert_eq!(m.eval(wi, wo), want.eval(wi, wo), "{name}");
+            seen[k] = m.eval(wi, wo);
+        }
+        for i in 0..6 {
+            for j in 0..i {
+                assert!(
+                    seen[i] != seen[j],
+                    "{} and {} agree here",
+                    options[i],
+                    options[j]
+                );
+            }
+        }
+    }
+
+    /// Distribution names parse back, and each distribution's tabulated G terms are
+    /// catalogue terms.
+    #[test]
+    fn distribution_names_are_one_list() {
+        for d in DISTRIBUTIONS {
+            assert_eq!(find_distribution(d.name).map(|s| s.id), Some(d.id));
+            assert_eq!(d.id.name(), d.name);
+            for a in d.aliases {
+                assert_eq!(find_distribution(a).map(|s| s.id), Some(d.id));
+            }
+        }
+        assert!(find_distribution("blinn").is_none());
+    }
+}

@@ -52,7 +52,7 @@ use crate::{
 };
 use brdf_core::masking::ModifiedG;
 use brdf_core::models::GeometricTerm;
-use core::f64::consts::{FRAC_PI_2, SQRT_2};
+use core::f64::consts::FRAC_PI_2;
 use std::fmt;
 use std::format;
 use std::string::{String, ToString};
@@ -167,16 +167,9 @@ pub fn distribution_options() -> Vec<(&'static str, Distribution)> {
     .collect()
 }
 
-/// What the roughness axis (or `Kind::GPerSigma`'s σ) means.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Roughness {
-    /// Perceptual r ∈ [0, 1]: width = r².
-    Perceptual,
-    /// The distribution width itself: GGX α, Beckmann m.
-    Alpha,
-    /// RMS slope σ of Gaussian slopes: Beckmann m = √2 σ.
-    Sigma,
-}
+/// What the roughness axis (or `Kind::GPerSigma`'s σ) means: brdf-core's one vocabulary
+/// ([`brdf_core::roughness::Roughness`], names and conversions there).
+pub use brdf_core::roughness::Roughness;
 
 /// One axis of the requested grid.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -462,11 +455,7 @@ impl Spec {
     /// where defined) of a roughness-axis value. σ is the axis value itself when the axis is
     /// σ, so the modified G sees exactly the tabulated σ.
     fn width_sigma(&self, x: f64) -> (f64, f64) {
-        match self.roughness {
-            Roughness::Perceptual => (x * x, x * x / SQRT_2),
-            Roughness::Alpha => (x, x / SQRT_2),
-            Roughness::Sigma => (SQRT_2 * x, x),
-        }
+        self.roughness.width_and_sigma(x)
     }
 
     /// The direct f64 kernel at a point of the table's domain: one value per channel.

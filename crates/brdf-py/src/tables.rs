@@ -157,15 +157,7 @@ fn kind_model(f: &Fields<'_>) -> PyResult<Spec> {
     };
     let mut spec = Spec::new(kind, dist, masking);
     if let Some(r) = f.get::<String>("roughness")? {
-        spec.roughness = choose(
-            "roughness",
-            &r,
-            &[
-                ("perceptual", Roughness::Perceptual),
-                ("alpha", Roughness::Alpha),
-                ("sigma", Roughness::Sigma),
-            ],
-        )?;
+        spec.roughness = choose("roughness", &r, &Roughness::ALL.map(|r| (r.name(), r)))?;
         spec.axes = spec.default_axes();
     }
     Ok(spec)

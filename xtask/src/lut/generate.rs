@@ -314,15 +314,7 @@ fn build_spec(
     };
     let mut spec = Spec::new(kind, dist, masking);
     if let Some(r) = pick(&a.roughness, &cfg.roughness) {
-        spec.roughness = choose(
-            "roughness",
-            &r,
-            &[
-                ("perceptual", Roughness::Perceptual),
-                ("alpha", Roughness::Alpha),
-                ("sigma", Roughness::Sigma),
-            ],
-        )?;
+        spec.roughness = choose("roughness", &r, &Roughness::ALL.map(|r| (r.name(), r)))?;
         spec.axes = spec.default_axes();
     }
     let names = spec.axis_names();
