@@ -210,13 +210,34 @@ pub enum Interpolation {
     CatmullRom,
 }
 
-/// The reflection model a table was generated from. The discriminant is the code on disk
-/// (docs/lut-format.md §3; [`Model::code`], [`Model::from_code`]); what each code means in
-/// the model catalogue's words (distribution and G term) is the one table in `kernel.rs`
-/// ([`Model::catalogue`], [`Model::from_catalogue`]).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-#[repr(u8)]
-pub enum Model {
+/// Defines [`Model`] from one list of `Variant = code`: the discriminant is the code on
+/// disk, [`Model::from_code`] its inverse.
+macro_rules! model_codes {
+    ($($(#[$m:meta])* $v:ident = $c:literal,)*) => {
+        /// The reflection model a table was generated from. The discriminant is the code on
+        /// disk (docs/lut-format.md §3; [`Model::code`], [`Model::from_code`]); what each
+        /// code means in the model catalogue's words (distribution and G term) is the one
+        /// table in `kernel.rs` ([`Model::catalogue`], [`Model::from_catalogue`]).
+        #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+        #[repr(u8)]
+        pub enum Model {
+            $($(#[$m])* $v = $c,)*
+        }
+        impl Model {
+            /// Every model, in code order.
+            pub const ALL: &'static [Model] = &[$(Model::$v),*];
+            /// The model of a code on disk; `None` for an unknown code.
+            pub const fn from_code(code: u32) -> Option<Model> {
+                match code {
+                    $($c => Some(Model::$v),)*
+                    _ => None,
+                }
+            }
+        }
+    };
+}
+
+model_codes! {
     /// The paper's modified G (Acta Phys. Sin. 64 184213, eqs 6–13).
     #[default]
     ModifiedG = 0,
@@ -240,29 +261,9 @@ pub enum Model {
 }
 
 impl Model {
-    /// Every model, by code: `ALL[c]` has code `c`.
-    pub const ALL: [Model; 9] = [
-        Model::ModifiedG,
-        Model::GgxSmithCorrelated,
-        Model::BeckmannSmithCorrelated,
-        Model::TorranceSparrowModifiedG,
-        Model::TorranceSparrowSmith,
-        Model::GgxSmithSeparable,
-        Model::BeckmannSmithSeparable,
-        Model::TorranceSparrowSmithSeparable,
-        Model::TorranceSparrowVCavity,
-    ];
     /// The code on disk.
     pub const fn code(self) -> u8 {
         self as u8
-    }
-    /// The model of a code on disk; `None` for an unknown code.
-    pub const fn from_code(code: u32) -> Option<Model> {
-        if code < Model::ALL.len() as u32 {
-            Some(Model::ALL[code as usize])
-        } else {
-            None
-        }
     }
 }
 

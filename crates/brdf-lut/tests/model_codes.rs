@@ -38,7 +38,7 @@ fn every_tabulated_catalogue_pair_has_a_code_and_back() {
     seen.dedup();
     assert_eq!(seen.len(), pairs.len());
     // Every code is some catalogue pair (its reciprocal reading), and that pair maps back.
-    for m in Model::ALL {
+    for &m in Model::ALL {
         let (d, g) = m.catalogue(Convention::Reciprocal);
         assert!(pairs.contains(&(d, g)), "{m:?} → {d:?} {g:?}");
         assert_eq!(
