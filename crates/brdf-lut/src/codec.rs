@@ -148,7 +148,7 @@ impl<'a> Reader<'a> {
             0 => Interpolation::Linear,
             _ => Interpolation::CatmullRom,
         };
-        let model = Model::from_code(self.u32()?).ok_or(LutError::MalformedHeader)?;
+        let model = Model::from_code(self.tag(Model::ALL.len() as u32)?).unwrap_or_default();
         let convention = match self.tag(2)? {
             0 => Convention::Reciprocal,
             _ => Convention::Printed,
