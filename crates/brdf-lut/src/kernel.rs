@@ -30,67 +30,24 @@ impl From<Convention> for KernelConvention {
 /// it was generated from. No distribution: the G term's own passing factor (a G table).
 /// The convention matters for the modified G only; a row with the printed convention
 /// exists only where the catalogue has a printed term.
+#[rustfmt::skip]
 const MODEL_TABLE: [(Model, Convention, Option<DistributionId>, GeometricTerm); 11] = {
-    use Convention::{Printed, Reciprocal};
+    use Convention::{Printed as P, Reciprocal as R};
     use DistributionId::{Beckmann, Ggx, TorranceSparrow as Ts};
     use GeometricTerm as G;
+    use Model as M;
     [
-        (Model::ModifiedG, Reciprocal, None, G::Modified),
-        (Model::ModifiedG, Printed, None, G::ModifiedPrinted),
-        (
-            Model::GgxSmithCorrelated,
-            Reciprocal,
-            Some(Ggx),
-            G::SmithCorrelated,
-        ),
-        (
-            Model::GgxSmithSeparable,
-            Reciprocal,
-            Some(Ggx),
-            G::SmithSeparable,
-        ),
-        (
-            Model::BeckmannSmithCorrelated,
-            Reciprocal,
-            Some(Beckmann),
-            G::SmithCorrelated,
-        ),
-        (
-            Model::BeckmannSmithSeparable,
-            Reciprocal,
-            Some(Beckmann),
-            G::SmithSeparable,
-        ),
-        (
-            Model::TorranceSparrowModifiedG,
-            Reciprocal,
-            Some(Ts),
-            G::Modified,
-        ),
-        (
-            Model::TorranceSparrowModifiedG,
-            Printed,
-            Some(Ts),
-            G::ModifiedPrinted,
-        ),
-        (
-            Model::TorranceSparrowSmith,
-            Reciprocal,
-            Some(Ts),
-            G::SmithCorrelated,
-        ),
-        (
-            Model::TorranceSparrowSmithSeparable,
-            Reciprocal,
-            Some(Ts),
-            G::SmithSeparable,
-        ),
-        (
-            Model::TorranceSparrowVCavity,
-            Reciprocal,
-            Some(Ts),
-            G::Blinn,
-        ),
+        (M::ModifiedG, R, None, G::Modified),
+        (M::ModifiedG, P, None, G::ModifiedPrinted),
+        (M::GgxSmithCorrelated, R, Some(Ggx), G::SmithCorrelated),
+        (M::GgxSmithSeparable, R, Some(Ggx), G::SmithSeparable),
+        (M::BeckmannSmithCorrelated, R, Some(Beckmann), G::SmithCorrelated),
+        (M::BeckmannSmithSeparable, R, Some(Beckmann), G::SmithSeparable),
+        (M::TorranceSparrowModifiedG, R, Some(Ts), G::Modified),
+        (M::TorranceSparrowModifiedG, P, Some(Ts), G::ModifiedPrinted),
+        (M::TorranceSparrowSmith, R, Some(Ts), G::SmithCorrelated),
+        (M::TorranceSparrowSmithSeparable, R, Some(Ts), G::SmithSeparable),
+        (M::TorranceSparrowVCavity, R, Some(Ts), G::Blinn),
     ]
 };
 
