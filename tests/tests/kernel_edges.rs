@@ -659,9 +659,9 @@ fn check_unchecked<T: Real>(a: f64) {
     for u in [[0.0, 0.0], [0.5, 0.5], [1.0, 1.0], [0.999999, 0.3]] {
         let u = [T::from_f64(u[0]), T::from_f64(u[1])];
         for h in [
-            Some(sampling::sample_ggx_normal(a, u)),
-            sampling::sample_ggx_visible_normal(wo, a, u),
-            Some(sampling::sample_beckmann_normal(a, a, u)),
+            Some(TrowbridgeReitz::clamped(a, a).sample_normal(u)),
+            TrowbridgeReitz::clamped(a, a).sample_visible_normal(wo, u),
+            Some(Beckmann::clamped(a, a).sample_normal(u)),
             sampling::sample_beckmann_visible_normal(wo, a, a, u),
         ]
         .into_iter()
@@ -1006,7 +1006,9 @@ fn visible_normal_samplers_refuse_wo_below_the_horizon() {
     ] {
         for u in [[0.5, 0.5], [0.0, 0.0], [1.0, 1.0]] {
             assert!(
-                sampling::sample_ggx_visible_normal(wo, 0.3, u).is_none(),
+                TrowbridgeReitz::clamped(0.3, 0.3)
+                    .sample_visible_normal(wo, u)
+                    .is_none(),
                 "{wo:?}"
             );
             assert!(sampling::sample_beckmann_visible_normal(wo, 0.3, 0.3, u).is_none());

@@ -311,6 +311,193 @@ fn check_choice<T: Real>(name: &'static str, x: T, n: usize) -> Result<(), Param
     }
 }
 
+/// One masking–shadowing term G: the options of the models' `g` choice, the generator's
+/// `masking` (command line, TOML specs, Python), the C ABI's `BRDF_GEOMETRIC_*` values and
+/// [`GeometricTerm::name`] all read [`MASKINGS`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MaskingSpec {
+    /// Name.
+    pub name: &'static str,
+    /// Other spellings accepted by [`find_masking`].
+    pub aliases: &'static [&'static str],
+    /// The term.
+    pub term: GeometricTerm,
+    #[cfg(feature = "catalogue-text")]
+    about: &'static str,
+}
+
+impl MaskingSpec {
+    /// What it is, with its source; "" without `catalogue-text`.
+    pub fn about(&self) -> &'static str {
+        text!(self.about)
+    }
+}
+
+/// Defines [`MASKINGS`] and the `g` choice's option names and range text from one list of
+/// `Term = "name" [aliases] "about"`.
+macro_rules! maskings {
+    ($t0:ident = $n0:literal [$($a0:literal),*] $h0:literal,
+     $($t:ident = $n:literal [$($a:literal),*] $h:literal,)*) => {
+        /// Every masking term, in [`GeometricTerm::ALL`] order (a choice's index, and the C
+        /// ABI's value, is its position here).
+        pub const MASKINGS: &[MaskingSpec] = &[
+            masking(GeometricTerm::$t0, $n0, &[$($a0),*], $h0),
+            $(masking(GeometricTerm::$t, $n, &[$($a),*], $h),)*
+        ];
+        const G_TERMS: &[&str] = &[$n0 $(, $n)*];
+        const G_RANGE: &str = concat!($n0 $(, " | ", $n)*);
+    };
+}
+
+const fn masking(
+    term: GeometricTerm,
+    name: &'static str,
+    aliases: &'static [&'static str],
+    about: &'static str,
+) -> MaskingSpec {
+    let _ = about;
+    MaskingSpec {
+        name,
+        aliases,
+        term,
+        #[cfg(feature = "catalogue-text")]
+        about,
+    }
+}
+
+maskings! {
+    None = "none" [] "G = 1",
+    Blinn = "blinn" ["v-cavity", "v-groove"]
+        "the V-cavity G of Torrance and Sparrow in Blinn's form (paper eq 4)",
+    SmithSeparable = "smith-separable" [] "Smith G1(i) G1(o) of the distribution's Lambda",
+    SmithCorrelated = "smith-correlated" []
+        "height-correlated Smith 1/(1 + Lambda(i) + Lambda(o))",
+    Modified = "modified" [] "the paper's modified G, reciprocal reading (eqs 6-13)",
+    ModifiedPrinted = "modified-printed" [] "the paper's modified G, eq 12 as printed",
+}
+
+// The catalogue's order is the enum's: `GeometricTerm::name` indexes `MASKINGS` by the
+// discriminant.
+const _: () = {
+    let mut k = 0;
+    while k < MASKINGS.len() {
+        assert!(MASKINGS[k].term as usize == k);
+        k += 1;
+    }
+    assert!(MASKINGS.len() == GeometricTerm::ALL.len());
+};
+
+/// Finds a masking term by name or other spelling (`v-cavity` is `blinn`).
+pub fn find_masking(name: &str) -> Option<&'static MaskingSpec> {
+    MASKINGS
+        .iter()
+        .find(|m| m.name == name || m.aliases.contains(&name))
+}
+
+/// A microfacet distribution D that tables are made of (the generator's and the command
+/// line's `model`), in [`DISTRIBUTIONS`] order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum DistributionId {
+    /// Trowbridge–Reitz (GGX), width α.
+    Ggx,
+    /// Beckmann, width m.
+    Beckmann,
+    /// Torrance–Sparrow: Gaussian slopes of RMS slope σ, i.e. Beckmann with m = √2 σ.
+    TorranceSparrow,
+}
+
+/// One distribution of the catalogue.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DistributionSpec {
+    /// Name.
+    pub name: &'static str,
+    /// Other spellings accepted by [`find_distribution`].
+    pub aliases: &'static [&'static str],
+    /// The distribution.
+    pub id: DistributionId,
+    /// Name of its width (a table's roughness axis when it holds the width itself).
+    pub width: &'static str,
+    /// The G terms tables are made with over this distribution (each has a BLUT model code).
+    pub tabulated: &'static [GeometricTerm],
+    #[cfg(feature = "catalogue-text")]
+    about: &'static str,
+}
+
+impl DistributionSpec {
+    /// What it is; "" without `catalogue-text`.
+    pub fn about(&self) -> &'static str {
+        text!(self.about)
+    }
+}
+
+impl DistributionId {
+    /// Its catalogue entry.
+    pub const fn spec(self) -> &'static DistributionSpec {
+        &DISTRIBUTIONS[self as usize]
+    }
+    /// Its name ([`DistributionSpec::name`]).
+    pub const fn name(self) -> &'static str {
+        self.spec().name
+    }
+}
+
+const SMITHS: &[GeometricTerm] = &[
+    GeometricTerm::SmithSeparable,
+    GeometricTerm::SmithCorrelated,
+];
+
+/// Every distribution, in [`DistributionId`] order.
+pub const DISTRIBUTIONS: &[DistributionSpec] = &[
+    DistributionSpec {
+        name: "ggx",
+        aliases: &["trowbridge-reitz"],
+        id: DistributionId::Ggx,
+        width: "alpha",
+        tabulated: SMITHS,
+        #[cfg(feature = "catalogue-text")]
+        about: "Trowbridge-Reitz (GGX) D = alpha^2/(pi cos^4 (alpha^2 + tan^2)^2)",
+    },
+    DistributionSpec {
+        name: "beckmann",
+        aliases: &[],
+        id: DistributionId::Beckmann,
+        width: "m",
+        tabulated: SMITHS,
+        #[cfg(feature = "catalogue-text")]
+        about: "Beckmann D = exp(-tan^2/m^2)/(pi m^2 cos^4)",
+    },
+    DistributionSpec {
+        name: "torrance-sparrow",
+        aliases: &[],
+        id: DistributionId::TorranceSparrow,
+        width: "m",
+        tabulated: &[
+            GeometricTerm::Blinn,
+            GeometricTerm::SmithSeparable,
+            GeometricTerm::SmithCorrelated,
+            GeometricTerm::Modified,
+            GeometricTerm::ModifiedPrinted,
+        ],
+        #[cfg(feature = "catalogue-text")]
+        about: "Gaussian slopes of RMS slope sigma (paper eqs 2, 5): Beckmann with m = sqrt2 sigma",
+    },
+];
+
+const _: () = {
+    let mut k = 0;
+    while k < DISTRIBUTIONS.len() {
+        assert!(DISTRIBUTIONS[k].id as usize == k);
+        k += 1;
+    }
+};
+
+/// Finds a distribution by name or other spelling.
+pub fn find_distribution(name: &str) -> Option<&'static DistributionSpec> {
+    DISTRIBUTIONS
+        .iter()
+        .find(|d| d.name == name || d.aliases.contains(&name))
+}
+
 /// Finds a model by name or old spelling.
 pub fn find(name: &str) -> Option<&'static ModelSpec> {
     MODELS
@@ -516,16 +703,6 @@ const fn flags(lit_colour: bool, has_delta: bool, anisotropic: bool) -> ModelFla
     }
 }
 
-const G_TERMS: &[&str] = &[
-    "none",
-    "blinn",
-    "smith-separable",
-    "smith-correlated",
-    "modified",
-    "modified-printed",
-];
-const G_RANGE: &str =
-    "none | blinn | smith-separable | smith-correlated | modified | modified-printed";
 const SMITH_NAMES: &[&str] = &["separable", "correlated"];
 const SAMPLING_NAMES: &[&str] = &["visible-normals", "normals"];
 const U01: &str = "[0, 1]";
@@ -1162,3 +1339,70 @@ pub const MODELS: &[ModelSpec] = &[
         id: ModelId::RoughDielectric,
     },
 ];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each name of the masking list parses back to its term, old spellings included, and
+    /// the models' `g` choice offers exactly these names in this order: a choice index
+    /// builds the term its option names (checked through the built model's G at a point
+    /// where the six terms differ).
+    #[test]
+    fn masking_names_are_one_list() {
+        for g in GeometricTerm::ALL {
+            assert_eq!(GeometricTerm::from_name(g.name()), Some(g));
+        }
+        assert_eq!(
+            GeometricTerm::from_name("v-cavity"),
+            Some(GeometricTerm::Blinn)
+        );
+        assert_eq!(GeometricTerm::from_name("nonsense"), None);
+        let ts = find("torrance-sparrow").unwrap();
+        let ParamKind::Choice(options) = ts.params[1].kind else {
+            panic!("g is a choice")
+        };
+        assert_eq!(options.len(), MASKINGS.len());
+        let (wi, wo) = (
+            Vec3::new(0.6, 0.0, 0.8),
+            Vec3::new(-0.95, 0.1, 0.3).normalize().unwrap(),
+        );
+        let mut seen: [f64; 6] = [0.0; 6];
+        for (k, name) in options.iter().enumerate() {
+            let mut v = ts.defaults::<f64>();
+            v[1] = k as f64;
+            let AnyBrdf::TorranceSparrow(m) = ts.build(&v).unwrap() else {
+                panic!("a Torrance-Sparrow model")
+            };
+            let g = GeometricTerm::from_name(name).unwrap();
+            let f = Fresnel::schlick(v[2]).unwrap();
+            let want: TorranceSparrow<f64> = TorranceSparrow::new(v[0], g, f, v[3], v[4]).unwrap();
+            assert_eq!(m.eval(wi, wo), want.eval(wi, wo), "{name}");
+            seen[k] = m.eval(wi, wo);
+        }
+        for i in 0..6 {
+            for j in 0..i {
+                assert!(
+                    seen[i] != seen[j],
+                    "{} and {} agree here",
+                    options[i],
+                    options[j]
+                );
+            }
+        }
+    }
+
+    /// Distribution names parse back, and each distribution's tabulated G terms are
+    /// catalogue terms.
+    #[test]
+    fn distribution_names_are_one_list() {
+        for d in DISTRIBUTIONS {
+            assert_eq!(find_distribution(d.name).map(|s| s.id), Some(d.id));
+            assert_eq!(d.id.name(), d.name);
+            for a in d.aliases {
+                assert_eq!(find_distribution(a).map(|s| s.id), Some(d.id));
+            }
+        }
+        assert!(find_distribution("blinn").is_none());
+    }
+}

@@ -51,6 +51,44 @@ pub fn sigma_from_perceptual<T: Real>(r: T) -> T {
     sigma_from_beckmann_m(alpha_from_perceptual(r))
 }
 
+/// How a roughness number is given: the option names of a table's roughness axis (the
+/// generator's `roughness`, command line, TOML specs, Python), one per row of the table
+/// above that a user types.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Roughness {
+    /// Perceptual r ∈ [0, 1]: width α = r² ([`alpha_from_perceptual`]).
+    Perceptual,
+    /// The distribution width itself: GGX α, Beckmann m.
+    Alpha,
+    /// The paper's RMS slope σ: Beckmann m = √2 σ ([`beckmann_m_from_sigma`]).
+    Sigma,
+}
+
+impl Roughness {
+    /// Every option, in the order of [`Roughness::NAMES`].
+    pub const ALL: [Roughness; 3] = [Roughness::Perceptual, Roughness::Alpha, Roughness::Sigma];
+    /// The options' names.
+    pub const NAMES: [&'static str; 3] = ["perceptual", "alpha", "sigma"];
+    /// Its name.
+    pub const fn name(self) -> &'static str {
+        Self::NAMES[self as usize]
+    }
+    /// Parses [`Roughness::name`].
+    pub fn from_name(s: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|r| r.name() == s)
+    }
+    /// The distribution width (α, or Beckmann m) and the RMS slope σ = width/√2 of a value
+    /// `x` given this way: (r², r²/√2), (x, x/√2) or (√2 x, x) — each through the named
+    /// conversions, so that σ is `x` itself when `x` is σ.
+    pub fn width_and_sigma<T: Real>(self, x: T) -> (T, T) {
+        match self {
+            Roughness::Perceptual => (alpha_from_perceptual(x), sigma_from_perceptual(x)),
+            Roughness::Alpha => (x, sigma_from_beckmann_m(x)),
+            Roughness::Sigma => (beckmann_m_from_sigma(x), x),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -74,6 +112,25 @@ mod tests {
             let back = sigma_from_beckmann_m(m);
             assert!((back - sigma).abs() <= 2.0 * f64::EPSILON * sigma);
         }
+    }
+
+    /// The three ways of giving roughness agree on one surface: r = 0.5 is α = 0.25 and
+    /// σ = 0.25/√2 whichever way it is given (σ checked by m² = 2σ², not by the constant).
+    #[test]
+    fn parameterisations_agree() {
+        let (r, alpha) = (0.5f64, 0.25f64);
+        let sigma = (alpha * alpha / 2.0).sqrt();
+        for (p, x) in [
+            (Roughness::Perceptual, r),
+            (Roughness::Alpha, alpha),
+            (Roughness::Sigma, sigma),
+        ] {
+            let (w, s) = p.width_and_sigma(x);
+            assert!((w - alpha).abs() <= 2.0 * f64::EPSILON * alpha, "{p:?}");
+            assert!((s - sigma).abs() <= 2.0 * f64::EPSILON * sigma, "{p:?}");
+            assert_eq!(Roughness::from_name(p.name()), Some(p));
+        }
+        assert_eq!(Roughness::from_name("m"), None);
     }
 
     /// Perceptual roughness: α = r² and back, in f32 and f64, with the documented NaN for

@@ -138,16 +138,10 @@ fn convention(c: BrdfConvention) -> Option<Convention> {
     }
 }
 
+/// A `BRDF_GEOMETRIC_*` value is the term's index in the model catalogue's list of masking
+/// terms (`brdf_core::catalogue::MASKINGS`; tests/catalogue.rs checks brdf.h against it).
 fn geometric_term(g: BrdfGeometricTerm) -> Option<GeometricTerm> {
-    Some(match g {
-        BRDF_GEOMETRIC_NONE => GeometricTerm::None,
-        BRDF_GEOMETRIC_BLINN => GeometricTerm::Blinn,
-        BRDF_GEOMETRIC_SMITH_SEPARABLE => GeometricTerm::SmithSeparable,
-        BRDF_GEOMETRIC_SMITH_CORRELATED => GeometricTerm::SmithCorrelated,
-        BRDF_GEOMETRIC_MODIFIED => GeometricTerm::Modified,
-        BRDF_GEOMETRIC_MODIFIED_PRINTED => GeometricTerm::ModifiedPrinted,
-        _ => return None,
-    })
+    GeometricTerm::ALL.get(g as usize).copied()
 }
 
 fn fresnel<T: Real>(kind: BrdfFresnel, p: T) -> Option<Fresnel<T>> {

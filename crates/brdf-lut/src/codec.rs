@@ -148,17 +148,7 @@ impl<'a> Reader<'a> {
             0 => Interpolation::Linear,
             _ => Interpolation::CatmullRom,
         };
-        let model = match self.tag(9)? {
-            0 => Model::ModifiedG,
-            1 => Model::GgxSmithCorrelated,
-            2 => Model::BeckmannSmithCorrelated,
-            3 => Model::TorranceSparrowModifiedG,
-            4 => Model::TorranceSparrowSmith,
-            5 => Model::GgxSmithSeparable,
-            6 => Model::BeckmannSmithSeparable,
-            7 => Model::TorranceSparrowSmithSeparable,
-            _ => Model::TorranceSparrowVCavity,
-        };
+        let model = Model::from_code(self.tag(Model::ALL.len() as u32)?).unwrap_or_default();
         let convention = match self.tag(2)? {
             0 => Convention::Reciprocal,
             _ => Convention::Printed,
@@ -268,7 +258,7 @@ impl<'b> Writer<'b> {
         self.varint(h.encoding as u64)?;
         self.varint(h.interpolation as u64)?;
         let g = &h.generator;
-        self.varint(g.model as u64)?;
+        self.varint(g.model.code() as u64)?;
         self.varint(g.convention as u64)?;
         match g.sigma {
             None => self.bytes(&[0])?,

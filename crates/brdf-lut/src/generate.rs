@@ -51,7 +51,8 @@ use crate::{
     Placement, TableKind, Warp, MAX_AXIS_COUNT,
 };
 use brdf_core::masking::ModifiedG;
-use core::f64::consts::{FRAC_PI_2, SQRT_2};
+use brdf_core::models::GeometricTerm;
+use core::f64::consts::FRAC_PI_2;
 use std::fmt;
 use std::format;
 use std::string::{String, ToString};
@@ -87,40 +88,88 @@ pub enum Kind {
     AverageAlbedo,
 }
 
-/// The microfacet distribution.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Distribution {
-    /// GGX (Trowbridge–Reitz).
-    Ggx,
-    /// Beckmann.
-    Beckmann,
-    /// Torrance–Sparrow: Gaussian slopes of RMS slope σ, i.e. Beckmann with m = √2 σ.
-    TorranceSparrow,
-}
+/// The microfacet distribution: the model catalogue's
+/// ([`brdf_core::catalogue::DISTRIBUTIONS`]; names, other spellings and the G terms each
+/// is tabulated with are there).
+pub use brdf_core::catalogue::DistributionId as Distribution;
 
-/// The shadowing–masking function G.
+/// The shadowing–masking function G of a generated table: the catalogue's G terms
+/// ([`brdf_core::catalogue::MASKINGS`]) that the generator integrates. Names are the
+/// catalogue's ([`Masking::name`], [`Masking::from_name`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Masking {
     /// Smith, separable: G1(i) G1(o).
     SmithSeparable,
     /// Smith, height-correlated: 1/(1 + Λ(i) + Λ(o)).
     SmithCorrelated,
-    /// The V-cavity G of Torrance–Sparrow (Blinn's form).
-    VCavity,
+    /// The V-cavity G of Torrance–Sparrow in Blinn's form (catalogue name `blinn`).
+    Blinn,
     /// The paper's modified G (reciprocal 3-D extension).
     Modified,
 }
 
-/// What the roughness axis (or `Kind::GPerSigma`'s σ) means.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Roughness {
-    /// Perceptual r ∈ [0, 1]: width = r².
-    Perceptual,
-    /// The distribution width itself: GGX α, Beckmann m.
-    Alpha,
-    /// RMS slope σ of Gaussian slopes: Beckmann m = √2 σ.
-    Sigma,
+#[allow(non_upper_case_globals)]
+impl Masking {
+    /// The old name of [`Masking::Blinn`], kept for callers.
+    pub const VCavity: Masking = Masking::Blinn;
+    /// Every option.
+    pub const ALL: [Masking; 4] = [
+        Masking::SmithSeparable,
+        Masking::SmithCorrelated,
+        Masking::Blinn,
+        Masking::Modified,
+    ];
+    /// The catalogue's G term.
+    pub const fn term(self) -> GeometricTerm {
+        match self {
+            Masking::SmithSeparable => GeometricTerm::SmithSeparable,
+            Masking::SmithCorrelated => GeometricTerm::SmithCorrelated,
+            Masking::Blinn => GeometricTerm::Blinn,
+            Masking::Modified => GeometricTerm::Modified,
+        }
+    }
+    /// The option of a catalogue G term; `None` for a term the generator does not integrate.
+    pub fn from_term(g: GeometricTerm) -> Option<Masking> {
+        Masking::ALL.into_iter().find(|m| m.term() == g)
+    }
+    /// The catalogue's name.
+    pub const fn name(self) -> &'static str {
+        self.term().name()
+    }
+    /// Parses a catalogue name or other spelling (`v-cavity` is `blinn`); `None` for an
+    /// unknown name or a term the generator does not integrate.
+    pub fn from_name(s: &str) -> Option<Masking> {
+        GeometricTerm::from_name(s).and_then(Masking::from_term)
+    }
+    /// Every option by the catalogue's name and other spellings (`v-cavity`), for parsers
+    /// that list the accepted names.
+    pub fn options() -> Vec<(&'static str, Masking)> {
+        let m = brdf_core::catalogue::MASKINGS.iter();
+        m.filter_map(|m| Some((m, Masking::from_term(m.term)?)))
+            .flat_map(|(m, g)| {
+                core::iter::once(&m.name)
+                    .chain(m.aliases)
+                    .map(move |n| (*n, g))
+            })
+            .collect()
+    }
 }
+
+/// Every distribution by the catalogue's name and other spellings, for parsers that list
+/// the accepted names.
+pub fn distribution_options() -> Vec<(&'static str, Distribution)> {
+    let d = brdf_core::catalogue::DISTRIBUTIONS.iter();
+    d.flat_map(|d| {
+        core::iter::once(&d.name)
+            .chain(d.aliases)
+            .map(|n| (*n, d.id))
+    })
+    .collect()
+}
+
+/// What the roughness axis (or `Kind::GPerSigma`'s σ) means: brdf-core's one vocabulary
+/// ([`brdf_core::roughness::Roughness`], names and conversions there).
+pub use brdf_core::roughness::Roughness;
 
 /// One axis of the requested grid.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -266,8 +315,7 @@ impl Spec {
     fn roughness_name(&self) -> &'static str {
         match (self.roughness, self.distribution) {
             (Roughness::Perceptual, _) => "roughness",
-            (Roughness::Alpha, Distribution::Ggx) => "alpha",
-            (Roughness::Alpha, _) => "m",
+            (Roughness::Alpha, d) => d.spec().width,
             (Roughness::Sigma, _) => "sigma",
         }
     }
@@ -280,29 +328,22 @@ impl Spec {
         }
     }
 
-    /// The header's model name for this distribution and G.
+    /// The header's model code for this distribution and G (the catalogue's mapping,
+    /// [`Model::from_catalogue`]).
     pub fn model(&self) -> Result<Model, GenError> {
-        use Distribution as D;
-        use Masking as M;
-        if self.kind.def().check == Check::ModifiedG {
-            return Ok(Model::ModifiedG);
+        let g = self.masking.term();
+        let d = (self.kind.def().check != Check::ModifiedG).then_some(self.distribution);
+        match Model::from_catalogue(d, g) {
+            Some((m, _)) => Ok(m),
+            None => invalid(format!(
+                "the {} G goes with the Torrance–Sparrow (Gaussian-slope) distribution only, \
+                 not {}; {} takes {}",
+                g.name(),
+                self.distribution.name(),
+                self.distribution.name(),
+                tabulated_names(self.distribution).join(" or ")
+            )),
         }
-        Ok(match (self.distribution, self.masking) {
-            (D::Ggx, M::SmithCorrelated) => Model::GgxSmithCorrelated,
-            (D::Ggx, M::SmithSeparable) => Model::GgxSmithSeparable,
-            (D::Beckmann, M::SmithCorrelated) => Model::BeckmannSmithCorrelated,
-            (D::Beckmann, M::SmithSeparable) => Model::BeckmannSmithSeparable,
-            (D::TorranceSparrow, M::SmithCorrelated) => Model::TorranceSparrowSmith,
-            (D::TorranceSparrow, M::SmithSeparable) => Model::TorranceSparrowSmithSeparable,
-            (D::TorranceSparrow, M::VCavity) => Model::TorranceSparrowVCavity,
-            (D::TorranceSparrow, M::Modified) => Model::TorranceSparrowModifiedG,
-            (d, m) => {
-                return invalid(format!(
-                    "{m:?} G goes with the Torrance–Sparrow (Gaussian-slope) distribution only, \
-                     not {d:?}; GGX and Beckmann take smith-separable or smith-correlated"
-                ))
-            }
-        })
     }
 
     /// Checks every option; the error names the real problem.
@@ -414,11 +455,7 @@ impl Spec {
     /// where defined) of a roughness-axis value. σ is the axis value itself when the axis is
     /// σ, so the modified G sees exactly the tabulated σ.
     fn width_sigma(&self, x: f64) -> (f64, f64) {
-        match self.roughness {
-            Roughness::Perceptual => (x * x, x * x / SQRT_2),
-            Roughness::Alpha => (x, x / SQRT_2),
-            Roughness::Sigma => (SQRT_2 * x, x),
-        }
+        self.roughness.width_and_sigma(x)
     }
 
     /// The direct f64 kernel at a point of the table's domain: one value per channel.
@@ -477,7 +514,6 @@ impl Spec {
     /// for a header this generator cannot describe.
     pub fn from_header(h: &Header<'_>) -> Option<Spec> {
         use Distribution as D;
-        use Masking as M;
         let kind = match (h.kind, h.axes.len()) {
             (TableKind::PassingFactor, 2) => Kind::GPerSigma {
                 sigma: h.generator.sigma?,
@@ -488,16 +524,10 @@ impl Spec {
             (TableKind::AverageAlbedo, 1) => Kind::AverageAlbedo,
             _ => return None,
         };
-        let (distribution, masking) = match h.generator.model {
-            Model::ModifiedG | Model::TorranceSparrowModifiedG => (D::TorranceSparrow, M::Modified),
-            Model::GgxSmithCorrelated => (D::Ggx, M::SmithCorrelated),
-            Model::GgxSmithSeparable => (D::Ggx, M::SmithSeparable),
-            Model::BeckmannSmithCorrelated => (D::Beckmann, M::SmithCorrelated),
-            Model::BeckmannSmithSeparable => (D::Beckmann, M::SmithSeparable),
-            Model::TorranceSparrowSmith => (D::TorranceSparrow, M::SmithCorrelated),
-            Model::TorranceSparrowSmithSeparable => (D::TorranceSparrow, M::SmithSeparable),
-            Model::TorranceSparrowVCavity => (D::TorranceSparrow, M::VCavity),
-        };
+        // The generator writes the reciprocal modified G; a file's convention is not part
+        // of its spec.
+        let (d, g) = h.generator.model.catalogue(Convention::Reciprocal);
+        let (distribution, masking) = (d.unwrap_or(D::TorranceSparrow), Masking::from_term(g)?);
         let roughness = match h.axes.last().map(|a| a.name) {
             _ if kind.def().check == Check::ModifiedG => Roughness::Sigma,
             Some("roughness") => Roughness::Perceptual,
@@ -524,6 +554,16 @@ impl Spec {
         }
         Some(spec)
     }
+}
+
+/// The names of the G terms tables are made with over `d` (the catalogue's list).
+fn tabulated_names(d: Distribution) -> Vec<&'static str> {
+    let t = d
+        .spec()
+        .tabulated
+        .iter()
+        .filter_map(|&g| Masking::from_term(g));
+    t.map(Masking::name).collect()
 }
 
 /// The modified G's one-sided passing factor F(θ, φ) = M(θ, (θ − φ)/2) for RMS slope σ

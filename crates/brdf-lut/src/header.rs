@@ -210,29 +210,61 @@ pub enum Interpolation {
     CatmullRom,
 }
 
-/// The reflection model a table was generated from.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Model {
+/// Defines [`Model`] from one list of `Variant = code`: the discriminant is the code on
+/// disk, [`Model::from_code`] its inverse.
+macro_rules! model_codes {
+    ($($(#[$m:meta])* $v:ident = $c:literal,)*) => {
+        /// The reflection model a table was generated from. The discriminant is the code on
+        /// disk (docs/lut-format.md §3; [`Model::code`], [`Model::from_code`]); what each
+        /// code means in the model catalogue's words (distribution and G term) is the one
+        /// table in `kernel.rs` ([`Model::catalogue`], [`Model::from_catalogue`]).
+        #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+        #[repr(u8)]
+        pub enum Model {
+            $($(#[$m])* $v = $c,)*
+        }
+        impl Model {
+            /// Every model, in code order.
+            pub const ALL: &'static [Model] = &[$(Model::$v),*];
+            /// The model of a code on disk; `None` for an unknown code.
+            pub const fn from_code(code: u32) -> Option<Model> {
+                match code {
+                    $($c => Some(Model::$v),)*
+                    _ => None,
+                }
+            }
+        }
+    };
+}
+
+model_codes! {
     /// The paper's modified G (Acta Phys. Sin. 64 184213, eqs 6–13).
     #[default]
-    ModifiedG,
+    ModifiedG = 0,
     /// GGX (α = r²) with height-correlated Smith, Schlick F (F90 = 1).
-    GgxSmithCorrelated,
+    GgxSmithCorrelated = 1,
     /// Beckmann (m = r²) with height-correlated Smith, Schlick F (F90 = 1).
-    BeckmannSmithCorrelated,
+    BeckmannSmithCorrelated = 2,
     /// Torrance–Sparrow, Gaussian slopes (Beckmann m = √2σ), the paper's modified G.
-    TorranceSparrowModifiedG,
+    TorranceSparrowModifiedG = 3,
     /// Torrance–Sparrow, Gaussian slopes (Beckmann m = √2σ), height-correlated Smith G.
-    TorranceSparrowSmith,
+    TorranceSparrowSmith = 4,
     /// GGX with separable Smith G = G1(i) G1(o), Schlick F (F90 = 1).
-    GgxSmithSeparable,
+    GgxSmithSeparable = 5,
     /// Beckmann with separable Smith G, Schlick F (F90 = 1).
-    BeckmannSmithSeparable,
+    BeckmannSmithSeparable = 6,
     /// Torrance–Sparrow, Gaussian slopes (Beckmann m = √2σ), separable Smith G.
-    TorranceSparrowSmithSeparable,
+    TorranceSparrowSmithSeparable = 7,
     /// Torrance–Sparrow, Gaussian slopes (Beckmann m = √2σ), the V-cavity G of Torrance and
     /// Sparrow as used by Blinn.
-    TorranceSparrowVCavity,
+    TorranceSparrowVCavity = 8,
+}
+
+impl Model {
+    /// The code on disk.
+    pub const fn code(self) -> u8 {
+        self as u8
+    }
 }
 
 /// How the table was generated.

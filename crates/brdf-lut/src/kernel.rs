@@ -2,6 +2,7 @@
 //! records which kernel filled a table, but does not depend on the kernels' own types.
 
 use crate::header::{Convention, Model};
+use brdf_core::catalogue::DistributionId;
 use brdf_core::masking::Convention as KernelConvention;
 use brdf_core::models::GeometricTerm;
 
@@ -23,21 +24,61 @@ impl From<Convention> for KernelConvention {
     }
 }
 
+/// The one table between the model catalogue and the header's model codes: each row is a
+/// model code with its convention, and the catalogue's distribution
+/// ([`brdf_core::catalogue::DISTRIBUTIONS`]) and G term ([`brdf_core::catalogue::MASKINGS`])
+/// it was generated from. No distribution: the G term's own passing factor (a G table).
+/// The convention matters for the modified G only; a row with the printed convention
+/// exists only where the catalogue has a printed term.
+#[rustfmt::skip]
+const MODEL_TABLE: [(Model, Convention, Option<DistributionId>, GeometricTerm); 11] = {
+    use Convention::{Printed as P, Reciprocal as R};
+    use DistributionId::{Beckmann, Ggx, TorranceSparrow as Ts};
+    use GeometricTerm as G;
+    use Model as M;
+    [
+        (M::ModifiedG, R, None, G::Modified),
+        (M::ModifiedG, P, None, G::ModifiedPrinted),
+        (M::GgxSmithCorrelated, R, Some(Ggx), G::SmithCorrelated),
+        (M::GgxSmithSeparable, R, Some(Ggx), G::SmithSeparable),
+        (M::BeckmannSmithCorrelated, R, Some(Beckmann), G::SmithCorrelated),
+        (M::BeckmannSmithSeparable, R, Some(Beckmann), G::SmithSeparable),
+        (M::TorranceSparrowModifiedG, R, Some(Ts), G::Modified),
+        (M::TorranceSparrowModifiedG, P, Some(Ts), G::ModifiedPrinted),
+        (M::TorranceSparrowSmith, R, Some(Ts), G::SmithCorrelated),
+        (M::TorranceSparrowSmithSeparable, R, Some(Ts), G::SmithSeparable),
+        (M::TorranceSparrowVCavity, R, Some(Ts), G::Blinn),
+    ]
+};
+
 impl Model {
+    /// The model code and convention of a catalogue distribution (`None`: a G table of the
+    /// term alone) and G term; `None` for a pair no table is made of.
+    pub fn from_catalogue(
+        distribution: Option<DistributionId>,
+        g: GeometricTerm,
+    ) -> Option<(Model, Convention)> {
+        MODEL_TABLE
+            .iter()
+            .find(|r| r.2 == distribution && r.3 == g)
+            .map(|r| (r.0, r.1))
+    }
+
+    /// The catalogue's distribution (`None` for a G table) and G term of this model under
+    /// `convention` (which matters for the modified G only).
+    pub fn catalogue(self, convention: Convention) -> (Option<DistributionId>, GeometricTerm) {
+        let row = |c| MODEL_TABLE.iter().find(|r| r.0 == self && r.1 == c);
+        // Every model has a reciprocal row (the table test checks it).
+        let r = row(convention).or_else(|| row(Convention::Reciprocal));
+        r.map_or((None, GeometricTerm::Modified), |r| (r.2, r.3))
+    }
+
     /// The geometric attenuation factor of a Torrance–Sparrow model under `convention`;
     /// `None` for the other models (GGX and Beckmann tables use Smith, the
     /// per-σ G tables are the modified G itself).
     pub fn torrance_sparrow_g(self, convention: Convention) -> Option<GeometricTerm> {
-        match (self, convention) {
-            (Model::TorranceSparrowModifiedG, Convention::Reciprocal) => {
-                Some(GeometricTerm::Modified)
-            }
-            (Model::TorranceSparrowModifiedG, Convention::Printed) => {
-                Some(GeometricTerm::ModifiedPrinted)
-            }
-            (Model::TorranceSparrowSmith, _) => Some(GeometricTerm::SmithCorrelated),
-            (Model::TorranceSparrowSmithSeparable, _) => Some(GeometricTerm::SmithSeparable),
-            (Model::TorranceSparrowVCavity, _) => Some(GeometricTerm::Blinn),
+        match self.catalogue(convention) {
+            (Some(DistributionId::TorranceSparrow), g) => Some(g),
             _ => None,
         }
     }

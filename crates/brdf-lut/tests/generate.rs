@@ -218,7 +218,7 @@ fn deterministic_and_progress_counts_every_node() {
     let mut s = Spec::new(
         Kind::SplitSum,
         Distribution::TorranceSparrow,
-        Masking::VCavity,
+        Masking::Blinn,
     );
     s.axes[0].count = 4;
     s.axes[1].count = 3;
@@ -247,7 +247,7 @@ fn option_errors_name_the_real_problem() {
     s.roughness = Roughness::Sigma;
     assert!(invalid(&s).contains("GGX has no RMS slope"));
     let mut s = base.clone();
-    s.masking = Masking::VCavity;
+    s.masking = Masking::Blinn;
     assert!(invalid(&s).contains("Torrance–Sparrow"));
     let mut s = base.clone();
     s.axes[0].lo = 0.0;

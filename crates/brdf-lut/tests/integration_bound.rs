@@ -47,7 +47,7 @@ fn generated_tables_hold_their_recorded_bound() {
     for (kind, d, m) in [
         (Kind::SplitSum, D::Ggx, M::SmithCorrelated),
         (Kind::Albedo, D::Beckmann, M::SmithCorrelated),
-        (Kind::SplitSum, D::TorranceSparrow, M::VCavity),
+        (Kind::SplitSum, D::TorranceSparrow, M::Blinn),
         (
             Kind::GPerSigma { sigma: 0.3 },
             D::TorranceSparrow,

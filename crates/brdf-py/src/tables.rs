@@ -142,15 +142,7 @@ fn kind_model(f: &Fields<'_>) -> PyResult<Spec> {
     }
     let g_table = matches!(kind, Kind::GPerSigma { .. } | Kind::GOverSigma);
     let dist = match f.get::<String>("model")? {
-        Some(m) => choose(
-            "model",
-            &m,
-            &[
-                ("ggx", Distribution::Ggx),
-                ("beckmann", Distribution::Beckmann),
-                ("torrance-sparrow", Distribution::TorranceSparrow),
-            ],
-        )?,
+        Some(m) => choose("model", &m, &generate::distribution_options())?,
         None if g_table => Distribution::TorranceSparrow,
         None => {
             return Err(PyValueError::new_err(
@@ -159,30 +151,13 @@ fn kind_model(f: &Fields<'_>) -> PyResult<Spec> {
         }
     };
     let masking = match f.get::<String>("masking")? {
-        Some(m) => choose(
-            "masking",
-            &m,
-            &[
-                ("smith-separable", Masking::SmithSeparable),
-                ("smith-correlated", Masking::SmithCorrelated),
-                ("v-cavity", Masking::VCavity),
-                ("modified", Masking::Modified),
-            ],
-        )?,
+        Some(m) => choose("masking", &m, &Masking::options())?,
         None if dist == Distribution::TorranceSparrow => Masking::Modified,
         None => Masking::SmithCorrelated,
     };
     let mut spec = Spec::new(kind, dist, masking);
     if let Some(r) = f.get::<String>("roughness")? {
-        spec.roughness = choose(
-            "roughness",
-            &r,
-            &[
-                ("perceptual", Roughness::Perceptual),
-                ("alpha", Roughness::Alpha),
-                ("sigma", Roughness::Sigma),
-            ],
-        )?;
+        spec.roughness = choose("roughness", &r, &Roughness::ALL.map(|r| (r.name(), r)))?;
         spec.axes = spec.default_axes();
     }
     Ok(spec)

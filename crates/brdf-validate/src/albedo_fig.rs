@@ -18,7 +18,7 @@ type Boxed = Box<dyn Brdf<f64> + Send + Sync>;
 pub fn models() -> Vec<(String, Boxed)> {
     let one = Rgb::splat(1.0);
     let zero = Rgb::splat(0.0);
-    let m = std::f64::consts::SQRT_2 * 0.3;
+    let m = brdf_core::roughness::beckmann_m_from_sigma(0.3);
     let mut v: Vec<(String, Boxed)> = Vec::new();
     let mut push = |name: &str, b: Result<Boxed, brdf_core::error::ParamError>| {
         if let Ok(b) = b {

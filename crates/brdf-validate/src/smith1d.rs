@@ -10,7 +10,7 @@ pub fn lambda(theta: f64, sigma: f64) -> f64 {
     if t == 0.0 {
         return 0.0;
     }
-    let a = t.cos() / t.sin() / (std::f64::consts::SQRT_2 * sigma);
+    let a = t.cos() / t.sin() / brdf_core::roughness::beckmann_m_from_sigma(sigma);
     if a > 26.0 {
         return 0.0;
     }

@@ -9,6 +9,7 @@ use brdf_core::masking::{
     g_blinn, g_smith_beckmann_correlated, g_smith_beckmann_separable, Convention, ModifiedG,
 };
 use brdf_core::models::{GeometricTerm, TorranceSparrow};
+use brdf_core::roughness::beckmann_m_from_sigma;
 use rayon::prelude::*;
 
 /// Run size.
@@ -103,15 +104,10 @@ impl Model {
             Model::SmithCorrelated => "Smith height-correlated",
         }
     }
-    /// Short name for file names.
+    /// Short name for file names and JSON keys: the term's name in the model catalogue
+    /// ([`brdf_core::catalogue::MASKINGS`]).
     pub fn slug(self) -> &'static str {
-        match self {
-            Model::Blinn => "blinn",
-            Model::Modified => "modified",
-            Model::ModifiedPrinted => "modified-printed",
-            Model::SmithSeparable => "smith-separable",
-            Model::SmithCorrelated => "smith-correlated",
-        }
+        self.term().name()
     }
     /// The matching BRDF geometric term.
     pub fn term(self) -> GeometricTerm {
@@ -125,7 +121,7 @@ impl Model {
     }
     /// G at (θi, θr) radians for RMS slope σ, from `brdf_core`.
     pub fn g(self, sigma: f64, ti: f64, tr: f64) -> f64 {
-        let m = std::f64::consts::SQRT_2 * sigma;
+        let m = beckmann_m_from_sigma(sigma);
         match self {
             Model::Blinn => g_blinn(ti, tr),
             Model::Modified => ModifiedG::<f64>::new(sigma).map_or(f64::NAN, |g| g.g(ti, tr)),
@@ -364,4 +360,30 @@ pub fn formula_vs_single_neighbour(sw: &Sweep) -> (f64, f64, f64) {
 /// event of probability ~1e-5 happened zero or a few times from producing huge ratios.
 fn z(v: f64, e: Estimate) -> f64 {
     (v - e.mean).abs() / (e.se() + 3.0 / e.n.max(1) as f64)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The compared terms are distinct catalogue terms, and their file names are the
+    /// catalogue's spellings, which are the names of the committed figures and report keys
+    /// (docs/validation.md): blinn, modified, modified-printed, smith-separable,
+    /// smith-correlated.
+    #[test]
+    fn models_are_catalogue_terms() {
+        let slugs: Vec<&str> = Model::ALL.iter().map(|m| m.slug()).collect();
+        let want = [
+            "blinn",
+            "modified",
+            "modified-printed",
+            "smith-separable",
+            "smith-correlated",
+        ];
+        assert_eq!(slugs, want);
+        for m in Model::ALL {
+            let spec = brdf_core::catalogue::find_masking(m.slug()).unwrap();
+            assert_eq!(spec.term, m.term());
+        }
+    }
 }

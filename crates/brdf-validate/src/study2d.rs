@@ -15,10 +15,11 @@ use brdf_core::geometry::{Dots, Vec3};
 use brdf_core::masking::{
     g_blinn_dots, g_smith_beckmann_correlated, g_smith_beckmann_separable, Convention, ModifiedG,
 };
+use brdf_core::roughness::beckmann_m_from_sigma;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 use rayon::prelude::*;
-use std::f64::consts::{PI, SQRT_2};
+use std::f64::consts::PI;
 
 /// Run size of the 3-D study.
 #[derive(Clone, Debug)]
@@ -242,7 +243,7 @@ impl Surface2d<'_> {
 pub fn model_g3(m: Model, sigma: f64, wi: [f64; 3], wo: [f64; 3]) -> f64 {
     let v = |w: [f64; 3]| Vec3::new(w[0], w[1], w[2]);
     let d = Dots::from_local(v(wi), v(wo));
-    let mm = SQRT_2 * sigma;
+    let mm = beckmann_m_from_sigma(sigma);
     match m {
         Model::Blinn => g_blinn_dots(d),
         Model::Modified => ModifiedG::<f64>::new(sigma).map_or(f64::NAN, |g| g.g_dots(d)),

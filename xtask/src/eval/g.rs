@@ -74,7 +74,7 @@ pub fn direct_columns<R: Rule>(row: &Row<'_>, conv: Convention) -> Result<[f64; 
         .map_err(|e| anyhow::anyhow!("{e}"))?
         .with_convention(conv);
     let t = g.terms(ti, tr);
-    let m = std::f64::consts::SQRT_2 * row.sigma;
+    let m = brdf_core::roughness::beckmann_m_from_sigma(row.sigma);
     let (ci, co) = (ti.cos(), tr.cos());
     Ok([
         t.gm,

@@ -27,7 +27,7 @@
 
 use super::GenArgs;
 use anyhow::{anyhow, bail, Context, Result};
-use brdf_lut::generate::{Distribution, Kind, Masking, Roughness, Spec};
+use brdf_lut::generate::{distribution_options, Distribution, Kind, Masking, Roughness, Spec};
 use brdf_lut::{Encoding, Interpolation, Placement, Warp};
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -303,43 +303,18 @@ fn build_spec(
     }
     let g_table = matches!(kind, Kind::GPerSigma { .. } | Kind::GOverSigma);
     let dist = match pick(&a.model, &cfg.model) {
-        Some(m) => choose(
-            "model",
-            &m,
-            &[
-                ("ggx", Distribution::Ggx),
-                ("beckmann", Distribution::Beckmann),
-                ("torrance-sparrow", Distribution::TorranceSparrow),
-            ],
-        )?,
+        Some(m) => choose("model", &m, &distribution_options())?,
         None if g_table => Distribution::TorranceSparrow,
         None => bail!("--model is missing (ggx, beckmann, torrance-sparrow)"),
     };
     let masking = match pick(&a.masking, &cfg.masking) {
-        Some(m) => choose(
-            "masking",
-            &m,
-            &[
-                ("smith-separable", Masking::SmithSeparable),
-                ("smith-correlated", Masking::SmithCorrelated),
-                ("v-cavity", Masking::VCavity),
-                ("modified", Masking::Modified),
-            ],
-        )?,
+        Some(m) => choose("masking", &m, &Masking::options())?,
         None if dist == Distribution::TorranceSparrow => Masking::Modified,
         None => Masking::SmithCorrelated,
     };
     let mut spec = Spec::new(kind, dist, masking);
     if let Some(r) = pick(&a.roughness, &cfg.roughness) {
-        spec.roughness = choose(
-            "roughness",
-            &r,
-            &[
-                ("perceptual", Roughness::Perceptual),
-                ("alpha", Roughness::Alpha),
-                ("sigma", Roughness::Sigma),
-            ],
-        )?;
+        spec.roughness = choose("roughness", &r, &Roughness::ALL.map(|r| (r.name(), r)))?;
         spec.axes = spec.default_axes();
     }
     let names = spec.axis_names();

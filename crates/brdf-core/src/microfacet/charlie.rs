@@ -65,7 +65,7 @@ impl<T: Real> Charlie<T> {
     /// least [`ALPHA_FLOOR`]).
     pub fn from_roughness(r: T) -> Result<Self, ParamError> {
         let r = crate::error::check_range("roughness", r, T::ZERO, false, T::ONE, "[0, 1]")?;
-        Ok(Self::clamped(r * r))
+        Ok(Self::clamped(crate::roughness::alpha_from_perceptual(r)))
     }
     /// Any width, clamped into [[`ALPHA_FLOOR`], 1] (the range of the Λ fit); NaN stays NaN
     /// (every result is then NaN).

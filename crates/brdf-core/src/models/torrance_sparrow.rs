@@ -47,20 +47,13 @@ impl GeometricTerm {
         GeometricTerm::Modified,
         GeometricTerm::ModifiedPrinted,
     ];
-    /// Short lower-case name used on command lines.
+    /// Its name in the catalogue ([`crate::catalogue::MASKINGS`]).
     pub const fn name(self) -> &'static str {
-        match self {
-            GeometricTerm::None => "none",
-            GeometricTerm::Blinn => "blinn",
-            GeometricTerm::SmithSeparable => "smith-separable",
-            GeometricTerm::SmithCorrelated => "smith-correlated",
-            GeometricTerm::Modified => "modified",
-            GeometricTerm::ModifiedPrinted => "modified-printed",
-        }
+        crate::catalogue::MASKINGS[self as usize].name
     }
-    /// Parses [`GeometricTerm::name`].
+    /// Parses a name or other spelling of the catalogue ([`crate::catalogue::find_masking`]).
     pub fn from_name(s: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|g| g.name() == s)
+        crate::catalogue::find_masking(s).map(|m| m.term)
     }
 }
 
@@ -89,13 +82,13 @@ impl<T: Real, R: Rule> TorranceSparrow<T, R> {
         ks: T,
         albedo: T,
     ) -> Result<Self, ParamError> {
-        let sqrt2 = core::f64::consts::SQRT_2;
+        use crate::roughness::sigma_from_beckmann_m as sigma_of;
         let sigma = check_range(
             "sigma",
             sigma,
-            T::from_f64(ALPHA_MIN / sqrt2),
+            T::from_f64(sigma_of(ALPHA_MIN)),
             false,
-            T::from_f64(ALPHA_MAX / sqrt2),
+            T::from_f64(sigma_of(ALPHA_MAX)),
             "[7.07e-5, 7.07e3] (alpha = sqrt2 sigma in [1e-4, 1e4])",
         )?;
         Self::build(

@@ -8,10 +8,10 @@
 //! * [`half_vector`]: reflection of wo about a half vector (FCG eq 24.11) with the pdf
 //!   conversion p(wi) = p_h(h)/(4 wo·h) (eq 24.12), and the Ashikhmin–Shirley half-vector
 //!   sampling with its quadrant mapping (eqs 24.10, 24.13, 24.14).
-//! * [`microfacet`]: Beckmann (isotropic and anisotropic, also Ward's lobe) and GGX normals
-//!   distributed as D(h) cos θh, and GGX visible normals.
-//! * [`visible_beckmann`]: Beckmann visible normals (anisotropic), by a bracketed Newton
-//!   inversion of the visible-slope CDF (its home is [`crate::microfacet`]).
+//! * Microfacet normals (D(h) cos θh) and visible normals have their home with each
+//!   distribution: [`crate::microfacet::Beckmann`] and [`crate::microfacet::TrowbridgeReitz`]
+//!   (`sample_normal`, `sample_visible_normal` and their pdfs); the Beckmann visible-normal
+//!   free functions are re-exported here.
 
 // `!(x > 0)` is deliberate throughout: it is true for NaN as well.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
@@ -19,10 +19,6 @@
 pub mod half_vector;
 pub mod hemisphere;
 pub mod lobe;
-pub mod microfacet;
-/// Beckmann visible normals (moved to [`crate::microfacet::beckmann_visible`]).
-pub use crate::microfacet::beckmann_visible as visible_beckmann;
-
 pub use crate::microfacet::beckmann_visible::{
     beckmann_visible_normal_pdf, sample_beckmann_visible_normal,
 };
@@ -34,10 +30,6 @@ pub use hemisphere::{
     uniform_hemisphere_pdf,
 };
 pub use lobe::{cosine_lobe_pdf, sample_cosine_lobe};
-pub use microfacet::{
-    beckmann_aniso_d, beckmann_normal_pdf, ggx_normal_pdf, ggx_visible_normal_pdf,
-    sample_beckmann_normal, sample_ggx_normal, sample_ggx_visible_normal,
-};
 
 use crate::Real;
 

@@ -1,0 +1,116 @@
+//! The header's model codes against the model catalogue and the format's own document:
+//! every catalogue pair (distribution, G term) that tables are made of has a code, and the
+//! code gives the pair back; the codes on disk are the ones docs/lut-format.md §3 lists.
+
+use brdf_core::catalogue::{DistributionId, DISTRIBUTIONS, MASKINGS};
+use brdf_core::models::GeometricTerm;
+use brdf_lut::generate::{Distribution, Kind, Masking, Spec};
+use brdf_lut::{Convention, Model};
+
+/// The (distribution, G) pairs the catalogue says tables are made of, plus the G tables
+/// (no distribution) of the modified G in both readings.
+fn tabulated() -> Vec<(Option<DistributionId>, GeometricTerm)> {
+    let mut v = vec![
+        (None, GeometricTerm::Modified),
+        (None, GeometricTerm::ModifiedPrinted),
+    ];
+    for d in DISTRIBUTIONS {
+        v.extend(d.tabulated.iter().map(|&g| (Some(d.id), g)));
+    }
+    v
+}
+
+#[test]
+fn every_tabulated_catalogue_pair_has_a_code_and_back() {
+    let pairs = tabulated();
+    for &(d, g) in &pairs {
+        let (m, c) = Model::from_catalogue(d, g).unwrap_or_else(|| panic!("{d:?} {g:?}"));
+        assert_eq!(m.catalogue(c), (d, g), "{m:?} {c:?}");
+        // Through the bytes: the code read back is the same model.
+        assert_eq!(Model::from_code(m.code() as u32), Some(m));
+    }
+    // Distinct pairs, distinct (code, convention): the map is one-to-one.
+    let mut seen: Vec<(Model, Convention)> = pairs
+        .iter()
+        .map(|&(d, g)| Model::from_catalogue(d, g).unwrap())
+        .collect();
+    seen.sort_by_key(|&(m, c)| (m.code(), c as u8));
+    seen.dedup();
+    assert_eq!(seen.len(), pairs.len());
+    // Every code is some catalogue pair (its reciprocal reading), and that pair maps back.
+    for &m in Model::ALL {
+        let (d, g) = m.catalogue(Convention::Reciprocal);
+        assert!(pairs.contains(&(d, g)), "{m:?} → {d:?} {g:?}");
+        assert_eq!(
+            Model::from_catalogue(d, g),
+            Some((m, Convention::Reciprocal))
+        );
+    }
+}
+
+#[test]
+fn pairs_no_table_is_made_of_have_no_code() {
+    let pairs = tabulated();
+    let dists = [None]
+        .into_iter()
+        .chain(DISTRIBUTIONS.iter().map(|d| Some(d.id)));
+    for d in dists {
+        for g in MASKINGS.iter().map(|m| m.term) {
+            if !pairs.contains(&(d, g)) {
+                assert_eq!(Model::from_catalogue(d, g), None, "{d:?} {g:?}");
+            }
+        }
+    }
+}
+
+/// The codes on disk as the format document lists them ("0 `ModifiedG`, 1 ..."), read from
+/// docs/lut-format.md: an independent record of what committed files contain.
+#[test]
+fn codes_are_the_documented_ones() {
+    let doc = include_str!("../../../docs/lut-format.md");
+    let at = doc
+        .find("`model: Model` (")
+        .expect("the model list in lut-format.md");
+    let list = &doc[at + "`model: Model` (".len()..];
+    let list = &list[..list.find(';').unwrap()];
+    let mut n = 0;
+    for item in list.split(',') {
+        let mut w = item.split_whitespace();
+        let code: u32 = w.next().unwrap().parse().unwrap();
+        let name = w.next().unwrap().trim_matches('`');
+        let m = Model::from_code(code).unwrap_or_else(|| panic!("code {code}"));
+        assert_eq!(format!("{m:?}"), name);
+        assert_eq!(m.code() as u32, code);
+        n += 1;
+    }
+    assert_eq!(n, Model::ALL.len());
+    assert_eq!(Model::from_code(Model::ALL.len() as u32), None);
+}
+
+/// The generator's names are the catalogue's, old spellings accepted; every pair it can
+/// build is a catalogue pair with a code.
+#[test]
+fn generator_options_are_the_catalogue_s() {
+    assert_eq!(Masking::from_name("blinn"), Some(Masking::Blinn));
+    assert_eq!(Masking::from_name("v-cavity"), Some(Masking::Blinn));
+    assert_eq!(Masking::Blinn.name(), "blinn");
+    assert_eq!(Masking::from_name("none"), None);
+    for m in Masking::ALL {
+        assert_eq!(Masking::from_name(m.name()), Some(m));
+        assert!(MASKINGS.iter().any(|s| s.name == m.name()));
+    }
+    let pairs = tabulated();
+    for d in DISTRIBUTIONS {
+        for m in Masking::ALL {
+            let spec = Spec::new(Kind::SplitSum, d.id, m);
+            let ok = pairs.contains(&(Some(d.id), m.term()));
+            assert_eq!(spec.model().is_ok(), ok, "{} {}", d.name, m.name());
+        }
+    }
+    let opts = brdf_lut::generate::distribution_options();
+    assert!(opts.contains(&("torrance-sparrow", Distribution::TorranceSparrow)));
+    assert_eq!(
+        opts.len(),
+        DISTRIBUTIONS.iter().map(|d| 1 + d.aliases.len()).sum()
+    );
+}
