@@ -445,7 +445,7 @@ impl Spec {
     fn nodes_record(&self) -> &'static [u16] {
         use brdf_core::split_sum::OUTER_PANELS;
         let polar_axis = self.axes.last().is_some_and(|a| {
-            integrate::polar_r(self, a.lo).is_some() && integrate::polar_r(self, a.hi).is_some()
+            integrate::polar_row(self, a.lo).is_some() && integrate::polar_row(self, a.hi).is_some()
         });
         match self.kind {
             Kind::GPerSigma { .. } | Kind::GOverSigma => &[20],
@@ -622,7 +622,7 @@ fn evaluate_on(
         let coords = |i| write::node_coords(&axes, r * n0 + i);
         let mus: Vec<f64> = (0..n0).map(|i| coords(i)[0]).collect();
         let rx = coords(0).get(1).copied().unwrap_or(f64::NAN);
-        if integrate::ggx_row(spec, &mus, rx, stride, v).is_none() {
+        if integrate::converged_row(spec, &mus, rx, stride, v).is_none() {
             for (i, out) in v.chunks_mut(stride).enumerate() {
                 let w = (def.value)(spec, &coords(i), &mut out[..nc]);
                 (out[nc], out[nc + 1]) = (w.error, w.evals as f64);
