@@ -702,8 +702,9 @@ mod tests {
     use super::*;
 
     /// The node values, the bound and the evaluation count are the same on 1, 2 and 3
-    /// workers (each node alone in its slot): a GGX split sum (converged rule) and a
-    /// Beckmann albedo (fixed and refined rules), on grids that do not split evenly.
+    /// workers (each node alone in its slot): a GGX split sum and a Beckmann albedo
+    /// (converged polar rule) and a V-cavity Torrance–Sparrow albedo (fixed and coarser
+    /// rules), on grids that do not split evenly.
     #[test]
     fn evaluation_does_not_depend_on_the_thread_count() {
         let mut a = Spec::new(Kind::SplitSum, Distribution::Ggx, Masking::SmithCorrelated);
@@ -716,7 +717,13 @@ mod tests {
         );
         b.axes[0].count = 3;
         b.axes[1].count = 5;
-        for s in [a, b] {
+        let mut c = b.clone();
+        (c.distribution, c.masking) = (Distribution::TorranceSparrow, Masking::VCavity);
+        c.roughness = Roughness::Sigma;
+        c.axes = c.default_axes();
+        c.axes[0].count = 3;
+        c.axes[1].count = 5;
+        for s in [a, b, c] {
             let one = evaluate_on(1, &s, &|_| {}).unwrap();
             for t in [2, 3] {
                 assert_eq!(evaluate_on(t, &s, &|_| {}).unwrap(), one, "{t} threads");

@@ -494,4 +494,48 @@ mod tests {
         check::<Panels<3>>();
         check::<Panels<4>>();
     }
+
+    /// Beckmann and Torrance–Sparrow tables with Smith G take the polar rule (no fixed
+    /// rule's node record), each node's estimate is ≤ TOL, and the node agrees with the
+    /// independent fixed-rule reference within the two estimates (the claim `lut verify`
+    /// checks); the V-cavity G stays with the fixed rule.
+    #[test]
+    fn beckmann_nodes_take_the_polar_rule_within_their_estimate() {
+        let cases = [
+            (
+                Kind::SplitSum,
+                Distribution::TorranceSparrow,
+                Masking::SmithCorrelated,
+            ),
+            (
+                Kind::SplitSum,
+                Distribution::TorranceSparrow,
+                Masking::SmithSeparable,
+            ),
+            (
+                Kind::Albedo,
+                Distribution::Beckmann,
+                Masking::SmithCorrelated,
+            ),
+        ];
+        for (kind, d, m) in cases {
+            let spec = Spec::new(kind, d, m);
+            for x in [[0.0175, 0.05], [0.2, 0.3], [1.0, 1.0], [0.6, 0.7]] {
+                assert!(polar_query(&spec, &x).is_some(), "{kind:?} {d:?} {m:?}");
+                let mut out = [0.0; 2];
+                let w = node(&spec, &x, &mut out[..kind.def().channels.len()]);
+                assert!(w.error <= TOL && w.evals > 0, "{x:?}: {w:?}");
+                let (r, est) = reference(&spec, &x);
+                for (o, r) in out.iter().zip(r) {
+                    assert!((o - r).abs() <= w.error + est, "{x:?}: {o} vs {r}");
+                }
+            }
+        }
+        let v = Spec::new(
+            Kind::Albedo,
+            Distribution::TorranceSparrow,
+            Masking::VCavity,
+        );
+        assert!(polar_query(&v, &[0.5, 0.3]).is_none());
+    }
 }
