@@ -97,7 +97,7 @@ pub fn polar_converged(q: GgxQuery, row: PolarRow<f64>) -> ([f64; 2], Work) {
     }
 }
 
-/// [`polar_converged`] for GGX + height-correlated Smith of perceptual roughness `r` (α = r²).
+/// `polar_converged` for GGX + height-correlated Smith of perceptual roughness `r` (α = r²).
 pub fn ggx_converged(q: GgxQuery, r: f64) -> ([f64; 2], Work) {
     polar_converged(q, PolarRow::new(r))
 }

@@ -64,7 +64,7 @@ fn points(spec: &Spec, axes: &[Axis<'_>]) -> Vec<Vec<f64>> {
 /// Max and RMS |table − direct kernel| over all channels at `spec.samples` random points
 /// (seeded by `spec.seed`), uniform on each of `axes` (the table's header axes). Passing-factor
 /// tables are measured on the modified G = min(GM, GS) they serve, at random (θi, θr[, σ])
-/// ([`Check::ModifiedG`]), each group of [`SIGMA_GROUP`] points with one direct
+/// ([`Check::ModifiedG`]), each group of 64 points (`SIGMA_GROUP`) with one direct
 /// `ModifiedG` (the same f64 kernel, its σ-dependent normaliser computed once per group);
 /// every other kind channel by channel at the f32 point the table sees.
 pub fn measure(spec: &Spec, view: &LutView<'_>, axes: &[Axis<'_>]) -> ErrorStats {
