@@ -482,7 +482,7 @@ impl Spec {
     fn nodes_record(&self) -> &'static [u16] {
         use brdf_core::split_sum::OUTER_PANELS;
         let polar_axis = self.axes.last().is_some_and(|a| {
-            integrate::polar_r(self, a.lo).is_some() && integrate::polar_r(self, a.hi).is_some()
+            integrate::polar_row(self, a.lo).is_some() && integrate::polar_row(self, a.hi).is_some()
         });
         match self.kind {
             Kind::GPerSigma { .. } | Kind::GOverSigma => &[20],
@@ -662,7 +662,7 @@ fn evaluate_on(
         let coords = |i| write::node_coords(&axes, r * n0 + i);
         let mus: Vec<f64> = (0..n0).map(|i| coords(i)[0]).collect();
         let rx = coords(0).get(1).copied().unwrap_or(f64::NAN);
-        if integrate::ggx_row(spec, &mus, rx, stride, v).is_none() {
+        if integrate::converged_row(spec, &mus, rx, stride, v).is_none() {
             for (i, out) in v.chunks_mut(stride).enumerate() {
                 let w = (def.value)(spec, &coords(i), &mut out[..nc]);
                 (out[nc], out[nc + 1]) = (w.error, w.evals as f64);
@@ -742,8 +742,9 @@ mod tests {
     use super::*;
 
     /// The node values, the bound and the evaluation count are the same on 1, 2 and 3
-    /// workers (each node alone in its slot): a GGX split sum (converged rule) and a
-    /// Beckmann albedo (fixed and refined rules), on grids that do not split evenly.
+    /// workers (each node alone in its slot): a GGX split sum and a Beckmann albedo
+    /// (converged polar rule) and a V-cavity Torrance–Sparrow albedo (fixed and coarser
+    /// rules), on grids that do not split evenly.
     #[test]
     fn evaluation_does_not_depend_on_the_thread_count() {
         let mut a = Spec::new(Kind::SplitSum, Distribution::Ggx, Masking::SmithCorrelated);
@@ -756,7 +757,13 @@ mod tests {
         );
         b.axes[0].count = 3;
         b.axes[1].count = 5;
-        for s in [a, b] {
+        let mut c = b.clone();
+        (c.distribution, c.masking) = (Distribution::TorranceSparrow, Masking::VCavity);
+        c.roughness = Roughness::Sigma;
+        c.axes = c.default_axes();
+        c.axes[0].count = 3;
+        c.axes[1].count = 5;
+        for s in [a, b, c] {
             let one = evaluate_on(1, &s, &|_| {}).unwrap();
             for t in [2, 3] {
                 assert_eq!(evaluate_on(t, &s, &|_| {}).unwrap(), one, "{t} threads");

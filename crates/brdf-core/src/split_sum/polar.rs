@@ -1,5 +1,5 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)] // NaN-aware tests: `!(x > 0)` is true for NaN.
-//! The GGX split sum (A, B), E = A + B and E_avg by a product rule in polar coordinates of
+//! The GGX and Beckmann split sums (A, B), E = A + B and E_avg by a product rule in polar coordinates of
 //! the half vector, with the horizon cut in closed form and a per-texel error estimate.
 //!
 //! **Integrand.** With v = (sin θv, 0, μ), h = (sin θ cos φ, sin θ sin φ, cos θ) and
@@ -32,6 +32,23 @@
 //! scale (panel ends wc − 2d·6^k) unless a bound on the integrand there shows the zone
 //! cannot matter (the bound is then added to the row's estimate).
 //!
+//! **Beckmann.** The same rule integrates Beckmann lobes (D = e^{−τ²/m²}/(π m² cos⁴θ),
+//! Walter et al. 2007, "Microfacet models for refraction", eq 25) with height-correlated
+//! Smith G2 = 1/(1 + Λ(v) + Λ(l)) or separable G1(v) G1(l) (Λ from
+//! [`crate::masking::lambda_beckmann`]; Heitz 2014 eqs 72, 98–99). Their radial map is
+//! linear: with τ = m s, D sin θ (v·h) dθ = D cos⁴θ τ (sv τ c + μ) dτ = s e^{−s²}(sv τ c + μ)/π ds,
+//! an entire function of s with the same shape for every m, so
+//!
+//! ```text
+//! I(φ) = ∫₀^{sc} s e^{−s²} (sv τ c + μ) G2 / (π μ) · (1 − F_c, F_c) ds,   sc = min(τc/m, S),
+//! ```
+//!
+//! cut at S = [`BECKMANN_S_MAX`] (the tail beyond, ≤ (S² + 1) e^{−S²}/(2S) · (sv m + μ)/(πμ)
+//! per row, is added to the row's estimate). Near the cut n·l ≈ μ(sc − s)/sc, and G2's
+//! nearest singularity is the zero of 1 + Λ(v) + Λ(l) (separable: of 1 + Λ(l)): with
+//! Λ(l) ≈ 1/(2√π a) − ½ for a = n·l/(m√(1 − n·l²)) → 0, at n·l ≈ −m/(√π(1 + 2Λ(v)))
+//! (separable −m/√π), so the rows are graded toward sc at d = sc·m/(√π(1 + 2Λ(v))μ).
+//!
 //! **Azimuthal variable.** At grazing views τc(φ) jumps by a factor ~4/μ² across
 //! |cos φ| < 1/T. The substitution ζ = Z cos ψ, Z = asinh T, ψ ∈ [0, π] (so
 //! T cos φ = sinh(Z cos ψ)) makes ln τc = ζ linear and removes the square-root end
@@ -51,6 +68,7 @@
 //! result is returned with its (then larger than `tol`) estimate.
 
 use super::converged::{row_alpha, texel_edges};
+use crate::masking::lambda_beckmann;
 use crate::quadrature::kronrod::{gk15_combine, gk15_nodes};
 use crate::Real;
 
@@ -68,6 +86,31 @@ pub const GRADE_RATIO: f64 = 6.0;
 pub const GRADE_MAX: f64 = 1.0;
 /// Below this width α the split sum is its mirror limit (the same as `converged`'s).
 pub use super::converged::MIRROR_ALPHA;
+/// Where the Beckmann radial variable s = τ/m is cut (module docs): e^{−S²} = 4.5e-19.
+pub const BECKMANN_S_MAX: f64 = 6.5;
+
+/// The lobe of a polar integral: the distribution (its radial map) and its Smith masking.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PolarModel<T> {
+    /// GGX of width α with height-correlated Smith G2 (module docs).
+    GgxCorrelated(T),
+    /// Beckmann of width m with height-correlated Smith G2 = 1/(1 + Λ(v) + Λ(l)).
+    BeckmannCorrelated(T),
+    /// Beckmann of width m with separable Smith G2 = G1(v) G1(l) = 1/((1 + Λ(v))(1 + Λ(l))).
+    BeckmannSeparable(T),
+}
+
+impl<T: Real> PolarModel<T> {
+    /// The distribution width (GGX α, Beckmann m).
+    pub fn width(self) -> T {
+        match self {
+            Self::GgxCorrelated(w) | Self::BeckmannCorrelated(w) | Self::BeckmannSeparable(w) => w,
+        }
+    }
+    fn is_ggx(self) -> bool {
+        matches!(self, Self::GgxCorrelated(_))
+    }
+}
 
 /// A texel's integral: the two channels, their estimates and the work done.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -173,16 +216,21 @@ fn shc_scaled<T: Real>(x: T) -> T {
 /// Per-texel constants.
 #[derive(Clone, Copy, Debug)]
 struct Texel<T> {
+    model: PolarModel<T>,
     mu: T,
     sv: T,
+    /// The width (GGX α, Beckmann m).
     alpha: T,
+    /// Beckmann: Λ(v) (0 for GGX).
+    lv: T,
     a2: T,
     /// R_v = √(μ² + α² sv²).
     rv: T,
     /// T = tan θv and Z = asinh T.
     t: T,
     z: T,
-    /// Distance scale of G2's branch points from the cut, per unit tanh(wc) (module docs).
+    /// Distance scale of G2's singularities from the cut, per unit tanh(wc) (GGX) or per
+    /// unit sc (Beckmann) (module docs).
     d_cut: T,
 }
 
@@ -211,20 +259,32 @@ struct Panel<T> {
 }
 
 impl<T: Real> Texel<T> {
-    fn new(mu: T, alpha: T) -> Self {
+    fn new(mu: T, model: PolarModel<T>) -> Self {
+        let alpha = model.width();
         let sv = ((T::ONE - mu) * (T::ONE + mu)).max(T::ZERO).sqrt();
         let a2 = alpha * alpha;
         let t = sv / mu;
         let one_m = (T::ONE - a2).max(T::ZERO);
-        let d_cut = if one_m > T::ZERO {
-            alpha / (one_m.sqrt() * mu)
-        } else {
-            T::INFINITY
+        let inv_sqrt_pi = T::from_f64(0.564_189_583_547_756_3);
+        let (lv, d_cut) = match model {
+            PolarModel::GgxCorrelated(_) if one_m > T::ZERO => {
+                (T::ZERO, alpha / (one_m.sqrt() * mu))
+            }
+            PolarModel::GgxCorrelated(_) => (T::ZERO, T::INFINITY),
+            PolarModel::BeckmannCorrelated(_) => {
+                let lv = lambda_beckmann(mu, alpha);
+                (lv, alpha * inv_sqrt_pi / ((T::ONE + lv + lv) * mu))
+            }
+            PolarModel::BeckmannSeparable(_) => {
+                (lambda_beckmann(mu, alpha), alpha * inv_sqrt_pi / mu)
+            }
         };
         Self {
+            model,
             mu,
             sv,
             alpha,
+            lv,
             a2,
             rv: (mu * mu + a2 * sv * sv).sqrt(),
             t,
@@ -255,6 +315,9 @@ impl<T: Real> Texel<T> {
     /// lit range.
     #[inline]
     fn integrand(&self, r: &Row<T>, w: T) -> [T; 2] {
+        if !self.model.is_ggx() {
+            return self.integrand_beckmann(r, w);
+        }
         let (sh, ch) = sinh_cosh(w);
         let tau = self.alpha * sh;
         let d = T::ONE + tau * tau;
@@ -273,6 +336,53 @@ impl<T: Real> Texel<T> {
         [val * (T::ONE - fc), val * fc]
     }
 
+    /// The Beckmann integrand of I(φ) at s on row `r` (module docs):
+    /// s e^{−s²} (sv τ c + μ) G2/(π μ) · (1 − F_c, F_c), τ = m s; 0 outside the lit range.
+    #[inline]
+    fn integrand_beckmann(&self, r: &Row<T>, s: T) -> [T; 2] {
+        let tau = self.alpha * s;
+        let d = T::ONE + tau * tau;
+        let nl = self.mu * (r.tc - tau) * (tau + r.itc) / d;
+        if !(nl > T::ZERO) {
+            return [T::ZERO; 2];
+        }
+        let ll = lambda_beckmann(nl.min(T::ONE), self.alpha);
+        let g2 = match self.model {
+            PolarModel::BeckmannSeparable(_) => T::ONE / ((T::ONE + self.lv) * (T::ONE + ll)),
+            _ => T::ONE / (T::ONE + self.lv + ll),
+        };
+        let num = self.sv * r.c * tau + self.mu;
+        let vh = num / d.sqrt();
+        let val = s * (-(s * s)).exp() * num * g2 / (T::PI * self.mu);
+        let fc = (T::ONE - vh).max(T::ZERO).powi(5);
+        [val * (T::ONE - fc), val * fc]
+    }
+
+    /// The radial end wc of a row whose cut is at τc, whether the cut lies inside the range
+    /// (Beckmann rows are cut at [`BECKMANN_S_MAX`]), and the grading scale d there.
+    fn radial_end(&self, tc: T) -> (T, bool, T) {
+        let x = tc / self.alpha;
+        if self.model.is_ggx() {
+            // tanh(wc) = x/√(1 + x²).
+            return (asinh(x), true, self.d_cut * x / (T::ONE + x * x).sqrt());
+        }
+        let smax = T::from_f64(BECKMANN_S_MAX);
+        if x > smax {
+            (smax, false, T::ZERO)
+        } else {
+            (x, true, self.d_cut * x)
+        }
+    }
+
+    /// A bound on the Beckmann integrand beyond s = [`BECKMANN_S_MAX`] on row `r`:
+    /// s e^{−s²}(sv|c| m s + μ)/(πμ) ≤ s² e^{−s²}(sv m + μ)/(πμ) for s ≥ 1, and
+    /// ∫_S^∞ s² e^{−s²} ds ≤ (S² + 1) e^{−S²}/(2S).
+    fn tail_bound(&self) -> T {
+        let s = T::from_f64(BECKMANN_S_MAX);
+        (s * s + T::ONE) * (-(s * s)).exp() / (s + s) * (self.sv * self.alpha + self.mu)
+            / (T::PI * self.mu)
+    }
+
     /// K15 over [a, b] on row `r`: (value, |K15 − G7|) per channel.
     fn panel(&self, r: &Row<T>, a: T, b: T) -> ([T; 2], [T; 2]) {
         let t = gk15_nodes(a, b);
@@ -286,11 +396,18 @@ impl<T: Real> Texel<T> {
     /// A bound on ∫ over [wc − len, wc] of the integrand's channels on row `r`: the
     /// integrand is ≤ 2 tanh w sech² w (sv|c|τc + μ)/(πμ) (G2 ≤ 1 since n·l R_v + μ R_l ≥
     /// μ n·l), and tanh w sech² w decreases for w ≥ asinh(1/√2) ≈ 0.658.
+    /// Beckmann: the same with s e^{−s²}, which decreases for s ≥ 1/√2 (and the Beckmann
+    /// integrand ≤ s e^{−s²}(sv|c|τc + μ)/(πμ), half the bound taken).
     fn zone_bound(&self, r: &Row<T>, len: T) -> T {
-        let w = (r.wc - len).max(T::from_f64(0.6585));
-        let sh = sinh(w);
-        let ch2 = T::ONE + sh * sh;
-        let q = sh / (ch2 * ch2.sqrt());
+        let q = if self.model.is_ggx() {
+            let w = (r.wc - len).max(T::from_f64(0.6585));
+            let sh = sinh(w);
+            let ch2 = T::ONE + sh * sh;
+            sh / (ch2 * ch2.sqrt())
+        } else {
+            let s = (r.wc - len).max(T::from_f64(core::f64::consts::FRAC_1_SQRT_2));
+            s * (-(s * s)).exp()
+        };
         T::TWO * q * (self.sv * r.c.abs() * r.tc + self.mu) / (T::PI * self.mu) * len
     }
 }
@@ -341,8 +458,7 @@ impl<T: Real> State<T> {
         let psi = T::PI * T::from_f64(k as f64) / T::from_f64(MAX_INTERVALS as f64);
         let (c, zeta, j) = self.tex.row_geometry(psi);
         let tc = zeta.exp();
-        let x = tc / self.tex.alpha;
-        let wc = asinh(x);
+        let (wc, cut, d) = self.tex.radial_end(tc);
         let end = k == 0 || k == MAX_INTERVALS;
         self.rows[k] = Row {
             c,
@@ -350,6 +466,7 @@ impl<T: Real> State<T> {
             itc: (-zeta).exp(),
             wc,
             b: if end { j * T::HALF } else { j },
+            extra: if cut { T::ZERO } else { self.tex.tail_bound() },
             ..Row::default()
         };
         let bump = T::from_f64(BUMP_BREAK);
@@ -357,13 +474,11 @@ impl<T: Real> State<T> {
         if lo > T::ZERO && !self.add_panel(k, T::ZERO, lo) {
             return false;
         }
-        // tanh(wc) = x/√(1 + x²).
-        let d = self.tex.d_cut * x / (T::ONE + x * x).sqrt();
         let zone = T::from_f64(GRADE_MAX).min(wc - lo);
         let mut pts = [T::ZERO; 24];
         let mut n = 0;
         let mut g = T::TWO * d;
-        while wc - g > lo + g * T::HALF && g < T::from_f64(GRADE_MAX) && n < pts.len() {
+        while cut && wc - g > lo + g * T::HALF && g < T::from_f64(GRADE_MAX) && n < pts.len() {
             pts[n] = wc - g;
             n += 1;
             g *= T::from_f64(GRADE_RATIO);
@@ -371,7 +486,7 @@ impl<T: Real> State<T> {
         if n > 0 {
             let bound = self.tex.zone_bound(&self.rows[k], zone);
             if T::TWO * bound <= T::from_f64(1e-3) * self.tol {
-                self.rows[k].extra = T::TWO * bound;
+                self.rows[k].extra += T::TWO * bound;
                 n = 0;
             }
         }
@@ -498,11 +613,11 @@ impl<T: Real> State<T> {
     }
 }
 
-/// (A, B) of the GGX split sum at view cosine μ ∈ (0, 1] and width α > 0 to the absolute
-/// tolerance `tol` per channel (module docs).
-fn integrate<T: Real>(mu: T, alpha: T, tol: T) -> Polar<T> {
+/// (A, B) of the split sum of `model` at view cosine μ ∈ (0, 1] and width > 0 to the
+/// absolute tolerance `tol` per channel (module docs).
+fn integrate<T: Real>(mu: T, model: PolarModel<T>, tol: T) -> Polar<T> {
     let mut s = State {
-        tex: Texel::new(mu, alpha),
+        tex: Texel::new(mu, model),
         tol,
         rows: [Row::default(); MAX_INTERVALS + 1],
         panels: [Panel::default(); MAX_PANELS],
@@ -519,36 +634,50 @@ fn integrate<T: Real>(mu: T, alpha: T, tol: T) -> Polar<T> {
     }
 }
 
-/// One roughness row of a GGX split-sum table by the polar rule: α = r² (perceptual r
-/// clamped to [0, 1], docs/conventions.md §8) is fixed along it, μ varies.
+/// One roughness row of a split-sum table by the polar rule: the lobe ([`PolarModel`], its
+/// width) is fixed along it, μ varies.
 #[derive(Clone, Copy, Debug)]
-pub struct DfgGgxPolarRow<T> {
-    alpha: T,
+pub struct PolarRow<T> {
+    model: PolarModel<T>,
 }
 
-impl<T: Real> DfgGgxPolarRow<T> {
-    /// The row of perceptual roughness r (NaN stays NaN).
+/// The GGX row ([`PolarRow::new`] takes the perceptual roughness r, α = r²).
+pub type DfgGgxPolarRow<T> = PolarRow<T>;
+
+impl<T: Real> PolarRow<T> {
+    /// The GGX row (height-correlated Smith) of perceptual roughness r: α = r², r clamped to
+    /// [0, 1] (docs/conventions.md §8; NaN stays NaN).
     pub fn new(r: T) -> Self {
-        Self {
-            alpha: row_alpha(r),
-        }
+        Self::with_model(PolarModel::GgxCorrelated(row_alpha(r)))
     }
 
-    /// The row's width α = r².
-    pub(crate) fn alpha(&self) -> T {
-        self.alpha
+    /// The row of any [`PolarModel`] (its width as given: NaN gives NaN texels, a width
+    /// ≤ [`MIRROR_ALPHA`] the mirror limit).
+    pub fn with_model(model: PolarModel<T>) -> Self {
+        Self { model }
+    }
+
+    /// The row's width (GGX α = r², Beckmann m).
+    pub(crate) fn width(&self) -> T {
+        self.model.width()
     }
 
     /// (A, B) at μ to the absolute tolerance `tol` per channel, with the estimate and the
-    /// work. NaN μ or r gives NaN; μ below [`crate::geometry::min_cos`] gives (0, 0); μ > 1 is clamped.
-    /// α ≤ [`MIRROR_ALPHA`] is the mirror limit A = 1 − (1 − μ)⁵, B = (1 − μ)⁵ with the
-    /// estimate (α/μ)² (G2 = 1 − O((α/μ)²)). A `tol` that cannot be met (≤ 0, NaN, or
+    /// work. NaN μ or width gives NaN; μ below [`crate::geometry::min_cos`] gives (0, 0); μ > 1 is clamped.
+    /// A width ≤ [`MIRROR_ALPHA`] is the mirror limit A = 1 − (1 − μ)⁵, B = (1 − μ)⁵ with the
+    /// estimate (width/μ)² (G2 = 1 − O((α/μ)²)). A `tol` that cannot be met (≤ 0, NaN, or
     /// beyond the fixed storage) returns the best result with its estimate.
     pub fn texel(&self, mu: T, tol: T) -> Polar<T> {
-        match texel_edges(mu, self.alpha) {
-            Ok(mu) => integrate(mu, self.alpha, tol),
+        match texel_edges(mu, self.width()) {
+            Ok(mu) => integrate(mu, self.model, tol),
             Err((v, e)) => Polar::exact(v, e),
         }
+    }
+
+    /// The Kulla–Conty average E_avg = 2∫₀¹ E(μ) μ dμ of the row and its estimate, to `tol`
+    /// (see [`e_avg_ggx_polar`]).
+    pub fn e_avg(&self, tol: T) -> (T, T) {
+        e_avg_panel(self, (T::ZERO, T::ONE), tol * T::HALF, tol * T::HALF, 0)
     }
 }
 
@@ -571,13 +700,12 @@ pub const MAX_EAVG_DEPTH: u32 = 8;
 /// tol/2; every E to tol/2 (the weights 4t³ integrate to 1), its estimates integrated with
 /// the same K15 weights and added.
 pub fn e_avg_ggx_polar<T: Real>(r: T, tol: T) -> (T, T) {
-    let row = DfgGgxPolarRow::new(r);
-    e_avg_panel(&row, (T::ZERO, T::ONE), tol * T::HALF, tol * T::HALF, 0)
+    DfgGgxPolarRow::new(r).e_avg(tol)
 }
 
 /// ∫ₐᵇ 4t³ E(t²) dt on one panel (see [`e_avg_ggx_polar`]): (value, estimate).
 fn e_avg_panel<T: Real>(
-    row: &DfgGgxPolarRow<T>,
+    row: &PolarRow<T>,
     (a, b): (T, T),
     node_tol: T,
     tol: T,

@@ -1,5 +1,5 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)] // NaN-aware tests: `!(x > 0)` is true for NaN.
-//! A whole roughness row of the GGX split-sum table (A, B at one α, many μ) from a few
+//! A whole roughness row of the GGX or Beckmann split-sum table (A, B at one width, many μ) from a few
 //! polar integrals ([`super::polar`]) by adaptive piecewise Chebyshev interpolation in
 //! x = ln μ, with a per-texel error estimate.
 //!
@@ -44,7 +44,7 @@
 //! integrated directly by the polar rule to `tol` (their own estimates and work).
 
 use super::converged::texel_edges;
-use super::polar::{DfgGgxPolarRow, Polar};
+use super::polar::{DfgGgxPolarRow, Polar, PolarRow};
 use crate::Real;
 
 /// The first interpolation degree of a piece (the first estimate is at twice this).
@@ -111,7 +111,7 @@ struct Fit<T> {
 
 /// The row's fixed inputs, its output and the running work.
 struct Job<'a, T> {
-    row: DfgGgxPolarRow<T>,
+    row: PolarRow<T>,
     alpha: T,
     mus: &'a [T],
     out: &'a mut [Polar<T>],
@@ -346,7 +346,7 @@ impl<T: Real> Job<'_, T> {
     }
 }
 
-impl<T: Real> DfgGgxPolarRow<T> {
+impl<T: Real> PolarRow<T> {
     /// (A, B) at every μ of `mus` into `out` (same length) to the absolute tolerance `tol`
     /// per channel, sharing work along the row (module docs). Each texel is as
     /// [`DfgGgxPolarRow::texel`] would answer it in its edge cases (NaN μ or r → NaN; μ
@@ -366,7 +366,7 @@ impl<T: Real> DfgGgxPolarRow<T> {
         if !(tol > T::ZERO) {
             return Err(RowError::Tolerance);
         }
-        let alpha = self.alpha();
+        let alpha = self.width();
         let (mut lo, mut hi) = (T::INFINITY, -T::INFINITY);
         for (mu, o) in mus.iter().zip(out.iter_mut()) {
             match texel_edges(*mu, alpha) {

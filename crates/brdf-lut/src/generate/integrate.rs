@@ -1,16 +1,20 @@
 //! How a node value is integrated, with its error estimate (docs/lut-format.md §3,
 //! `integration`).
 //!
-//! - **GGX with height-correlated Smith** (split sum, E, E_avg; perceptual r, or α ≤ 1):
-//!   brdf-core's per-texel converged polar rule ([`brdf_core::split_sum::polar`]) to the
+//! - **GGX with height-correlated Smith, Beckmann and Torrance–Sparrow with height-correlated
+//!   or separable Smith** (split sum, E, E_avg; GGX α ≤ 1, Beckmann m ≤
+//!   [`POLAR_MAX_WIDTH`]): brdf-core's per-texel converged polar rule
+//!   ([`brdf_core::split_sum::polar`]: τ = α sinh w for GGX, τ = m s for Beckmann) to the
 //!   absolute tolerance [`TOL`] per channel, whose own error estimate (embedded
 //!   trapezoid levels in azimuth and Kronrod–Gauss pairs in the radial variable) is the
-//!   node's estimate. A table's rows along μ go through [`ggx_row`] (brdf-core's row
+//!   node's estimate. A table's rows along μ go through [`converged_row`] (brdf-core's row
 //!   integrator: Chebyshev interpolation in ln μ over polar nodes, each texel's estimate
-//!   ≤ [`TOL`], about 47 integrand evaluations per texel instead of about 560); single
-//!   nodes (E_avg, the random points of the error measurement) through [`ggx_converged`].
-//! - **Every other model** (Beckmann, Torrance–Sparrow, the V-cavity and modified G,
-//!   separable Smith, GGX with α > 1): brdf-core's fixed Gauss–Legendre rule
+//!   ≤ [`TOL`], a few tens of integrand evaluations per texel instead of several hundred);
+//!   single nodes (E_avg, the random points of the error measurement) through
+//!   [`polar_converged`].
+//! - **Every other model** (the V-cavity and modified G, whose min(…) kinks break the
+//!   polar rule's geometric convergence in azimuth; GGX with separable Smith or α > 1;
+//!   Beckmann m > [`POLAR_MAX_WIDTH`]): brdf-core's fixed Gauss–Legendre rule
 //!   ([`split_sum`] with a 32-point outer rule on 4 panels per piece and a 16-point azimuth
 //!   rule, the modified G's 10-point rule, E_avg's 24 μ nodes) is stored, as before; its
 //!   estimate is the embedded difference from a coarser rule (24 × 12 nodes, G 8 points,
@@ -22,9 +26,10 @@
 //!   measurement's G is the direct 10-point kernel, as before).
 //! - `lut verify`'s reference ([`reference`]): independent and much finer —
 //!   brdf-core's adaptive visible-normal integrator ([`brdf_core::split_sum::converged`])
-//!   at 2e-8 (100× below the generator's 2e-6) for the GGX kinds, and for the others the same fixed-rule family at 4 × 32
-//!   outer and 2 × 32 inner nodes (G 32 points), whose estimate is its difference from
-//!   3 × 32 outer, 3 × 16 inner nodes (G 24 points).
+//!   at 2e-8 (100× below the generator's 2e-6) for the GGX kinds, and for the others
+//!   (Beckmann included: a different rule from the polar one they are built with) the same
+//!   fixed-rule family at 4 × 32 outer and 2 × 32 inner nodes (G 32 points), whose estimate
+//!   is its difference from 3 × 32 outer, 3 × 16 inner nodes (G 24 points).
 
 use super::{passing_with, Distribution, Kind, Masking, Roughness, Spec};
 use brdf_core::geometry::Dots;
@@ -34,8 +39,7 @@ use brdf_core::masking::{
 };
 use brdf_core::quadrature::{DefaultRule, GaussLegendre, Rule};
 use brdf_core::split_sum::converged::DfgGgxRow;
-use brdf_core::split_sum::polar::{e_avg_ggx_polar, DfgGgxPolarRow, Polar};
-use brdf_core::split_sum::rows::{dfg_ggx_polar_row, e_ggx_polar_row};
+use brdf_core::split_sum::polar::{Polar, PolarModel, PolarRow};
 use brdf_core::split_sum::{e_avg, split_sum, Ndf};
 use core::cell::Cell;
 use std::sync::OnceLock;
@@ -46,6 +50,9 @@ use std::vec::Vec;
 pub const TOL: f64 = 2e-6;
 /// Absolute tolerance per channel of `lut verify`'s GGX reference.
 pub const REFERENCE_TOL: f64 = 2e-8;
+/// The largest Beckmann width m the polar rule is used for (σ ≤ 1.41 for Torrance–Sparrow;
+/// the rule is tested to m = 2, tests/tests/split_sum_polar_beckmann.rs).
+pub const POLAR_MAX_WIDTH: f64 = 2.0;
 
 /// A node's integration: the largest error estimate over its channels and the integrand
 /// evaluations it took (0 where the rule does not count them: the polar E_avg).
@@ -57,7 +64,7 @@ pub struct Work {
     pub evals: u64,
 }
 
-/// What a GGX node asks of the converged rule.
+/// What a node asks of the converged polar rule (GGX or Beckmann).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum GgxQuery {
     /// Split sum (A, B) at μ.
@@ -68,11 +75,10 @@ pub enum GgxQuery {
     Average,
 }
 
-/// The one door to the converged GGX + height-correlated Smith rule: the node's values
-/// (E and E_avg in the first slot) and its [`Work`], for perceptual roughness `r` (α = r²).
-/// Whole rows of a table go through `ggx_row` instead, which shares the work along μ.
-pub fn ggx_converged(q: GgxQuery, r: f64) -> ([f64; 2], Work) {
-    let row = DfgGgxPolarRow::new(r);
+/// The one door to the converged polar rule: the node's values (E and E_avg in the first
+/// slot) and its [`Work`], for the row `row` (its model and width). Whole rows of a table
+/// go through `converged_row` instead, which shares the work along μ.
+pub fn polar_converged(q: GgxQuery, row: PolarRow<f64>) -> ([f64; 2], Work) {
     match q {
         GgxQuery::SplitSum(mu) => {
             let p = row.texel(mu, TOL);
@@ -85,10 +91,15 @@ pub fn ggx_converged(q: GgxQuery, r: f64) -> ([f64; 2], Work) {
             ([e, 0.0], work(est, p.evals as u64))
         }
         GgxQuery::Average => {
-            let (v, est) = e_avg_ggx_polar(r, TOL);
+            let (v, est) = row.e_avg(TOL);
             ([v, 0.0], work(est, 0))
         }
     }
+}
+
+/// `polar_converged` for GGX + height-correlated Smith of perceptual roughness `r` (α = r²).
+pub fn ggx_converged(q: GgxQuery, r: f64) -> ([f64; 2], Work) {
+    polar_converged(q, PolarRow::new(r))
 }
 
 /// A whole row of split-sum or albedo nodes along the μ axis (axis 0) at one roughness-axis
@@ -96,23 +107,26 @@ pub fn ggx_converged(q: GgxQuery, r: f64) -> ([f64; 2], Work) {
 /// Chebyshev interpolation in ln μ over polar nodes, each texel's estimate ≤ [`TOL`]):
 /// node k's channels, estimate and evaluations go to `out[k·stride..]` (channels, then the
 /// estimate, then the evaluations; the row's evaluations are counted on its first node).
-/// `None` when the row does not take the converged GGX rule: the caller then integrates
+/// `None` when the row does not take the converged polar rule: the caller then integrates
 /// node by node ([`node`]). The values depend only on the row's μ set, so the table does
 /// not depend on how rows are shared among threads.
-pub fn ggx_row(spec: &Spec, mus: &[f64], rx: f64, stride: usize, out: &mut [f64]) -> Option<()> {
+pub fn converged_row(
+    spec: &Spec,
+    mus: &[f64],
+    rx: f64,
+    stride: usize,
+    out: &mut [f64],
+) -> Option<()> {
     let albedo = match spec.kind {
         Kind::SplitSum => false,
         Kind::Albedo => true,
         _ => return None,
     };
-    let r = polar_r(spec, rx)?;
+    let row = polar_row(spec, rx)?;
     let mut p = vec![Polar::default(); mus.len()];
-    let row = if albedo {
-        e_ggx_polar_row
-    } else {
-        dfg_ggx_polar_row
-    };
-    let w = row(r, mus, TOL, &mut p).ok()?;
+    // E = A + B: each channel to tol/2, so that the sum's estimate is ≤ tol.
+    let tol = if albedo { TOL * 0.5 } else { TOL };
+    let w = row.texels(mus, tol, &mut p).ok()?;
     let nc = stride.checked_sub(2)?.min(2);
     for (k, (slot, p)) in out.chunks_mut(stride).zip(&p).enumerate() {
         let (v, est) = if albedo {
@@ -142,6 +156,25 @@ pub fn polar_r(spec: &Spec, x: f64) -> Option<f64> {
         Roughness::Perceptual => Some(x),
         Roughness::Alpha if (0.0..=1.0).contains(&x) => Some(x.sqrt()),
         _ => None,
+    }
+}
+
+/// The polar row at roughness-axis value `x`, if the model takes the converged polar rule
+/// (module docs): GGX + height-correlated Smith through [`polar_r`]; Beckmann and
+/// Torrance–Sparrow with either Smith G at width m ∈ [0, [`POLAR_MAX_WIDTH`]].
+pub fn polar_row(spec: &Spec, x: f64) -> Option<PolarRow<f64>> {
+    let smith = |m: f64| match spec.masking {
+        Masking::SmithCorrelated => Some(PolarModel::BeckmannCorrelated(m)),
+        Masking::SmithSeparable => Some(PolarModel::BeckmannSeparable(m)),
+        _ => None,
+    };
+    match spec.distribution {
+        Distribution::Ggx => polar_r(spec, x).map(PolarRow::new),
+        _ => {
+            let (m, _) = spec.width_sigma(x);
+            let model = smith(m).filter(|_| (0.0..=POLAR_MAX_WIDTH).contains(&m))?;
+            Some(PolarRow::with_model(model))
+        }
     }
 }
 
@@ -327,23 +360,34 @@ fn node_by<F: Family>(spec: &Spec, x: &[f64], evals: &Cell<u64>) -> [f64; 2] {
     }
 }
 
-/// The converged query of a node, if its kind and model take the polar rule.
+/// The query of a node and its roughness-axis value (kinds the polar rule integrates).
+fn query(spec: &Spec, x: &[f64]) -> Option<(GgxQuery, f64)> {
+    match spec.kind {
+        Kind::SplitSum => Some((GgxQuery::SplitSum(x[0]), x[1])),
+        Kind::Albedo => Some((GgxQuery::Albedo(x[0]), x[1])),
+        Kind::AverageAlbedo => Some((GgxQuery::Average, x[0])),
+        _ => None,
+    }
+}
+
+/// The converged query of a node and its row, if its kind and model take the polar rule.
+fn polar_query(spec: &Spec, x: &[f64]) -> Option<(GgxQuery, PolarRow<f64>)> {
+    let (q, rx) = query(spec, x)?;
+    Some((q, polar_row(spec, rx)?))
+}
+
+/// The GGX query of a node (perceptual r), for `lut verify`'s GGX reference.
 fn ggx_query(spec: &Spec, x: &[f64]) -> Option<(GgxQuery, f64)> {
-    let (q, rx) = match spec.kind {
-        Kind::SplitSum => (GgxQuery::SplitSum(x[0]), x[1]),
-        Kind::Albedo => (GgxQuery::Albedo(x[0]), x[1]),
-        Kind::AverageAlbedo => (GgxQuery::Average, x[0]),
-        _ => return None,
-    };
+    let (q, rx) = query(spec, x)?;
     Some((q, polar_r(spec, rx)?))
 }
 
-/// The node value at `x` (channels in `out`) without an estimate: the converged GGX rule,
+/// The node value at `x` (channels in `out`) without an estimate: the converged polar rule,
 /// the modified G's 20-point passing factor, else brdf-core's fixed rule (module docs).
 /// What the error measurement at random points compares the table with.
 pub fn value(spec: &Spec, x: &[f64], out: &mut [f64]) {
-    let v = if let Some((q, r)) = ggx_query(spec, x) {
-        ggx_converged(q, r).0
+    let v = if let Some((q, row)) = polar_query(spec, x) {
+        polar_converged(q, row).0
     } else {
         match spec.kind {
             Kind::GPerSigma { sigma } => {
@@ -359,11 +403,11 @@ pub fn value(spec: &Spec, x: &[f64], out: &mut [f64]) {
 }
 
 /// The node value at `x` (channels in `out`, as [`value`]) with its estimate and work:
-/// the converged GGX rule's own estimate, else the embedded difference from the coarser
+/// the converged polar rule's own estimate, else the embedded difference from the coarser
 /// rule (module docs).
 pub fn node(spec: &Spec, x: &[f64], out: &mut [f64]) -> Work {
-    if let Some((q, r)) = ggx_query(spec, x) {
-        let (v, w) = ggx_converged(q, r);
+    if let Some((q, row)) = polar_query(spec, x) {
+        let (v, w) = polar_converged(q, row);
         for (o, v) in out.iter_mut().zip(v) {
             *o = v;
         }
@@ -449,5 +493,49 @@ mod tests {
         check::<Panels<2>>();
         check::<Panels<3>>();
         check::<Panels<4>>();
+    }
+
+    /// Beckmann and Torrance–Sparrow tables with Smith G take the polar rule (no fixed
+    /// rule's node record), each node's estimate is ≤ TOL, and the node agrees with the
+    /// independent fixed-rule reference within the two estimates (the claim `lut verify`
+    /// checks); the V-cavity G stays with the fixed rule.
+    #[test]
+    fn beckmann_nodes_take_the_polar_rule_within_their_estimate() {
+        let cases = [
+            (
+                Kind::SplitSum,
+                Distribution::TorranceSparrow,
+                Masking::SmithCorrelated,
+            ),
+            (
+                Kind::SplitSum,
+                Distribution::TorranceSparrow,
+                Masking::SmithSeparable,
+            ),
+            (
+                Kind::Albedo,
+                Distribution::Beckmann,
+                Masking::SmithCorrelated,
+            ),
+        ];
+        for (kind, d, m) in cases {
+            let spec = Spec::new(kind, d, m);
+            for x in [[0.0175, 0.05], [0.2, 0.3], [1.0, 1.0], [0.6, 0.7]] {
+                assert!(polar_query(&spec, &x).is_some(), "{kind:?} {d:?} {m:?}");
+                let mut out = [0.0; 2];
+                let w = node(&spec, &x, &mut out[..kind.def().channels.len()]);
+                assert!(w.error <= TOL && w.evals > 0, "{x:?}: {w:?}");
+                let (r, est) = reference(&spec, &x);
+                for (o, r) in out.iter().zip(r) {
+                    assert!((o - r).abs() <= w.error + est, "{x:?}: {o} vs {r}");
+                }
+            }
+        }
+        let v = Spec::new(
+            Kind::Albedo,
+            Distribution::TorranceSparrow,
+            Masking::VCavity,
+        );
+        assert!(polar_query(&v, &[0.5, 0.3]).is_none());
     }
 }

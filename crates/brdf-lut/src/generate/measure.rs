@@ -31,21 +31,44 @@ fn uniform(rng: &mut rand_pcg::Pcg64, lo: f64, hi: f64) -> f64 {
     }
 }
 
+/// Random points that share one σ in a table over σ (the modified G's normaliser C(σ) is
+/// then computed once per group instead of once per point).
+pub const SIGMA_GROUP: usize = 64;
+
+/// The random points: uniform on each axis's range; on a σ axis of a passing-factor table
+/// ([`Check::ModifiedG`], axis 2) σ is drawn once per [`SIGMA_GROUP`] consecutive points,
+/// so every point is still uniform on the box.
+fn points(spec: &Spec, axes: &[Axis<'_>]) -> Vec<Vec<f64>> {
+    let mut rng = rand_pcg::Pcg64::seed_from_u64(spec.seed);
+    let ranges: Vec<(f64, f64)> = axes.iter().map(range).collect();
+    let grouped = spec.kind.def().check == Check::ModifiedG;
+    let mut sigma = f64::NAN;
+    (0..spec.samples as usize)
+        .map(|i| {
+            let mut p = Vec::with_capacity(ranges.len());
+            for (a, &(lo, hi)) in ranges.iter().enumerate() {
+                if grouped && a == 2 {
+                    if i % SIGMA_GROUP == 0 {
+                        sigma = uniform(&mut rng, lo, hi);
+                    }
+                    p.push(sigma);
+                } else {
+                    p.push(uniform(&mut rng, lo, hi));
+                }
+            }
+            p
+        })
+        .collect()
+}
+
 /// Max and RMS |table − direct kernel| over all channels at `spec.samples` random points
 /// (seeded by `spec.seed`), uniform on each of `axes` (the table's header axes). Passing-factor
 /// tables are measured on the modified G = min(GM, GS) they serve, at random (θi, θr[, σ])
-/// ([`Check::ModifiedG`]); every other kind channel by channel at the f32 point the table sees.
+/// ([`Check::ModifiedG`]), each group of 64 points (`SIGMA_GROUP`) with one direct
+/// `ModifiedG` (the same f64 kernel, its σ-dependent normaliser computed once per group);
+/// every other kind channel by channel at the f32 point the table sees.
 pub fn measure(spec: &Spec, view: &LutView<'_>, axes: &[Axis<'_>]) -> ErrorStats {
-    let mut rng = rand_pcg::Pcg64::seed_from_u64(spec.seed);
-    let ranges: Vec<(f64, f64)> = axes.iter().map(range).collect();
-    let pts: Vec<Vec<f64>> = (0..spec.samples)
-        .map(|_| {
-            ranges
-                .iter()
-                .map(|&(lo, hi)| uniform(&mut rng, lo, hi))
-                .collect()
-        })
-        .collect();
+    let pts = points(spec, axes);
     let nc = spec.kind.def().channels.len();
     let mut errs = vec![0.0; pts.len() * nc];
     match spec.kind.def().check {
@@ -62,18 +85,20 @@ pub fn measure(spec: &Spec, view: &LutView<'_>, axes: &[Axis<'_>]) -> ErrorStats
             let g2 = GTable::from_view(*view).ok().filter(|_| axes.len() == 2);
             let g3 = GTable3::from_view(*view).ok().filter(|_| axes.len() == 3);
             let sigma = spec.fixed_sigma();
-            par_chunks(&mut errs, 1, &|k, e| {
-                let p = &pts[k];
-                let s = sigma.unwrap_or_else(|| p.get(2).copied().unwrap_or(f64::NAN));
-                let direct = ModifiedG::<f64>::new(s)
-                    .map(|g| g.g(p[0], p[1]))
-                    .unwrap_or(f64::NAN);
-                let t = match (&g2, &g3) {
-                    (Some(t), _) => t.g(p[0] as f32, p[1] as f32) as f64,
-                    (_, Some(t)) => t.g(p[0] as f32, p[1] as f32, s as f32) as f64,
-                    _ => f64::NAN,
-                };
-                e[0] = (t - direct).abs();
+            par_chunks(&mut errs, SIGMA_GROUP, &|k, e| {
+                let first = &pts[k * SIGMA_GROUP];
+                let s = sigma.unwrap_or_else(|| first.get(2).copied().unwrap_or(f64::NAN));
+                let g = ModifiedG::<f64>::new(s).ok();
+                for (j, e) in e.iter_mut().enumerate() {
+                    let p = &pts[k * SIGMA_GROUP + j];
+                    let direct = g.map_or(f64::NAN, |g| g.g(p[0], p[1]));
+                    let t = match (&g2, &g3) {
+                        (Some(t), _) => t.g(p[0] as f32, p[1] as f32) as f64,
+                        (_, Some(t)) => t.g(p[0] as f32, p[1] as f32, s as f32) as f64,
+                        _ => f64::NAN,
+                    };
+                    *e = (t - direct).abs();
+                }
             })
         }
     }
@@ -82,4 +107,56 @@ pub fn measure(spec: &Spec, view: &LutView<'_>, axes: &[Axis<'_>]) -> ErrorStats
         acc.add(x);
     }
     acc.finish(spec.samples, spec.seed)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::{generate, Distribution, Kind, Masking};
+
+    /// The grouped measurement equals the per-point one: on a per-σ table and on a table
+    /// over σ, a `ModifiedG` built afresh at every point (as before the grouping) gives the
+    /// same max and RMS over the same points; the points lie in the axes' ranges, and on
+    /// the σ axis each group of [`SIGMA_GROUP`] shares its σ while successive groups differ.
+    #[test]
+    fn grouped_measurement_is_the_per_point_one() {
+        for kind in [Kind::GPerSigma { sigma: 0.3 }, Kind::GOverSigma] {
+            let mut spec = Spec::new(kind, Distribution::TorranceSparrow, Masking::Modified);
+            for a in spec.axes.iter_mut() {
+                a.count = 9;
+            }
+            spec.samples = 3 * SIGMA_GROUP as u32 + 5;
+            let t = generate(&spec, &|_| {}).unwrap();
+            let view = LutView::parse(&t.bytes).unwrap();
+            let axes = &view.header().axes;
+            let pts = points(&spec, axes);
+            let mut acc = ErrorAccumulator::default();
+            for (i, p) in pts.iter().enumerate() {
+                for (x, a) in p.iter().zip(axes.iter()) {
+                    assert!(*x >= a.lo && *x <= a.hi, "{x} outside [{}, {}]", a.lo, a.hi);
+                }
+                if axes.len() == 3 && i % SIGMA_GROUP != 0 {
+                    assert_eq!(p[2], pts[i - 1][2]);
+                } else if axes.len() == 3 && i > 0 {
+                    assert_ne!(p[2], pts[i - 1][2]);
+                }
+                let s = spec
+                    .fixed_sigma()
+                    .unwrap_or(p.get(2).copied().unwrap_or(f64::NAN));
+                let direct = ModifiedG::<f64>::new(s).unwrap().g(p[0], p[1]);
+                let table = if axes.len() == 2 {
+                    GTable::from_view(view).unwrap().g(p[0] as f32, p[1] as f32)
+                } else {
+                    GTable3::from_view(view)
+                        .unwrap()
+                        .g(p[0] as f32, p[1] as f32, s as f32)
+                };
+                acc.add((table as f64 - direct).abs());
+            }
+            let want = acc.finish(spec.samples, spec.seed);
+            let got = measure(&spec, &view, axes);
+            assert_eq!(got, want, "{kind:?}");
+            assert!(got.max_abs > 0.0);
+        }
+    }
 }
