@@ -1,6 +1,6 @@
 //! `cargo xtask lut …` never loses a file: the write cases of the command line, end to end.
 //! (The temp-file/rename/rollback logic itself is unit-tested with injected faults in
-//! `xtask/src/fsio.rs`.)
+//! `brdf_engine_assets::fsio`, and its path rule is a property test there.)
 
 use std::path::{Path, PathBuf};
 
