@@ -1,6 +1,6 @@
 //! `cargo xtask lut …` never loses a file: the write cases of the command line, end to end.
 //! (The temp-file/rename/rollback logic itself is unit-tested with injected faults in
-//! `xtask/src/fsio.rs`.)
+//! `brdf_engine_assets::fsio`, and its path rule is a property test there.)
 
 use std::path::{Path, PathBuf};
 
@@ -239,4 +239,51 @@ fn max_error_fails_an_overridden_default_table() {
     assert!(o.status.success(), "{}", err(&o));
     let lut = brdf_lut::Lut::from_path(out.join("dfg_ggx.blut")).unwrap();
     assert!(lut.header().error.max_abs > 0.01);
+}
+
+/// `lut export -o` of a 2-D, 2-channel table writes what the library's export gives, under
+/// the documented names: texture, sidecar, GLSL, WGSL and one PNG per channel.
+#[test]
+fn export_writes_the_librarys_files_under_their_names() {
+    use brdf_engine_assets::export::{export, Format};
+    let d = tempfile::tempdir().unwrap();
+    let src = assets().join("dfg_ts_smith.blut");
+    let o = xtask(
+        &[
+            "lut",
+            "export",
+            src.to_str().unwrap(),
+            "--png16",
+            "-o",
+            "dfg.png",
+        ],
+        d.path(),
+    );
+    assert!(o.status.success(), "{}", err(&o));
+    let names = [
+        "dfg.png",
+        "dfg.png.glsl",
+        "dfg.png.json",
+        "dfg.png.wgsl",
+        "dfg_A.png",
+        "dfg_B.png",
+    ];
+    assert_eq!(listing(d.path()), names);
+    let lut = brdf_lut::Lut::from_path(&src).unwrap();
+    let e = export(
+        &lut.view().unwrap(),
+        Format::Png16,
+        "dfg.png",
+        "dfg_ts_smith.blut",
+    )
+    .unwrap();
+    let (glsl, wgsl) = e.shaders.unwrap();
+    let read = |n: &str| std::fs::read(d.path().join(n)).unwrap();
+    assert_eq!(read("dfg.png"), e.texture);
+    assert_eq!(read("dfg.png.json"), e.sidecar);
+    assert_eq!(read("dfg.png.glsl"), glsl.into_bytes());
+    assert_eq!(read("dfg.png.wgsl"), wgsl.into_bytes());
+    for (n, b) in &e.single_channel_pngs {
+        assert_eq!(&read(n), b, "{n}");
+    }
 }

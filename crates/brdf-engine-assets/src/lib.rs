@@ -3,7 +3,8 @@
 //! placement and roughness convention that one engine's shader samples, with a JSON sidecar
 //! and GLSL/WGSL sampling functions. One function per engine layout returns the files'
 //! names and bytes ([`khronos`], [`bevy`], [`filament`], [`threejs`], [`exr`]); writing them
-//! is the caller's (`cargo xtask lut engine` writes them safely).
+//! is the caller's; [`fsio::write_together`] writes them safely (temporary file + rename,
+//! no partial files, nothing replaced without `force`).
 //!
 //! Every texel holds the integral at its own texel centre, computed in f64 by the one table
 //! generator ([`brdf_lut::generate`]: brdf-core's converged polar rule, each texel refined
@@ -22,6 +23,7 @@
 
 mod containers;
 pub mod export;
+pub mod fsio;
 mod layouts;
 pub mod report;
 mod shaders;

@@ -10,6 +10,8 @@ use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use brdf_engine_assets::fsio::Policy as WritePolicy;
+
 pub struct Row {
     pub file: String,
     pub bytes: usize,
@@ -180,8 +182,8 @@ fn compare(files: &[(PathBuf, Vec<u8>)], committed: &Path) -> Result<()> {
 /// the files in assets/ (its home, under version control); anything else (`--res`,
 /// `--encoding`) needs `--out` outside assets/, and replaces existing files only with
 /// `--force`.
-fn write_target(g: &GenArgs, check_dir: Option<&Path>) -> Result<(PathBuf, crate::fsio::Policy)> {
-    use crate::fsio::Policy;
+fn write_target(g: &GenArgs, check_dir: Option<&Path>) -> Result<(PathBuf, WritePolicy)> {
+    use brdf_engine_assets::fsio::Policy;
     if let Some(d) = check_dir {
         return Ok((d.to_path_buf(), Policy::default()));
     }
@@ -209,7 +211,7 @@ fn write_target(g: &GenArgs, check_dir: Option<&Path>) -> Result<(PathBuf, crate
             },
         ));
     }
-    Ok((out, Policy::new(g.force, &[])))
+    Ok((out, crate::fsio::Policy::new(g.force, &[])))
 }
 
 /// One asset through the library generator, with a progress bar over its nodes.

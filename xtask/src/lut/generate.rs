@@ -159,17 +159,7 @@ pub fn run(a: Args) -> Result<()> {
     if a.set.only.is_some() || a.set.check {
         bail!("--only and --check apply to the default set, not to a table built to order");
     }
-    let (cfg, cfg_dir) = match &a.config {
-        Some(p) => {
-            let bytes = crate::fsio::read_limited(p, MAX_CONFIG_BYTES)?;
-            let text =
-                String::from_utf8(bytes).map_err(|_| anyhow!("{}: not UTF-8 text", p.display()))?;
-            let c: Config = toml::from_str(&text).map_err(|e| anyhow!("{}: {e}", p.display()))?;
-            let dir = p.parent().map(Path::to_path_buf).unwrap_or_default();
-            (c, dir)
-        }
-        None => (Config::default(), PathBuf::new()),
-    };
+    let (cfg, cfg_dir) = read_config(a.config.as_deref())?;
     let pick = |flag: &Option<String>, file: &Option<String>| flag.clone().or(file.clone());
     let spec = build_spec(&a, &cfg, pick)?;
     let out = match (&a.set.out, &cfg.out) {
@@ -207,21 +197,38 @@ pub fn run(a: Args) -> Result<()> {
         t.evals as f64 / total.max(1) as f64,
         t0.elapsed().as_secs_f64()
     );
-    if let Some(lim) = max_error {
-        if e.max_abs.is_nan() || e.max_abs as f64 > lim {
-            let hint = match spec.interpolation {
-                Interpolation::Linear => "more nodes per axis, another warp or catmull-rom",
-                Interpolation::CatmullRom => "more nodes per axis or another warp",
-            };
-            bail!(
-                "measured max |error| {:.3e} exceeds --max-error {lim:.3e}; nothing written \
-                 ({hint} lower it)",
-                e.max_abs
-            );
-        }
-    }
+    check_max_error(&spec, e.max_abs, max_error)?;
     crate::fsio::write_together(&[(out.clone(), t.bytes)], &policy)?;
     println!("wrote {summary}");
+    Ok(())
+}
+
+/// The TOML file (size-capped, UTF-8) and the folder its relative `out` is taken from; the
+/// defaults without a file.
+fn read_config(path: Option<&Path>) -> Result<(Config, PathBuf)> {
+    let Some(p) = path else {
+        return Ok((Config::default(), PathBuf::new()));
+    };
+    let bytes = crate::fsio::read_limited(p, MAX_CONFIG_BYTES)?;
+    let text = String::from_utf8(bytes).map_err(|_| anyhow!("{}: not UTF-8 text", p.display()))?;
+    let c: Config = toml::from_str(&text).map_err(|e| anyhow!("{}: {e}", p.display()))?;
+    Ok((c, p.parent().map(Path::to_path_buf).unwrap_or_default()))
+}
+
+/// Fails (nothing written) when the measured max |error| `max_abs` exceeds `--max-error`,
+/// with a hint fitting the spec's interpolation.
+fn check_max_error(spec: &Spec, max_abs: f32, max_error: Option<f64>) -> Result<()> {
+    let Some(lim) = max_error else { return Ok(()) };
+    if max_abs.is_nan() || max_abs as f64 > lim {
+        let hint = match spec.interpolation {
+            Interpolation::Linear => "more nodes per axis, another warp or catmull-rom",
+            Interpolation::CatmullRom => "more nodes per axis or another warp",
+        };
+        bail!(
+            "measured max |error| {max_abs:.3e} exceeds --max-error {lim:.3e}; nothing written \
+             ({hint} lower it)"
+        );
+    }
     Ok(())
 }
 
@@ -280,11 +287,13 @@ fn placement(v: &str) -> Result<Placement> {
     )
 }
 
-fn build_spec(
+/// The table's kind, distribution and masking from the flags and the TOML file (`pick`:
+/// the flag if given, else the file's value), with their defaults.
+fn kind_and_model(
     a: &Args,
     cfg: &Config,
-    pick: impl Fn(&Option<String>, &Option<String>) -> Option<String>,
-) -> Result<Spec> {
+    pick: &impl Fn(&Option<String>, &Option<String>) -> Option<String>,
+) -> Result<(String, Spec)> {
     let kind_s = pick(&a.kind, &cfg.kind).unwrap_or_default();
     let sigma = a.sigma.or(cfg.sigma);
     let kind = match kind_s.as_str() {
@@ -312,11 +321,54 @@ fn build_spec(
         None if dist == Distribution::TorranceSparrow => Masking::Modified,
         None => Masking::SmithCorrelated,
     };
-    let mut spec = Spec::new(kind, dist, masking);
+    Ok((kind_s, Spec::new(kind, dist, masking)))
+}
+
+/// The spec of a table built to order: the TOML file's options, overridden by the flags.
+fn build_spec(
+    a: &Args,
+    cfg: &Config,
+    pick: impl Fn(&Option<String>, &Option<String>) -> Option<String>,
+) -> Result<Spec> {
+    let (kind_s, mut spec) = kind_and_model(a, cfg, &pick)?;
     if let Some(r) = pick(&a.roughness, &cfg.roughness) {
         spec.roughness = choose("roughness", &r, &Roughness::ALL.map(|r| (r.name(), r)))?;
         spec.axes = spec.default_axes();
     }
+    apply_axes(a, cfg, &kind_s, &mut spec)?;
+    if let Some(e) = pick(&a.set.encoding, &cfg.encoding) {
+        spec.encoding = choose(
+            "encoding",
+            &e,
+            &[
+                ("u16", Encoding::Unorm16),
+                ("f16", Encoding::F16),
+                ("f32", Encoding::F32),
+            ],
+        )?;
+    }
+    if let Some(i) = pick(&a.interpolation, &cfg.interpolation) {
+        spec.interpolation = choose(
+            "interpolation",
+            &i,
+            &[
+                ("linear", Interpolation::Linear),
+                ("catmull-rom", Interpolation::CatmullRom),
+            ],
+        )?;
+    }
+    if let Some(n) = a.samples.or(cfg.samples) {
+        spec.samples = n;
+    }
+    if let Some(s) = a.seed.or(cfg.seed) {
+        spec.seed = s;
+    }
+    Ok(spec)
+}
+
+/// The axes' options: the TOML file's `[axes.NAME]` tables, then `--res`, `--range`,
+/// `--warp` and `--placement` (a `kind_s` table's axes are named in the errors).
+fn apply_axes(a: &Args, cfg: &Config, kind_s: &str, spec: &mut Spec) -> Result<()> {
     let names = spec.axis_names();
     let axis_index = |name: &str| -> Result<usize> {
         names.iter().position(|n| *n == name).ok_or_else(|| {
@@ -328,8 +380,7 @@ fn build_spec(
     };
     // The TOML file's axes first, then the flags.
     for (name, ac) in &cfg.axes {
-        let i = axis_index(name)?;
-        let x = &mut spec.axes[i];
+        let x = &mut spec.axes[axis_index(name)?];
         x.count = ac.count.unwrap_or(x.count);
         x.lo = ac.lo.unwrap_or(x.lo);
         x.hi = ac.hi.unwrap_or(x.hi);
@@ -359,12 +410,9 @@ fn build_spec(
         }
     }
     for r in &a.ranges {
-        let (name, v) = r
-            .split_once('=')
-            .ok_or_else(|| anyhow!("--range `{r}` is not AXIS=LO:HI"))?;
-        let (lo, hi) = v
-            .split_once(':')
-            .ok_or_else(|| anyhow!("--range `{r}` is not AXIS=LO:HI"))?;
+        let bad = || anyhow!("--range `{r}` is not AXIS=LO:HI");
+        let (name, v) = r.split_once('=').ok_or_else(bad)?;
+        let (lo, hi) = v.split_once(':').ok_or_else(bad)?;
         let num = |t: &str| -> Result<f64> {
             t.trim()
                 .parse()
@@ -392,32 +440,5 @@ fn build_spec(
             }
         }
     }
-    if let Some(e) = pick(&a.set.encoding, &cfg.encoding) {
-        spec.encoding = choose(
-            "encoding",
-            &e,
-            &[
-                ("u16", Encoding::Unorm16),
-                ("f16", Encoding::F16),
-                ("f32", Encoding::F32),
-            ],
-        )?;
-    }
-    if let Some(i) = pick(&a.interpolation, &cfg.interpolation) {
-        spec.interpolation = choose(
-            "interpolation",
-            &i,
-            &[
-                ("linear", Interpolation::Linear),
-                ("catmull-rom", Interpolation::CatmullRom),
-            ],
-        )?;
-    }
-    if let Some(n) = a.samples.or(cfg.samples) {
-        spec.samples = n;
-    }
-    if let Some(s) = a.seed.or(cfg.seed) {
-        spec.seed = s;
-    }
-    Ok(spec)
+    Ok(())
 }

@@ -1,24 +1,26 @@
-//! `cargo xtask lut export`: the sidecar's inverse mapping and the emitted shaders read the
-//! exported texture at the table's own values.
+//! `brdf_engine_assets::export`: the sidecar's inverse mapping and the emitted shaders read
+//! the exported texture at the table's own values (library calls on the committed assets;
+//! `cargo xtask lut export` writes these bytes, `xtask/tests/lut_writes.rs` checks that).
 
-use std::path::{Path, PathBuf};
+use brdf_engine_assets::export::{export, Export, Format};
+use std::path::PathBuf;
 
-mod common;
-use common::assets;
-
-/// Exports `asset` with `fmt` into a fresh temp dir; returns the dir and the output path.
-fn export(asset: &str, fmt: &str, out: &str) -> (tempfile::TempDir, PathBuf) {
-    let d = tempfile::tempdir().unwrap();
-    let input = assets().join(asset);
-    let input = input.to_str().expect("UTF-8 path");
-    let o = common::xtask(&["lut", "export", input, fmt, "-o", out], d.path());
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let p = d.path().join(out);
-    (d, p)
+/// The committed asset `name`.
+fn asset(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../assets")
+        .join(name)
 }
 
-fn sidecar(out: &Path) -> serde_json::Value {
-    serde_json::from_slice(&std::fs::read(format!("{}.json", out.display())).unwrap()).unwrap()
+/// Exports the committed `name` in `fmt`, its output called `out`.
+fn export_asset(name: &str, fmt: Format, out: &str) -> Export {
+    let lut = brdf_lut::Lut::from_path(asset(name)).unwrap();
+    export(&lut.view().unwrap(), fmt, out, name).unwrap()
+}
+
+/// The export's sidecar as JSON.
+fn sidecar(e: &Export) -> serde_json::Value {
+    serde_json::from_slice(&e.sidecar).unwrap()
 }
 
 /// u (or v) of physical x from a sidecar `inverse_mapping` entry, in f64, from its stated
@@ -67,20 +69,20 @@ fn bilinear(tex: &[f32], w: usize, h: usize, u: f64, v: f64) -> f64 {
 /// own linear interpolation of the table at random points.
 #[test]
 fn sidecar_mapping_reproduces_the_tables_lookup() {
-    let asset = "g_modified_sigma0.3_linear.blut";
-    let lut = brdf_lut::Lut::from_path(assets().join(asset)).unwrap();
+    let name = "g_modified_sigma0.3_linear.blut";
+    let lut = brdf_lut::Lut::from_path(asset(name)).unwrap();
     let view = lut.view().unwrap();
     assert_eq!(view.dims(), 2);
     assert_eq!(view.header().interpolation, brdf_lut::Interpolation::Linear);
-    let (_d, out) = export(asset, "--raw-f32", "g.f32.bin");
-    let side = sidecar(&out);
+    let e = export_asset(name, Format::RawF32, "g.f32.bin");
+    let side = sidecar(&e);
     let m = side["inverse_mapping"].as_array().unwrap();
     let (w, h) = (
         m[0]["count"].as_u64().unwrap() as usize,
         m[1]["count"].as_u64().unwrap() as usize,
     );
-    let tex: Vec<f32> = std::fs::read(&out)
-        .unwrap()
+    let tex: Vec<f32> = e
+        .texture
         .chunks_exact(4)
         .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
         .collect();
@@ -116,19 +118,19 @@ fn sidecar_mapping_reproduces_the_tables_lookup() {
 #[test]
 fn shaders_validate_and_non_2d_says_so() {
     for (asset, fmt, out, ret) in [
-        ("dfg_ts_smith.blut", "--png16", "dfg.png", "vec2"),
+        ("dfg_ts_smith.blut", Format::Png16, "dfg.png", "vec2"),
         (
             "g_modified_sigma0.3_linear.blut",
-            "--raw-f16",
+            Format::RawF16,
             "g.f16.bin",
             "float",
         ),
-        ("dfg_ggx.blut", "--raw-f32", "ggx.f32.bin", "vec2"),
+        ("dfg_ggx.blut", Format::RawF32, "ggx.f32.bin", "vec2"),
     ] {
-        let (_d, p) = export(asset, fmt, out);
-        let side = sidecar(&p);
+        let e = export_asset(asset, fmt, out);
+        let side = sidecar(&e);
+        let (glsl, wgsl) = e.shaders.expect("a 2-D table gets shaders");
         let name = side["shaders"]["function"].as_str().unwrap().to_string();
-        let wgsl = std::fs::read_to_string(format!("{}.wgsl", p.display())).unwrap();
         let module = naga::front::wgsl::parse_str(&wgsl)
             .unwrap_or_else(|e| panic!("{asset}: {}", e.emit_to_string(&wgsl)));
         naga::valid::Validator::new(
@@ -141,33 +143,37 @@ fn shaders_validate_and_non_2d_says_so() {
             .functions
             .iter()
             .any(|(_, f)| f.name.as_deref() == Some(name.as_str())));
-        let glsl = std::fs::read_to_string(format!("{}.glsl", p.display())).unwrap();
         assert!(glsl.contains(&format!("{ret} {name}(sampler2D lut, float p0, float p1)")));
         assert!(side["values"].as_str().unwrap().starts_with("linear"));
     }
-    let ggx = sidecar(&export("dfg_ggx.blut", "--raw-f32", "x.bin").1);
+    let ggx = sidecar(&export_asset("dfg_ggx.blut", Format::RawF32, "x.bin"));
     assert!(ggx["roughness"].as_str().unwrap().contains("alpha = r^2"));
-    let (d, p) = export("g_modified.blut", "--raw-f32", "g3.bin");
-    let side = sidecar(&p);
+    let e = export_asset("g_modified.blut", Format::RawF32, "g3.bin");
+    let side = sidecar(&e);
     assert!(side["shaders"]["function"].is_null());
     assert!(side["shaders"]["note"].as_str().unwrap().contains("2-D"));
-    assert!(!d.path().join("g3.bin.wgsl").exists());
+    assert!(e.shaders.is_none());
     assert!(side["roughness"].as_str().unwrap().starts_with("sigma"));
 }
 
-/// `--png16` of a 2-channel table also writes one 16-bit greyscale PNG per channel, whose
+/// A 16-bit PNG export of a 2-channel table also writes one 16-bit greyscale PNG per channel, whose
 /// decoded values are the table's node values within the 16-bit quantisation.
 #[test]
 fn png16_writes_single_channel_pngs() {
-    let asset = "dfg_ts_smith.blut";
-    let lut = brdf_lut::Lut::from_path(assets().join(asset)).unwrap();
+    let name = "dfg_ts_smith.blut";
+    let lut = brdf_lut::Lut::from_path(asset(name)).unwrap();
     let view = lut.view().unwrap();
-    let (d, p) = export(asset, "--png16", "dfg.png");
-    let side = sidecar(&p);
+    let e = export_asset(name, Format::Png16, "dfg.png");
+    let side = sidecar(&e);
     let dec = side["channel_decode"].as_array().unwrap();
     for (c, ch) in ["A", "B"].iter().enumerate() {
-        let path = d.path().join(format!("dfg_{ch}.png"));
-        let mut r = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(&path).unwrap()))
+        let file = format!("dfg_{ch}.png");
+        let (_, bytes) = e
+            .single_channel_pngs
+            .iter()
+            .find(|(n, _)| *n == file)
+            .unwrap();
+        let mut r = png::Decoder::new(std::io::Cursor::new(bytes))
             .read_info()
             .unwrap();
         let mut buf = vec![0; r.output_buffer_size()];

@@ -1,45 +1,41 @@
-//! One rule for output paths, as a property: for generated spellings of `--out`/`-o`
-//! (relative, `.`, `..`, symbolic links to folders, folders that do not exist, hard links,
-//! absolute paths into the committed `assets/`), `lut export` and `lut generate --config`
-//! never change one of their inputs and never write into `assets/`; every spelling that
-//! leads elsewhere is written exactly where the operating system's path resolution leads,
-//! and nothing else is created.
+//! One rule for output paths, as a property of `brdf_engine_assets::fsio`: for generated
+//! spellings of an output path (`.`, `..`, symbolic links to folders, folders that do not
+//! exist, hard links, absolute paths into a protected folder), [`write_together`] never
+//! changes one of the inputs of its [`Policy`] and never writes into the protected folder;
+//! every spelling that leads elsewhere is written exactly where the operating system's path
+//! resolution leads (a data file and its sidecar, or a single file), and nothing else is
+//! created. (`cargo xtask lut export` and `lut generate` pass their `-o`/`--out` and inputs
+//! to these calls; `xtask/tests/lut_writes.rs` checks that end to end.)
 //!
 //! The expected target is computed from the fixture's known layout (which names are
-//! folders, which are links to where), not by the tool's own resolver.
+//! folders, which are links to where), not by the library's own resolver.
 
 #![cfg(unix)]
 
+use brdf_engine_assets::fsio::{write_together, Policy};
 use proptest::prelude::*;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
 
 const CFG: &str = "kind = \"e-avg\"\nmodel = \"ggx\"\nres = \"4\"\n";
+const TABLE: &[u8] = b"an input table";
 
-/// The fixture: `work/` (the current folder) with the inputs `in.blut`, its hard link
-/// `hard.blut` and `cfg.toml`; the folder `sub/`; `link` → `sub`; `up` → `work` itself;
-/// `alink` → the committed assets folder.
+/// The fixture: `work/` with the inputs `in.blut`, its hard link `hard.blut` and
+/// `cfg.toml`; the folder `sub/`; `link` → `sub`; `up` → `work` itself; `alink` → the
+/// protected folder `assets/` (beside `work/`, holding `kc_eavg_ggx.blut`).
 struct Fixture {
     _root: tempfile::TempDir,
     work: PathBuf,
     assets: PathBuf,
-    table: Vec<u8>,
-}
-
-fn assets_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../assets")
-        .canonicalize()
-        .unwrap()
 }
 
 fn fixture() -> Fixture {
     let root = tempfile::tempdir().unwrap();
     let work = root.path().canonicalize().unwrap().join("work");
     std::fs::create_dir_all(work.join("sub")).unwrap();
-    let assets = assets_dir();
-    let table = std::fs::read(assets.join("kc_eavg_ggx.blut")).unwrap();
-    std::fs::write(work.join("in.blut"), &table).unwrap();
+    let assets = work.parent().unwrap().join("assets");
+    std::fs::create_dir(&assets).unwrap();
+    std::fs::write(assets.join("kc_eavg_ggx.blut"), TABLE).unwrap();
+    std::fs::write(work.join("in.blut"), TABLE).unwrap();
     std::fs::hard_link(work.join("in.blut"), work.join("hard.blut")).unwrap();
     std::fs::write(work.join("cfg.toml"), CFG).unwrap();
     std::os::unix::fs::symlink(work.join("sub"), work.join("link")).unwrap();
@@ -49,7 +45,6 @@ fn fixture() -> Fixture {
         _root: root,
         work,
         assets,
-        table,
     }
 }
 
@@ -92,6 +87,7 @@ fn snapshot(dir: &Path) -> Vec<(PathBuf, u64, std::time::SystemTime)> {
     v
 }
 
+/// A folder component of a spelling: the fixture's names, `.`, `..` and missing folders.
 fn component() -> impl Strategy<Value = String> {
     prop_oneof![
         Just(".".to_string()),
@@ -105,6 +101,7 @@ fn component() -> impl Strategy<Value = String> {
     ]
 }
 
+/// The last component: an input, a new name or a file of the protected folder.
 fn file_name() -> impl Strategy<Value = String> {
     prop_oneof![
         Just("in.blut".to_string()),
@@ -115,6 +112,7 @@ fn file_name() -> impl Strategy<Value = String> {
     ]
 }
 
+/// A spelling: folders then a file name, sometimes starting at the protected folder.
 fn spelling() -> impl Strategy<Value = Vec<String>> {
     (
         prop::bool::weighted(0.1),
@@ -130,60 +128,50 @@ fn spelling() -> impl Strategy<Value = Vec<String>> {
         })
 }
 
+/// One case: `spelling` (relative to `work/`) written with `force` by the policy of an
+/// export (inputs `in.blut`, `hard.blut`; a data file and its `.json` sidecar) or of a table
+/// built from `cfg.toml` (input `cfg.toml`; one file), `assets/` protected.
 fn run_case(export: bool, spelling: &[String]) -> Result<(), TestCaseError> {
     let f = fixture();
     let target = expected(&f, spelling);
-    // Only spellings that stay in the fixture or lead into assets/ (a `..` out of them
-    // would write into the workspace or /tmp, shared with other tests).
+    // Only spellings that stay in the fixture (a `..` out of it would write into /tmp,
+    // shared with other tests).
     let root = f.work.parent().unwrap().to_path_buf();
-    prop_assume!(target.starts_with(&root) || target.starts_with(&f.assets));
+    prop_assume!(target.starts_with(&root));
     let assets_before = snapshot(&f.assets);
-    let arg: PathBuf = spelling
-        .iter()
-        .map(|c| match c.as_str() {
+    let arg: PathBuf = std::iter::once(f.work.clone())
+        .chain(spelling.iter().map(|c| match c.as_str() {
             "ASSETS" => f.assets.clone(),
             c => PathBuf::from(c),
-        })
+        }))
         .collect();
-    let args: Vec<&std::ffi::OsStr> = if export {
-        ["lut", "export", "in.blut", "--raw-f32", "--force", "-o"]
-            .iter()
-            .map(|s| s.as_ref())
-            .chain([arg.as_os_str()])
-            .collect()
+    let inputs = if export {
+        vec![f.work.join("in.blut"), f.work.join("hard.blut")]
     } else {
-        [
-            "lut",
-            "generate",
-            "--config",
-            "cfg.toml",
-            "--samples",
-            "4",
-            "--force",
-            "--out",
-        ]
-        .iter()
-        .map(|s| s.as_ref())
-        .chain([arg.as_os_str()])
-        .collect()
+        vec![f.work.join("cfg.toml")]
     };
-    let o = Command::new(env!("CARGO_BIN_EXE_xtask"))
-        .args(&args)
-        .current_dir(&f.work)
-        .stdin(Stdio::null())
-        .output()
-        .unwrap();
-    let msg = String::from_utf8_lossy(&o.stderr).into_owned();
-    // The inputs of the command, whatever happened.
+    let policy = Policy {
+        force: true,
+        inputs,
+        protected: Some(f.assets.clone()),
+    };
+    let mut files = vec![(arg.clone(), b"new data".to_vec())];
     if export {
-        prop_assert_eq!(
-            std::fs::read(f.work.join("in.blut")).unwrap(),
-            f.table.clone()
-        );
-        prop_assert_eq!(
-            std::fs::read(f.work.join("hard.blut")).unwrap(),
-            f.table.clone()
-        );
+        files.push((
+            PathBuf::from(format!("{}.json", arg.display())),
+            b"{}".to_vec(),
+        ));
+    }
+    let res = write_together(&files, &policy);
+    let msg = res
+        .as_ref()
+        .err()
+        .map(|e| e.to_string())
+        .unwrap_or_default();
+    // The inputs, whatever happened.
+    if export {
+        prop_assert_eq!(std::fs::read(f.work.join("in.blut")).unwrap(), TABLE);
+        prop_assert_eq!(std::fs::read(f.work.join("hard.blut")).unwrap(), TABLE);
     } else {
         prop_assert_eq!(
             std::fs::read_to_string(f.work.join("cfg.toml")).unwrap(),
@@ -192,28 +180,16 @@ fn run_case(export: bool, spelling: &[String]) -> Result<(), TestCaseError> {
     }
     // assets/ untouched, whatever happened.
     prop_assert_eq!(snapshot(&f.assets), assets_before, "{}", msg);
-    let is_input = if export {
-        target == f.work.join("in.blut") || target == f.work.join("hard.blut")
-    } else {
-        target == f.work.join("cfg.toml")
-    };
+    let is_input = policy.inputs.contains(&target);
     let folder_is_file = target.ancestors().skip(1).any(|a| a.is_file());
     if is_input || target.starts_with(&f.assets) || target.is_dir() || folder_is_file {
-        prop_assert!(!o.status.success(), "{:?} was written", target);
+        prop_assert!(res.is_err(), "{:?} was written", target);
     } else {
-        prop_assert!(
-            o.status.success(),
-            "{:?} -> {:?}: {}",
-            spelling,
-            target,
-            msg
-        );
-        let bytes = std::fs::read(&target).unwrap();
+        prop_assert!(res.is_ok(), "{:?} -> {:?}: {}", spelling, target, msg);
+        prop_assert_eq!(std::fs::read(&target).unwrap(), b"new data");
         if export {
             let side = PathBuf::from(format!("{}.json", target.display()));
-            prop_assert!(side.is_file(), "no sidecar {:?}", side);
-        } else {
-            prop_assert!(brdf_lut::LutView::parse(&bytes).is_ok());
+            prop_assert_eq!(std::fs::read(&side).unwrap(), b"{}");
         }
     }
     // No folder created that the target does not lie in.
@@ -236,7 +212,7 @@ fn run_case(export: bool, spelling: &[String]) -> Result<(), TestCaseError> {
 proptest! {
     #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
     #[test]
-    fn outputs_never_overwrite_inputs_or_assets(export in any::<bool>(), s in spelling()) {
+    fn outputs_never_overwrite_inputs_or_protected(export in any::<bool>(), s in spelling()) {
         run_case(export, &s)?;
     }
 }
