@@ -35,6 +35,7 @@ mod defaults;
 mod integrate;
 mod kinds;
 mod measure;
+mod sheen;
 mod verify;
 
 pub use defaults::{default_set, Asset, DEFAULT_SET_TOOL};
@@ -43,6 +44,9 @@ pub use integrate::{
 };
 pub use kinds::{Check, KindDef, Role};
 pub use measure::measure;
+pub use sheen::{
+    sheen_e, sheen_e_reference, SheenE, REFERENCE_TOL as SHEEN_REFERENCE_TOL, TOL as SHEEN_TOL,
+};
 pub use verify::{check_nodes, sample_nodes, NodeCheck};
 
 use crate::write;
@@ -51,6 +55,7 @@ use crate::{
     Placement, TableKind, Warp, MAX_AXIS_COUNT,
 };
 use brdf_core::masking::ModifiedG;
+pub use brdf_core::models::SheenVisibility;
 use core::f64::consts::{FRAC_PI_2, SQRT_2};
 use std::fmt;
 use std::format;
@@ -85,6 +90,13 @@ pub enum Kind {
     Albedo,
     /// Average albedo E_avg (1 axis: roughness).
     AverageAlbedo,
+    /// Sheen directional albedo E_sheen(μ, r) = ∫ D V μl dωl of the Charlie sheen (colour 1)
+    /// with this visibility (2 axes: mu, roughness; perceptual r, α = r² ≥ 1e-4). The spec's
+    /// distribution and masking do not apply.
+    SheenAlbedo {
+        /// The visibility term.
+        visibility: SheenVisibility,
+    },
 }
 
 /// The microfacet distribution.
@@ -287,6 +299,12 @@ impl Spec {
         if self.kind.def().check == Check::ModifiedG {
             return Ok(Model::ModifiedG);
         }
+        if let Kind::SheenAlbedo { visibility } = self.kind {
+            return Ok(match visibility {
+                SheenVisibility::EstevezKulla => Model::SheenEstevezKulla,
+                SheenVisibility::Ashikhmin => Model::SheenAshikhmin,
+            });
+        }
         Ok(match (self.distribution, self.masking) {
             (D::Ggx, M::SmithCorrelated) => Model::GgxSmithCorrelated,
             (D::Ggx, M::SmithSeparable) => Model::GgxSmithSeparable,
@@ -349,6 +367,10 @@ impl Spec {
             }
         } else {
             self.model()?;
+        }
+        if matches!(self.kind, Kind::SheenAlbedo { .. }) && self.roughness != Roughness::Perceptual
+        {
+            return invalid("sheen tables are parameterised by the perceptual roughness r only");
         }
         if self.distribution == Distribution::Ggx && self.roughness == Roughness::Sigma {
             return invalid(
@@ -449,6 +471,7 @@ impl Spec {
         });
         match self.kind {
             Kind::GPerSigma { .. } | Kind::GOverSigma => &[20],
+            Kind::SheenAlbedo { .. } => &[],
             _ if polar_axis => &[],
             Kind::AverageAlbedo => &[24, 32, 16, OUTER_PANELS as u16],
             _ => &[32, 16, OUTER_PANELS as u16],
@@ -486,6 +509,13 @@ impl Spec {
             (TableKind::SplitSum, 2) => Kind::SplitSum,
             (TableKind::DirectionalAlbedo, 2) => Kind::Albedo,
             (TableKind::AverageAlbedo, 1) => Kind::AverageAlbedo,
+            (TableKind::SheenAlbedo, 2) => Kind::SheenAlbedo {
+                visibility: match h.generator.model {
+                    Model::SheenEstevezKulla => SheenVisibility::EstevezKulla,
+                    Model::SheenAshikhmin => SheenVisibility::Ashikhmin,
+                    _ => return None,
+                },
+            },
             _ => return None,
         };
         let (distribution, masking) = match h.generator.model {
@@ -497,6 +527,7 @@ impl Spec {
             Model::TorranceSparrowSmith => (D::TorranceSparrow, M::SmithCorrelated),
             Model::TorranceSparrowSmithSeparable => (D::TorranceSparrow, M::SmithSeparable),
             Model::TorranceSparrowVCavity => (D::TorranceSparrow, M::VCavity),
+            Model::SheenEstevezKulla | Model::SheenAshikhmin => (D::Ggx, M::SmithCorrelated),
         };
         let roughness = match h.axes.last().map(|a| a.name) {
             _ if kind.def().check == Check::ModifiedG => Roughness::Sigma,

@@ -111,6 +111,7 @@ pub fn cost_per_point_us(kind: TableKind, model: Model) -> u64 {
         (TableKind::DirectionalAlbedo, true) => 400,
         (TableKind::AverageAlbedo, false) => 10_000,
         (TableKind::AverageAlbedo, true) => 40_000,
+        (TableKind::SheenAlbedo, _) => 400,
     }
 }
 
