@@ -169,16 +169,16 @@ pub fn sheen_e(mu: f64, r: f64, tol: f64) -> SheenE {
     if !(mu > 1e-300) {
         return SheenE::default();
     }
-    // V·μl ≤ 1/(4μ) (Estevez–Kulla), ≤ ¼ (Ashikhmin): an inner error of tol·μ adds at most
-    // tol/4 to E.
-    let inner_tol = tol * mu.min(1.0);
     let mut evals = 0u64;
     let mut breaks: Vec<f64> = [0.0, 1e-3, 1e-2, 0.1, mu, 1.0].into();
     breaks.sort_by(f64::total_cmp);
     let (value, error) = adaptive(&breaks, tol * 0.5, &mut |mul| {
+        // An inner error δ ≤ tol/(4·max V·μl) at every node adds at most tol/4 to E (the
+        // outer variable spans [0, 1]).
+        let w = v_mu(&ch, mu, mul);
+        let inner_tol = tol * 0.25 / w[0].max(w[1]).max(1e-300);
         let (i, est, n) = azimuthal(&ch, mu, mul, inner_tol);
         evals += n;
-        let w = v_mu(&ch, mu, mul);
         ([w[0] * i, w[1] * i], [w[0] * est, w[1] * est])
     });
     SheenE {
