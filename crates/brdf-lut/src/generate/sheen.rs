@@ -30,6 +30,7 @@
 //! variables, another rule: it shares only the kernel (D and V) with the generator.
 
 use super::integrate::Work;
+use brdf_core::geometry::min_cos;
 use brdf_core::microfacet::charlie::{v_ashikhmin, Charlie};
 use brdf_core::models::SheenVisibility;
 use brdf_core::quadrature::kronrod::{gk15_combine, gk15_nodes};
@@ -161,12 +162,20 @@ fn adaptive(
 }
 
 /// E(μ, r) for both visibilities, by the generator's rule (module docs), to the absolute
-/// tolerance `tol` per visibility. μ is clamped into [0, 1]; μ below brdf-core's
-/// `min_cos` (at or below the horizon) gives 0.
+/// tolerance `tol` per visibility. μ above 1 is taken as 1; μ below brdf-core's `min_cos`
+/// (at or below the horizon) gives 0; NaN gives NaN. r is clamped into the Charlie
+/// width range (α = r² ∈ [1e-4, 1]).
 pub fn sheen_e(mu: f64, r: f64, tol: f64) -> SheenE {
     let ch = Charlie::clamped(r * r);
     let mu = mu.min(1.0);
-    if !(mu > 1e-300) {
+    if mu.is_nan() || r.is_nan() {
+        return SheenE {
+            value: [f64::NAN; 2],
+            error: [f64::NAN; 2],
+            evals: 0,
+        };
+    }
+    if mu < min_cos::<f64>() {
         return SheenE::default();
     }
     let mut evals = 0u64;
@@ -193,7 +202,10 @@ pub fn sheen_e(mu: f64, r: f64, tol: f64) -> SheenE {
 pub fn sheen_e_reference(mu: f64, r: f64, tol: f64) -> ([f64; 2], [f64; 2]) {
     let ch = Charlie::clamped(r * r);
     let mu = mu.min(1.0);
-    if !(mu > 1e-300) {
+    if mu.is_nan() || r.is_nan() {
+        return ([f64::NAN; 2], [f64::NAN; 2]);
+    }
+    if mu < min_cos::<f64>() {
         return ([0.0; 2], [0.0; 2]);
     }
     let s = (1.0 - mu * mu).max(0.0).sqrt();
