@@ -35,7 +35,7 @@ fn sheen_pngs_decode_to_the_texels() {
     }
     let (w, c, buf, sixteen) = decode(get("lut_sheen_E.png"));
     assert_eq!((w, c, sixteen), (n, 3, true));
-    for k in 0..n * n {
+    for (k, e) in ek.iter().enumerate() {
         for ch in 0..3 {
             let o = 2 * (3 * k + ch);
             let v = u16::from_be_bytes([buf[o], buf[o + 1]]) as f64 / 65535.0;
