@@ -40,7 +40,7 @@ fn sheen_pngs_decode_to_the_texels() {
             let o = 2 * (3 * k + ch);
             let v = u16::from_be_bytes([buf[o], buf[o + 1]]) as f64 / 65535.0;
             assert!(
-                (v - ek[k].clamp(0.0, 1.0)).abs() <= 0.5 / 65535.0 + 1e-12,
+                (v - e.clamp(0.0, 1.0)).abs() <= 0.5 / 65535.0 + 1e-12,
                 "sheen_E {k}"
             );
         }
