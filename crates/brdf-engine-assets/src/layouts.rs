@@ -334,3 +334,81 @@ fn accuracy(e: Engine, g: &SplitSumTexels) -> Value {
         "worst_quadrature_texel": { "column": at.0, "row": at.1, "mu": centre(at.0, n), "r": centre(at.1, n) },
     })
 }
+
+/// The sheen albedo at the texel centres of an n × n Khronos grid (column μ = (i + ½)/n,
+/// row r = (j + ½)/n, row-major): [Estevez–Kulla, Ashikhmin], each texel by the generator's
+/// converged rule ([`brdf_lut::generate::sheen_e`], 2e-6) on all cores. Costly: about
+/// 0.9 ms a texel on one core (docs/engines.md, sheen).
+pub fn sheen_texels(n: usize) -> Result<[Vec<f64>; 2]> {
+    use rayon::prelude::*;
+    if !(2..=crate::MAX_SIZE).contains(&n) {
+        return Err(Error::Size(n));
+    }
+    let v: Vec<[f64; 2]> = (0..n * n)
+        .into_par_iter()
+        .map(|k| {
+            let (i, j) = (k % n, k / n);
+            brdf_lut::generate::sheen_e(centre(i, n), centre(j, n), brdf_lut::generate::SHEEN_TOL)
+                .value
+        })
+        .collect();
+    Ok([
+        v.iter().map(|x| x[0]).collect(),
+        v.iter().map(|x| x[1]).collect(),
+    ])
+}
+
+/// glTF Sample Viewer sheen textures from [`sheen_texels`] (`ek`, `ash`: n² values,
+/// row-major, μ along x, r down the rows, as `lut_ggx.png`): `lut_charlie.png` (RGB 8-bit,
+/// B = the Ashikhmin E the viewer reads as its sheen "DG", R = G = 0) and `lut_sheen_E.png`
+/// (RGB 16-bit, R = G = B = the Estevez–Kulla E, linear), each with a JSON sidecar. Values
+/// above 1 (grazing μ, small r) are clamped to 1 by the UNORM encoding; the sidecar says so.
+pub fn khronos_sheen(n: usize, ek: &[f64], ash: &[f64]) -> Result<Vec<File>> {
+    if !(2..=crate::MAX_SIZE).contains(&n) || ek.len() != n * n || ash.len() != n * n {
+        return Err(Error::Size(n));
+    }
+    use png::{BitDepth::*, ColorType::*};
+    let charlie: Vec<u8> = ash.iter().flat_map(|&v| [0, 0, unorm8(v)]).collect();
+    let sheen: Vec<u8> = ek
+        .iter()
+        .flat_map(|&v| {
+            let b = unorm16(v).to_be_bytes();
+            [b[0], b[1], b[0], b[1], b[0], b[1]]
+        })
+        .collect();
+    let mut out = vec![
+        File {
+            name: "lut_charlie.png".into(),
+            bytes: png(n, n, Rgb, Eight, &charlie)?,
+        },
+        File {
+            name: "lut_sheen_E.png".into(),
+            bytes: png(n, n, Rgb, Sixteen, &sheen)?,
+        },
+    ];
+    for (stem, vis, enc) in [
+        ("lut_charlie", "ashikhmin: V = 1/(4(mu + mu_l - mu mu_l)) (Filament's cloth, the viewer's sheen DG)", "RGB 8-bit UNORM, B = E (R = G = 0): code = round(clamp(E, 0, 1) · 255)"),
+        ("lut_sheen_E", "estevez-kulla: V = 1/((1 + Lambda(mu) + Lambda(mu_l)) 4 mu mu_l), their fitted Lambda (glTF KHR_materials_sheen)", "RGB 16-bit UNORM, R = G = B = E: code = round(clamp(E, 0, 1) · 65535)"),
+    ] {
+        let side = json!({
+            "target": "khronos",
+            "size": [n, n],
+            "integral": "E_sheen(mu, r) = integral over the upper hemisphere of D(h) V(mu, mu_l) mu_l d omega_l (sheen colour 1)",
+            "model": "Charlie sheen (Estevez and Kulla 2017): D = (2 + 1/alpha) sin(theta_h)^(1/alpha) / (2 pi), alpha = r^2 clamped at 1e-4",
+            "visibility": vis,
+            "axes": "column x: mu = (x + 0.5)/N; PNG row y (top row first): r = (y + 0.5)/N (texel centres, as lut_ggx.png)",
+            "orientation": "uploaded without a vertical flip (first stored row at t = 0), the shader samples uv = (mu, r)",
+            "encoding": enc,
+            "linear": true,
+            "values": "linear: no transfer function; sample as linear data, never as an sRGB texture; values above 1 (grazing mu, small r) are clamped to 1",
+            "texel_values": "each texel = the integral at its own centre in f64 by brdf_lut::generate::sheen_e (adaptive, error estimate below 2e-6), rounded to nearest",
+        });
+        let mut bytes = serde_json::to_vec_pretty(&side).map_err(|e| Error::Encode(format!("json: {e}")))?;
+        bytes.push(b'\n');
+        out.push(File {
+            name: format!("{stem}.json"),
+            bytes,
+        });
+    }
+    Ok(out)
+}

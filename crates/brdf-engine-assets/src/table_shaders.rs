@@ -104,6 +104,9 @@ pub fn roughness_convention(m: Model) -> &'static str {
         | Model::TorranceSparrowVCavity => {
             "sigma = RMS slope of the Gaussian slope distribution; Beckmann m = sqrt(2) * sigma; not a perceptual roughness"
         }
+        Model::SheenEstevezKulla | Model::SheenAshikhmin => {
+            "perceptual sheen roughness r in [0, 1]; Charlie alpha = r^2, clamped at 1e-4"
+        }
     }
 }
 

@@ -121,11 +121,12 @@ impl<'a> Reader<'a> {
 
     /// The header after the magic; the version must already have been read.
     pub(crate) fn header(&mut self) -> Result<Header<'a>, LutError> {
-        let kind = match self.tag(4)? {
+        let kind = match self.tag(5)? {
             0 => TableKind::PassingFactor,
             1 => TableKind::SplitSum,
             2 => TableKind::DirectionalAlbedo,
-            _ => TableKind::AverageAlbedo,
+            3 => TableKind::AverageAlbedo,
+            _ => TableKind::SheenAlbedo,
         };
         let mut axes = List::new();
         for _ in 0..self.list_len(MAX_AXES)? {

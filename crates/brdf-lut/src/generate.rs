@@ -35,6 +35,7 @@ mod defaults;
 mod integrate;
 mod kinds;
 mod measure;
+mod sheen;
 mod verify;
 
 pub use defaults::{default_set, Asset, DEFAULT_SET_TOOL};
@@ -43,6 +44,9 @@ pub use integrate::{
 };
 pub use kinds::{Check, KindDef, Role};
 pub use measure::measure;
+pub use sheen::{
+    sheen_e, sheen_e_reference, SheenE, REFERENCE_TOL as SHEEN_REFERENCE_TOL, TOL as SHEEN_TOL,
+};
 pub use verify::{check_nodes, sample_nodes, NodeCheck};
 
 use crate::write;
@@ -52,6 +56,7 @@ use crate::{
 };
 use brdf_core::masking::ModifiedG;
 use brdf_core::models::GeometricTerm;
+pub use brdf_core::models::SheenVisibility;
 use core::f64::consts::FRAC_PI_2;
 use std::fmt;
 use std::format;
@@ -86,6 +91,13 @@ pub enum Kind {
     Albedo,
     /// Average albedo E_avg (1 axis: roughness).
     AverageAlbedo,
+    /// Sheen directional albedo E_sheen(μ, r) = ∫ D V μl dωl of the Charlie sheen (colour 1)
+    /// with this visibility (2 axes: mu, roughness; perceptual r, α = r² ≥ 1e-4). The spec's
+    /// distribution and masking do not apply.
+    SheenAlbedo {
+        /// The visibility term.
+        visibility: SheenVisibility,
+    },
 }
 
 /// The microfacet distribution: the model catalogue's
@@ -331,6 +343,9 @@ impl Spec {
     /// The header's model code for this distribution and G (the catalogue's mapping,
     /// [`Model::from_catalogue`]).
     pub fn model(&self) -> Result<Model, GenError> {
+        if let Kind::SheenAlbedo { visibility } = self.kind {
+            return Ok(Model::from_sheen(visibility));
+        }
         let g = self.masking.term();
         let d = (self.kind.def().check != Check::ModifiedG).then_some(self.distribution);
         match Model::from_catalogue(d, g) {
@@ -390,6 +405,10 @@ impl Spec {
             }
         } else {
             self.model()?;
+        }
+        if matches!(self.kind, Kind::SheenAlbedo { .. }) && self.roughness != Roughness::Perceptual
+        {
+            return invalid("sheen tables are parameterised by the perceptual roughness r only");
         }
         if self.distribution == Distribution::Ggx && self.roughness == Roughness::Sigma {
             return invalid(
@@ -486,6 +505,7 @@ impl Spec {
         });
         match self.kind {
             Kind::GPerSigma { .. } | Kind::GOverSigma => &[20],
+            Kind::SheenAlbedo { .. } => &[],
             _ if polar_axis => &[],
             Kind::AverageAlbedo => &[24, 32, 16, OUTER_PANELS as u16],
             _ => &[32, 16, OUTER_PANELS as u16],
@@ -522,12 +542,19 @@ impl Spec {
             (TableKind::SplitSum, 2) => Kind::SplitSum,
             (TableKind::DirectionalAlbedo, 2) => Kind::Albedo,
             (TableKind::AverageAlbedo, 1) => Kind::AverageAlbedo,
+            (TableKind::SheenAlbedo, 2) => Kind::SheenAlbedo {
+                visibility: h.generator.model.sheen()?,
+            },
             _ => return None,
         };
         // The generator writes the reciprocal modified G; a file's convention is not part
         // of its spec.
         let (d, g) = h.generator.model.catalogue(Convention::Reciprocal);
-        let (distribution, masking) = (d.unwrap_or(D::TorranceSparrow), Masking::from_term(g)?);
+        let (distribution, masking) = match kind {
+            // A sheen table's spec has no microfacet G; these fields are not used.
+            Kind::SheenAlbedo { .. } => (D::Ggx, Masking::SmithCorrelated),
+            _ => (d.unwrap_or(D::TorranceSparrow), Masking::from_term(g)?),
+        };
         let roughness = match h.axes.last().map(|a| a.name) {
             _ if kind.def().check == Check::ModifiedG => Roughness::Sigma,
             Some("roughness") => Roughness::Perceptual,

@@ -120,6 +120,9 @@ pub enum TableKind {
     DirectionalAlbedo,
     /// Cosine-weighted average albedo E_avg(r) = 2∫ E(μ) μ dμ (channel `Eavg`).
     AverageAlbedo,
+    /// Sheen directional albedo E_sheen(μ, r) = ∫ D V μl dωl of the Charlie sheen with
+    /// colour 1 (channel `E`); the visibility is the header's model.
+    SheenAlbedo,
 }
 
 /// How a physical coordinate x ∈ [lo, hi] maps to the unit coordinate s ∈ [0, 1].
@@ -258,6 +261,12 @@ model_codes! {
     /// Torrance–Sparrow, Gaussian slopes (Beckmann m = √2σ), the V-cavity G of Torrance and
     /// Sparrow as used by Blinn.
     TorranceSparrowVCavity = 8,
+    /// The Charlie sheen (Estevez and Kulla 2017, α = r²) with their fitted-Λ visibility
+    /// (glTF `KHR_materials_sheen`).
+    SheenEstevezKulla = 9,
+    /// The Charlie sheen (α = r²) with Ashikhmin's visibility 1/(4(μi + μo − μi μo))
+    /// (Filament's cloth).
+    SheenAshikhmin = 10,
 }
 
 impl Model {

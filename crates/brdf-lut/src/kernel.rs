@@ -4,7 +4,7 @@
 use crate::header::{Convention, Model};
 use brdf_core::catalogue::DistributionId;
 use brdf_core::masking::Convention as KernelConvention;
-use brdf_core::models::GeometricTerm;
+use brdf_core::models::{GeometricTerm, SheenVisibility};
 
 impl From<KernelConvention> for Convention {
     fn from(c: KernelConvention) -> Self {
@@ -81,5 +81,27 @@ impl Model {
             (Some(DistributionId::TorranceSparrow), g) => Some(g),
             _ => None,
         }
+    }
+}
+
+/// The sheen tables' codes: the catalogue's `sheen` model with each of its visibility
+/// options ([`SheenVisibility::ALL`]), one row each.
+const SHEEN_TABLE: [(Model, SheenVisibility); 2] = [
+    (Model::SheenEstevezKulla, SheenVisibility::EstevezKulla),
+    (Model::SheenAshikhmin, SheenVisibility::Ashikhmin),
+];
+
+impl Model {
+    /// The code of a sheen table with visibility `v`.
+    pub fn from_sheen(v: SheenVisibility) -> Model {
+        SHEEN_TABLE
+            .iter()
+            .find(|r| r.1 == v)
+            .map_or(Model::SheenEstevezKulla, |r| r.0)
+    }
+
+    /// The visibility of a sheen table's model; `None` for the microfacet models.
+    pub fn sheen(self) -> Option<SheenVisibility> {
+        SHEEN_TABLE.iter().find(|r| r.0 == self).map(|r| r.1)
     }
 }

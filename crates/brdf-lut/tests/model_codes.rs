@@ -3,7 +3,7 @@
 //! code gives the pair back; the codes on disk are the ones docs/lut-format.md §3 lists.
 
 use brdf_core::catalogue::{DistributionId, DISTRIBUTIONS, MASKINGS};
-use brdf_core::models::GeometricTerm;
+use brdf_core::models::{GeometricTerm, SheenVisibility};
 use brdf_lut::generate::{Distribution, Kind, Masking, Spec};
 use brdf_lut::{Convention, Model};
 
@@ -39,6 +39,10 @@ fn every_tabulated_catalogue_pair_has_a_code_and_back() {
     assert_eq!(seen.len(), pairs.len());
     // Every code is some catalogue pair (its reciprocal reading), and that pair maps back.
     for &m in Model::ALL {
+        if let Some(v) = m.sheen() {
+            assert_eq!(Model::from_sheen(v), m);
+            continue;
+        }
         let (d, g) = m.catalogue(Convention::Reciprocal);
         assert!(pairs.contains(&(d, g)), "{m:?} → {d:?} {g:?}");
         assert_eq!(
@@ -46,6 +50,27 @@ fn every_tabulated_catalogue_pair_has_a_code_and_back() {
             Some((m, Convention::Reciprocal))
         );
     }
+}
+
+/// Every visibility option of the catalogue's sheen has its own code, and the code gives it
+/// back; sheen codes are not microfacet pairs.
+#[test]
+fn every_sheen_visibility_has_a_code_and_back() {
+    let mut codes: Vec<u8> = SheenVisibility::ALL
+        .iter()
+        .map(|&v| {
+            let m = Model::from_sheen(v);
+            assert_eq!(m.sheen(), Some(v), "{v:?}");
+            assert_eq!(Model::from_code(m.code() as u32), Some(m));
+            assert_eq!(
+                Model::from_catalogue(None, GeometricTerm::Modified).map(|x| x.0 == m),
+                Some(false)
+            );
+            m.code()
+        })
+        .collect();
+    codes.dedup();
+    assert_eq!(codes.len(), SheenVisibility::ALL.len());
 }
 
 #[test]

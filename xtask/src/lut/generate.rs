@@ -239,12 +239,7 @@ fn check_limits(spec: &Spec) -> Result<()> {
     let counts: Vec<u64> = spec.axes.iter().map(|x| x.count as u64).collect();
     let channels = if spec.kind == Kind::SplitSum { 2 } else { 1 };
     let nodes = limits::check_grid(&counts, channels)?;
-    let kind = match spec.kind {
-        Kind::GPerSigma { .. } | Kind::GOverSigma => brdf_lut::TableKind::PassingFactor,
-        Kind::SplitSum => brdf_lut::TableKind::SplitSum,
-        Kind::Albedo => brdf_lut::TableKind::DirectionalAlbedo,
-        Kind::AverageAlbedo => brdf_lut::TableKind::AverageAlbedo,
-    };
+    let kind = spec.kind.def().table;
     let model = spec.model().map_err(|e| anyhow!("{e}"))?;
     limits::check_generate(kind, model, nodes, spec.samples as u64)?;
     Ok(())
@@ -304,9 +299,17 @@ fn kind_and_model(
         "split-sum" => Kind::SplitSum,
         "e" => Kind::Albedo,
         "e-avg" => Kind::AverageAlbedo,
-        "" => bail!("--kind is missing (g-per-sigma, g-over-sigma, split-sum, e, e-avg)"),
-        o => bail!("unknown kind `{o}` (one of: g-per-sigma, g-over-sigma, split-sum, e, e-avg)"),
+        // The sheen albedo; its visibility in the kind's name (the model's only option).
+        "sheen-e" | "sheen-e-estevez-kulla" => Kind::SheenAlbedo {
+            visibility: brdf_lut::generate::SheenVisibility::EstevezKulla,
+        },
+        "sheen-e-ashikhmin" => Kind::SheenAlbedo {
+            visibility: brdf_lut::generate::SheenVisibility::Ashikhmin,
+        },
+        "" => bail!("--kind is missing (g-per-sigma, g-over-sigma, split-sum, e, e-avg, sheen-e, sheen-e-ashikhmin)"),
+        o => bail!("unknown kind `{o}` (one of: g-per-sigma, g-over-sigma, split-sum, e, e-avg, sheen-e, sheen-e-ashikhmin)"),
     };
+    let sheen = matches!(kind, Kind::SheenAlbedo { .. });
     if sigma.is_some() && !matches!(kind, Kind::GPerSigma { .. }) {
         bail!("--sigma is the fixed σ of a g-per-sigma table; other kinds take a σ axis");
     }
@@ -314,6 +317,8 @@ fn kind_and_model(
     let dist = match pick(&a.model, &cfg.model) {
         Some(m) => choose("model", &m, &distribution_options())?,
         None if g_table => Distribution::TorranceSparrow,
+        // (A sheen table's distribution is Charlie; the option does not apply.)
+        None if sheen => Distribution::Ggx,
         None => bail!("--model is missing (ggx, beckmann, torrance-sparrow)"),
     };
     let masking = match pick(&a.masking, &cfg.masking) {

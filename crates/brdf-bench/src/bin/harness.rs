@@ -10,7 +10,7 @@ use brdf_bench::*;
 use brdf_core::masking::{self, ModifiedG};
 use brdf_core::roughness::beckmann_m_from_sigma;
 use brdf_core::split_sum::{dfg_ggx, InnerRule, OuterRule};
-use brdf_lut::{AlbedoTable, AverageAlbedoTable, DfgTable, GTable, GTable3};
+use brdf_lut::{AlbedoTable, AverageAlbedoTable, DfgTable, GTable, GTable3, SheenAlbedoTable};
 use std::hint::black_box;
 
 const KERNELS: &[&str] = &[
@@ -37,6 +37,7 @@ const KERNELS: &[&str] = &[
     "eavg_lut",
     "g_lut2d_linear_dots",
     "g_lut3d_linear_dots",
+    "sheen_e_lut",
 ];
 
 fn main() {
@@ -222,6 +223,11 @@ fn main() {
                 SIGMA as f32
             ))
         }
+        "sheen_e_lut" => {
+            let b = sheen_table();
+            let t = SheenAlbedoTable::parse(&b[..]).unwrap();
+            run!(|k: usize| t.e(black_box(mr[k].0 as f32), black_box(mr[k].1 as f32)))
+        }
         "e_lut" => {
             let b = asset(E_ASSET);
             let t = AlbedoTable::parse(&b[..]).unwrap();
@@ -238,4 +244,24 @@ fn main() {
         }
     }
     black_box(acc);
+}
+
+/// A sheen albedo table for `sheen_e_lut`, built at start-up (no asset holds one; the
+/// (n) − (0) difference removes its cost): Estevez–Kulla visibility, 32 × 32 nodes, linear
+/// u16 like `dfg_lut`'s asset (the lookup's instructions do not depend on the node count).
+fn sheen_table() -> Vec<u8> {
+    use brdf_lut::generate::{generate, Distribution, Kind, Masking, SheenVisibility, Spec};
+    let mut s = Spec::new(
+        Kind::SheenAlbedo {
+            visibility: SheenVisibility::EstevezKulla,
+        },
+        Distribution::Ggx,
+        Masking::SmithCorrelated,
+    );
+    for a in s.axes.iter_mut() {
+        a.count = 32;
+    }
+    s.interpolation = brdf_lut::Interpolation::Linear;
+    s.samples = 16;
+    generate(&s, &|_| {}).unwrap().bytes
 }

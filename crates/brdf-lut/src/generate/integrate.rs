@@ -357,6 +357,10 @@ fn node_by<F: Family>(spec: &Spec, x: &[f64], evals: &Cell<u64>) -> [f64; 2] {
             [a + b, 0.0]
         }
         Kind::AverageAlbedo => [F::e_avg(spec, x[0], evals), 0.0],
+        Kind::SheenAlbedo { visibility } => {
+            let e = super::sheen::sheen_e(x[0], x[1], super::sheen::TOL);
+            [e.value[super::sheen::channel(visibility)], 0.0]
+        }
     }
 }
 
@@ -441,6 +445,9 @@ pub fn node(spec: &Spec, x: &[f64], out: &mut [f64]) -> Work {
 /// its E under the 32-point μ rule, with |32-point − 24-point| added), else the `Fine`
 /// rule and |Fine − FineCheck| (module docs).
 pub fn reference(spec: &Spec, x: &[f64]) -> ([f64; 2], f64) {
+    if let Kind::SheenAlbedo { visibility } = spec.kind {
+        return super::sheen::reference(visibility, x[0], x[1]);
+    }
     if let Some((q, r)) = ggx_query(spec, x) {
         let row = DfgGgxRow::new(r);
         return match q {

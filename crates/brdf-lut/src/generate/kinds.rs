@@ -96,7 +96,23 @@ impl Kind {
                 check: Check::Values,
                 value: node,
             },
+            Kind::SheenAlbedo { .. } => &KindDef {
+                name: "sheen-e",
+                table: TableKind::SheenAlbedo,
+                axes: &[(Mu, 64), (Roughness, 64)],
+                channels: &["E"],
+                check: Check::Values,
+                value: sheen_node,
+            },
         }
+    }
+}
+
+/// The `sheen-e` node at x = (μ, r) (`generate/sheen.rs`).
+fn sheen_node(s: &Spec, x: &[f64], out: &mut [f64]) -> Work {
+    match s.kind {
+        Kind::SheenAlbedo { visibility } => super::sheen::node(visibility, x[0], x[1], out),
+        _ => Work::default(),
     }
 }
 

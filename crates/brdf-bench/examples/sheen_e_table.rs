@@ -1,0 +1,41 @@
+//! The sheen albedo E_sheen(μ, r) (`brdf_lut::generate::sheen_e`, both visibilities at once)
+//! at the texel centres of a size × size grid (μ = (i + ½)/size, r = (j + ½)/size, the
+//! Khronos axes), every `stride`-th row, on one thread: time per texel, D evaluations per
+//! texel and the largest error estimate, so the cost of a full 1024² texture can be
+//! extrapolated (a measurement, not a claim in a test).
+//!
+//! ```text
+//! cargo run --release -p brdf-bench --example sheen_e_table -- [size] [stride] [tol]
+//! ```
+
+use brdf_lut::generate::{sheen_e, SHEEN_TOL};
+use std::time::Instant;
+
+fn main() {
+    let a: Vec<String> = std::env::args().collect();
+    let size: usize = a.get(1).and_then(|s| s.parse().ok()).unwrap_or(1024);
+    let stride: usize = a.get(2).and_then(|s| s.parse().ok()).unwrap_or(64).max(1);
+    let tol: f64 = a.get(3).and_then(|s| s.parse().ok()).unwrap_or(SHEEN_TOL);
+    let t0 = Instant::now();
+    let (mut texels, mut evals, mut worst) = (0u64, 0u64, 0f64);
+    for j in (0..size).step_by(stride) {
+        let r = (j as f64 + 0.5) / size as f64;
+        for i in 0..size {
+            let mu = (i as f64 + 0.5) / size as f64;
+            let e = sheen_e(mu, r, tol);
+            texels += 1;
+            evals += e.evals;
+            worst = worst.max(e.error[0]).max(e.error[1]);
+        }
+    }
+    let dt = t0.elapsed().as_secs_f64();
+    let per = dt / texels as f64;
+    println!(
+        "{texels} texels (every {stride}th of {size} rows), tol {tol:e}: {:.1} us/texel, \
+         {} D evaluations/texel, largest estimate {worst:.2e}; a full {size}² grid on one \
+         core: {:.0} s",
+        per * 1e6,
+        evals / texels,
+        per * (size * size) as f64
+    );
+}
