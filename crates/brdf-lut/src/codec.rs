@@ -121,11 +121,13 @@ impl<'a> Reader<'a> {
 
     /// The header after the magic; the version must already have been read.
     pub(crate) fn header(&mut self) -> Result<Header<'a>, LutError> {
-        let kind = match self.tag(4)? {
+        let kind = match self.tag(6)? {
             0 => TableKind::PassingFactor,
             1 => TableKind::SplitSum,
             2 => TableKind::DirectionalAlbedo,
-            _ => TableKind::AverageAlbedo,
+            3 => TableKind::AverageAlbedo,
+            4 => TableKind::GlassAlbedo,
+            _ => TableKind::GlassAverageAlbedo,
         };
         let mut axes = List::new();
         for _ in 0..self.list_len(MAX_AXES)? {
@@ -148,7 +150,7 @@ impl<'a> Reader<'a> {
             0 => Interpolation::Linear,
             _ => Interpolation::CatmullRom,
         };
-        let model = match self.tag(9)? {
+        let model = match self.tag(11)? {
             0 => Model::ModifiedG,
             1 => Model::GgxSmithCorrelated,
             2 => Model::BeckmannSmithCorrelated,
@@ -157,7 +159,9 @@ impl<'a> Reader<'a> {
             5 => Model::GgxSmithSeparable,
             6 => Model::BeckmannSmithSeparable,
             7 => Model::TorranceSparrowSmithSeparable,
-            _ => Model::TorranceSparrowVCavity,
+            8 => Model::TorranceSparrowVCavity,
+            9 => Model::RoughDielectricGgx,
+            _ => Model::RoughDielectricBeckmann,
         };
         let convention = match self.tag(2)? {
             0 => Convention::Reciprocal,

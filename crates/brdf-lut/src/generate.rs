@@ -32,6 +32,7 @@
 //! The kinds it knows are one list ([`Kind::def`], `generate/kinds.rs`).
 
 mod defaults;
+pub mod glass;
 mod integrate;
 mod kinds;
 mod measure;
@@ -85,6 +86,11 @@ pub enum Kind {
     Albedo,
     /// Average albedo E_avg (1 axis: roughness).
     AverageAlbedo,
+    /// Rough-glass directional albedo (R, T) (3 axes: mu, roughness, eta;
+    /// `generate/glass.rs`).
+    GlassAlbedo,
+    /// Rough-glass average albedo (R_avg, T_avg) (2 axes: roughness, eta).
+    GlassAverageAlbedo,
 }
 
 /// The microfacet distribution.
@@ -287,6 +293,16 @@ impl Spec {
         if self.kind.def().check == Check::ModifiedG {
             return Ok(Model::ModifiedG);
         }
+        if glass::is_glass(self.kind) {
+            return match self.distribution {
+                D::Ggx => Ok(Model::RoughDielectricGgx),
+                D::Beckmann => Ok(Model::RoughDielectricBeckmann),
+                D::TorranceSparrow => invalid(
+                    "rough-glass tables take the GGX distribution (the rough dielectric's \
+                     Beckmann is not tabulated yet)",
+                ),
+            };
+        }
         Ok(match (self.distribution, self.masking) {
             (D::Ggx, M::SmithCorrelated) => Model::GgxSmithCorrelated,
             (D::Ggx, M::SmithSeparable) => Model::GgxSmithSeparable,
@@ -349,6 +365,7 @@ impl Spec {
             }
         } else {
             self.model()?;
+            glass::validate(self)?;
         }
         if self.distribution == Distribution::Ggx && self.roughness == Roughness::Sigma {
             return invalid(
@@ -451,6 +468,8 @@ impl Spec {
             Kind::GPerSigma { .. } | Kind::GOverSigma => &[20],
             _ if polar_axis => &[],
             Kind::AverageAlbedo => &[24, 32, 16, OUTER_PANELS as u16],
+            // Adaptive (the converged cap integrator to `integrate::TOL`).
+            Kind::GlassAlbedo | Kind::GlassAverageAlbedo => &[],
             _ => &[32, 16, OUTER_PANELS as u16],
         }
     }
@@ -486,6 +505,8 @@ impl Spec {
             (TableKind::SplitSum, 2) => Kind::SplitSum,
             (TableKind::DirectionalAlbedo, 2) => Kind::Albedo,
             (TableKind::AverageAlbedo, 1) => Kind::AverageAlbedo,
+            (TableKind::GlassAlbedo, 3) => Kind::GlassAlbedo,
+            (TableKind::GlassAverageAlbedo, 2) => Kind::GlassAverageAlbedo,
             _ => return None,
         };
         let (distribution, masking) = match h.generator.model {
@@ -497,8 +518,15 @@ impl Spec {
             Model::TorranceSparrowSmith => (D::TorranceSparrow, M::SmithCorrelated),
             Model::TorranceSparrowSmithSeparable => (D::TorranceSparrow, M::SmithSeparable),
             Model::TorranceSparrowVCavity => (D::TorranceSparrow, M::VCavity),
+            Model::RoughDielectricGgx => (D::Ggx, M::SmithSeparable),
+            Model::RoughDielectricBeckmann => (D::Beckmann, M::SmithSeparable),
         };
-        let roughness = match h.axes.last().map(|a| a.name) {
+        let rough_axis = if glass::is_glass(kind) {
+            h.axes.len().checked_sub(2).and_then(|i| h.axes.get(i))
+        } else {
+            h.axes.last()
+        };
+        let roughness = match rough_axis.map(|a| a.name) {
             _ if kind.def().check == Check::ModifiedG => Roughness::Sigma,
             Some("roughness") => Roughness::Perceptual,
             Some("alpha") | Some("m") => Roughness::Alpha,

@@ -120,6 +120,13 @@ pub enum TableKind {
     DirectionalAlbedo,
     /// Cosine-weighted average albedo E_avg(r) = 2∫ E(μ) μ dμ (channel `Eavg`).
     AverageAlbedo,
+    /// Rough-glass directional albedo over (μ, roughness, η), channels `R` (reflected) and
+    /// `T` (transmitted energy fraction: the adjoint, without the η² radiance factor), light
+    /// arriving from the side of index 1, η the far side's index over the near side's
+    /// (docs/lut-format.md, "Rough glass"). The model (distribution) is in the generator.
+    GlassAlbedo,
+    /// Rough-glass average albedo over (roughness, η): 2∫ (R, T)(μ) μ dμ (channels `R`, `T`).
+    GlassAverageAlbedo,
 }
 
 /// How a physical coordinate x ∈ [lo, hi] maps to the unit coordinate s ∈ [0, 1].
@@ -233,6 +240,11 @@ pub enum Model {
     /// Torrance–Sparrow, Gaussian slopes (Beckmann m = √2σ), the V-cavity G of Torrance and
     /// Sparrow as used by Blinn.
     TorranceSparrowVCavity,
+    /// The rough dielectric of Walter et al. (2007) with GGX (α = r²), separable Smith G,
+    /// exact dielectric Fresnel (brdf-core `rough_dielectric`).
+    RoughDielectricGgx,
+    /// The rough dielectric of Walter et al. (2007) with Beckmann, separable Smith G.
+    RoughDielectricBeckmann,
 }
 
 /// How the table was generated.

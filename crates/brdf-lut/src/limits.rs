@@ -111,6 +111,8 @@ pub fn cost_per_point_us(kind: TableKind, model: Model) -> u64 {
         (TableKind::DirectionalAlbedo, true) => 400,
         (TableKind::AverageAlbedo, false) => 10_000,
         (TableKind::AverageAlbedo, true) => 40_000,
+        (TableKind::GlassAlbedo, _) => 2_000,
+        (TableKind::GlassAverageAlbedo, _) => 200_000,
     }
 }
 

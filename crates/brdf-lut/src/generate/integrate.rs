@@ -324,6 +324,8 @@ fn node_by<F: Family>(spec: &Spec, x: &[f64], evals: &Cell<u64>) -> [f64; 2] {
             [a + b, 0.0]
         }
         Kind::AverageAlbedo => [F::e_avg(spec, x[0], evals), 0.0],
+        // Rough glass is integrated in `generate/glass.rs` (dispatched before this).
+        Kind::GlassAlbedo | Kind::GlassAverageAlbedo => [f64::NAN; 2],
     }
 }
 
@@ -342,6 +344,9 @@ fn ggx_query(spec: &Spec, x: &[f64]) -> Option<(GgxQuery, f64)> {
 /// the modified G's 20-point passing factor, else brdf-core's fixed rule (module docs).
 /// What the error measurement at random points compares the table with.
 pub fn value(spec: &Spec, x: &[f64], out: &mut [f64]) {
+    if super::glass::node(spec, x, out).is_some() {
+        return;
+    }
     let v = if let Some((q, r)) = ggx_query(spec, x) {
         ggx_converged(q, r).0
     } else {
@@ -362,6 +367,9 @@ pub fn value(spec: &Spec, x: &[f64], out: &mut [f64]) {
 /// the converged GGX rule's own estimate, else the embedded difference from the coarser
 /// rule (module docs).
 pub fn node(spec: &Spec, x: &[f64], out: &mut [f64]) -> Work {
+    if let Some(w) = super::glass::node(spec, x, out) {
+        return w;
+    }
     if let Some((q, r)) = ggx_query(spec, x) {
         let (v, w) = ggx_converged(q, r);
         for (o, v) in out.iter_mut().zip(v) {
@@ -397,6 +405,9 @@ pub fn node(spec: &Spec, x: &[f64], out: &mut [f64]) -> Work {
 /// its E under the 32-point μ rule, with |32-point − 24-point| added), else the `Fine`
 /// rule and |Fine − FineCheck| (module docs).
 pub fn reference(spec: &Spec, x: &[f64]) -> ([f64; 2], f64) {
+    if let Some(r) = super::glass::reference(spec, x) {
+        return r;
+    }
     if let Some((q, r)) = ggx_query(spec, x) {
         let row = DfgGgxRow::new(r);
         return match q {
