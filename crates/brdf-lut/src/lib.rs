@@ -55,7 +55,9 @@ pub use header::{
 };
 pub use lookup::Values;
 pub use tables::layout::TableLayout;
-pub use tables::{AlbedoTable, AverageAlbedoTable, DfgTable, GTable, GTable3};
+pub use tables::{
+    AlbedoTable, AverageAlbedoTable, DfgTable, GTable, GTable3, GlassAlbedoTable, GlassAverageTable,
+};
 pub use view::{encode_into, header_len, LutView};
 
 #[cfg(feature = "std")]

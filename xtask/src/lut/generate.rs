@@ -230,14 +230,9 @@ pub fn run(a: Args) -> Result<()> {
 fn check_limits(spec: &Spec) -> Result<()> {
     limits::check_samples("--samples", spec.samples as u64)?;
     let counts: Vec<u64> = spec.axes.iter().map(|x| x.count as u64).collect();
-    let channels = if spec.kind == Kind::SplitSum { 2 } else { 1 };
+    let channels = spec.kind.def().channels.len() as u64;
     let nodes = limits::check_grid(&counts, channels)?;
-    let kind = match spec.kind {
-        Kind::GPerSigma { .. } | Kind::GOverSigma => brdf_lut::TableKind::PassingFactor,
-        Kind::SplitSum => brdf_lut::TableKind::SplitSum,
-        Kind::Albedo => brdf_lut::TableKind::DirectionalAlbedo,
-        Kind::AverageAlbedo => brdf_lut::TableKind::AverageAlbedo,
-    };
+    let kind = spec.kind.def().table;
     let model = spec.model().map_err(|e| anyhow!("{e}"))?;
     limits::check_generate(kind, model, nodes, spec.samples as u64)?;
     Ok(())
@@ -295,6 +290,8 @@ fn build_spec(
         "split-sum" => Kind::SplitSum,
         "e" => Kind::Albedo,
         "e-avg" => Kind::AverageAlbedo,
+        "glass-e" => Kind::GlassAlbedo,
+        "glass-e-avg" => Kind::GlassAverageAlbedo,
         "" => bail!("--kind is missing (g-per-sigma, g-over-sigma, split-sum, e, e-avg)"),
         o => bail!("unknown kind `{o}` (one of: g-per-sigma, g-over-sigma, split-sum, e, e-avg)"),
     };
