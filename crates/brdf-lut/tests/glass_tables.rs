@@ -102,14 +102,14 @@ fn agrees_with_monte_carlo_through_the_kernel_sampler() {
     const N: usize = 400_000;
     let mut rng = Rng(0x61A55);
     for &(mu, alpha, eta) in &[
-        (0.5, 0.3, 1.5),
+        (0.5f64, 0.3, 1.5),
         (0.1, 0.5, 1.5),
         (0.8, 0.15, 0.7),
         (0.3, 0.8, 0.5),
         (0.05, 1.0, 2.5),
     ] {
         let m = RoughDielectric::new(DielectricDistribution::Ggx, alpha, eta).unwrap();
-        let wo = Vec3::new(((1.0 - mu) * (1.0 + mu) as f64).sqrt(), 0.0, mu);
+        let wo = Vec3::new(((1.0 - mu) * (1.0 + mu)).sqrt(), 0.0, mu);
         let (mut s, mut s2) = ([0f64; 2], [0f64; 2]);
         for _ in 0..N {
             let u = [rng.next(), rng.next()];
