@@ -265,13 +265,13 @@ fn glass_table_nodes_lookups_and_verify() {
 #[test]
 fn glass_average_table_verifies() {
     let mut spec = small_spec(Kind::GlassAverageAlbedo);
-    spec.axes[0].count = 3;
-    spec.axes[1].count = 3;
+    spec.axes[0].count = 2;
+    spec.axes[1].count = 2;
     spec.axes[1].hi = 2.0;
     let g = generate(&spec, &|_| {}).unwrap();
     let t = GlassAverageTable::parse(&g.bytes[..]).unwrap();
     let view = t.view().unwrap();
-    for c in check_nodes(&spec, &view, g.integration as f64, 9) {
+    for c in check_nodes(&spec, &view, g.integration as f64, 4) {
         assert!(c.ok(), "{c:?}");
     }
     let (r, tt) = t.rt_avg(0.0, 1.0);
@@ -291,4 +291,28 @@ fn bad_glass_specs_are_refused() {
     let mut s = small_spec(Kind::GlassAlbedo);
     s.axes[2].hi = 20.0;
     assert!(matches!(generate(&s, &|_| {}), Err(GenError::Invalid(_))));
+}
+
+/// A node of the default 32³ table (μ = 0.27093, r = 16/31, η = 55/31) where the generator
+/// at 2e-6 returns R = 0.1383084645 with an estimate of 6.3e-7, while the same integrator
+/// at every tolerance ≤ 1e-6 (down to 5e-9, whose estimate is 7e-10) gives 0.1383021739:
+/// the node is 6.3e-6 off, 10× its estimate, and with u16 rounding 9.6e-6 from the
+/// reference (`lut verify` of the 32³ table flags it: 1 of 78 sampled nodes). Neighbouring μ
+/// (±0.005) agree to 1e-9, so the cap integrator (`converged::integrate_cap`) misses a
+/// narrow feature at its coarser levels (a φ panel whose 15 nodes and embedded 7 both skip
+/// it). Open: kept as the defect's measurement.
+#[test]
+#[ignore = "open: the cap integrator's estimate misses a narrow feature at this node"]
+fn default_table_node_within_its_estimate() {
+    let (mu, r, eta) = (0.270_929_661_462_933_4, 16.0 / 31.0, 55.0 / 31.0);
+    let (v, w) = glass_e(mu, r * r, eta, TOL);
+    let (rf, wr) = glass_e(mu, r * r, eta, 5e-9);
+    for c in 0..2 {
+        assert!(
+            (v[c] - rf[c]).abs() <= w.error + wr.error,
+            "channel {c}: {} vs {}",
+            v[c],
+            rf[c]
+        );
+    }
 }
