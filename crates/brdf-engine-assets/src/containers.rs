@@ -59,10 +59,18 @@ pub(crate) fn png(
     Ok(buf)
 }
 
-/// KTX 2.0 container, one 2-D level, vkFormat 83 (R16G16_SFLOAT), linear BT.709 DFD, level
-/// data Zstandard-supercompressed (scheme 2). Layout per the KTX 2.0 specification: 80-byte
-/// header, 24-byte level index, data format descriptor, key/value data, level data.
+/// KTX 2.0 container, one n × n 2-D level, vkFormat 83 (R16G16_SFLOAT): [`ktx2_rg16f_dims`]
+/// with depth 0.
 pub(crate) fn ktx2_rg16f(n: usize, texels: &[u8]) -> Result<Vec<u8>> {
+    ktx2_rg16f_dims([n, n, 0], texels)
+}
+
+/// KTX 2.0 container, one level of width × height (× depth for a 3-D texture; depth 0 =
+/// 2-D), vkFormat 83 (R16G16_SFLOAT), linear BT.709 DFD, level data
+/// Zstandard-supercompressed (scheme 2). Layout per the KTX 2.0 specification: 80-byte
+/// header, 24-byte level index, data format descriptor, key/value data, level data;
+/// KTXorientation "rd" (2-D) or "rdi" (3-D: slices in increasing depth).
+pub(crate) fn ktx2_rg16f_dims([w, h, depth]: [usize; 3], texels: &[u8]) -> Result<Vec<u8>> {
     let comp = zstd::bulk::compress(texels, 22).map_err(|e| Error::Encode(format!("zstd: {e}")))?;
     let u32le = |v: &mut Vec<u8>, x: u32| v.extend_from_slice(&x.to_le_bytes());
     let u64le = |v: &mut Vec<u8>, x: u64| v.extend_from_slice(&x.to_le_bytes());
@@ -85,7 +93,7 @@ pub(crate) fn ktx2_rg16f(n: usize, texels: &[u8]) -> Result<Vec<u8>> {
     }
     let mut kvd = Vec::new();
     for (k, v) in [
-        ("KTXorientation", "rd"),
+        ("KTXorientation", if depth > 0 { "rdi" } else { "rd" }),
         ("KTXwriter", "brdf-kernels xtask lut engine"),
     ] {
         let len = k.len() + 1 + v.len() + 1;
@@ -105,7 +113,7 @@ pub(crate) fn ktx2_rg16f(n: usize, texels: &[u8]) -> Result<Vec<u8>> {
     out.extend_from_slice(&[
         0xAB, b'K', b'T', b'X', b' ', b'2', b'0', 0xBB, b'\r', b'\n', 0x1A, b'\n',
     ]);
-    for x in [83u32, 2, n as u32, n as u32, 0, 0, 1, 1, 2] {
+    for x in [83u32, 2, w as u32, h as u32, depth as u32, 0, 1, 1, 2] {
         u32le(&mut out, x); // vkFormat, typeSize, w, h, depth, layers, faces, levels, zstd
     }
     for x in [dfd_off, dfd.len(), kvd_off, kvd.len()] {

@@ -3,6 +3,7 @@
 
 use crate::containers::{dds_rgba16f, exr_rg32f, half_bits, ktx2_rg16f, png, unorm16, unorm8};
 use crate::{centre, shaders, Engine, Error, File, SplitSumTexels};
+use brdf_lut::generate;
 use serde_json::{json, Map, Value};
 
 type Result<T> = std::result::Result<T, Error>;
@@ -411,4 +412,85 @@ pub fn khronos_sheen(n: usize, ek: &[f64], ash: &[f64]) -> Result<Vec<File>> {
         });
     }
     Ok(out)
+}
+
+/// The generator spec of a rough-glass engine texture: `glass-e` (R, T), GGX, perceptual
+/// roughness, n[0] × n[1] × n[2] texel centres over μ ∈ [0, 1], r ∈ [0, 1] and η ∈ [1, 3]
+/// (light from outside) or [1/3, 1] (`inside`: light from inside the glass), all linear;
+/// binary16 nodes (the texture's own encoding).
+pub fn glass_spec(n: [usize; 3], inside: bool) -> generate::Spec {
+    use brdf_lut::generate::{AxisSpec, Distribution, Kind, Masking, Spec};
+    use brdf_lut::{Encoding, Interpolation, Placement, Warp};
+    let mut s = Spec::new(
+        Kind::GlassAlbedo,
+        Distribution::Ggx,
+        Masking::SmithSeparable,
+    );
+    let (elo, ehi) = if inside { (1.0 / 3.0, 1.0) } else { (1.0, 3.0) };
+    let axis = |k: usize, lo, hi| AxisSpec {
+        placement: Placement::TexelCentre,
+        ..AxisSpec::endpoint(n[k].min(u32::MAX as usize) as u32, lo, hi, Warp::Linear)
+    };
+    s.axes = vec![axis(0, 0.0, 1.0), axis(1, 0.0, 1.0), axis(2, elo, ehi)];
+    s.encoding = Encoding::F16;
+    s.interpolation = Interpolation::Linear;
+    s.samples = 256;
+    s
+}
+
+/// Rough glass (GGX rough dielectric, Walter et al. 2007): a 3-D KTX2 texture
+/// `glass_e[_inv].ktx2` (R16G16_SFLOAT: R = reflected, G = transmitted energy fraction;
+/// x = μ, y = roughness, z = η, texel centres), the BLUT file of the same nodes and bits
+/// (`.blut`, binary16) and the JSON sidecar. The level data of the KTX2 is the BLUT payload
+/// itself (both store axis 0 fastest, channels interleaved), so the two cannot disagree.
+pub fn glass(n: [usize; 3], inside: bool, progress: &(dyn Fn(u64) + Sync)) -> Result<Vec<File>> {
+    if n.iter().any(|&k| !(2..=256).contains(&k)) {
+        return Err(Error::Size(*n.iter().max().unwrap_or(&0)));
+    }
+    let spec = glass_spec(n, inside);
+    let g = generate::generate(&spec, progress).map_err(Error::Generate)?;
+    let view = brdf_lut::LutView::parse(&g.bytes).map_err(|e| Error::Encode(e.to_string()))?;
+    let stem = if inside { "glass_e_inv" } else { "glass_e" };
+    let ktx = crate::containers::ktx2_rg16f_dims(n, view.payload())?;
+    let eta = if inside { "[1/3, 1]" } else { "[1, 3]" };
+    let side = json!({
+        "target": "glass",
+        "files": {
+            format!("{stem}.ktx2"): "KTX2, vkFormat 83 = R16G16_SFLOAT, 3-D (width = mu, height = roughness, depth = eta), 1 level, Zstandard supercompression (level 22): R = reflected R, G = transmitted T",
+            format!("{stem}.blut"): "the same nodes and binary16 bits as a BLUT file (kind glass-e; docs/lut-format.md), with its measured interpolation error and integration bound",
+        },
+        "size": n,
+        "integral": "directional albedo of a rough dielectric interface split into reflected and transmitted parts, for light arriving along mu = cos(theta) from the side of index 1: R(mu) = integral of f_r |cos theta_i| over the near hemisphere; T(mu) = integral of the adjoint (importance) transmission f_t* |cos theta_i| over the far hemisphere, i.e. the energy fraction transmitted, without the eta^2 radiance factor; R + T <= 1 (equality as roughness -> 0; the rest is lost to masking). Radiance crossing into the far medium is T * eta^2 per unit solid angle.",
+        "model": "rough dielectric of Walter, Marschner, Li, Torrance (EGSR 2007): GGX (Trowbridge-Reitz) NDF, separable Smith G = G1(wi) G1(wo), exact unpolarised dielectric Fresnel (total internal reflection included); brdf-core models::rough_dielectric",
+        "axes": {
+            "mu": "x: mu = (x + 0.5)/N0 in [0, 1]",
+            "roughness": "y: perceptual roughness r = (y + 0.5)/N1; GGX alpha = r^2, floored at 1e-4 as in the kernel",
+            "eta": format!("z: eta = lo + (z + 0.5)/N2 (hi - lo) over {eta}: the index of the far side over that of the side the light arrives from ({})", if inside { "light inside the glass going out: eta = 1/IOR" } else { "light outside entering the glass: eta = IOR" }),
+        },
+        "orientation": "KTXorientation rdi: texel (x, y, z) at byte offset 4 (x + N0 (y + N1 z)); the shader samples uvw = (mu, r, (eta - lo)/(hi - lo)) with clamp-to-edge",
+        "placement": "texel centres on every axis: texel i of N holds the value at (i + 0.5)/N of its range",
+        "encoding": "IEEE binary16, round to nearest even, of the f64 integral",
+        "linear": "linear data: no transfer function; never sample as sRGB",
+        "sampler": "trilinear (LINEAR on all three axes), clamp-to-edge, one level",
+        "texel_values": "each texel = the integral at its own centre, computed by brdf-lut's generator (generate/glass.rs: converged adaptive Gauss-Kronrod on the GGX visible-normal spherical cap, each channel's estimate <= 2e-6), then rounded to binary16",
+        "integration_bound": g.integration,
+        "interpolation_error": { "max_abs": g.error.max_abs, "rms": g.error.rms, "samples": g.error.samples, "what": "trilinear lookup of the binary16 texels against the direct integral at random points" },
+    });
+    let mut side_bytes =
+        serde_json::to_vec_pretty(&side).map_err(|e| Error::Encode(format!("json: {e}")))?;
+    side_bytes.push(b'\n');
+    Ok(vec![
+        File {
+            name: format!("{stem}.ktx2"),
+            bytes: ktx,
+        },
+        File {
+            name: format!("{stem}.blut"),
+            bytes: g.bytes,
+        },
+        File {
+            name: format!("{stem}.json"),
+            bytes: side_bytes,
+        },
+    ])
 }

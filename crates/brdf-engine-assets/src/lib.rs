@@ -31,7 +31,9 @@ pub mod sidecar;
 pub mod table_shaders;
 
 pub use containers::{half_bits, unorm16, unorm8};
-pub use layouts::{bevy, exr, filament, khronos, khronos_sheen, sheen_texels, threejs};
+pub use layouts::{
+    bevy, exr, filament, glass, glass_spec, khronos, khronos_sheen, sheen_texels, threejs,
+};
 pub use shaders::{functions, Functions};
 
 use brdf_lut::generate::{self, AxisSpec, Distribution, GenError, Kind, Masking, Spec};

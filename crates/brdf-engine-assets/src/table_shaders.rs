@@ -89,10 +89,12 @@ pub fn axis_mapping(k: usize, a: &Axis<'_>) -> Value {
 /// The roughness convention of a model's roughness axis.
 pub fn roughness_convention(m: Model) -> &'static str {
     match m {
-        Model::GgxSmithCorrelated | Model::GgxSmithSeparable => {
+        Model::GgxSmithCorrelated | Model::GgxSmithSeparable | Model::RoughDielectricGgx => {
             "perceptual roughness r in [0, 1]; GGX alpha = r^2"
         }
-        Model::BeckmannSmithCorrelated | Model::BeckmannSmithSeparable => {
+        Model::BeckmannSmithCorrelated
+        | Model::BeckmannSmithSeparable
+        | Model::RoughDielectricBeckmann => {
             "perceptual roughness r in [0, 1]; Beckmann m = alpha = r^2"
         }
         Model::ModifiedG => {

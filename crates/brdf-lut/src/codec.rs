@@ -121,12 +121,14 @@ impl<'a> Reader<'a> {
 
     /// The header after the magic; the version must already have been read.
     pub(crate) fn header(&mut self) -> Result<Header<'a>, LutError> {
-        let kind = match self.tag(5)? {
+        let kind = match self.tag(7)? {
             0 => TableKind::PassingFactor,
             1 => TableKind::SplitSum,
             2 => TableKind::DirectionalAlbedo,
             3 => TableKind::AverageAlbedo,
-            _ => TableKind::SheenAlbedo,
+            4 => TableKind::SheenAlbedo,
+            5 => TableKind::GlassAlbedo,
+            _ => TableKind::GlassAverageAlbedo,
         };
         let mut axes = List::new();
         for _ in 0..self.list_len(MAX_AXES)? {

@@ -32,6 +32,7 @@
 //! The kinds it knows are one list ([`Kind::def`], `generate/kinds.rs`).
 
 mod defaults;
+pub mod glass;
 mod integrate;
 mod kinds;
 mod measure;
@@ -98,6 +99,11 @@ pub enum Kind {
         /// The visibility term.
         visibility: SheenVisibility,
     },
+    /// Rough-glass directional albedo (R, T) (3 axes: mu, roughness, eta;
+    /// `generate/glass.rs`).
+    GlassAlbedo,
+    /// Rough-glass average albedo (R_avg, T_avg) (2 axes: roughness, eta).
+    GlassAverageAlbedo,
 }
 
 /// The microfacet distribution: the model catalogue's
@@ -346,6 +352,15 @@ impl Spec {
         if let Kind::SheenAlbedo { visibility } = self.kind {
             return Ok(Model::from_sheen(visibility));
         }
+        if glass::is_glass(self.kind) {
+            return Model::from_dielectric(self.distribution).ok_or_else(|| {
+                GenError::Invalid(
+                    "rough-glass tables take the GGX distribution (the rough dielectric's \
+                     Beckmann is not tabulated yet)"
+                        .into(),
+                )
+            });
+        }
         let g = self.masking.term();
         let d = (self.kind.def().check != Check::ModifiedG).then_some(self.distribution);
         match Model::from_catalogue(d, g) {
@@ -405,6 +420,7 @@ impl Spec {
             }
         } else {
             self.model()?;
+            glass::validate(self)?;
         }
         if matches!(self.kind, Kind::SheenAlbedo { .. }) && self.roughness != Roughness::Perceptual
         {
@@ -508,6 +524,8 @@ impl Spec {
             Kind::SheenAlbedo { .. } => &[],
             _ if polar_axis => &[],
             Kind::AverageAlbedo => &[24, 32, 16, OUTER_PANELS as u16],
+            // Adaptive (the converged cap integrator to `integrate::TOL`).
+            Kind::GlassAlbedo | Kind::GlassAverageAlbedo => &[],
             _ => &[32, 16, OUTER_PANELS as u16],
         }
     }
@@ -545,6 +563,8 @@ impl Spec {
             (TableKind::SheenAlbedo, 2) => Kind::SheenAlbedo {
                 visibility: h.generator.model.sheen()?,
             },
+            (TableKind::GlassAlbedo, 3) => Kind::GlassAlbedo,
+            (TableKind::GlassAverageAlbedo, 2) => Kind::GlassAverageAlbedo,
             _ => return None,
         };
         // The generator writes the reciprocal modified G; a file's convention is not part
@@ -553,9 +573,18 @@ impl Spec {
         let (distribution, masking) = match kind {
             // A sheen table's spec has no microfacet G; these fields are not used.
             Kind::SheenAlbedo { .. } => (D::Ggx, Masking::SmithCorrelated),
+            // A rough-glass table's model is its distribution; G is separable Smith.
+            Kind::GlassAlbedo | Kind::GlassAverageAlbedo => {
+                (h.generator.model.dielectric()?, Masking::SmithSeparable)
+            }
             _ => (d.unwrap_or(D::TorranceSparrow), Masking::from_term(g)?),
         };
-        let roughness = match h.axes.last().map(|a| a.name) {
+        let rough_axis = if glass::is_glass(kind) {
+            h.axes.len().checked_sub(2).and_then(|i| h.axes.get(i))
+        } else {
+            h.axes.last()
+        };
+        let roughness = match rough_axis.map(|a| a.name) {
             _ if kind.def().check == Check::ModifiedG => Roughness::Sigma,
             Some("roughness") => Roughness::Perceptual,
             Some("alpha") | Some("m") => Roughness::Alpha,

@@ -123,6 +123,13 @@ pub enum TableKind {
     /// Sheen directional albedo E_sheen(μ, r) = ∫ D V μl dωl of the Charlie sheen with
     /// colour 1 (channel `E`); the visibility is the header's model.
     SheenAlbedo,
+    /// Rough-glass directional albedo over (μ, roughness, η), channels `R` (reflected) and
+    /// `T` (transmitted energy fraction: the adjoint, without the η² radiance factor), light
+    /// arriving from the side of index 1, η the far side's index over the near side's
+    /// (docs/lut-format.md, "Rough glass"). The model (distribution) is in the generator.
+    GlassAlbedo,
+    /// Rough-glass average albedo over (roughness, η): 2∫ (R, T)(μ) μ dμ (channels `R`, `T`).
+    GlassAverageAlbedo,
 }
 
 /// How a physical coordinate x ∈ [lo, hi] maps to the unit coordinate s ∈ [0, 1].
@@ -267,6 +274,11 @@ model_codes! {
     /// The Charlie sheen (α = r²) with Ashikhmin's visibility 1/(4(μi + μo − μi μo))
     /// (Filament's cloth).
     SheenAshikhmin = 10,
+    /// The rough dielectric of Walter et al. (2007) with GGX (α = r²), separable Smith G,
+    /// exact dielectric Fresnel (brdf-core `rough_dielectric`).
+    RoughDielectricGgx = 11,
+    /// The rough dielectric of Walter et al. (2007) with Beckmann, separable Smith G.
+    RoughDielectricBeckmann = 12,
 }
 
 impl Model {

@@ -105,3 +105,23 @@ impl Model {
         SHEEN_TABLE.iter().find(|r| r.0 == self).map(|r| r.1)
     }
 }
+
+/// The rough-glass tables' codes: the catalogue's `rough-dielectric` model with each of its
+/// distributions, one row each.
+const DIELECTRIC_TABLE: [(Model, DistributionId); 2] = [
+    (Model::RoughDielectricGgx, DistributionId::Ggx),
+    (Model::RoughDielectricBeckmann, DistributionId::Beckmann),
+];
+
+impl Model {
+    /// The code of a rough-glass table over distribution `d`; `None` where the rough
+    /// dielectric does not take it (Torrance–Sparrow).
+    pub fn from_dielectric(d: DistributionId) -> Option<Model> {
+        DIELECTRIC_TABLE.iter().find(|r| r.1 == d).map(|r| r.0)
+    }
+
+    /// The distribution of a rough-glass table's model; `None` for the other models.
+    pub fn dielectric(self) -> Option<DistributionId> {
+        DIELECTRIC_TABLE.iter().find(|r| r.0 == self).map(|r| r.1)
+    }
+}

@@ -55,7 +55,10 @@ pub use header::{
 };
 pub use lookup::Values;
 pub use tables::layout::TableLayout;
-pub use tables::{AlbedoTable, AverageAlbedoTable, DfgTable, GTable, GTable3, SheenAlbedoTable};
+pub use tables::{
+    AlbedoTable, AverageAlbedoTable, DfgTable, GTable, GTable3, GlassAlbedoTable,
+    GlassAverageTable, SheenAlbedoTable,
+};
 pub use view::{encode_into, header_len, LutView};
 
 #[cfg(feature = "std")]

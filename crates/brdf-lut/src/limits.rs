@@ -113,6 +113,8 @@ pub fn cost_per_point_us(kind: TableKind, model: Model) -> u64 {
         (TableKind::AverageAlbedo, true) => 40_000,
         // (Measured 0.86 ms a node on average over the 1024² Khronos grid.)
         (TableKind::SheenAlbedo, _) => 1_500,
+        (TableKind::GlassAlbedo, _) => 2_000,
+        (TableKind::GlassAverageAlbedo, _) => 200_000,
     }
 }
 

@@ -916,6 +916,82 @@ impl<B: AsRef<[u8]>> AverageAlbedoTable<B> {
     }
 }
 
+typed_table!(
+    /// Rough-glass directional albedo (R, T) over (μ, roughness, η): the reflected part and
+    /// the transmitted energy fraction of light arriving along μ from the side of index 1,
+    /// η the far side's index over the near side's (docs/lut-format.md, "Rough glass").
+    GlassAlbedoTable,
+    TableKind::GlassAlbedo,
+    3
+);
+typed_table!(
+    /// Rough-glass average albedo (R_avg, T_avg)(roughness, η) = 2∫₀¹ (R, T)(μ) μ dμ.
+    GlassAverageTable,
+    TableKind::GlassAverageAlbedo,
+    2
+);
+
+impl<B: AsRef<[u8]>> GlassAlbedoTable<B> {
+    /// (R, T) at μ = cos θ, roughness and η (each clamped to the table's range; NaN gives
+    /// NaN): the table's interpolation of its nodes, through the one lookup engine.
+    #[cfg_attr(not(hosted), inline)]
+    #[cfg_attr(hosted, inline(always))]
+    pub fn rt(&self, mu: f32, roughness: f32, eta: f32) -> (f32, f32) {
+        let [r, t] =
+            self.p
+                .reader
+                .sample::<3, 2>(&self.p.grid, self.payload(), [mu, roughness, eta]);
+        (r, t)
+    }
+    /// The η range [lo, hi] of the table.
+    pub fn eta_range(&self) -> (f32, f32) {
+        self.p.last_range
+    }
+    /// [`GlassAlbedoTable::rt`] over slices: `r[k], t[k] = rt(mu[k], roughness[k], eta[k])`
+    /// for k below the shortest length, which is returned. The scalar lookup per query (the
+    /// chunked paths of `Prepared::batch` gave wrong values for this 3-axis two-channel
+    /// shape: tests/glass_tables.rs), so bit-identical to it.
+    pub fn rt_batch(
+        &self,
+        (mu, roughness, eta): (&[f32], &[f32], &[f32]),
+        r: &mut [f32],
+        t: &mut [f32],
+    ) -> usize {
+        let n = mu.len().min(roughness.len()).min(eta.len());
+        let n = n.min(r.len()).min(t.len());
+        for k in 0..n {
+            (r[k], t[k]) = self.rt(mu[k], roughness[k], eta[k]);
+        }
+        n
+    }
+}
+
+impl<B: AsRef<[u8]>> GlassAverageTable<B> {
+    /// (R_avg, T_avg) at roughness and η (clamped to the table's ranges; NaN gives NaN).
+    #[inline]
+    pub fn rt_avg(&self, roughness: f32, eta: f32) -> (f32, f32) {
+        let [r, t] = self
+            .p
+            .reader
+            .sample::<2, 2>(&self.p.grid, self.payload(), [roughness, eta]);
+        (r, t)
+    }
+    /// [`GlassAverageTable::rt_avg`] over slices; returns the number written (the shortest
+    /// length). The scalar lookup per query (as [`GlassAlbedoTable::rt_batch`]).
+    pub fn rt_avg_batch(
+        &self,
+        (roughness, eta): (&[f32], &[f32]),
+        r: &mut [f32],
+        t: &mut [f32],
+    ) -> usize {
+        let n = roughness.len().min(eta.len()).min(r.len()).min(t.len());
+        for k in 0..n {
+            (r[k], t[k]) = self.rt_avg(roughness[k], eta[k]);
+        }
+        n
+    }
+}
+
 #[cfg(all(hosted, test, feature = "std"))]
 mod tests {
     use super::*;

@@ -98,6 +98,8 @@ pub(crate) fn check_header(h: &Header<'_>) -> Result<(), LutError> {
         TableKind::DirectionalAlbedo => c == 1 && d == 2,
         TableKind::AverageAlbedo => c == 1 && d == 1,
         TableKind::SheenAlbedo => c == 1 && d == 2,
+        TableKind::GlassAlbedo => c == 2 && d == 3,
+        TableKind::GlassAverageAlbedo => c == 2 && d == 2,
     };
     if !ok {
         return Err(I("axis or channel count does not fit the table kind"));

@@ -43,6 +43,10 @@ fn every_tabulated_catalogue_pair_has_a_code_and_back() {
             assert_eq!(Model::from_sheen(v), m);
             continue;
         }
+        if let Some(d) = m.dielectric() {
+            assert_eq!(Model::from_dielectric(d), Some(m));
+            continue;
+        }
         let (d, g) = m.catalogue(Convention::Reciprocal);
         assert!(pairs.contains(&(d, g)), "{m:?} → {d:?} {g:?}");
         assert_eq!(

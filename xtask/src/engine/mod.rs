@@ -24,8 +24,12 @@ pub enum Target {
     Threejs,
     /// 32-bit float OpenEXR (R = A, G = B), μ along x, r down the rows.
     Exr,
-    /// Every target above, each into its own sub-folder of --out.
+    /// Every split-sum target above, each into its own sub-folder of --out.
     All,
+    /// Rough glass: 3-D KTX2 (R16G16_SFLOAT: reflected R, transmitted T over μ × roughness ×
+    /// η) + BLUT + JSON sidecar, light from outside (`glass_e`, η ∈ [1, 3]) and from inside
+    /// (`glass_e_inv`, η ∈ [1/3, 1]); --size N gives N³ (default 32).
+    Glass,
     /// Compare our files (from `--out`, generated when missing) with the engines' shipped
     /// tables and write docs/engines.md.
     Report,
@@ -69,6 +73,7 @@ impl Target {
             Target::Threejs => "threejs",
             Target::Exr => "exr",
             Target::All => "all",
+            Target::Glass => "glass",
             Target::Report => "report",
         }
     }
@@ -150,7 +155,30 @@ pub fn generate(e: Engine, n: usize, dir: &Path, force: bool, quiet: bool) -> Re
     Ok(secs)
 }
 
+/// The rough-glass files (both directions of light) into `dir`, N³ texels each.
+fn glass(n: usize, dir: &Path, force: bool) -> Result<()> {
+    if !(2..=256).contains(&n) {
+        bail!("--size {n}: a glass table's edge must be between 2 and 256");
+    }
+    for inside in [false, true] {
+        let t0 = std::time::Instant::now();
+        let files = brdf_engine_assets::glass([n; 3], inside, &|_| {})?;
+        write_set(dir, &files, force)?;
+        let names: Vec<String> = files
+            .iter()
+            .map(|f| dir.join(&f.name).display().to_string())
+            .collect();
+        let secs = t0.elapsed().as_secs_f64();
+        println!("glass: {n}³ in {secs:.1} s → {}", names.join(", "));
+    }
+    Ok(())
+}
+
 pub fn run(a: Args) -> Result<()> {
+    if a.target == Target::Glass {
+        let out = a.out.unwrap_or_else(|| default_out(a.target));
+        return glass(a.size.unwrap_or(32), &out, a.force);
+    }
     match (a.target, a.target.engine()) {
         (Target::Report, _) => report::run(
             a.out.unwrap_or_else(|| default_out(Target::All)),

@@ -237,7 +237,7 @@ fn check_max_error(spec: &Spec, max_abs: f32, max_error: Option<f64>) -> Result<
 fn check_limits(spec: &Spec) -> Result<()> {
     limits::check_samples("--samples", spec.samples as u64)?;
     let counts: Vec<u64> = spec.axes.iter().map(|x| x.count as u64).collect();
-    let channels = if spec.kind == Kind::SplitSum { 2 } else { 1 };
+    let channels = spec.kind.def().channels.len() as u64;
     let nodes = limits::check_grid(&counts, channels)?;
     let kind = spec.kind.def().table;
     let model = spec.model().map_err(|e| anyhow!("{e}"))?;
@@ -306,8 +306,10 @@ fn kind_and_model(
         "sheen-e-ashikhmin" => Kind::SheenAlbedo {
             visibility: brdf_lut::generate::SheenVisibility::Ashikhmin,
         },
-        "" => bail!("--kind is missing (g-per-sigma, g-over-sigma, split-sum, e, e-avg, sheen-e, sheen-e-ashikhmin)"),
-        o => bail!("unknown kind `{o}` (one of: g-per-sigma, g-over-sigma, split-sum, e, e-avg, sheen-e, sheen-e-ashikhmin)"),
+        "glass-e" => Kind::GlassAlbedo,
+        "glass-e-avg" => Kind::GlassAverageAlbedo,
+        "" => bail!("--kind is missing (g-per-sigma, g-over-sigma, split-sum, e, e-avg, sheen-e, sheen-e-ashikhmin, glass-e, glass-e-avg)"),
+        o => bail!("unknown kind `{o}` (one of: g-per-sigma, g-over-sigma, split-sum, e, e-avg, sheen-e, sheen-e-ashikhmin, glass-e, glass-e-avg)"),
     };
     let sheen = matches!(kind, Kind::SheenAlbedo { .. });
     if sigma.is_some() && !matches!(kind, Kind::GPerSigma { .. }) {

@@ -38,6 +38,7 @@ const KERNELS: &[&str] = &[
     "g_lut2d_linear_dots",
     "g_lut3d_linear_dots",
     "sheen_e_lut",
+    "glass_e_lut3d",
 ];
 
 fn main() {
@@ -96,6 +97,15 @@ fn main() {
             let b = asset(G2_ASSET);
             let t = GTable::parse(&b).unwrap();
             run!(|k: usize| t.g(black_box(ti32[k]), black_box(tr32[k])))
+        }
+        "glass_e_lut3d" => {
+            let b = glass_table_32();
+            let t = brdf_lut::GlassAlbedoTable::parse(&b[..]).unwrap();
+            run!(|k: usize| {
+                let eta = 1.0 + 0.02 * (k % 97) as f32;
+                let (r, t) = t.rt(black_box(mr[k].0 as f32), black_box(mr[k].1 as f32), eta);
+                r + t
+            })
         }
         "g_lut3d_linear" => {
             let b = asset(G3_LINEAR_ASSET);
@@ -264,4 +274,46 @@ fn sheen_table() -> Vec<u8> {
     s.interpolation = brdf_lut::Interpolation::Linear;
     s.samples = 16;
     generate(&s, &|_| {}).unwrap().bytes
+}
+
+/// A 32³ two-channel linear u16 `GlassAlbedo` table (the default grid and the
+/// texture's interpolation) over μ ∈ [cos 89°, 1] (log), r ∈ [0, 1], η ∈ [1, 3], for the
+/// lookup's instruction count: the values are a smooth stand-in (the lookup's work does
+/// not depend on them; generating the converged table takes minutes).
+fn glass_table_32() -> Vec<u8> {
+    use brdf_lut::{
+        write, Axis, Encoding, Generator, Interpolation, Model, Placement, TableKind, Warp,
+    };
+    let ax = |name, lo, hi, warp| Axis {
+        name,
+        count: 32,
+        lo,
+        hi,
+        warp,
+        placement: Placement::Endpoint,
+    };
+    let axes = [
+        ax("mu", brdf_lut::generate::MU_MIN, 1.0, Warp::Log),
+        ax("roughness", 0.0, 1.0, Warp::Linear),
+        ax("eta", 1.0, 3.0, Warp::Linear),
+    ];
+    let mut v = Vec::with_capacity(2 * 32 * 32 * 32);
+    for k in 0..32 * 32 * 32 {
+        let (i, j, l) = ((k % 32) as f64, ((k / 32) % 32) as f64, (k / 1024) as f64);
+        let r = 0.04 + 0.5 * (1.0 - i / 31.0).powi(4) * (1.0 - 0.3 * j / 31.0) + 0.01 * l / 31.0;
+        v.extend_from_slice(&[r, 0.95 - r]);
+    }
+    let spec = write::Spec {
+        kind: TableKind::GlassAlbedo,
+        axes: &axes,
+        channels: &["R", "T"],
+        encoding: Encoding::Unorm16,
+        interpolation: Interpolation::Linear,
+        generator: Generator {
+            model: Model::RoughDielectricGgx,
+            tool: "harness",
+            ..Generator::default()
+        },
+    };
+    write::build(&spec, &v, |_| brdf_lut::ErrorStats::default()).unwrap()
 }

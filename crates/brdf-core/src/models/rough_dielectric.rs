@@ -143,8 +143,9 @@ fn up<T: Real>(w: Vec3<T>) -> Vec3<T> {
 
 /// The refracted direction of wo through the facet h (wo·h = c > 0), Snell's law with
 /// relative index e = η_t/η_wo: t = −wo/e + (c/e − √(1 − (1 − c²)/e²)) h. `None` past the
-/// critical angle (total internal reflection).
-fn refract<T: Real>(wo: Vec3<T>, h: Vec3<T>, c: T, e: T) -> Option<Vec3<T>> {
+/// critical angle (total internal reflection). Public for the rough-glass albedo tables
+/// (brdf-lut `generate/glass.rs`), which integrate this model's refraction.
+pub fn refract<T: Real>(wo: Vec3<T>, h: Vec3<T>, c: T, e: T) -> Option<Vec3<T>> {
     let s2 = (T::ONE - c) * (T::ONE + c) / (e * e);
     if !(s2 < T::ONE) {
         return None;

@@ -361,6 +361,8 @@ fn node_by<F: Family>(spec: &Spec, x: &[f64], evals: &Cell<u64>) -> [f64; 2] {
             let e = super::sheen::sheen_e(x[0], x[1], super::sheen::TOL);
             [e.value[super::sheen::channel(visibility)], 0.0]
         }
+        // Rough glass is integrated in `generate/glass.rs` (dispatched before this).
+        Kind::GlassAlbedo | Kind::GlassAverageAlbedo => [f64::NAN; 2],
     }
 }
 
@@ -390,6 +392,9 @@ fn ggx_query(spec: &Spec, x: &[f64]) -> Option<(GgxQuery, f64)> {
 /// the modified G's 20-point passing factor, else brdf-core's fixed rule (module docs).
 /// What the error measurement at random points compares the table with.
 pub fn value(spec: &Spec, x: &[f64], out: &mut [f64]) {
+    if super::glass::node(spec, x, out).is_some() {
+        return;
+    }
     let v = if let Some((q, row)) = polar_query(spec, x) {
         polar_converged(q, row).0
     } else {
@@ -410,6 +415,9 @@ pub fn value(spec: &Spec, x: &[f64], out: &mut [f64]) {
 /// the converged polar rule's own estimate, else the embedded difference from the coarser
 /// rule (module docs).
 pub fn node(spec: &Spec, x: &[f64], out: &mut [f64]) -> Work {
+    if let Some(w) = super::glass::node(spec, x, out) {
+        return w;
+    }
     if let Some((q, row)) = polar_query(spec, x) {
         let (v, w) = polar_converged(q, row);
         for (o, v) in out.iter_mut().zip(v) {
@@ -445,6 +453,9 @@ pub fn node(spec: &Spec, x: &[f64], out: &mut [f64]) -> Work {
 /// its E under the 32-point μ rule, with |32-point − 24-point| added), else the `Fine`
 /// rule and |Fine − FineCheck| (module docs).
 pub fn reference(spec: &Spec, x: &[f64]) -> ([f64; 2], f64) {
+    if let Some(r) = super::glass::reference(spec, x) {
+        return r;
+    }
     if let Kind::SheenAlbedo { visibility } = spec.kind {
         return super::sheen::reference(visibility, x[0], x[1]);
     }

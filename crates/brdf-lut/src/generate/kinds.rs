@@ -22,6 +22,10 @@ pub enum Role {
     Roughness,
     /// The RMS slope σ of the modified G's Gaussian slopes, [0.05, 1] (log warp by default).
     Sigma,
+    /// The relative index η of a rough-glass table (the far side's index over the near
+    /// side's), [1, 3] by default (light entering the denser medium; [1/3, 1] is light from
+    /// inside), within [0.1, 10] and not spanning 1 (`generate/glass.rs`).
+    Eta,
 }
 
 /// How a table's error is measured at random points.
@@ -104,6 +108,22 @@ impl Kind {
                 check: Check::Values,
                 value: sheen_node,
             },
+            Kind::GlassAlbedo => &KindDef {
+                name: "glass-e",
+                table: TableKind::GlassAlbedo,
+                axes: &[(Mu, 32), (Roughness, 32), (Eta, 32)],
+                channels: &["R", "T"],
+                check: Check::Values,
+                value: node,
+            },
+            Kind::GlassAverageAlbedo => &KindDef {
+                name: "glass-e-avg",
+                table: TableKind::GlassAverageAlbedo,
+                axes: &[(Roughness, 32), (Eta, 32)],
+                channels: &["R", "T"],
+                check: Check::Values,
+                value: node,
+            },
         }
     }
 }
@@ -124,6 +144,7 @@ impl Role {
             Role::Phi => "phi",
             Role::Mu => "mu",
             Role::Sigma => "sigma",
+            Role::Eta => "eta",
             Role::Roughness => s.roughness_name(),
         }
     }
@@ -135,6 +156,7 @@ impl Role {
             Role::Phi => (-FRAC_PI_2, FRAC_PI_2, Warp::Linear),
             Role::Mu => (MU_MIN, 1.0, Warp::Log),
             Role::Sigma => (0.05, 1.0, Warp::Log),
+            Role::Eta => (1.0, 3.0, Warp::Linear),
             Role::Roughness => match s.roughness {
                 Roughness::Sigma => (0.05, 1.0, Warp::Log),
                 // The modified G needs a width > 0.
@@ -156,6 +178,7 @@ impl Role {
             (Role::Theta, _) => (0.0, FRAC_PI_2, "θ (radians)"),
             (Role::Phi, _) => (-FRAC_PI_2, FRAC_PI_2, "φ (radians)"),
             (Role::Mu, _) => (0.0, 1.0, "μ = cos θ"),
+            (Role::Eta, _) => (0.1, 10.0, "η (the rough dielectric's range)"),
             (Role::Sigma, _) | (Role::Roughness, Roughness::Sigma) => {
                 (width_min, 4.0, "σ (the modified G needs σ > 0)")
             }

@@ -1,0 +1,284 @@
+#![allow(clippy::neg_cmp_op_on_partial_ord)] // NaN-aware: `!(x > 0)` is true for NaN.
+//! Rough-glass albedo tables (kinds `glass-e`, `glass-e-avg`): the directional albedo of
+//! brdf-core's rough dielectric ([`brdf_core::models::rough_dielectric`], Walter et al.
+//! 2007, separable Smith G) split into its reflected part R and transmitted part T, and
+//! their cosine-weighted averages.
+//!
+//! **Integrals.** Light arrives along wo = (sin θ, 0, μ) from the side whose index is 1;
+//! η is the index of the far side over the near side (η ≥ 1: entering the denser medium;
+//! η < 1: from inside glass, total internal reflection included — the same as the kernel
+//! with η' = 1/η and the frame mirrored). With the visible-normal density
+//! p(h) = G1(wo) (wo·h) D(h)/μ (Heitz 2018, "Sampling the GGX distribution of visible
+//! normals", JCGT 7(4), §2), and wi_r = 2(wo·h)h − wo, wi_t the refraction of wo through h:
+//!
+//! ```text
+//! R(μ) = ∫ f_r(wi, wo) |cos θi| dωi          = ∫ F(wo·h) G1(wi_r) p(h) dω_h   (n·wi_r > 0),
+//! T(μ) = ∫ f_t*(wi, wo) |cos θi| dωi         = ∫ (1 − F(wo·h)) G1(wi_t) p(h) dω_h  (n·wi_t < 0),
+//! ```
+//!
+//! f_t* the adjoint (importance) transmission (docs/conventions.md §12: without the η²
+//! radiance factor), so T is the **energy fraction** transmitted and R + T ≤ 1, with
+//! R + T = 1 − (energy lost to masking) → 1 and R → F(μ) as α → 0. (Walter 2007, eqs 14,
+//! 17 and 20–21: f |cos θi| over the sampling density leaves the weights F G1(wi) and
+//! (1 − F) G1(wi), bounded by 1.) Per channel: E_avg = 2∫₀¹ E(μ) μ dμ.
+//!
+//! **Rule.** Each channel is one converged integral over the spherical cap of the GGX
+//! visible-normal map ([`brdf_core::split_sum::converged::integrate_cap`], Dupuy & Benyoub
+//! 2023): rows cut exactly where the integrand's support changes sign, adaptive 15-point
+//! Kronrod panels with embedded 7-point Gauss estimates in θ and φ. The support of R is
+//! n·wi_r (the horizon, where G1 → 0 linearly); that of T is min(η² − 1 + (wo·h)², −n·wi_t):
+//! the horizon of the refracted ray and the total-internal-reflection edge, past which
+//! 1 − F = 0 (F → 1 as a square root there: each row ends on it, where the adaptive panels
+//! resolve the root behaviour). E_avg integrates E in μ by adaptive K15/G7 panels,
+//! broken at μ_c = √(1 − η²) for η < 1 (where TIR sets in at normal incidence on the mean
+//! surface and E(μ) bends sharply for small α).
+//!
+//! **Narrow limit.** The kernel floors α at [`brdf_core::models::rough_dielectric::ALPHA_FLOOR`]
+//! = 1e-4; so do the tables (roughness 0 is α = 1e-4). There R = F(μ) + O(α²/μ²) and
+//! R + T = 1 − O(α²/μ²) (GGX's tail of facets tilted beyond θ; tested).
+//! **η = 1**: no reflection, straight refraction through every facet: R = 0 and T = G1(μ)
+//! (the limit η → 1 of the rough integrals; the kernel's own η = 1 is a Dirac with T = 1,
+//! which the separable G's second G1 does not reach: a property of the model).
+//!
+//! GGX only: Beckmann has no spherical-cap map in brdf-core yet (a typed error says so).
+
+use super::integrate::{Work, REFERENCE_TOL, TOL};
+use super::{Distribution, GenError, Kind, Spec};
+use brdf_core::fresnel::f_dielectric;
+use brdf_core::geometry::Vec3;
+use brdf_core::microfacet::visible_cap::GgxVisibleCap;
+use brdf_core::microfacet::{Distribution as _, TrowbridgeReitz};
+use brdf_core::models::rough_dielectric::{refract, ALPHA_FLOOR};
+use brdf_core::quadrature::kronrod::{gk15_combine, gk15_nodes};
+use brdf_core::split_sum::converged::{integrate_cap, CapIntegrand, GgxSplitSum};
+use std::format;
+
+/// Tolerance of `lut verify`'s E_avg reference: 10× below the generator's [`TOL`].
+pub const AVERAGE_REFERENCE_TOL: f64 = 2e-7;
+
+/// Halvings of a μ panel of E_avg at most.
+const MAX_MU_DEPTH: u32 = 12;
+
+/// The reflected part on visible normals: F(wo·h) G1(wi_r) where n·wi_r > 0.
+struct Reflected {
+    wo: Vec3<f64>,
+    eta: f64,
+    dist: TrowbridgeReitz<f64>,
+    /// The GGX split sum's integrand on the same map: its support is also n·wi_r, and its
+    /// row form gives the horizon cuts exactly.
+    form: GgxSplitSum<f64>,
+}
+
+impl CapIntegrand<f64> for Reflected {
+    /// n·wi_r = 2(wo·h)h_z − μ.
+    fn support(&self, h: Vec3<f64>) -> f64 {
+        let c = self.wo.dot(h);
+        if !(c > 0.0) {
+            return -1.0;
+        }
+        2.0 * c * h.z - self.wo.z
+    }
+    /// The row form of n·wi_r: the split sum's ([`GgxSplitSum`], the same support).
+    fn row_form(&self, cp: f64, sp: f64) -> Option<[f64; 6]> {
+        self.form.row_form(cp, sp)
+    }
+    /// F(wo·h) G1(wi_r).
+    fn value(&self, h: Vec3<f64>, _s: f64) -> [f64; 2] {
+        let wi = self.wo.reflect(h);
+        [
+            f_dielectric(self.eta, self.wo.dot(h)) * self.dist.g1(wi),
+            0.0,
+        ]
+    }
+}
+
+/// The transmitted part on visible normals: (1 − F(wo·h)) G1(wi_t) where wi_t exists and
+/// n·wi_t < 0.
+struct Refracted {
+    wo: Vec3<f64>,
+    eta: f64,
+    dist: TrowbridgeReitz<f64>,
+}
+
+impl Refracted {
+    /// wo·h and the refracted direction, if any.
+    fn ray(&self, h: Vec3<f64>) -> Option<(f64, Vec3<f64>)> {
+        let c = self.wo.dot(h);
+        if !(c > 0.0) {
+            return None;
+        }
+        Some((c, refract(self.wo, h, c, self.eta)?))
+    }
+}
+
+impl CapIntegrand<f64> for Refracted {
+    /// min(η² − 1 + (wo·h)², −n·wi_t): positive where a refracted ray exists (no total
+    /// internal reflection) and goes below the surface; continuous through the TIR edge.
+    fn support(&self, h: Vec3<f64>) -> f64 {
+        let c = self.wo.dot(h);
+        if !(c > 0.0) {
+            return -1.0;
+        }
+        let tir = self.eta * self.eta - 1.0 + c * c;
+        if !(tir > 0.0) {
+            return tir;
+        }
+        match self.ray(h) {
+            Some((_, t)) => tir.min(-t.z),
+            None => -1.0,
+        }
+    }
+    /// (1 − F(wo·h)) G1(wi_t mirrored to the +n side).
+    fn value(&self, h: Vec3<f64>, _s: f64) -> [f64; 2] {
+        match self.ray(h) {
+            Some((c, t)) => {
+                let up = Vec3::new(t.x, t.y, -t.z);
+                [(1.0 - f_dielectric(self.eta, c)) * self.dist.g1(up), 0.0]
+            }
+            None => [0.0; 2],
+        }
+    }
+}
+
+/// (R, T) at (μ, α, η) to the absolute tolerance `tol` per channel: values, the larger
+/// estimate, and the work (integrand plus cut-search evaluations). μ is clamped to
+/// [1e-9, 1] and α floored at 1e-4 (module docs).
+pub fn glass_e(mu: f64, alpha: f64, eta: f64, tol: f64) -> ([f64; 2], Work) {
+    let mu = mu.clamp(1e-9, 1.0);
+    let alpha = alpha.max(ALPHA_FLOOR);
+    let Ok(dist) = TrowbridgeReitz::isotropic(alpha) else {
+        return ([f64::NAN; 2], Work::default());
+    };
+    let sv = ((1.0 - mu) * (1.0 + mu)).max(0.0).sqrt();
+    let wo = Vec3::new(sv, 0.0, mu);
+    let map = GgxVisibleCap::new(alpha, mu);
+    let form = GgxSplitSum::new(alpha, mu);
+    let r = integrate_cap(
+        &map,
+        &Reflected {
+            wo,
+            eta,
+            dist,
+            form,
+        },
+        tol,
+    );
+    let t = integrate_cap(&map, &Refracted { wo, eta, dist }, tol);
+    let evals = (r.evals + r.cut_evals + t.evals + t.cut_evals) as u64;
+    let error = r.error[0].max(t.error[0]);
+    ([r.value[0], t.value[0]], Work { error, evals })
+}
+
+/// 2∫ₐᵇ (R, T)(μ) μ dμ by K15 in μ, halving where |K15 − G7| plus the panel width × its
+/// largest node estimate exceeds `tol`: (values, estimate, work).
+fn mu_adapt(a: f64, b: f64, alpha: f64, eta: f64, tol: f64, depth: u32) -> ([f64; 2], Work) {
+    let t = gk15_nodes(a, b);
+    let mut y = [[0.0; 2]; 15];
+    let (mut worst, mut evals) = (0f64, 0u64);
+    for (y, &mu) in y.iter_mut().zip(&t) {
+        let (v, w) = glass_e(mu, alpha, eta, tol * 0.25);
+        *y = [2.0 * mu * v[0], 2.0 * mu * v[1]];
+        worst = worst.max(w.error);
+        evals += w.evals;
+    }
+    let (v, e) = gk15_combine(&y, (b - a) * 0.5);
+    let error = e[0].max(e[1]) + 2.0 * (b - a) * worst;
+    if error <= tol || depth >= MAX_MU_DEPTH {
+        return (v, Work { error, evals });
+    }
+    let m = 0.5 * (a + b);
+    let (v0, w0) = mu_adapt(a, m, alpha, eta, tol * 0.5, depth + 1);
+    let (v1, w1) = mu_adapt(m, b, alpha, eta, tol * 0.5, depth + 1);
+    let w = Work {
+        error: w0.error + w1.error,
+        evals: evals + w0.evals + w1.evals,
+    };
+    ([v0[0] + v1[0], v0[1] + v1[1]], w)
+}
+
+/// (R_avg, T_avg)(α, η) = 2∫₀¹ (R, T)(μ) μ dμ to `tol` per channel, broken at
+/// μ_c = √(1 − η²) for η < 1 (module docs).
+pub fn glass_e_avg(alpha: f64, eta: f64, tol: f64) -> ([f64; 2], Work) {
+    let cut = if eta < 1.0 {
+        ((1.0 - eta) * (1.0 + eta)).sqrt()
+    } else {
+        0.0
+    };
+    if !(cut > 0.0 && cut < 1.0) {
+        return mu_adapt(0.0, 1.0, alpha, eta, tol, 0);
+    }
+    let (v0, w0) = mu_adapt(0.0, cut, alpha, eta, tol * cut, 0);
+    let (v1, w1) = mu_adapt(cut, 1.0, alpha, eta, tol * (1.0 - cut), 0);
+    let w = Work {
+        error: w0.error + w1.error,
+        evals: w0.evals + w1.evals,
+    };
+    ([v0[0] + v1[0], v0[1] + v1[1]], w)
+}
+
+/// Whether the kind is a rough-glass kind.
+pub fn is_glass(kind: Kind) -> bool {
+    matches!(kind, Kind::GlassAlbedo | Kind::GlassAverageAlbedo)
+}
+
+/// The rough-glass node at `x` to tolerance `tol`: (μ, roughness, η) or (roughness, η).
+fn at(spec: &Spec, x: &[f64], tol: f64) -> ([f64; 2], Work) {
+    match (spec.kind, x) {
+        (Kind::GlassAlbedo, &[mu, r, eta]) => glass_e(mu, spec.width_sigma(r).0, eta, tol),
+        (Kind::GlassAverageAlbedo, &[r, eta]) => glass_e_avg(spec.width_sigma(r).0, eta, tol),
+        _ => ([f64::NAN; 2], Work::default()),
+    }
+}
+
+/// The generator's node (channels R, T in `out`) and its [`Work`], to [`TOL`] per channel;
+/// `None` for a kind that is not rough glass.
+pub fn node(spec: &Spec, x: &[f64], out: &mut [f64]) -> Option<Work> {
+    if !is_glass(spec.kind) {
+        return None;
+    }
+    let (v, w) = at(spec, x, TOL);
+    for (o, v) in out.iter_mut().zip(v) {
+        *o = v;
+    }
+    Some(w)
+}
+
+/// `lut verify`'s reference at `x`: the same cap integrator at [`REFERENCE_TOL`] (100×
+/// tighter, so its panels and rows are refined far beyond the generator's; E_avg at
+/// [`AVERAGE_REFERENCE_TOL`], whose μ panels multiply the cost): (values, its estimate);
+/// `None` for a kind that is not rough glass.
+pub fn reference(spec: &Spec, x: &[f64]) -> Option<([f64; 2], f64)> {
+    if !is_glass(spec.kind) {
+        return None;
+    }
+    let tol = if spec.kind == Kind::GlassAverageAlbedo {
+        AVERAGE_REFERENCE_TOL
+    } else {
+        REFERENCE_TOL
+    };
+    let (v, w) = at(spec, x, tol);
+    Some((v, w.error))
+}
+
+/// The model options of a rough-glass spec: GGX (the separable Smith G of the kernel is
+/// implied; the masking option is not used).
+pub fn validate(spec: &Spec) -> Result<(), GenError> {
+    if !is_glass(spec.kind) {
+        return Ok(());
+    }
+    if spec.distribution != Distribution::Ggx {
+        return Err(GenError::Invalid(
+            "rough-glass tables are GGX only: brdf-core has no spherical-cap visible-normal \
+             map for Beckmann yet"
+                .into(),
+        ));
+    }
+    match spec.axes.last() {
+        Some(a) if a.lo < 1.0 && a.hi > 1.0 => Err(GenError::Invalid(format!(
+            "axis eta: [{}, {}] spans 1; light from outside (η ≥ 1) and from inside (η ≤ 1) \
+             are two tables (total internal reflection sets in below 1: not smooth across it)",
+            a.lo, a.hi
+        ))),
+        _ => Ok(()),
+    }
+}

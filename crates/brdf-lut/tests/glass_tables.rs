@@ -1,0 +1,318 @@
+//! Rough-glass albedo tables (kinds `glass-e`, `glass-e-avg`; `generate/glass.rs`), checked
+//! against closed forms, a physical law and an independent Monte Carlo estimate through the
+//! kernel's own sampler and BSDF.
+#![cfg(feature = "generate")]
+
+use brdf_core::fresnel::f_dielectric;
+use brdf_core::models::rough_dielectric::{DielectricDistribution, RoughDielectric};
+use brdf_core::Vec3;
+use brdf_lut::generate::glass::{glass_e, glass_e_avg};
+use brdf_lut::generate::{
+    check_nodes, generate, Distribution, GenError, Kind, Masking, Spec, INTEGRATION_TOL,
+};
+use brdf_lut::{GlassAlbedoTable, GlassAverageTable, Lut};
+
+/// The generator's tolerance per channel.
+const TOL: f64 = INTEGRATION_TOL;
+
+/// α → 0 (the kernel's floor α = 1e-4): R → F(μ) (exact dielectric Fresnel) and
+/// R + T → 1. The tabulated integral differs from the limit by the visible normals'
+/// spread: the share of facets tilted by more than ~θ_μ (the angle that changes F or the
+/// horizon test noticeably) is O(α²/μ²) for GGX's tail, ≤ 2.5e-7 at μ ≥ 0.2, below the
+/// integration tolerance; so |R − F| ≤ 2·TOL + 10 α²/μ². μ is kept 0.05 away from TIR's
+/// critical cosine μ_c = √(1 − η²), where F has a square-root edge the 1e-4 spread rounds.
+#[test]
+fn narrow_limit_is_fresnel_and_conserves_energy() {
+    let a = 1e-4;
+    for eta in [1.5f64, 2.5, 1.05, 0.7, 0.5] {
+        let mc = if eta < 1.0 {
+            ((1.0 - eta) * (1.0 + eta)).sqrt()
+        } else {
+            -1.0
+        };
+        for mu in [0.2f64, 0.35, 0.5, 0.8, 1.0] {
+            if (mu - mc).abs() < 0.05 {
+                continue;
+            }
+            let ([r, t], w) = glass_e(mu, a, eta, TOL);
+            let f = f_dielectric(eta, mu);
+            let bound = 2.0 * TOL + 10.0 * a * a / (mu * mu);
+            assert!((r - f).abs() <= bound, "η {eta} μ {mu}: R {r} vs F {f}");
+            assert!(
+                (r + t - 1.0).abs() <= bound,
+                "η {eta} μ {mu}: R + T = {}",
+                r + t
+            );
+            assert!(w.error <= TOL, "estimate {}", w.error);
+        }
+    }
+}
+
+/// η = 1: F = 0 on every facet and every ray goes straight on, so R = 0 and T = G1(μ), the
+/// GGX Smith G1 = 2μ/(μ + √(μ² + α²(1 − μ²))) of the exit direction (the separable G's
+/// second factor; the limit η → 1 of the rough integrals). The integrand is then constant
+/// on the cap: exact to rounding.
+#[test]
+fn index_matched_interface_is_g1() {
+    for alpha in [1e-4, 0.05, 0.3, 1.0] {
+        for mu in [0.017_452_4, 0.1, 0.5, 1.0] {
+            let ([r, t], _) = glass_e(mu, alpha, 1.0, TOL);
+            let g1 = 2.0 * mu / (mu + (mu * mu + alpha * alpha * (1.0 - mu * mu)).sqrt());
+            assert!(r.abs() <= 1e-12, "α {alpha} μ {mu}: R {r}");
+            assert!((t - g1).abs() <= 1e-9, "α {alpha} μ {mu}: T {t} vs G1 {g1}");
+        }
+    }
+}
+
+/// Energy: 0 ≤ R, T and R + T ≤ 1 (the adjoint transmission is an energy fraction; the
+/// separable G loses energy to masking, never gains it), up to the integration tolerance,
+/// on a spread of (μ, α, η) in both directions of light, grazing μ included.
+#[test]
+fn reflected_plus_transmitted_at_most_one() {
+    for eta in [0.34, 0.6, 0.95, 1.0, 1.1, 1.5, 3.0] {
+        for alpha in [1e-4, 0.02, 0.2, 0.6, 1.0] {
+            for mu in [0.017_452_4, 0.2, 0.6, 1.0] {
+                let ([r, t], _) = glass_e(mu, alpha, eta, TOL);
+                assert!(r >= -TOL && t >= -TOL, "{mu} {alpha} {eta}: {r} {t}");
+                assert!(r + t <= 1.0 + 2.0 * TOL, "{mu} {alpha} {eta}: {}", r + t);
+            }
+        }
+    }
+}
+
+/// SplitMix64 uniforms in [0, 1).
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// An independent estimate: the kernel's own importance sampler (Heitz's disc of visible
+/// normals, Fresnel choice) and its BSDF and pdf, N samples; a sample below the surface
+/// counts toward T with the adjoint factor η² (f* = η² f for wi inside, wo outside). The
+/// table's integral must lie within 5 standard errors of the mean (plus the integration
+/// tolerance): a false failure has probability below 1e-6 per channel.
+#[test]
+fn agrees_with_monte_carlo_through_the_kernel_sampler() {
+    const N: usize = 400_000;
+    let mut rng = Rng(0x61A55);
+    for &(mu, alpha, eta) in &[
+        (0.5f64, 0.3, 1.5),
+        (0.1, 0.5, 1.5),
+        (0.8, 0.15, 0.7),
+        (0.3, 0.8, 0.5),
+        (0.05, 1.0, 2.5),
+    ] {
+        let m = RoughDielectric::new(DielectricDistribution::Ggx, alpha, eta).unwrap();
+        let wo = Vec3::new(((1.0 - mu) * (1.0 + mu)).sqrt(), 0.0, mu);
+        let (mut s, mut s2) = ([0f64; 2], [0f64; 2]);
+        for _ in 0..N {
+            let u = [rng.next(), rng.next()];
+            let Some(x) = m.sample_with_choice(wo, u, rng.next()) else {
+                continue;
+            };
+            let (c, w) = if x.wi.z > 0.0 {
+                (0, x.weight.r)
+            } else {
+                (1, x.weight.r * eta * eta)
+            };
+            s[c] += w;
+            s2[c] += w * w;
+        }
+        let ([r, t], _) = glass_e(mu, alpha, eta, TOL);
+        for (c, v) in [r, t].into_iter().enumerate() {
+            let mean = s[c] / N as f64;
+            let se = ((s2[c] / N as f64 - mean * mean).max(0.0) / N as f64).sqrt();
+            assert!(
+                (v - mean).abs() <= 5.0 * se + TOL,
+                "({mu}, {alpha}, {eta}) channel {c}: table integral {v}, MC {mean} ± {se}"
+            );
+        }
+    }
+}
+
+/// Étendue (generalised reciprocity of the BSDF, f_t(wi, wo)/η_o² = f_t(wo, wi)/η_i²,
+/// Walter et al. 2007 §5.2): under uniform diffuse illumination the flux crossing into the
+/// denser medium equals the flux crossing out of it, so T_avg(η) = η² T_avg(1/η) — true of
+/// the smooth interface (1 − F_avg(η) = η² (1 − F_avg(1/η))) and of the rough one. Two
+/// independent E_avg integrals (the TIR break only in the second), within their estimates.
+#[test]
+fn average_transmission_obeys_etendue() {
+    etendue(&[(0.3, 1.5), (0.7, 2.2), (0.05, 1.3)]);
+}
+
+/// The same law at the narrow limit α = 1e-4: fails today. T_avg(1.5) = 0.9082221 (the
+/// smooth interface's 0.90822204 to 1e-7), but 1.5² T_avg(1/1.5) = 0.9082129: the inside
+/// integral is 4e-6 low, above its own estimate (1.4e-6) though within ½ LSB of u16.
+/// The cap integrator's scan for lit pieces (`converged::lit_intervals`) can miss pieces
+/// narrower than its spacing, and near the TIR edge at α → 0 the refracted set is such a
+/// sliver. Kept as the open defect's measurement.
+#[test]
+#[ignore = "open: the inside E_avg at α = 1e-4 is 4e-6 low (see the doc comment)"]
+fn average_transmission_obeys_etendue_at_the_narrow_limit() {
+    etendue(&[(1e-4, 1.5)]);
+}
+
+fn etendue(cases: &[(f64, f64)]) {
+    for &(alpha, eta) in cases {
+        let (a, wa) = glass_e_avg(alpha, eta, TOL);
+        let (b, wb) = glass_e_avg(alpha, 1.0 / eta, TOL);
+        let lhs = a[1];
+        let rhs = eta * eta * b[1];
+        let allowed = wa.error + eta * eta * wb.error + 1e-12;
+        assert!(
+            (lhs - rhs).abs() <= allowed,
+            "α {alpha} η {eta}: T_avg {lhs} vs η² T_avg(1/η) {rhs} (allowed {allowed:e})"
+        );
+    }
+}
+
+fn small_spec(kind: Kind) -> Spec {
+    let mut s = Spec::new(kind, Distribution::Ggx, Masking::SmithSeparable);
+    for a in s.axes.iter_mut() {
+        a.count = 4;
+    }
+    s.samples = 64;
+    s
+}
+
+/// Generation time, evaluations per node and error of the default 32³ glass-e table (light
+/// from outside) and the 32² glass-e-avg table: a measurement, printed (run with
+/// `--ignored --nocapture`).
+#[test]
+#[ignore = "a measurement: minutes"]
+fn measure_default_tables() {
+    for kind in [Kind::GlassAlbedo, Kind::GlassAverageAlbedo] {
+        let mut spec = Spec::new(kind, Distribution::Ggx, Masking::SmithSeparable);
+        spec.samples = 200;
+        let t0 = std::time::Instant::now();
+        let g = generate(&spec, &|_| {}).unwrap();
+        let secs = t0.elapsed().as_secs_f64();
+        let lut = Lut::from_bytes(g.bytes.clone()).unwrap();
+        let nodes = lut.header().nodes();
+        let view = brdf_lut::LutView::parse(&g.bytes).unwrap();
+        let checks = check_nodes(&spec, &view, g.integration as f64, 24);
+        let worst = checks
+            .iter()
+            .map(|c| (c.stored - c.reference).abs())
+            .fold(0f64, f64::max);
+        println!(
+            "{kind:?}: {nodes} nodes in {secs:.1} s on {} threads, {:.0} evals/node, bound {:e}, \
+             interpolation max {:e} rms {:e}, worst node vs reference {worst:e} ({} checked, all ok: {})",
+            brdf_lut::generate::threads(),
+            g.evals as f64 / nodes as f64,
+            g.integration,
+            g.error.max_abs,
+            g.error.rms,
+            checks.len(),
+            checks.iter().all(|c| c.ok())
+        );
+    }
+}
+
+/// A generated glass-e table: every node within the header's integration bound + ½ LSB of
+/// the direct integral, `lut verify`'s reference check passes, the typed lookup gives the
+/// node values at the nodes and its batch equals the scalar lookup bit for bit, and
+/// the header names the kind and model.
+#[test]
+fn glass_table_nodes_lookups_and_verify() {
+    for (lo, hi) in [(1.0, 3.0), (1.0 / 3.0, 1.0)] {
+        let mut spec = small_spec(Kind::GlassAlbedo);
+        spec.axes[2].lo = lo;
+        spec.axes[2].hi = hi;
+        let g = generate(&spec, &|_| {}).unwrap();
+        let lut = Lut::from_bytes(g.bytes.clone()).unwrap();
+        assert_eq!(Spec::from_header(&lut.header()).as_ref(), Some(&spec));
+        let t = GlassAlbedoTable::parse(&g.bytes[..]).unwrap();
+        let view = t.view().unwrap();
+        let checks = check_nodes(&spec, &view, g.integration as f64, 8);
+        assert!(checks.len() >= 16);
+        for c in &checks {
+            assert!(c.ok(), "{c:?}");
+        }
+        let axes = &view.header().axes;
+        let lsb = 0.5 / 65535.0;
+        let (mut xs, mut rs, mut ts) = ([vec![], vec![], vec![]], vec![], vec![]);
+        for k in 0..64u32 {
+            let i = [k % 4, (k / 4) % 4, k / 16];
+            let x: Vec<f64> = (0..3).map(|d| axes[d].node(i[d])).collect();
+            let ([r, tt], _) = glass_e(x[0], x[1] * x[1], x[2], TOL);
+            let (lr, lt) = t.rt(x[0] as f32, x[1] as f32, x[2] as f32);
+            // The node's own value, read at its f32 coordinates: ½ LSB + the bound + f32.
+            let allowed = lsb + g.integration as f64 + 1e-6;
+            assert!((lr as f64 - r).abs() <= allowed, "{x:?}: R {lr} vs {r}");
+            assert!((lt as f64 - tt).abs() <= allowed, "{x:?}: T {lt} vs {tt}");
+            for d in 0..3 {
+                xs[d].push(x[d] as f32);
+            }
+            rs.push(lr);
+            ts.push(lt);
+        }
+        let (mut br, mut bt) = (vec![0f32; 64], vec![0f32; 64]);
+        let n = t.rt_batch((&xs[0], &xs[1], &xs[2]), &mut br, &mut bt);
+        assert_eq!(n, 64);
+        assert_eq!((br, bt), (rs, ts));
+    }
+}
+
+/// A generated glass-e-avg table: nodes pass `lut verify`'s reference check and the typed
+/// lookup reads them back.
+#[test]
+fn glass_average_table_verifies() {
+    let mut spec = small_spec(Kind::GlassAverageAlbedo);
+    spec.axes[0].count = 2;
+    spec.axes[1].count = 2;
+    spec.axes[1].hi = 2.0;
+    let g = generate(&spec, &|_| {}).unwrap();
+    let t = GlassAverageTable::parse(&g.bytes[..]).unwrap();
+    let view = t.view().unwrap();
+    for c in check_nodes(&spec, &view, g.integration as f64, 4) {
+        assert!(c.ok(), "{c:?}");
+    }
+    let (r, tt) = t.rt_avg(0.0, 1.0);
+    // α → 0, η = 1: nothing reflected; T_avg = 2∫ G1(μ) μ dμ → 1.
+    assert!(r.abs() < 1e-5 && (tt - 1.0).abs() < 1e-5, "{r} {tt}");
+}
+
+/// Bad specs are typed errors: an η axis across 1, Beckmann (not tabulated yet).
+#[test]
+fn bad_glass_specs_are_refused() {
+    let mut s = small_spec(Kind::GlassAlbedo);
+    s.axes[2].lo = 0.5;
+    assert!(matches!(generate(&s, &|_| {}), Err(GenError::Invalid(m)) if m.contains("spans 1")));
+    let mut s = small_spec(Kind::GlassAlbedo);
+    s.distribution = Distribution::Beckmann;
+    assert!(matches!(generate(&s, &|_| {}), Err(GenError::Invalid(_))));
+    let mut s = small_spec(Kind::GlassAlbedo);
+    s.axes[2].hi = 20.0;
+    assert!(matches!(generate(&s, &|_| {}), Err(GenError::Invalid(_))));
+}
+
+/// A node of the default 32³ table (μ = 0.27093, r = 16/31, η = 55/31) where the generator
+/// at 2e-6 returns R = 0.1383084645 with an estimate of 6.3e-7, while the same integrator
+/// at every tolerance ≤ 1e-6 (down to 5e-9, whose estimate is 7e-10) gives 0.1383021739:
+/// the node is 6.3e-6 off, 10× its estimate, and with u16 rounding 9.6e-6 from the
+/// reference (`lut verify` of the 32³ table flags it: 1 of 78 sampled nodes). Neighbouring μ
+/// (±0.005) agree to 1e-9, so the cap integrator (`converged::integrate_cap`) misses a
+/// narrow feature at its coarser levels (a φ panel whose 15 nodes and embedded 7 both skip
+/// it). Open: kept as the defect's measurement.
+#[test]
+#[ignore = "open: the cap integrator's estimate misses a narrow feature at this node"]
+fn default_table_node_within_its_estimate() {
+    let (mu, r, eta) = (0.270_929_661_462_933_4, 16.0 / 31.0, 55.0 / 31.0);
+    let (v, w) = glass_e(mu, r * r, eta, TOL);
+    let (rf, wr) = glass_e(mu, r * r, eta, 5e-9);
+    for c in 0..2 {
+        assert!(
+            (v[c] - rf[c]).abs() <= w.error + wr.error,
+            "channel {c}: {} vs {}",
+            v[c],
+            rf[c]
+        );
+    }
+}
