@@ -67,8 +67,8 @@ impl Reader {
         self.mode == Mode::Cubic && self.encoding == Encoding::Unorm16
     }
 
-    /// `N` lookups of a 1-D or 2-D Catmull–Rom u16 table (`cubic_chunked()` must hold):
-    /// channel c of query k in `out[c][k]`, equal to [`Reader::sample`] bit for bit.
+    /// `N` lookups of a 1-D, 2-D or 3-D Catmull–Rom u16 table (`cubic_chunked()` must
+    /// hold): channel c of query k in `out[c][k]`, equal to [`Reader::sample`] bit for bit.
     #[inline(always)]
     pub(crate) fn chunk_cubic<const D: usize, const C: usize, const N: usize>(
         &self,
@@ -82,7 +82,12 @@ impl Reader {
         } else {
             ([0; N], [[0.0; N]; 4])
         };
-        let (acc, bad) = self.sums::<D, C, N>(data, &a0, &a1, 0);
+        // (D is a constant: the 1-D and 2-D lookups compile without the 3-D branch.)
+        let (acc, bad) = if D == 3 {
+            self.sums3::<C, N>(data, &a0, &a1, &x[2])
+        } else {
+            self.sums::<D, C, N>(data, &a0, &a1, |_| 0)
+        };
         let mut out = [[0.0f32; N]; C];
         for c in 0..C {
             let (sc, of) = (self.scale[c], self.offset[c]);
@@ -100,10 +105,46 @@ impl Reader {
         out
     }
 
+    /// Σ_k w2_k · plane_k over the four axis-2 planes of each query (axis 2's first node
+    /// and weights from `x2`), a plane with a zero weight skipped, from 0: `Reader::cubic`'s
+    /// sum over axis 2 in its order, the planes from [`Reader::sums`]. A query counts as
+    /// past the payload only through a plane it uses, as on the scalar path.
+    #[inline(always)]
+    #[allow(clippy::type_complexity)]
+    fn sums3<const C: usize, const N: usize>(
+        &self,
+        data: &[u8],
+        a0: &([u32; N], [[f32; N]; 4]),
+        a1: &([u32; N], [[f32; N]; 4]),
+        x2: &[f32; N],
+    ) -> ([[f32; N]; C], Option<[bool; N]>) {
+        let s2 = self.lanes[2].stride;
+        let (b2, w2) = cubics(&self.lanes[2], x2);
+        let mut acc = [[0.0f32; N]; C];
+        let (mut bad, mut any_bad) = ([false; N], false);
+        for (j, wj) in w2.iter().enumerate() {
+            let (p, b) = self.sums::<2, C, N>(data, a0, a1, |k| (b2[k] as usize + j) * s2);
+            for (acc, p) in acc.iter_mut().zip(&p) {
+                for k in 0..N {
+                    if wj[k] != 0.0 {
+                        acc[k] += wj[k] * p[k];
+                    }
+                }
+            }
+            if let Some(b) = b {
+                for k in 0..N {
+                    bad[k] |= b[k] && wj[k] != 0.0;
+                    any_bad |= bad[k];
+                }
+            }
+        }
+        (acc, any_bad.then_some(bad))
+    }
+
     /// Σ_j w1_j Σ_i w0_i v_ij in stored units (`Reader::cubic`'s plane sum, from 0, in its
     /// order) of `N` queries whose first nodes and weights on axes 0 and 1 are `a0`, `a1`,
-    /// in the plane starting at value index `base`; with the queries whose taps lie past
-    /// the payload (impossible for a parsed table; NaN on the scalar path) if any.
+    /// query k in the plane starting at value index `base(k)`; with the queries whose taps
+    /// lie past the payload (impossible for a parsed table; NaN on the scalar path) if any.
     #[inline(always)]
     #[allow(clippy::type_complexity)]
     fn sums<const D: usize, const C: usize, const N: usize>(
@@ -111,7 +152,7 @@ impl Reader {
         data: &[u8],
         a0: &([u32; N], [[f32; N]; 4]),
         a1: &([u32; N], [[f32; N]; 4]),
-        base: usize,
+        base: impl Fn(usize) -> usize,
     ) -> ([[f32; N]; C], Option<[bool; N]>) {
         let l = &self.lanes;
         let ((b0, w0), (b1, w1)) = (a0, a1);
@@ -124,7 +165,7 @@ impl Reader {
         // Bytes of the block of rows a query reads.
         let span = (rows - 1) * s + 8 * C;
         for k in 0..N {
-            let at = (base + b0[k] as usize * C + b1[k] as usize * l[1].stride) * 2;
+            let at = (base(k) + b0[k] as usize * C + b1[k] as usize * l[1].stride) * 2;
             // A short payload (impossible for a parsed table) gives NaN, like the scalar
             // path's row read.
             let Some(blk) = data.get(at..at + span) else {
@@ -197,7 +238,7 @@ impl Reader {
         let mut bad = [false; N];
         for (k, &wk) in w2.iter().enumerate() {
             if wk != 0.0 {
-                let ([p], b) = self.sums::<2, 1, N>(data, &a0, &a1, (b2 + k) * l[2].stride);
+                let ([p], b) = self.sums::<2, 1, N>(data, &a0, &a1, |_| (b2 + k) * l[2].stride);
                 for q in 0..N {
                     acc[q] += wk * p[q];
                 }

@@ -870,9 +870,9 @@ impl Reader {
         (t.lo, t.hi, p.lo, p.hi) == (0.0, FRAC_PI_2, -FRAC_PI_2, FRAC_PI_2)
     }
 
-    /// `N` lookups of a 1-D or 2-D linear u16 table (`chunked()` must hold): channel c of
-    /// query k in `out[c][k]`, equal to [`Reader::sample`] bit for bit. `avx2`: the code is
-    /// compiled for AVX2 (see [`wide`]).
+    /// `N` lookups of a 1-D, 2-D or 3-D linear u16 table (`chunked()` must hold): channel
+    /// c of query k in `out[c][k]`, equal to [`Reader::sample`] bit for bit. `avx2`: the
+    /// code is compiled for AVX2 (see [`wide`]).
     #[inline(always)]
     pub(crate) fn chunk<const D: usize, const C: usize, const N: usize>(
         &self,
@@ -880,7 +880,60 @@ impl Reader {
         x: &[[f32; N]; D],
         avx2: bool,
     ) -> [[f32; N]; C] {
+        // (D is a constant: the 1-D and 2-D lookups compile without this branch.)
+        if D == 3 {
+            return self.chunk_3d::<C, N>(data, [&x[0], &x[1], &x[2]], avx2);
+        }
         self.chunk_in::<D, C, N, false, false>(&self.lanes[0], data, x, avx2)
+    }
+
+    /// [`Reader::chunk`] of a 3-D table: the 2 × 2 × 2 nodes of every query as
+    /// four rows of C 32-bit words (two nodes × C channels, stored number m = node × C + c
+    /// in word m / 2, the low half if m is even) at value index i₀·C + i₁·s₁ + i₂·s₂ plus
+    /// 0, s₁, s₂, s₁ + s₂; then [`Reader::linear`]'s arithmetic: per plane
+    /// r = q₀ + f₀ (q₁ − q₀) per row and p = r₀ + f₁ (r₁ − r₀), v = p₀ + f₂ (p₁ − p₀), and
+    /// offset + scale · v. A query whose block lies past the payload (impossible for a
+    /// parsed table) gives NaN, like the scalar path.
+    #[inline(always)]
+    fn chunk_3d<const C: usize, const N: usize>(
+        &self,
+        data: &[u8],
+        x: [&[f32; N]; 3],
+        avx2: bool,
+    ) -> [[f32; N]; C] {
+        let l = &self.lanes;
+        let (i0, f0) = l[0].cells::<N, false, false>(x[0]);
+        let (i1, f1) = l[1].cells::<N, false, false>(x[1]);
+        let (i2, f2) = l[2].cells::<N, false, false>(x[2]);
+        // Strides in values (payloads hold < 2²⁶ values, so bytes fit in u32).
+        let (s1, s2) = (l[1].stride as u32, l[2].stride as u32);
+        let mut at = [0u32; N];
+        for k in 0..N {
+            at[k] = (i0[k] * C as u32 + i1[k] * s1 + i2[k] * s2) * 2;
+        }
+        let off = [0, 2 * s1, 2 * s2, 2 * (s1 + s2)];
+        let (words, bad) = rows::<N, 4, C>(data, &at, off, avx2);
+        let mut out = [[0.0f32; N]; C];
+        for (c, oc) in out.iter_mut().enumerate() {
+            // Stored numbers of nodes 0 and 1 of channel c (word and half of each).
+            let (m0, m1) = (c, C + c);
+            let half = |w: u32, m: usize| (if m % 2 == 0 { w & 0xffff } else { w >> 16 }) as f32;
+            let (sc, of) = (self.scale[c], self.offset[c]);
+            for k in 0..N {
+                let row = |r: usize| {
+                    let (a0, a1) = (half(words[r][m0 / 2][k], m0), half(words[r][m1 / 2][k], m1));
+                    let a0 = if r == 0 { a0 + bad[k] } else { a0 };
+                    a0 + f0[k] * (a1 - a0)
+                };
+                let plane = |p: usize| {
+                    let (r0, r1) = (row(2 * p), row(2 * p + 1));
+                    r0 + f1[k] * (r1 - r0)
+                };
+                let (p0, p1) = (plane(0), plane(1));
+                oc[k] = of + sc * (p0 + f2[k] * (p1 - p0));
+            }
+        }
+        out
     }
 
     /// [`Reader::chunk`]; `IN_RANGE`: every coordinate lies in its axis' range already.
