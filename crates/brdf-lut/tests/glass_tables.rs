@@ -217,7 +217,7 @@ fn measure_default_tables() {
 
 /// A generated glass-e table: every node within the header's integration bound + ½ LSB of
 /// the direct integral, `lut verify`'s reference check passes, the typed lookup gives the
-/// node values at the nodes and its batch equals the scalar lookup bit for bit, and
+/// node values at the nodes, its batch and the view equal the scalar lookup bit for bit, and
 /// the header names the kind and model.
 #[test]
 fn glass_table_nodes_lookups_and_verify() {
@@ -243,6 +243,9 @@ fn glass_table_nodes_lookups_and_verify() {
             let x: Vec<f64> = (0..3).map(|d| axes[d].node(i[d])).collect();
             let ([r, tt], _) = glass_e(x[0], x[1] * x[1], x[2], TOL);
             let (lr, lt) = t.rt(x[0] as f32, x[1] as f32, x[2] as f32);
+            // The zero-copy view reads the same prepared lookup: the same bits.
+            let v = view.sample(&[x[0] as f32, x[1] as f32, x[2] as f32]);
+            assert_eq!((v[0].to_bits(), v[1].to_bits()), (lr.to_bits(), lt.to_bits()));
             // The node's own value, read at its f32 coordinates: ½ LSB + the bound + f32.
             let allowed = lsb + g.integration as f64 + 1e-6;
             assert!((lr as f64 - r).abs() <= allowed, "{x:?}: R {lr} vs {r}");
