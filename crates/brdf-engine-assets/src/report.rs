@@ -10,6 +10,8 @@ use rand::{Rng, SeedableRng};
 use rayon::prelude::*;
 use std::fmt;
 
+pub mod sheen;
+
 /// A decoded table in shader order: `a[row * n + col]`, column = μ index, row = r index
 /// (row k at texture coordinate (k + ½)/n).
 #[derive(Clone, Debug, PartialEq)]
@@ -76,8 +78,9 @@ fn f16v(lo: u8, hi: u8) -> f64 {
     f16::from_bits(u16::from_le_bytes([lo, hi])).to_f64()
 }
 
-/// lut_ggx.png (8- or 16-bit RGB): R = A, G = B, column μ, top row = smallest r.
-pub fn decode_khronos(bytes: &[u8]) -> Result<Table, DecodeError> {
+/// An 8- or 16-bit RGB(A) square PNG as unit values: (edge n, channels per pixel, values
+/// row-major from the top row, channels interleaved, each `stored / (2^bits − 1)`).
+pub fn png_units(bytes: &[u8]) -> Result<(usize, usize, Vec<f64>), DecodeError> {
     let e = |e: png::DecodingError| DecodeError(format!("png: {e}"));
     let mut dec = png::Decoder::new(std::io::Cursor::new(bytes));
     dec.set_transformations(png::Transformations::IDENTITY);
@@ -97,16 +100,25 @@ pub fn decode_khronos(bytes: &[u8]) -> Result<Table, DecodeError> {
     };
     let mut buf = vec![0; rd.output_buffer_size()];
     rd.next_frame(&mut buf).map_err(e)?;
-    let get = |i: usize, c: usize| -> f64 {
-        let o = (i * chan + c) * bytes_per;
-        if bytes_per == 1 {
-            buf[o] as f64 / 255.0
-        } else {
-            u16::from_be_bytes([buf[o], buf[o + 1]]) as f64 / 65535.0
-        }
+    let v = if bytes_per == 1 {
+        buf.iter()
+            .take(n * n * chan)
+            .map(|&b| b as f64 / 255.0)
+            .collect()
+    } else {
+        buf.chunks_exact(2)
+            .take(n * n * chan)
+            .map(|b| u16::from_be_bytes([b[0], b[1]]) as f64 / 65535.0)
+            .collect()
     };
-    let a = (0..n * n).map(|i| get(i, 0)).collect();
-    let b = (0..n * n).map(|i| get(i, 1)).collect();
+    Ok((n, chan, v))
+}
+
+/// lut_ggx.png (8- or 16-bit RGB): R = A, G = B, column μ, top row = smallest r.
+pub fn decode_khronos(bytes: &[u8]) -> Result<Table, DecodeError> {
+    let (n, chan, v) = png_units(bytes)?;
+    let a = v.iter().step_by(chan).copied().collect();
+    let b = v.iter().skip(1).step_by(chan).copied().collect();
     Ok(Table { n, a, b })
 }
 
@@ -353,6 +365,18 @@ pub struct EnginesReport {
     pub rows: Vec<EngineRow>,
     /// Our 16-bit Khronos PNG at the Khronos points.
     pub khronos_16bit: Option<Errs>,
+    /// The shipped Khronos sheen textures against the converged sheen albedo, when found.
+    pub sheen: Option<sheen::SheenCompare>,
+}
+
+/// `v` to two significant digits in fixed notation (0.72, 0.055, 0.0014).
+fn sig2(v: f64) -> String {
+    let digits = if v > 0.0 && v.is_finite() {
+        (1 - v.log10().floor() as i32).max(0) as usize
+    } else {
+        2
+    };
+    format!("{v:.digits$}")
 }
 
 /// "a | b | a_low | b_low" to two significant digits, or "—" cells.
@@ -384,9 +408,35 @@ pub fn render_engines(r: &EnginesReport) -> Result<String, minijinja::Error> {
         })
         .collect();
     let khronos_16bit = r.khronos_16bit.map(|e| cells(Some(e)));
+    let sheen = r.sheen.as_ref().map(|c| {
+        let rows: Vec<Value> = c
+            .diffs
+            .iter()
+            .map(|d| {
+                context! {
+                    label => d.label,
+                    texels => d.texels.len(),
+                    max => sig2(d.max),
+                    mu => format!("{:.3}", d.at.0),
+                    r => format!("{:.4}", d.at.1),
+                    median => sig2(d.median),
+                }
+            })
+            .collect();
+        context! {
+            n => c.n,
+            step => c.step,
+            sampled => c.sampled,
+            above_ek => c.above_one[0],
+            above_ash => c.above_one[1],
+            max_ek => format!("{:.0}", c.max_converged[0]),
+            max_ash => format!("{:.0}", c.max_converged[1]),
+            rows,
+        }
+    });
     fill(
         ENGINES_TEMPLATE,
-        context! { points => r.points, rows, khronos_16bit },
+        context! { points => r.points, rows, khronos_16bit, sheen },
     )
 }
 

@@ -4,13 +4,11 @@
 //! `brdf_core::split_sum::dfg_ggx` (GGX, height-correlated Smith, α = r², F90 = 1,
 //! docs/conventions.md §8) with 32 × 32-point Gauss–Legendre rules, at the table's own (μ, r).
 
-use crate::figures::{self, diverging, pe};
+use crate::figures::{self, DiffMaps, DiffPanel};
 use anyhow::{bail, Context, Result};
 use brdf_core::quadrature::GaussLegendre;
 use brdf_core::split_sum::dfg_ggx;
 use brdf_lut::f16_to_f32;
-use plotters::coord::Shift;
-use plotters::prelude::*;
 use rayon::prelude::*;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -193,56 +191,6 @@ pub fn differences(t: &Table) -> Vec<(f64, f64, f64, f64)> {
         .collect()
 }
 
-/// (μ, r, ΔA, ΔB) per texel.
-type Diffs = Vec<(f64, f64, f64, f64)>;
-
-struct DiffFig<'a> {
-    rows: Vec<(&'a Table, Diffs, f64)>,
-}
-
-impl figures::Figure for DiffFig<'_> {
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
-        let panels = root.split_evenly((self.rows.len(), 2));
-        for (i, (t, d, lim)) in self.rows.iter().enumerate() {
-            for c in 0..2 {
-                let area: &DrawingArea<DB, Shift> = &panels[2 * i + c];
-                let mut ch = ChartBuilder::on(area)
-                    .caption(
-                        format!(
-                            "{} {} (colour limit ±{:.3})",
-                            if c == 0 { "ΔA" } else { "ΔB" },
-                            t.name,
-                            lim
-                        ),
-                        ("sans-serif", 13),
-                    )
-                    .margin(6)
-                    .x_label_area_size(26)
-                    .y_label_area_size(34)
-                    .build_cartesian_2d(0f64..1f64, 0f64..1f64)
-                    .map_err(pe)?;
-                ch.configure_mesh()
-                    .disable_mesh()
-                    .x_desc("μ = N·V")
-                    .y_desc("r")
-                    .label_style(("sans-serif", 11))
-                    .draw()
-                    .map_err(pe)?;
-                let (hx, hy) = (t.pitch.0 / 2.0, t.pitch.1 / 2.0);
-                ch.draw_series(d.iter().map(|&(mu, r, da, db)| {
-                    let e = if c == 0 { da } else { db };
-                    Rectangle::new(
-                        [(mu - hx, r - hy), (mu + hx, r + hy)],
-                        diverging(e, *lim).filled(),
-                    )
-                }))
-                .map_err(pe)?;
-            }
-        }
-        Ok(())
-    }
-}
-
 /// Writes `dfg_difference.svg|png` and returns the markdown section (or a note when no
 /// anchor is found).
 pub fn write(dir: &Path, anchors: &[PathBuf]) -> Result<String> {
@@ -287,6 +235,30 @@ pub fn write(dir: &Path, anchors: &[PathBuf]) -> Result<String> {
         rows.push((t, d, lim));
     }
     let n = rows.len() as u32;
-    figures::write(dir, "dfg_difference", (1100, 330 * n), &DiffFig { rows })?;
+    let panels = rows
+        .iter()
+        .flat_map(|(t, d, lim)| {
+            (0..2).map(move |c| DiffPanel {
+                caption: format!(
+                    "{} {} (colour limit ±{:.3})",
+                    if c == 0 { "ΔA" } else { "ΔB" },
+                    t.name,
+                    lim
+                ),
+                cells: d
+                    .iter()
+                    .map(|&(mu, r, da, db)| (mu, r, if c == 0 { da } else { db }))
+                    .collect(),
+                half: (t.pitch.0 / 2.0, t.pitch.1 / 2.0),
+                lim: *lim,
+            })
+        })
+        .collect();
+    figures::write(
+        dir,
+        "dfg_difference",
+        (1100, 330 * n),
+        &DiffMaps { panels, cols: 2 },
+    )?;
     Ok(md)
 }

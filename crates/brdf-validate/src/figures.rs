@@ -256,6 +256,59 @@ pub fn diverging(e: f64, lim: f64) -> RGBColor {
     RGBColor((r * 255.0) as u8, (g * 255.0) as u8, (b * 255.0) as u8)
 }
 
+/// One difference map: cells (x, y, value) of half-size `half` on the unit square, coloured
+/// by [`diverging`] within ±`lim` (saturating beyond).
+pub struct DiffPanel {
+    /// The panel's caption.
+    pub caption: String,
+    /// (x, y, value) per cell.
+    pub cells: Vec<(f64, f64, f64)>,
+    /// Half the cell's width and height.
+    pub half: (f64, f64),
+    /// Colour limit.
+    pub lim: f64,
+}
+
+/// Difference maps over (μ = N·V, r), `cols` panels a row.
+pub struct DiffMaps {
+    /// The panels, row by row.
+    pub panels: Vec<DiffPanel>,
+    /// Panels per row.
+    pub cols: usize,
+}
+
+impl Figure for DiffMaps {
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<()> {
+        let cols = self.cols.max(1);
+        let areas = root.split_evenly((self.panels.len().div_ceil(cols), cols));
+        for (p, area) in self.panels.iter().zip(&areas) {
+            let mut ch = ChartBuilder::on(area)
+                .caption(&p.caption, ("sans-serif", 13))
+                .margin(6)
+                .x_label_area_size(26)
+                .y_label_area_size(34)
+                .build_cartesian_2d(0f64..1f64, 0f64..1f64)
+                .map_err(pe)?;
+            ch.configure_mesh()
+                .disable_mesh()
+                .x_desc("μ = N·V")
+                .y_desc("r")
+                .label_style(("sans-serif", 11))
+                .draw()
+                .map_err(pe)?;
+            let (hx, hy) = p.half;
+            ch.draw_series(p.cells.iter().map(|&(x, y, e)| {
+                Rectangle::new(
+                    [(x - hx, y - hy), (x + hx, y + hy)],
+                    diverging(e, p.lim).filled(),
+                )
+            }))
+            .map_err(pe)?;
+        }
+        Ok(())
+    }
+}
+
 /// Heat maps of G_model − G_sim over (θr, θi), one row per σ, one column per model.
 pub struct Heat<'a> {
     /// The grid sweeps to show.

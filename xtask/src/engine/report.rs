@@ -4,10 +4,12 @@
 
 use super::generate;
 use anyhow::{bail, Context, Result};
+use brdf_engine_assets::report::sheen::{compare_sheen, SheenCompare};
 use brdf_engine_assets::report::{
     decode_khronos, errors, points, render_engines, texel_errors, DecodeError, EngineRow,
     EnginesReport, Errs, Shipped, Table, POINTS, SEED, SHIPPED,
 };
+use brdf_validate::figures::{DiffMaps, DiffPanel};
 use std::path::{Path, PathBuf};
 
 pub fn run(out: PathBuf, anchors: Option<PathBuf>, doc: Option<PathBuf>) -> Result<()> {
@@ -22,12 +24,15 @@ pub fn run(out: PathBuf, anchors: Option<PathBuf>, doc: Option<PathBuf>) -> Resu
         points: POINTS,
         rows: Vec::new(),
         khronos_16bit: None,
+        sheen: None,
     };
     for e in &SHIPPED {
         let (row, k16) = compare(e, &out.join(e.engine.name()), &anchor_dirs)?;
         report.rows.push(row);
         report.khronos_16bit = report.khronos_16bit.or(k16);
     }
+    let figures = doc.parent().unwrap_or(Path::new(".")).join("figures");
+    report.sheen = sheen(&anchor_dirs, &figures)?;
     let tmp = doc.with_extension("md.tmp");
     std::fs::write(&tmp, render_engines(&report)?)
         .with_context(|| format!("writing {}", tmp.display()))?;
@@ -98,4 +103,63 @@ fn read_table(p: &Path, decode: fn(&[u8]) -> Result<Table, DecodeError>) -> Resu
     }
     let bytes = std::fs::read(p).with_context(|| format!("reading {}", p.display()))?;
     decode(&bytes).with_context(|| format!("decoding {}", p.display()))
+}
+
+/// The shipped Khronos sheen textures against the converged sheen albedo (every 16th texel)
+/// and their difference maps, `figures/sheen_difference.svg|png`; `None` when the anchors
+/// folders lack them.
+fn sheen(anchor_dirs: &[PathBuf], figures: &Path) -> Result<Option<SheenCompare>> {
+    let find = |rel: &str| anchor_dirs.iter().map(|d| d.join(rel)).find(|p| p.exists());
+    let (Some(c), Some(s)) = (
+        find("khronos/lut_charlie.png"),
+        find("khronos/lut_sheen_E.png"),
+    ) else {
+        println!("report: shipped Khronos sheen textures absent: their comparison skipped");
+        return Ok(None);
+    };
+    let read = |p: &Path| -> Result<Vec<u8>> {
+        let len = std::fs::metadata(p)?.len();
+        if len > 64 << 20 {
+            bail!("{}: {len} bytes is too large for a table", p.display());
+        }
+        std::fs::read(p).with_context(|| format!("reading {}", p.display()))
+    };
+    let cmp = compare_sheen(&read(&c)?, &read(&s)?, 16)?;
+    let panels = cmp
+        .diffs
+        .iter()
+        .map(|d| {
+            // Colour limit: the 99th percentile of |difference| (two digits), saturating beyond.
+            let mut a: Vec<f64> = d.texels.iter().map(|t| t.2.abs()).collect();
+            a.sort_by(f64::total_cmp);
+            let p99 = a.get(a.len() * 99 / 100).copied().unwrap_or(1.0).max(1e-4);
+            let lim = sig2_up(p99);
+            DiffPanel {
+                caption: format!("{} (colour ±{lim})", d.label),
+                cells: d.texels.clone(),
+                half: (
+                    0.5 * cmp.step as f64 / cmp.n as f64,
+                    0.5 * cmp.step as f64 / cmp.n as f64,
+                ),
+                lim,
+            }
+        })
+        .collect();
+    brdf_validate::figures::write(
+        figures,
+        "sheen_difference",
+        (1500, 460),
+        &DiffMaps { panels, cols: 3 },
+    )?;
+    println!(
+        "report: wrote {}/sheen_difference.svg|png",
+        figures.display()
+    );
+    Ok(Some(cmp))
+}
+
+/// `v` rounded up to two significant digits.
+fn sig2_up(v: f64) -> f64 {
+    let scale = 10f64.powi(1 - v.log10().floor() as i32);
+    (v * scale).ceil() / scale
 }
