@@ -17,6 +17,10 @@
 // 0 (R16G16_SFLOAT) as a TEXTURE_3D RG16F, compared with the f64 trilinear value of its
 // binary16 texels within 3 axes x 2^-9 x spread + f32, and with the BLUT's
 // GlassAlbedoTable::rt lookup within that bound plus the lookup's own f32 bound.
+//
+// Edited copies of the shader expressions were each seen to fail here: lut_sheen_E sampled
+// with u and v swapped, lut_charlie 0.1 texel off along mu, glass_e with v and w swapped or
+// 0.05 texel off along eta.
 
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
