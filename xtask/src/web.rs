@@ -6,7 +6,9 @@
 //! and the test points are written to target/lut-engine-web/ for
 //! `examples/web/test/lut_engine.test.mjs` (a WebGL2 fragment shader samples the table), and
 //! `lut export --raw-f16` of assets/dfg_ggx.blut with its GLSL function and test points to
-//! target/lut-engine-web/native/ for the same file's native-export test.
+//! target/lut-engine-web/native/ for the same file's native-export test; the Khronos sheen
+//! textures (64²) and the rough-glass 3-D texture (12³) with their test points to
+//! target/lut-engine-web/{sheen,glass}/ for `examples/web/test/lut_sheen_glass.test.mjs`.
 
 use crate::wasm::WasmArgs;
 use anyhow::{bail, Result};
@@ -37,6 +39,14 @@ pub fn run_cmd(a: WebArgs) -> Result<()> {
     }
     crate::engine::web::prepare(&root.join("target/lut-engine-web"))?;
     crate::engine::web::prepare_native(&root.join("target/lut-engine-web/native"))?;
+    let t = Instant::now();
+    crate::engine::web::prepare_sheen(&root.join("target/lut-engine-web/sheen"))?;
+    let ts = t.elapsed().as_secs_f64();
+    crate::engine::web::prepare_glass(&root.join("target/lut-engine-web/glass"))?;
+    println!(
+        "web: sheen textures and points {ts:.1} s, glass texture and points {:.1} s",
+        t.elapsed().as_secs_f64() - ts
+    );
     let t = Instant::now();
     crate::wasm::run(
         &root,

@@ -363,9 +363,349 @@ fn half_ulp_f16(v: f64) -> f64 {
     }
 }
 
+/// Edge of the sheen textures of the browser test: the texels cost about 0.9 ms each
+/// ([`brdf_engine_assets::sheen_texels`]), 64² ≈ 4 s on one core.
+pub const SHEEN_N: usize = 64;
+/// Edge of the rough-glass 3-D texture of the browser test (about 10 ms a node; not a power
+/// of two, so the upload's row and slice strides are exercised).
+pub const GLASS_N: usize = 12;
+/// The GPU's filter weights: 8 fractional bits, error ≤ 2⁻⁹ per axis (as in [`prepare`]).
+const WEIGHT: f64 = 1.0 / 512.0;
+/// f32 blend and decode of values ≤ 1 in the shader.
+const F32_BLEND: f64 = 1e-6;
+
+/// Multilinear lookup between texel centres with clamp to edge, as GL's LINEAR +
+/// CLAMP_TO_EDGE on a D-dimensional texture of `dims` (axis 0 fastest): per axis
+/// p = clamp(x·n − ½, 0, n − 1), corners ⌊p⌋ and ⌊p⌋ + 1 (clamped), weight p − ⌊p⌋.
+/// Returns the value and the smallest and largest of the 2^D texels read.
+fn lerp_nd<const D: usize>(dims: [usize; D], v: &[f64], x: [f64; D]) -> (f64, f64, f64) {
+    let mut lo = [0usize; D];
+    let mut hi = [0usize; D];
+    let mut f = [0.0f64; D];
+    for k in 0..D {
+        let n = dims[k];
+        let p = (x[k] * n as f64 - 0.5).clamp(0.0, (n - 1) as f64);
+        lo[k] = (p.floor() as usize).min(n - 1);
+        hi[k] = (lo[k] + 1).min(n - 1);
+        f[k] = p - lo[k] as f64;
+    }
+    let (mut sum, mut mn, mut mx) = (0.0, f64::MAX, f64::MIN);
+    for corner in 0..1usize << D {
+        let (mut idx, mut stride, mut w) = (0, 1, 1.0);
+        for k in 0..D {
+            let up = corner >> k & 1 == 1;
+            idx += stride * if up { hi[k] } else { lo[k] };
+            w *= if up { f[k] } else { 1.0 - f[k] };
+            stride *= dims[k];
+        }
+        sum += w * v[idx];
+        mn = mn.min(v[idx]);
+        mx = mx.max(v[idx]);
+    }
+    (sum, mn, mx)
+}
+
+/// One channel of an n × n PNG, decoded by the `png` crate (not the writer's code) as
+/// code / (2^depth − 1); `chan` the channel index, `want` the expected bit depth.
+fn png_channel(bytes: &[u8], n: usize, chan: usize, want: png::BitDepth) -> Result<Vec<f64>> {
+    let mut dec = png::Decoder::new(std::io::Cursor::new(bytes));
+    dec.set_transformations(png::Transformations::IDENTITY);
+    let mut rd = dec.read_info()?;
+    let info = rd.info();
+    if (info.width as usize, info.height as usize) != (n, n)
+        || info.color_type != png::ColorType::Rgb
+        || info.bit_depth != want
+    {
+        bail!(
+            "png: {}×{} {:?} {:?}, expected {n}×{n} Rgb {want:?}",
+            info.width,
+            info.height,
+            info.color_type,
+            info.bit_depth
+        );
+    }
+    let mut buf = vec![0; rd.output_buffer_size()];
+    rd.next_frame(&mut buf)?;
+    Ok((0..n * n)
+        .map(|i| match want {
+            png::BitDepth::Eight => buf[i * 3 + chan] as f64 / 255.0,
+            _ => {
+                u16::from_be_bytes([buf[(i * 3 + chan) * 2], buf[(i * 3 + chan) * 2 + 1]]) as f64
+                    / 65535.0
+            }
+        })
+        .collect())
+}
+
+/// A sheen texture of the test: the exact texels (f64 integral at the texel centres,
+/// clamped to [0, 1] as the UNORM encoding clamps), the values decoded from the PNG and the
+/// half unit of its encoding (for R16F, plus the f16 rounding at the largest texel read).
+struct SheenTex {
+    exact: Vec<f64>,
+    stored: Vec<f64>,
+    half_unit: f64,
+    f16: bool,
+}
+
+impl SheenTex {
+    /// Checks every stored texel against the exact one within half a unit.
+    fn new(exact: &[f64], stored: Vec<f64>, half_unit: f64, f16: bool, what: &str) -> Result<Self> {
+        let exact: Vec<f64> = exact.iter().map(|v| v.clamp(0.0, 1.0)).collect();
+        for (k, (s, x)) in stored.iter().zip(&exact).enumerate() {
+            if (s - x).abs() > half_unit * (1.0 + 1e-9) {
+                bail!("{what}: texel {k} stores {s}, the integral at its centre {x}");
+            }
+        }
+        Ok(Self {
+            exact,
+            stored,
+            half_unit,
+            f16,
+        })
+    }
+
+    /// At (μ, r) with `e` the converged value clamped to [0, 1]: (bound against e, GPU-side
+    /// table value, bound against it). The first bound is the doc of [`prepare_sheen`]; the
+    /// second drops the interpolation and encoding terms (the f16 rounding of the upload
+    /// stays).
+    fn bounds(&self, mu: f64, r: f64, e: f64) -> [f64; 3] {
+        let (x, _, _) = lerp_nd([SHEEN_N; 2], &self.exact, [mu, r]);
+        let (s, mn, mx) = lerp_nd([SHEEN_N; 2], &self.stored, [mu, r]);
+        let h16 = if self.f16 { half_ulp_f16(mx) } else { 0.0 };
+        // Spread of the values the GPU blends: the stored ones moved by the f16 rounding.
+        let spread = mx - mn + 2.0 * h16;
+        let weights = 2.0 * WEIGHT * spread;
+        [
+            (x - e).abs() + self.half_unit + h16 + weights + F32_BLEND,
+            s,
+            h16 + weights + F32_BLEND,
+        ]
+    }
+}
+
+/// Writes, into `dir`, the Khronos sheen textures at [`SHEEN_N`]² (`lut_charlie.png`,
+/// `lut_sheen_E.png`, sidecars: `brdf_engine_assets::khronos_sheen` of `sheen_texels`) and
+/// `sheen_points.json`: [`POINTS`] random (μ, r) (f32 values, inside the texel-centre
+/// square), each `[μ, r, E_ek, E_ash, bound_ek, bound_ash, S_ek, S_ash, b_ek, b_ash]`:
+/// E = min(1, the converged sheen albedo at the point) (`brdf_lut::generate::sheen_e` at
+/// its 2e-6 tolerance; ek = Estevez–Kulla, sampled from lut_sheen_E.png's R, ash =
+/// Ashikhmin from lut_charlie.png's B; the UNORM textures hold min(1, E) by design, their
+/// sidecars say so), S the bilinear value of the texels decoded from the PNGs (`png` crate)
+/// and b the bound of |GPU − S|.
+///
+/// The bound against E is the sum of
+/// - the bilinear error of the exact texels clamped to [0, 1]: |bilinear − E|;
+/// - half a unit of the encoding: 1/510 (8-bit) or 1/131070 (16-bit), plus for
+///   lut_sheen_E.png half an f16 ulp at the largest texel read: the test uploads the 16-bit
+///   codes as R16F (browsers decode 16-bit PNGs to 8 bits, and 16-bit UNORM is not
+///   filterable in WebGL2), each code / 65535 rounded to nearest binary16 by `Float16Array`;
+/// - the filter weights, 2 axes × 2⁻⁹ × the spread of the four texels read;
+/// - 1e-6 for the shader's f32 arithmetic.
+pub fn prepare_sheen(dir: &Path) -> Result<()> {
+    let n = SHEEN_N;
+    let [ek, ash] = brdf_engine_assets::sheen_texels(n)?;
+    let mut files = brdf_engine_assets::khronos_sheen(n, &ek, &ash)?;
+    let get = |name: &str| {
+        files
+            .iter()
+            .find(|f| f.name == name)
+            .map(|f| f.bytes.clone())
+            .with_context(|| format!("khronos_sheen wrote no {name}"))
+    };
+    let charlie = png_channel(&get("lut_charlie.png")?, n, 2, png::BitDepth::Eight)?;
+    let sheen_e = png_channel(&get("lut_sheen_E.png")?, n, 0, png::BitDepth::Sixteen)?;
+    let tex = [
+        SheenTex::new(&ek, sheen_e, 0.5 / 65535.0, true, "lut_sheen_E.png")?,
+        SheenTex::new(&ash, charlie, 0.5 / 255.0, false, "lut_charlie.png")?,
+    ];
+    let lo = centre(0, n);
+    let mut rng = rand_pcg::Pcg64::seed_from_u64(0x0EB6_1013);
+    let pts: Vec<(f64, f64)> = (0..POINTS)
+        .map(|_| {
+            let mut u = || rng.random_range(lo..1.0 - lo) as f32 as f64;
+            (u(), u())
+        })
+        .collect();
+    let (rows, over): (Vec<serde_json::Value>, Vec<[bool; 2]>) = pts
+        .par_iter()
+        .map(|&(mu, r)| {
+            let raw = brdf_lut::generate::sheen_e(mu, r, brdf_lut::generate::SHEEN_TOL).value;
+            let e = raw.map(|v| v.clamp(0.0, 1.0));
+            let [a0, s0, b0] = tex[0].bounds(mu, r, e[0]);
+            let [a1, s1, b1] = tex[1].bounds(mu, r, e[1]);
+            let row = serde_json::json!([mu, r, e[0], e[1], a0, a1, s0, s1, b0, b1]);
+            (row, raw.map(|v| v > 1.0))
+        })
+        .unzip();
+    let count = |c: usize| over.iter().filter(|o| o[c]).count();
+    println!(
+        "web: sheen {n}²: E above 1 (stored as 1) at {} (Estevez–Kulla) and {} (Ashikhmin) \
+         of {POINTS} points",
+        count(0),
+        count(1)
+    );
+    files.push(OutFile {
+        name: "sheen_points.json".into(),
+        bytes: serde_json::to_vec(&serde_json::json!({ "n": n, "points": rows }))?,
+    });
+    write_set(dir, &files, true)
+}
+
+/// Coordinate error of `GlassAlbedoTable::rt`'s f32 arithmetic (η = 1 + 2w rounded to f32,
+/// then (η − lo)/(hi − lo)·n − ½), in texels per axis: a few f32 ulps of values ≤ 3 times
+/// n ≤ 256 is below 1e-4.
+const RT_COORD_TEXELS: f64 = 1e-4;
+
+/// Writes, into `dir`, the rough-glass texture at [`GLASS_N`]³ (`brdf_engine_assets::glass`,
+/// light from outside, η ∈ [1, 3]): its files, `glass_e.rg16f.bin` (the KTX2's level 0,
+/// Zstandard-decoded here, checked equal to the BLUT payload: texel (x, y, z) at byte
+/// 4(x + N(y + N z)), R then G as little-endian binary16) and `glass_points.json`: [`POINTS`]
+/// random texture coordinates (u, v, w) = (μ, r, (η − 1)/2) as f32, every 20th outside
+/// [0, 1]³ (clamp to edge), each `[u, v, w, R, T, bound R, bound T, R_blut, T_blut, b_R, b_T]`:
+/// (R, T) the trilinear value in f64 of the f16 texels (clamp to edge), bound = 3 axes ×
+/// 2⁻⁹ × the spread of the eight texels read + 1e-6 (f32 blend; the f16 texels are exact
+/// in f32); (R, T)_blut = `GlassAlbedoTable::rt(μ, r, η)` of the BLUT, checked here within
+/// b = 3 × [`RT_COORD_TEXELS`] × spread + 1e-6 of the trilinear value (its axis map is the
+/// texture's: texel centres, linear, clamped).
+pub fn prepare_glass(dir: &Path) -> Result<()> {
+    let n = GLASS_N;
+    let mut files = brdf_engine_assets::glass([n; 3], false, &|_| {})?;
+    let get = |name: &str| {
+        files
+            .iter()
+            .find(|f| f.name == name)
+            .map(|f| f.bytes.clone())
+            .with_context(|| format!("glass wrote no {name}"))
+    };
+    let level = ktx2_level0(&get("glass_e.ktx2")?, n)?;
+    let blut_bytes = get("glass_e.blut")?;
+    let blut = brdf_lut::GlassAlbedoTable::parse(&blut_bytes[..])?;
+    if blut.view()?.payload() != &level[..] {
+        bail!("glass_e.ktx2: level 0 differs from the BLUT payload");
+    }
+    let f = |o: usize| half::f16::from_le_bytes([level[o], level[o + 1]]).to_f64();
+    let rt: [Vec<f64>; 2] = [0, 2].map(|c| (0..n * n * n).map(|k| f(4 * k + c)).collect());
+    let pts = glass_points();
+    let rows = pts
+        .iter()
+        .map(|&[u, v, w]| glass_row(&rt, &blut, [u, v, w]))
+        .collect::<Result<Vec<_>>>()?;
+    files.push(OutFile {
+        name: "glass_e.rg16f.bin".into(),
+        bytes: level,
+    });
+    files.push(OutFile {
+        name: "glass_points.json".into(),
+        bytes: serde_json::to_vec(&serde_json::json!({ "n": [n, n, n], "points": rows }))?,
+    });
+    write_set(dir, &files, true)
+}
+
+/// Level 0 of a Zstandard-supercompressed R16G16_SFLOAT n³ KTX2, decompressed.
+fn ktx2_level0(bytes: &[u8], n: usize) -> Result<Vec<u8>> {
+    let rd = ktx2::Reader::new(bytes).map_err(|e| anyhow::anyhow!("ktx2: {e:?}"))?;
+    let h = rd.header();
+    let dims = [h.pixel_width, h.pixel_height, h.pixel_depth].map(|d| d as usize);
+    if h.format != Some(ktx2::Format::R16G16_SFLOAT)
+        || dims != [n; 3]
+        || h.supercompression_scheme != Some(ktx2::SupercompressionScheme::Zstandard)
+    {
+        bail!("ktx2: expected a zstd R16G16_SFLOAT {n}³ texture, got {dims:?}");
+    }
+    let lv = rd.levels().next().context("ktx2: no level")?;
+    let raw = zstd::decode_all(lv.data)?;
+    if raw.len() != n * n * n * 4 {
+        bail!(
+            "ktx2: level 0 is {} bytes, expected {}",
+            raw.len(),
+            n * n * n * 4
+        );
+    }
+    Ok(raw)
+}
+
+/// The glass test's texture coordinates as f32: every 20th with each coordinate in
+/// [−0.05, 1.05] (outside the texel-centre range, often outside [0, 1]), the rest uniform.
+fn glass_points() -> Vec<[f64; 3]> {
+    let mut rng = rand_pcg::Pcg64::seed_from_u64(0x0EB6_1014);
+    (0..POINTS)
+        .map(|k| {
+            let (a, b) = if k % 20 == 19 {
+                (-0.05, 1.05)
+            } else {
+                (0.0, 1.0)
+            };
+            [0; 3].map(|_| rng.random_range(a..b) as f32 as f64)
+        })
+        .collect()
+}
+
+/// One row of `glass_points.json` (doc of [`prepare_glass`]); fails when the BLUT lookup
+/// leaves its bound.
+fn glass_row(
+    rt: &[Vec<f64>; 2],
+    blut: &brdf_lut::GlassAlbedoTable<&[u8]>,
+    x: [f64; 3],
+) -> Result<serde_json::Value> {
+    let eta = (1.0 + 2.0 * x[2]) as f32;
+    let (br, bt) = blut.rt(x[0] as f32, x[1] as f32, eta);
+    let mut out = [[0.0f64; 2]; 4];
+    for (c, b) in [(0, br as f64), (1, bt as f64)] {
+        let (v, mn, mx) = lerp_nd([GLASS_N; 3], &rt[c], x);
+        let gpu = 3.0 * WEIGHT * (mx - mn) + F32_BLEND;
+        let brt = 3.0 * RT_COORD_TEXELS * (mx - mn) + F32_BLEND;
+        if (b - v).abs() > brt {
+            bail!(
+                "glass_e.blut: rt at {x:?} channel {c} is {b}, the texture's trilinear \
+                 value {v} (bound {brt:e}): the axis maps differ"
+            );
+        }
+        for (k, y) in [v, gpu, b, brt].into_iter().enumerate() {
+            out[k][c] = y;
+        }
+    }
+    let [v, g, b, brt] = out;
+    Ok(serde_json::json!([
+        x[0], x[1], x[2], v[0], v[1], g[0], g[1], b[0], b[1], brt[0], brt[1]
+    ]))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `lerp_nd` in 2-D equals `report::Table::sample` (a separate bilinear with clamp to
+    /// edge) at random points in and around [0, 1]²; in 3-D it reproduces an affine function
+    /// of the texel coordinates inside the texel-centre box (multilinear interpolation is
+    /// exact on affine functions) and the edge texels' values outside it.
+    #[test]
+    fn lerp_nd_matches_bilinear_and_is_exact_on_affine() {
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(11);
+        let n = 5;
+        let a: Vec<f64> = (0..n * n).map(|_| rng.random_range(0.0..1.0)).collect();
+        let t = Table {
+            n,
+            a: a.clone(),
+            b: a.clone(),
+        };
+        for _ in 0..1000 {
+            let (x, y) = (rng.random_range(-0.2..1.2), rng.random_range(-0.2..1.2));
+            let (v, mn, mx) = lerp_nd([n; 2], &a, [x, y]);
+            assert!((v - t.sample(x, y).0).abs() < 1e-12, "{x} {y}");
+            assert!(mn <= v + 1e-12 && v <= mx + 1e-12);
+        }
+        let d = [3, 4, 6];
+        let f = |p: [f64; 3]| 0.3 + 0.1 * p[0] - 0.2 * p[1] + 0.05 * p[2];
+        let v: Vec<f64> = (0..72)
+            .map(|k| f([(k % 3) as f64, (k / 3 % 4) as f64, (k / 12) as f64]))
+            .collect();
+        for _ in 0..1000 {
+            let x: [f64; 3] = [0; 3].map(|_| rng.random_range(-0.3..1.3));
+            // Texel coordinate, clamped to the centre box as clamp-to-edge does.
+            let p = [0, 1, 2].map(|k| (x[k] * d[k] as f64 - 0.5).clamp(0.0, (d[k] - 1) as f64));
+            assert!((lerp_nd(d, &v, x).0 - f(p)).abs() < 1e-12, "{x:?}");
+        }
+    }
 
     /// Against the `half` crate's round-to-nearest f32 → f16 conversion: the error of every
     /// value tried is within the half ulp stated, and the half ulp is at most twice that

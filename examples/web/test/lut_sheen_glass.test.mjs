@@ -1,0 +1,142 @@
+// WebGL2 test of the sheen and rough-glass engine textures (issue 23): the files and points
+// written by `cargo xtask web` (xtask/src/engine/web.rs, prepare_sheen and prepare_glass)
+// into target/lut-engine-web/{sheen,glass}/ are uploaded to headless Chromium's WebGL2
+// (SwiftShader) and sampled with texture() at 2,048 random points each; every expected
+// value and bound comes from the Rust side.
+//
+// Sheen (64 x 64, texel centres, uv = (mu, r)): lut_charlie.png's B channel (8-bit, decoded
+// by the browser and uploaded as the glTF Sample Viewer uploads it) and lut_sheen_E.png
+// (16-bit: decoded here, webgl_lut.mjs, since browsers reduce 16-bit PNGs to 8 bits, and
+// uploaded as R16F, code / 65535 rounded to binary16). The GPU value is compared with the
+// converged sheen albedo at the point (brdf_lut::generate::sheen_e) within the bilinear
+// error of the exact texels + half an encoding unit (+ half an f16 ulp for R16F) + the
+// 8-bit filter weights x the texels' spread + f32; and with the bilinear value of the texels
+// the Rust `png` crate decoded, within the last three terms only.
+//
+// Rough glass (12^3, (u, v, w) = (mu, r, (eta - 1)/2), light from outside): the KTX2's level
+// 0 (R16G16_SFLOAT) as a TEXTURE_3D RG16F, compared with the f64 trilinear value of its
+// binary16 texels within 3 axes x 2^-9 x spread + f32, and with the BLUT's
+// GlassAlbedoTable::rt lookup within that bound plus the lookup's own f32 bound.
+//
+// Edited copies of the shader expressions were each seen to fail here: lut_sheen_E sampled
+// with u and v swapped, lut_charlie 0.1 texel off along mu, glass_e with v and w swapped or
+// 0.05 texel off along eta.
+
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { readFile } from 'node:fs/promises';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { decodePng, serve, launch, renderTexture } from '../webgl_lut.mjs';
+
+const webDir = path.dirname(path.dirname(fileURLToPath(import.meta.url)));
+const lutDir = path.resolve(webDir, '../../target/lut-engine-web');
+
+let server;
+let browser;
+
+before(async () => {
+  server = await serve(lutDir, {
+    '/sheen/lut_charlie.png': 'image/png',
+    '/glass/glass_e.rg16f.bin': 'application/octet-stream',
+  });
+  browser = await launch();
+});
+
+after(async () => {
+  await browser?.close();
+  await server?.close();
+});
+
+async function render(arg) {
+  const page = await browser.context.newPage();
+  const problems = [];
+  page.on('pageerror', (e) => problems.push(e.message));
+  await page.goto(`${server.url}/index.html`);
+  const result = await page.evaluate(renderTexture, arg);
+  await page.close();
+  assert.equal(result.error, undefined, result.error);
+  assert.equal(result.err, 0, 'GL error');
+  assert.deepEqual(problems, []);
+  return result;
+}
+
+// Asserts |gpu(k) - want(p)| <= bound(p) at every point; logs the max error, the max of
+// error / bound and the bound's median, 95th percentile and maximum; returns the maximum.
+function check(name, rows, gpu, want, bound, what) {
+  let worst = 0;
+  let ratio = 0;
+  const bounds = [];
+  rows.forEach((p, k) => {
+    const e = Math.abs(gpu(k) - want(p));
+    assert.ok(e <= bound(p), `${name} at ${p.slice(0, 3)}: GPU ${gpu(k)}, ${what} ${want(p)}, bound ${bound(p)}`);
+    worst = Math.max(worst, e);
+    ratio = Math.max(ratio, e / bound(p));
+    bounds.push(bound(p));
+  });
+  bounds.sort((x, y) => x - y);
+  const q = (f) => bounds[Math.min(bounds.length - 1, Math.floor(f * bounds.length))].toExponential(2);
+  console.log(
+    `${name}: ${rows.length} points, max |GPU - ${what}| ${worst.toExponential(3)}, ` +
+      `max |err|/bound ${ratio.toFixed(3)}; bound median ${q(0.5)}, 95% ${q(0.95)}, max ${q(1)}`,
+  );
+  return bounds[bounds.length - 1];
+}
+
+test('sheen textures lut_charlie.png (B, 8-bit) and lut_sheen_E.png (R16F) sampled in WebGL2', async () => {
+  const dir = path.join(lutDir, 'sheen');
+  const { n, points } = JSON.parse(await readFile(path.join(dir, 'sheen_points.json'), 'utf8'));
+  assert.ok(points.length >= 2000, `${points.length} points`);
+  const png = decodePng(await readFile(path.join(dir, 'lut_sheen_E.png')));
+  assert.deepEqual([png.width, png.height, png.depth, png.channels], [n, n, 16, 3]);
+  const codes = Array.from({ length: n * n }, (_, i) => png.samples[3 * i]);
+  codes.forEach((c, i) => {
+    assert.equal(png.samples[3 * i + 1], c, 'lut_sheen_E.png: R = G = B');
+    assert.equal(png.samples[3 * i + 2], c, 'lut_sheen_E.png: R = G = B');
+  });
+  const xy = points.map((p) => [p[0], p[1]]);
+  const ek = await render({
+    points: xy,
+    tex: { kind: 'r16f', width: n, height: n, codes },
+    expr: 'vec2(texture(u_lut, x.xy).r, 0.0)',
+  });
+  const ash = await render({
+    points: xy,
+    tex: { kind: 'png8', url: '/sheen/lut_charlie.png' },
+    expr: 'texture(u_lut, x.xy).bg',
+  });
+  console.log(`lut_sheen: ${n}x${n} on ${ek.renderer}`);
+  // Row: [mu, r, E_ek, E_ash, bound_ek, bound_ash, S_ek, S_ash, b_ek, b_ash].
+  const gEk = (k) => ek.values[4 * k];
+  const gAsh = (k) => ash.values[4 * k];
+  check('lut_sheen_E vs sheen_e', points, gEk, (p) => p[2], (p) => p[4], 'min(1, integral)');
+  const tEk = check('lut_sheen_E vs table', points, gEk, (p) => p[6], (p) => p[8], 'bilinear of its texels');
+  check('lut_charlie.b vs sheen_e', points, gAsh, (p) => p[3], (p) => p[5], 'min(1, integral)');
+  const tAsh = check('lut_charlie.b vs table', points, gAsh, (p) => p[7], (p) => p[9], 'bilinear of its texels');
+  // The bounds against the table are a small fraction of its values' range [0, 1]: the
+  // weights' 2^-8 x spread (< 0.01 here) + half an f16 ulp.
+  assert.ok(tEk < 0.01 && tAsh < 0.01, `bounds against the table ${tEk} ${tAsh}`);
+  // G of lut_charlie.png is 0 (the viewer reads B only).
+  points.forEach((_, k) => assert.equal(ash.values[4 * k + 1], 0));
+});
+
+test('rough glass glass_e (3-D RG16F) sampled with texture(sampler3D) in WebGL2', async () => {
+  const dir = path.join(lutDir, 'glass');
+  const { n, points } = JSON.parse(await readFile(path.join(dir, 'glass_points.json'), 'utf8'));
+  assert.ok(points.length >= 2000, `${points.length} points`);
+  const res = await render({
+    points: points.map((p) => [p[0], p[1], p[2]]),
+    tex: { kind: 'rg16f3d', url: '/glass/glass_e.rg16f.bin', dims: n },
+    expr: 'texture(u_lut, x).rg',
+  });
+  console.log(`glass_e: ${n.join('x')} on ${res.renderer}`);
+  // Row: [u, v, w, R, T, bound R, bound T, R_blut, T_blut, b_R, b_T].
+  for (const c of [0, 1]) {
+    const name = `glass_e.${'RT'[c]}`;
+    const gpu = (k) => res.values[4 * k + c];
+    const maxBound = check(`${name} vs table`, points, gpu, (p) => p[3 + c], (p) => p[5 + c], 'trilinear of its f16 texels');
+    check(`${name} vs BLUT rt`, points, gpu, (p) => p[7 + c], (p) => p[5 + c] + p[9 + c], 'GlassAlbedoTable::rt');
+    // Not vacuous: the values span [0, 1]; the bound is 3 x 2^-9 x the local spread + 1e-6.
+    assert.ok(maxBound < 0.01, `${name}: max bound ${maxBound}`);
+  }
+});
