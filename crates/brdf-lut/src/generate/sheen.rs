@@ -24,6 +24,23 @@
 //! tol × its length. The node's estimate is the sum of the panels' |K15 − G7| plus the
 //! Kronrod-weighted inner estimates.
 //!
+//! **Grid** ([`sheen_grid`], the engine textures' texels): E is smooth in x = ln μ (the
+//! fitted Λ's μ^c terms are e^{cx}, analytic) and y = ln r on r ∈ [0.01, 1] (r ≤ 0.01 holds
+//! the r = 0.01 value: a kink, so a domain edge), except at μ = ½, where the fitted Λ
+//! switches branch (continuous with its first derivative only): the domain x ∈
+//! [ln(½/n), ln ½] ∪ [ln ½, 0] × y ∈ [ln 0.01, 0] is covered by patches carrying the tensor
+//! interpolant of degree 16 through the Chebyshev–Lobatto nodes, each node by [`sheen_e`] to
+//! [`GRID_NODE_TOL`]; a patch is halved along the axis with the larger tail until the tails
+//! fit half the tolerance. A texel takes the barycentric value of the patch holding its
+//! centre. **Estimate** per patch and channel: Σ|c_jk| over the last two orders j ∈ {N−1, N}
+//! (all k) plus the same along k, plus Λ² × the largest node estimate. The tail part bounds
+//! the truncation and aliasing error 2Σ_{j>N}|a_j| when the coefficients decay at least
+//! geometrically with ratio ≤ ½ from order N − 1 on (|a_{N−1}| ≥ 2|a_N| and the tail beyond N
+//! ≤ |a_N|); Λ ≤ (2/π) ln(N + 1) + 1 is the Lobatto points' Lebesgue constant (Rivlin), which
+//! carries the nodes' errors into the interpolant. The estimate is not a proof (the decay is
+//! read off the computed coefficients), so tests/sheen_e.rs checks it against
+//! [`sheen_e_reference`] at texel centres.
+//!
 //! **Reference** ([`sheen_e_reference`]): the same integral in the half vector's
 //! coordinates (θh, φh): E = ∫₀^{π/2} D(θh) sin θh ∫_{lit} 4 (v·h) V(μ, l_z) l_z dφh dθh,
 //! l = 2(v·h)h − v, the lit azimuths |φh| ≤ φmax cut exactly (l_z > 0 ⇔
@@ -36,6 +53,7 @@ use brdf_core::microfacet::charlie::{v_ashikhmin, Charlie};
 use brdf_core::models::SheenVisibility;
 use brdf_core::quadrature::kronrod::{gk15_combine, gk15_nodes};
 use core::f64::consts::{FRAC_PI_2, PI};
+use std::vec;
 use std::vec::Vec;
 
 /// Absolute tolerance per node of the generator (¼ of a u16 step of a unit channel).
@@ -293,6 +311,283 @@ pub fn reference(visibility: SheenVisibility, mu: f64, r: f64) -> ([f64; 2], f64
     let (v, e) = sheen_e_reference(mu, r, REFERENCE_TOL);
     let c = channel(visibility);
     ([v[c], 0.0], e[c])
+}
+
+/// Degree of the tensor Chebyshev patches of [`sheen_grid`] (N + 1 Lobatto nodes per axis).
+pub const GRID_DEGREE: usize = 16;
+/// Absolute tolerance of each node of [`sheen_grid`] (5× below [`TOL`]: times the tensor
+/// Lebesgue constant ≤ 7.8 of degree 16, 3.1e-6).
+pub const GRID_NODE_TOL: f64 = 4e-7;
+/// The smallest r of [`sheen_grid`]'s domain: α = r² reaches the floor 1e-4 there, and every
+/// smaller r holds the r = 0.01 value (a kink of E in r, so a domain edge).
+pub const GRID_R_MIN: f64 = 0.01;
+
+/// The sheen albedo at the centres of an n × n texel grid, by [`sheen_grid`].
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct SheenGrid {
+    /// [Estevez–Kulla, Ashikhmin], each n² values row-major: column i at μ = (i + ½)/n,
+    /// row j at r = (j + ½)/n.
+    pub values: [Vec<f64>; 2],
+    /// Estimated max |value − E| per channel over the grid (the largest patch estimate).
+    pub bound: [f64; 2],
+    /// Evaluations of D over all nodes.
+    pub evals: u64,
+    /// Nodes computed by [`sheen_e`].
+    pub nodes: usize,
+    /// Patches of the final partition.
+    pub patches: usize,
+}
+
+/// One patch [x0, x1] × [y0, y1] in the warped coordinates x = ln μ, y = ln r, with its
+/// node values (x-node major) once computed.
+#[derive(Clone, Debug)]
+struct Patch {
+    x: [f64; 2],
+    y: [f64; 2],
+    f: Vec<[f64; 2]>,
+    est: [f64; 2],
+}
+
+/// The k-th of the N + 1 Chebyshev–Lobatto nodes of [a, b] (k = 0 at b).
+fn lobatto(a: f64, b: f64, k: usize) -> f64 {
+    let n = GRID_DEGREE as f64;
+    0.5 * (a + b) + 0.5 * (b - a) * (PI * k as f64 / n).cos()
+}
+
+/// Computes [`sheen_e`] at `pts` (μ, r) on [`super::threads`] workers (each takes the next
+/// free point).
+fn nodes_parallel(pts: &[(f64, f64)]) -> Vec<SheenE> {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    use std::sync::Mutex;
+    let next = AtomicUsize::new(0);
+    let out = Mutex::new(vec![SheenE::default(); pts.len()]);
+    std::thread::scope(|s| {
+        for _ in 0..super::threads() {
+            s.spawn(|| loop {
+                let k = next.fetch_add(1, Ordering::Relaxed);
+                let Some(&(mu, r)) = pts.get(k) else { break };
+                let e = sheen_e(mu, r, GRID_NODE_TOL);
+                if let Ok(mut o) = out.lock() {
+                    o[k] = e;
+                }
+            });
+        }
+    });
+    out.into_inner().unwrap_or_default()
+}
+
+/// Chebyshev coefficients c[j][k] (x order j, y order k) of the tensor interpolant through
+/// the patch's Lobatto values (the DCT-I along each axis), flattened j-major.
+fn coefficients(f: &[[f64; 2]]) -> Vec<[f64; 2]> {
+    let n = GRID_DEGREE;
+    let m = n + 1;
+    let cosine: Vec<f64> = (0..m * m)
+        .map(|t| (PI * ((t / m) * (t % m)) as f64 / n as f64).cos())
+        .collect();
+    let w = |k: usize| if k == 0 || k == n { 0.5 } else { 1.0 };
+    let s = |j: usize| if j == 0 || j == n { 1.0 } else { 2.0 } / n as f64;
+    let dct = |g: &dyn Fn(usize) -> [f64; 2], j: usize| {
+        let mut c = [0.0; 2];
+        for k in 0..m {
+            let (v, ck) = (g(k), w(k) * cosine[j * m + k]);
+            c = [c[0] + ck * v[0], c[1] + ck * v[1]];
+        }
+        [c[0] * s(j), c[1] * s(j)]
+    };
+    // Along y (inner index) for every x node, then along x.
+    let mut a = vec![[0.0; 2]; m * m];
+    for i in 0..m {
+        for k in 0..m {
+            a[i * m + k] = dct(&|q| f[i * m + q], k);
+        }
+    }
+    let mut c = vec![[0.0; 2]; m * m];
+    for k in 0..m {
+        for j in 0..m {
+            c[j * m + k] = dct(&|q| a[q * m + k], j);
+        }
+    }
+    c
+}
+
+/// The tail of a patch's coefficients per channel: (x tail, y tail), each the sum of |c| over
+/// the last two orders of that axis (all orders of the other).
+fn tails(c: &[[f64; 2]]) -> ([f64; 2], [f64; 2]) {
+    let n = GRID_DEGREE;
+    let m = n + 1;
+    let (mut tx, mut ty) = ([0.0; 2], [0.0; 2]);
+    for j in 0..m {
+        for k in 0..m {
+            for ch in 0..2 {
+                let a = c[j * m + k][ch].abs();
+                if j + 1 >= n {
+                    tx[ch] += a;
+                }
+                if k + 1 >= n {
+                    ty[ch] += a;
+                }
+            }
+        }
+    }
+    (tx, ty)
+}
+
+/// The normalised barycentric weights at t of the Lobatto nodes of [a, b] (second form,
+/// Berrut & Trefethen 2004, "Barycentric Lagrange interpolation", eq. 5.2): wₖ = (−1)ᵏ,
+/// halved at both ends; the unit vector when t is a node.
+fn bary(a: f64, b: f64, t: f64) -> [f64; GRID_DEGREE + 1] {
+    let mut w = [0.0; GRID_DEGREE + 1];
+    let mut sum = 0.0;
+    for (k, wk) in w.iter_mut().enumerate() {
+        let d = t - lobatto(a, b, k);
+        if d == 0.0 {
+            let mut e = [0.0; GRID_DEGREE + 1];
+            e[k] = 1.0;
+            return e;
+        }
+        let end = if k == 0 || k == GRID_DEGREE { 0.5 } else { 1.0 };
+        *wk = if k % 2 == 0 { end } else { -end } / d;
+        sum += *wk;
+    }
+    w.map(|x| x / sum)
+}
+
+/// Computes the pending patches' nodes, accepts those whose estimate meets `tol` (or that
+/// are 2⁻⁸ of the domain wide) into `leaves` and returns the halves of the others.
+fn refine(
+    pending: Vec<Patch>,
+    tol: [f64; 2],
+    width: [f64; 2],
+    g: &mut SheenGrid,
+    leaves: &mut Vec<Patch>,
+) -> Vec<Patch> {
+    let m = GRID_DEGREE + 1;
+    let pts: Vec<(f64, f64)> = pending
+        .iter()
+        .flat_map(|p| {
+            (0..m * m).map(move |t| {
+                (
+                    lobatto(p.x[0], p.x[1], t / m).exp(),
+                    lobatto(p.y[0], p.y[1], t % m).exp(),
+                )
+            })
+        })
+        .collect();
+    let nodes = nodes_parallel(&pts);
+    g.nodes += pts.len();
+    g.evals += nodes.iter().map(|e| e.evals).sum::<u64>();
+    // Lebesgue constant of the N + 1 Chebyshev–Lobatto points ≤ (2/π) ln(N + 1) + 1
+    // (Rivlin 1974); squared for the tensor product.
+    let leb = (2.0 / PI * ((GRID_DEGREE + 1) as f64).ln() + 1.0).powi(2);
+    let mut next = Vec::new();
+    for (p, e) in pending.into_iter().zip(nodes.chunks(m * m)) {
+        let f: Vec<[f64; 2]> = e.iter().map(|e| e.value).collect();
+        let (tx, ty) = tails(&coefficients(&f));
+        let node_err = e.iter().fold([0f64; 2], |a, e| {
+            [a[0].max(e.error[0]), a[1].max(e.error[1])]
+        });
+        let est = [0, 1].map(|c| tx[c] + ty[c] + leb * node_err[c]);
+        // Half of `tol` for the tails, the rest is left to the nodes' share (splitting does
+        // not reduce that).
+        let rx = (2.0 * tx[0] / tol[0]).max(2.0 * tx[1] / tol[1]);
+        let ry = (2.0 * ty[0] / tol[0]).max(2.0 * ty[1] / tol[1]);
+        let split_x = rx >= ry && p.x[1] - p.x[0] > width[0] / 256.0;
+        let split_y = !split_x && p.y[1] - p.y[0] > width[1] / 256.0;
+        if rx + ry <= 1.0 || !(split_x || split_y) {
+            leaves.push(Patch { f, est, ..p });
+        } else if split_x {
+            let h = 0.5 * (p.x[0] + p.x[1]);
+            next.push(Patch {
+                x: [p.x[0], h],
+                ..p.clone()
+            });
+            next.push(Patch {
+                x: [h, p.x[1]],
+                ..p
+            });
+        } else {
+            let h = 0.5 * (p.y[0] + p.y[1]);
+            next.push(Patch {
+                y: [p.y[0], h],
+                ..p.clone()
+            });
+            next.push(Patch {
+                y: [h, p.y[1]],
+                ..p
+            });
+        }
+    }
+    next
+}
+
+/// Fills `g.values` from the leaves: every texel centre lies in exactly one half-open patch
+/// (the last closed), where the tensor barycentric interpolant gives its value.
+fn fill(n: usize, leaves: &[Patch], g: &mut SheenGrid) {
+    let m = GRID_DEGREE + 1;
+    let xs: Vec<f64> = (0..n).map(|i| ((i as f64 + 0.5) / n as f64).ln()).collect();
+    let ys: Vec<f64> = (0..n)
+        .map(|j| ((j as f64 + 0.5) / n as f64).max(GRID_R_MIN).ln())
+        .collect();
+    let range =
+        |v: &[f64], a: [f64; 2]| v.partition_point(|&t| t < a[0])..v.partition_point(|&t| t < a[1]);
+    g.values = [vec![0.0; n * n], vec![0.0; n * n]];
+    for p in leaves {
+        let (cols, rows) = (range(&xs, p.x), range(&ys, p.y));
+        let bx: Vec<_> = cols.clone().map(|i| bary(p.x[0], p.x[1], xs[i])).collect();
+        for j in rows {
+            let by = bary(p.y[0], p.y[1], ys[j]);
+            let col: Vec<[f64; 2]> = (0..m)
+                .map(|a| {
+                    (0..m).fold([0.0; 2], |s, k| {
+                        [
+                            s[0] + by[k] * p.f[a * m + k][0],
+                            s[1] + by[k] * p.f[a * m + k][1],
+                        ]
+                    })
+                })
+                .collect();
+            for (i, w) in cols.clone().zip(&bx) {
+                let v = (0..m).fold([0.0; 2], |s, a| {
+                    [s[0] + w[a] * col[a][0], s[1] + w[a] * col[a][1]]
+                });
+                g.values[0][j * n + i] = v[0];
+                g.values[1][j * n + i] = v[1];
+            }
+        }
+        g.bound = [g.bound[0].max(p.est[0]), g.bound[1].max(p.est[1])];
+    }
+    g.patches = leaves.len();
+}
+
+/// E(μ, r) for both visibilities at the centres of an n × n texel grid (column i at
+/// μ = (i + ½)/n, row j at r = (j + ½)/n, every r ≤ [`GRID_R_MIN`] holding the r = 0.01
+/// value), to the absolute tolerance `tol` per channel, from converged nodes instead of a
+/// quadrature per texel (module docs, **Grid**). n = 0 or a tolerance that is not a positive
+/// number gives the empty grid.
+pub fn sheen_grid(n: usize, tol: [f64; 2]) -> SheenGrid {
+    let mut g = SheenGrid::default();
+    if n == 0 || !tol.iter().all(|t| *t > 0.0) {
+        return g;
+    }
+    let mut xb: Vec<f64> = vec![(0.5 / n as f64).ln(), 0.5f64.ln(), 0.0];
+    xb.dedup_by(|b, a| *b <= *a);
+    let y = [GRID_R_MIN.ln(), 0.0];
+    let width = [-xb[0], y[1] - y[0]];
+    let mut pending: Vec<Patch> = xb
+        .windows(2)
+        .map(|w| Patch {
+            x: [w[0], w[1]],
+            y,
+            f: Vec::new(),
+            est: [0.0; 2],
+        })
+        .collect();
+    let mut leaves = Vec::new();
+    while !pending.is_empty() {
+        pending = refine(pending, tol, width, &mut g, &mut leaves);
+    }
+    fill(n, &leaves, &mut g);
+    g
 }
 
 #[cfg(test)]
