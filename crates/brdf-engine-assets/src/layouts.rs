@@ -343,7 +343,7 @@ pub const SHEEN_TEXEL_TOL: [f64; 2] = [7e-6, 1.9e-3];
 /// The sheen albedo at the texel centres of an n × n Khronos grid (column μ = (i + ½)/n,
 /// row r = (j + ½)/n, row-major): [Estevez–Kulla, Ashikhmin], interpolated from converged
 /// nodes by [`brdf_lut::generate::sheen_grid`] to [`SHEEN_TEXEL_TOL`] (its estimate; nodes on
-/// all cores). About 50 s of CPU at n = 1024 (docs/lut-format.md, sheen grid route).
+/// all cores). About 4.3 s of CPU at n = 1024 (docs/lut-format.md, sheen grid route).
 pub fn sheen_texels(n: usize) -> Result<[Vec<f64>; 2]> {
     if !(2..=crate::MAX_SIZE).contains(&n) {
         return Err(Error::Size(n));

@@ -13,16 +13,19 @@
 //! w = 1 + v·l = 1 + μ μl + s sl cos φ (s, sl the sines), cos θh = (μ + μl)/√(2w) and
 //! sin²θh = (s² + sl² + 2 s sl cos φ)/(2w): D is an even, periodic, analytic function of φ
 //! (decreasing on [0, π]), so the trapezoid rule on [0, π] converges geometrically (in an
-//! azimuth stretched toward the mirror direction φ = π for wide lobes, [`cluster`]); it
+//! azimuth stretched toward the mirror direction φ = π for wide lobes, [`cluster`], and
+//! folded toward it for narrow ones, [`fold`]: both analytic bijections of the circle); it
 //! doubles from 8 intervals until two levels agree to the inner tolerance (their
 //! difference is the estimate, which for a geometrically converging rule bounds the finer
 //! level's error; a peak at φ = 0 narrower than the grid shows as a factor-2 disagreement,
 //! so it is never missed). The outer μl integral is globally adaptive Gauss–Kronrod
 //! (15/7 points, brdf-core `quadrature::kronrod`), panels first cut at 1e-3, 1e-2, 0.1
-//! (the Estevez–Kulla Λ fit turns on like μl^0.17 near 0) and at μl = μ (for α > ½, D is
-//! not smooth at θh = 0, which l meets at μl = μ), each panel halved until |K15 − G7| ≤
-//! tol × its length. The node's estimate is the sum of the panels' |K15 − G7| plus the
-//! Kronrod-weighted inner estimates.
+//! and at μl = μ (for α > ½, D is not smooth at θh = 0, which l meets at μl = μ), each
+//! panel halved until |K15 − G7| ≤ tol × its length; the first panel [0, 1e-3] is taken in
+//! s = ln(1e-3/μl) up to a cut-off with a stated bound (the Estevez–Kulla Λ fit turns on
+//! like μl^0.17 near 0, which halving in μl chased to the depth limit; [`LOG_PANEL`]), cut
+//! at μl = μ when μ < 1e-3. The node's estimate is the sum of the panels' |K15 − G7| plus
+//! the Kronrod-weighted inner estimates (plus the cut-off's bound).
 //!
 //! **Grid** ([`sheen_grid`], the engine textures' texels): E is smooth in x = ln μ (the
 //! fitted Λ's μ^c terms are e^{cx}, analytic) and y = ln r on r ∈ [0.01, 1] (r ≤ 0.01 holds
@@ -31,7 +34,10 @@
 //! [ln(½/n), ln ½] ∪ [ln ½, 0] × y ∈ [ln 0.01, 0] is covered by patches carrying the tensor
 //! interpolant of degree 16 through the Chebyshev–Lobatto nodes, each node by [`sheen_e`] to
 //! [`GRID_NODE_TOL`]; a patch is halved along the axis with the larger tail until the tails
-//! fit half the tolerance. A texel takes the barycentric value of the patch holding its
+//! fit half the tolerance. Each pending patch first gets only the degree-8 nodes (every
+//! other degree-16 node, so all are kept); when the degree-16 tails these predict
+//! ([`predicted_tails`]) exceed the tolerance [`PROBE_SLACK`]-fold, the patch is halved
+//! without its other nodes (a saving only: acceptance is by the degree-16 tails). A texel takes the barycentric value of the patch holding its
 //! centre. **Estimate** per patch and channel: Σ|c_jk| over the last two orders j ∈ {N−1, N}
 //! (all k) plus the same along k, plus Λ² × the largest node estimate. The tail part bounds
 //! the truncation and aliasing error 2Σ_{j>N}|a_j| when the coefficients decay at least
@@ -398,8 +404,13 @@ struct Patch {
 
 /// The k-th of the N + 1 Chebyshev–Lobatto nodes of [a, b] (k = 0 at b).
 fn lobatto(a: f64, b: f64, k: usize) -> f64 {
-    let n = GRID_DEGREE as f64;
-    0.5 * (a + b) + 0.5 * (b - a) * (PI * k as f64 / n).cos()
+    lobatto_n(a, b, k, GRID_DEGREE)
+}
+
+/// The k-th of the n + 1 Chebyshev–Lobatto nodes of [a, b] (k = 0 at b): those of degree n/2
+/// are those of degree n with even k.
+fn lobatto_n(a: f64, b: f64, k: usize, n: usize) -> f64 {
+    0.5 * (a + b) + 0.5 * (b - a) * (PI * k as f64 / n as f64).cos()
 }
 
 /// Computes [`sheen_e`] at `pts` (μ, r) on [`super::threads`] workers (each takes the next
@@ -555,10 +566,12 @@ fn halves(p: Patch, along_x: bool) -> [Patch; 2] {
 /// The (μ, r) of the patch's tensor Lobatto nodes of degree `n` (x-node major).
 fn node_points(p: &Patch, n: usize) -> impl Iterator<Item = (f64, f64)> + '_ {
     let m = n + 1;
-    let at = move |a: [f64; 2], k: usize| {
-        (0.5 * (a[0] + a[1]) + 0.5 * (a[1] - a[0]) * (PI * k as f64 / n as f64).cos()).exp()
-    };
-    (0..m * m).map(move |t| (at(p.x, t / m), at(p.y, t % m)))
+    (0..m * m).map(move |t| {
+        (
+            lobatto_n(p.x[0], p.x[1], t / m, n).exp(),
+            lobatto_n(p.y[0], p.y[1], t % m, n).exp(),
+        )
+    })
 }
 
 /// The normalised barycentric weights at t of the Lobatto nodes of [a, b] (second form,
