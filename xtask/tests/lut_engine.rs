@@ -278,6 +278,20 @@ fn zune_png(path: &Path) -> (usize, usize, usize, Vec<u16>) {
 fn khronos_png_8_and_16_bit() {
     let n = 64;
     let d = generate("khronos", n);
+    // The khronos target also writes the viewer's sheen textures and their sidecars (their
+    // values are checked in crates/brdf-engine-assets/tests/sheen.rs).
+    for f in [
+        "lut_charlie.png",
+        "lut_charlie.json",
+        "lut_sheen_E.png",
+        "lut_sheen_E.json",
+    ] {
+        assert!(d.join(f).is_file(), "khronos target did not write {f}");
+    }
+    let (w, h, k, _) = zune_png(&d.join("lut_charlie.png"));
+    assert_eq!((w, h, k), (n, n, 308), "lut_charlie.png");
+    let (w, h, k, _) = zune_png(&d.join("lut_sheen_E.png"));
+    assert_eq!((w, h, k), (n, n, 316), "lut_sheen_E.png");
     let side = sidecar(&d, "lut_ggx");
     assert!(side["loaders"].as_str().unwrap().contains("Pillow"));
     // glTF Sample Viewer: texture(u_GGXLUT, vec2(NdotV, roughness)); PNG row 0 at t = 0.

@@ -336,27 +336,24 @@ fn accuracy(e: Engine, g: &SplitSumTexels) -> Value {
     })
 }
 
+/// The tolerances of [`sheen_texels`] per channel [Estevez–Kulla, Ashikhmin]: just under ½
+/// LSB of the encodings the Khronos textures store them in (u16: 7.63e-6; u8: 1.96e-3).
+pub const SHEEN_TEXEL_TOL: [f64; 2] = [7e-6, 1.9e-3];
+
 /// The sheen albedo at the texel centres of an n × n Khronos grid (column μ = (i + ½)/n,
-/// row r = (j + ½)/n, row-major): [Estevez–Kulla, Ashikhmin], each texel by the generator's
-/// converged rule ([`brdf_lut::generate::sheen_e`], 2e-6) on all cores. Costly: about
-/// 0.9 ms a texel on one core (docs/engines.md, sheen).
+/// row r = (j + ½)/n, row-major): [Estevez–Kulla, Ashikhmin], interpolated from converged
+/// nodes by [`brdf_lut::generate::sheen_grid`] to [`SHEEN_TEXEL_TOL`] (its estimate; nodes on
+/// all cores). About 4.3 s of CPU at n = 1024 (docs/lut-format.md, sheen grid route).
 pub fn sheen_texels(n: usize) -> Result<[Vec<f64>; 2]> {
-    use rayon::prelude::*;
     if !(2..=crate::MAX_SIZE).contains(&n) {
         return Err(Error::Size(n));
     }
-    let v: Vec<[f64; 2]> = (0..n * n)
-        .into_par_iter()
-        .map(|k| {
-            let (i, j) = (k % n, k / n);
-            brdf_lut::generate::sheen_e(centre(i, n), centre(j, n), brdf_lut::generate::SHEEN_TOL)
-                .value
-        })
-        .collect();
-    Ok([
-        v.iter().map(|x| x[0]).collect(),
-        v.iter().map(|x| x[1]).collect(),
-    ])
+    let g = brdf_lut::generate::sheen_grid(n, SHEEN_TEXEL_TOL);
+    let [ek, ash] = g.values;
+    if ek.len() != n * n || ash.len() != n * n {
+        return Err(Error::Size(n));
+    }
+    Ok([ek, ash])
 }
 
 /// glTF Sample Viewer sheen textures from [`sheen_texels`] (`ek`, `ash`: n² values,
@@ -402,7 +399,7 @@ pub fn khronos_sheen(n: usize, ek: &[f64], ash: &[f64]) -> Result<Vec<File>> {
             "encoding": enc,
             "linear": true,
             "values": "linear: no transfer function; sample as linear data, never as an sRGB texture; values above 1 (grazing mu, small r) are clamped to 1",
-            "texel_values": "each texel = the integral at its own centre in f64 by brdf_lut::generate::sheen_e (adaptive, error estimate below 2e-6), rounded to nearest",
+            "texel_values": "each texel = the integral at its own centre in f64, interpolated by brdf_lut::generate::sheen_grid (tensor Chebyshev patches in ln mu, ln r through nodes by brdf_lut::generate::sheen_e to 4e-7; estimated error below 7e-6 for Estevez-Kulla, 1.9e-3 for Ashikhmin), rounded to nearest",
         });
         let mut bytes = serde_json::to_vec_pretty(&side).map_err(|e| Error::Encode(format!("json: {e}")))?;
         bytes.push(b'\n');

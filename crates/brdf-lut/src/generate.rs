@@ -46,7 +46,9 @@ pub use integrate::{
 pub use kinds::{Check, KindDef, Role};
 pub use measure::measure;
 pub use sheen::{
-    sheen_e, sheen_e_reference, SheenE, REFERENCE_TOL as SHEEN_REFERENCE_TOL, TOL as SHEEN_TOL,
+    sheen_e, sheen_e_reference, sheen_grid, SheenE, SheenGrid, GRID_DEGREE as SHEEN_GRID_DEGREE,
+    GRID_NODE_TOL as SHEEN_GRID_NODE_TOL, GRID_R_MIN as SHEEN_GRID_R_MIN,
+    REFERENCE_TOL as SHEEN_REFERENCE_TOL, TOL as SHEEN_TOL,
 };
 pub use verify::{check_nodes, sample_nodes, NodeCheck};
 

@@ -138,8 +138,14 @@ pub fn generate(e: Engine, n: usize, dir: &Path, force: bool, quiet: bool) -> Re
     }
     let t0 = std::time::Instant::now();
     let grid = compute_grid(n, quiet)?;
+    let mut files = e.files(&grid)?;
+    if e == Engine::Khronos {
+        // The viewer's sheen textures (lut_charlie.png, lut_sheen_E.png + sidecars): about
+        // 4–5 s of CPU at 1024² (brdf_lut::generate::sheen_grid).
+        let [ek, ash] = brdf_engine_assets::sheen_texels(n)?;
+        files.extend(brdf_engine_assets::khronos_sheen(n, &ek, &ash)?);
+    }
     let secs = t0.elapsed().as_secs_f64();
-    let files = e.files(&grid)?;
     write_set(dir, &files, force)?;
     if !quiet {
         println!(
