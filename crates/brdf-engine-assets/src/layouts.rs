@@ -95,22 +95,57 @@ pub fn bevy(g: &SplitSumTexels) -> Result<Vec<File>> {
     finish(Engine::Bevy, g, "dfg", d)
 }
 
-/// Filament: `dfg_multiscatter.dds`, RGBA16F with R = B, G = A + B, rows stored bottom-up
-/// as Filament's loader expects.
+/// Filament: `dfg_multiscatter.dds`, RGBA16F with R = B, G = A + B, B = 0, rows stored
+/// bottom-up as Filament's loader expects ([`filament_cloth`] fills B).
 pub fn filament(g: &SplitSumTexels) -> Result<Vec<File>> {
+    filament_dds(g, None)
+}
+
+/// Absolute tolerance of the cloth channel of [`filament_cloth`]: below half an f16 step for
+/// every value ≥ 2^-6 (half a step there is 2^-6 · 2^-11 = 7.6e-6).
+pub const CLOTH_TOL: f64 = 7e-6;
+
+/// Filament with its cloth channel: [`filament`]'s texture with B = the sheen albedo with
+/// Ashikhmin's visibility (cmgen's `DFV_Charlie`: Charlie D at α = r², V = 1/(4(μ + μl −
+/// μ μl)); docs/engines.md, "Sheen") at the same texel centres, interpolated from converged
+/// nodes by `brdf_lut::generate::sheen_grid` to [`CLOTH_TOL`]; the sidecar records its
+/// estimated bound.
+pub fn filament_cloth(g: &SplitSumTexels) -> Result<Vec<File>> {
+    let s = brdf_lut::generate::sheen_grid(g.n, [SHEEN_TEXEL_TOL[1], CLOTH_TOL]);
+    let [_, cloth] = &s.values;
+    if cloth.len() != g.n * g.n {
+        return Err(Error::Size(g.n));
+    }
+    filament_dds(g, Some((cloth, s.bound[1])))
+}
+
+/// The Filament texture with B = `cloth` (values, estimated bound) or 0.
+fn filament_dds(g: &SplitSumTexels, cloth: Option<(&[f64], f64)>) -> Result<Vec<File>> {
     let n = g.n;
     let mut tex = Vec::with_capacity(n * n * 8);
     for y in 0..n {
         let row = n - 1 - y; // file row y (top-down) holds r = (N − y − ½)/N
         for x in 0..n {
             let i = row * n + x;
-            for v in [g.b[i], g.a[i] + g.b[i], 0.0, 1.0] {
+            let c = cloth.map_or(0.0, |(v, _)| v[i]);
+            for v in [g.b[i], g.a[i] + g.b[i], c, 1.0] {
                 tex.extend_from_slice(&half_bits(v).to_le_bytes());
             }
         }
     }
     let mut d = Described::new();
-    d.file("dfg_multiscatter.dds", dds_rgba16f(n, &tex)?, "DDS with DX10 header, DXGI_FORMAT_R16G16B16A16_FLOAT (10): R = B, G = A + B, B = 0, A = 1 (A = G − R)");
+    let b = if cloth.is_some() {
+        "B = cloth: the sheen albedo with Ashikhmin's visibility (Charlie D, alpha = r^2), A = 1"
+    } else {
+        "B = 0, A = 1"
+    };
+    d.file("dfg_multiscatter.dds", dds_rgba16f(n, &tex)?, &format!("DDS with DX10 header, DXGI_FORMAT_R16G16B16A16_FLOAT (10): R = B, G = A + B, {b} (A = G − R)"));
+    if let Some((_, bound)) = cloth {
+        d.key(
+            "cloth_estimated_error",
+            &format!("{bound:.2e} (largest estimate of |B − the integral| before f16 rounding; brdf_lut::generate::sheen_grid)"),
+        );
+    }
     d.key(
         "encoding",
         "IEEE binary16, round to nearest even; G = A + B is summed in f64 before rounding",

@@ -32,7 +32,8 @@ pub mod table_shaders;
 
 pub use containers::{half_bits, unorm16, unorm8};
 pub use layouts::{
-    bevy, exr, filament, glass, glass_spec, khronos, khronos_sheen, sheen_texels, threejs,
+    bevy, exr, filament, filament_cloth, glass, glass_spec, khronos, khronos_sheen, sheen_texels,
+    threejs, CLOTH_TOL,
 };
 pub use shaders::{functions, Functions};
 

@@ -245,7 +245,10 @@ fn glass_table_nodes_lookups_and_verify() {
             let (lr, lt) = t.rt(x[0] as f32, x[1] as f32, x[2] as f32);
             // The zero-copy view reads the same prepared lookup: the same bits.
             let v = view.sample(&[x[0] as f32, x[1] as f32, x[2] as f32]);
-            assert_eq!((v[0].to_bits(), v[1].to_bits()), (lr.to_bits(), lt.to_bits()));
+            assert_eq!(
+                (v[0].to_bits(), v[1].to_bits()),
+                (lr.to_bits(), lt.to_bits())
+            );
             // The node's own value, read at its f32 coordinates: ½ LSB + the bound + f32.
             let allowed = lsb + g.integration as f64 + 1e-6;
             assert!((lr as f64 - r).abs() <= allowed, "{x:?}: R {lr} vs {r}");
