@@ -132,6 +132,22 @@ impl Engine {
             Engine::Exr => exr(t),
         }
     }
+    /// Everything the engine's target writes for these texels (what `cargo xtask lut engine`
+    /// and the Python package's `export_engine` write): [`Engine::files`] with Filament's
+    /// cloth channel filled ([`filament_cloth`]) and, for Khronos, the two sheen textures
+    /// ([`sheen_texels`], [`khronos_sheen`]) at the same edge. The sheen values cost about 4 s
+    /// of CPU whatever the edge (their converged nodes).
+    pub fn target_files(self, t: &SplitSumTexels) -> Result<Vec<File>, Error> {
+        let mut files = match self {
+            Engine::Filament => filament_cloth(t)?,
+            _ => self.files(t)?,
+        };
+        if self == Engine::Khronos {
+            let [ek, ash] = sheen_texels(t.n)?;
+            files.extend(khronos_sheen(t.n, &ek, &ash)?);
+        }
+        Ok(files)
+    }
 }
 
 /// Exact texel values: `a[row * n + col]`, `b[..]` with col = μ index, row = r index, both at

@@ -143,7 +143,7 @@ pub fn export_engine(
             grid = Some(texels(py, n)?);
         }
         let Some(t) = grid.as_ref() else { continue };
-        let files = e.files(t).map_err(lut_err)?;
+        let files = e.target_files(t).map_err(lut_err)?;
         let dir = if sub {
             out_dir.join(e.name())
         } else {

@@ -138,17 +138,7 @@ pub fn generate(e: Engine, n: usize, dir: &Path, force: bool, quiet: bool) -> Re
     }
     let t0 = std::time::Instant::now();
     let grid = compute_grid(n, quiet)?;
-    let mut files = match e {
-        // The cloth channel: about 4 s of CPU (brdf_lut::generate::sheen_grid).
-        Engine::Filament => brdf_engine_assets::filament_cloth(&grid)?,
-        _ => e.files(&grid)?,
-    };
-    if e == Engine::Khronos {
-        // The viewer's sheen textures (lut_charlie.png, lut_sheen_E.png + sidecars): about
-        // 4–5 s of CPU at 1024² (brdf_lut::generate::sheen_grid).
-        let [ek, ash] = brdf_engine_assets::sheen_texels(n)?;
-        files.extend(brdf_engine_assets::khronos_sheen(n, &ek, &ash)?);
-    }
+    let files = e.target_files(&grid)?;
     let secs = t0.elapsed().as_secs_f64();
     write_set(dir, &files, force)?;
     if !quiet {
