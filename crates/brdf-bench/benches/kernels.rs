@@ -42,6 +42,22 @@ fn type_tag<T: Real>() -> String {
     }
 }
 
+/// One pass over `pts` per iteration: `f` at every point (through `black_box`).
+fn each<P: Copy, R>(b: &mut criterion::Bencher, pts: &[P], f: impl Fn(P) -> R) {
+    b.iter(|| {
+        for &p in pts {
+            black_box(f(black_box(p)));
+        }
+    })
+}
+
+/// `grp.bench_function(name, |b| b.iter(|| body))` for one-call-per-iteration entries.
+macro_rules! once {
+    ($grp:expr, $name:expr, $body:expr) => {
+        $grp.bench_function($name, |b| b.iter(|| black_box($body)))
+    };
+}
+
 /// Direct G (modified, by quadrature) at every compiled node count.
 fn g_direct<T: Real>(c: &mut Criterion) {
     let (ti, tr) = angle_pairs::<T>(BATCH);
@@ -231,57 +247,30 @@ fn dfg(c: &mut Criterion) {
     let pts32: Vec<(f32, f32)> = pts.iter().map(|&(m, r)| (m as f32, r as f32)).collect();
     let mut grp = c.benchmark_group("dfg");
     grp.throughput(Throughput::Elements(BATCH as u64));
-    if let Some(bytes) = read_asset(DFG_ASSET) {
-        let t = DfgTable::parse(&bytes).unwrap();
-        grp.bench_function("lut_f32", |b| {
-            b.iter(|| {
-                for &(m, r) in &pts32 {
-                    black_box(t.ab(black_box(m), black_box(r)));
-                }
-            })
-        });
-    }
-    if let Some(bytes) = read_asset(DFG_LINEAR_ASSET) {
-        let t = DfgTable::parse(&bytes).unwrap();
-        grp.bench_function("lut_linear_f32", |b| {
-            b.iter(|| {
-                for &(m, r) in &pts32 {
-                    black_box(t.ab(black_box(m), black_box(r)));
-                }
-            })
-        });
+    for (name, asset) in [("lut_f32", DFG_ASSET), ("lut_linear_f32", DFG_LINEAR_ASSET)] {
+        if let Some(bytes) = read_asset(asset) {
+            let t = DfgTable::parse(&bytes).unwrap();
+            grp.bench_function(name, |b| each(b, &pts32, |(m, r)| t.ab(m, r)));
+        }
     }
     grp.bench_function("karis_approx_f32", |b| {
-        b.iter(|| {
-            for &(m, r) in &pts32 {
-                black_box(env_brdf_approx(black_box(m), black_box(r)));
-            }
-        })
+        each(b, &pts32, |(m, r)| env_brdf_approx(m, r))
     });
     grp.finish();
-    // The integrals are slow: 4 points per iteration.
-    let few = &pts[..4];
+    dfg_direct(c, &pts[..4]);
+}
+
+/// The integrals behind the DFG table (slow: 4 points per iteration).
+fn dfg_direct(c: &mut Criterion, few: &[(f64, f64)]) {
     let mut slow = c.benchmark_group("dfg_direct");
     slow.throughput(Throughput::Elements(few.len() as u64));
     slow.sample_size(10);
     slow.bench_function("split_sum_f64", |b| {
-        b.iter(|| {
-            for &(m, r) in few {
-                black_box(dfg_ggx::<f64, OuterRule, InnerRule>(
-                    black_box(m),
-                    black_box(r),
-                ));
-            }
-        })
+        each(b, few, |(m, r)| dfg_ggx::<f64, OuterRule, InnerRule>(m, r))
     });
     slow.bench_function("split_sum_f32", |b| {
-        b.iter(|| {
-            for &(m, r) in few {
-                black_box(dfg_ggx::<f32, OuterRule, InnerRule>(
-                    black_box(m as f32),
-                    black_box(r as f32),
-                ));
-            }
+        each(b, few, |(m, r)| {
+            dfg_ggx::<f32, OuterRule, InnerRule>(m as f32, r as f32)
         })
     });
     let models: Vec<(f64, Ggx<f64>)> = few
@@ -321,14 +310,7 @@ fn batches<T: brdf_core::batch::BatchReal>(c: &mut Criterion) {
         n_o: &n_o,
         i_o: &i_o,
     };
-    let wi = directions::<T>(BATCH_LEN);
-    let wo: Vec<Vec3<T>> = directions::<T>(BATCH_LEN + 9).split_off(9);
-    let comp =
-        |v: &[Vec3<T>], k: usize| -> Vec<T> { v.iter().map(|w| [w.x, w.y, w.z][k]).collect() };
-    let (wix, wiy, wiz) = (comp(&wi, 0), comp(&wi, 1), comp(&wi, 2));
-    let (wox, woy, woz) = (comp(&wo, 0), comp(&wo, 1), comp(&wo, 2));
     let mut out = vec![T::ZERO; BATCH_LEN];
-    let (mut o1, mut o2) = (vec![T::ZERO; BATCH_LEN], vec![T::ZERO; BATCH_LEN]);
     let g = ModifiedG::<T>::new(T::from_f64(SIGMA)).unwrap();
     let m = beckmann_m_from_sigma(T::from_f64(SIGMA));
     let alpha = T::from_f64(0.3);
@@ -340,6 +322,58 @@ fn batches<T: brdf_core::batch::BatchReal>(c: &mut Criterion) {
         T::from_f64(0.2),
     )
     .unwrap();
+    let mut grp = c.benchmark_group(format!("batch_{}", type_tag::<T>()));
+    grp.throughput(Throughput::Elements(BATCH_LEN as u64));
+    once!(
+        grp,
+        "g_modified",
+        batch::g_modified(&g, black_box(&ti), &tr, &mut out)
+    );
+    once!(
+        grp,
+        "g_modified_dots",
+        batch::g_modified_dots(&g, black_box(soa), &mut out)
+    );
+    once!(
+        grp,
+        "g_blinn_dots",
+        batch::g_blinn_dots(black_box(soa), &mut out)
+    );
+    once!(
+        grp,
+        "g_smith_beckmann_correlated",
+        batch::g_smith_beckmann_correlated(black_box(&n_i), &n_o, m, &mut out)
+    );
+    once!(
+        grp,
+        "g_smith_ggx_correlated",
+        batch::g_smith_ggx_correlated(black_box(&n_i), &n_o, alpha, &mut out)
+    );
+    once!(
+        grp,
+        "v_smith_ggx_correlated",
+        batch::v_smith_ggx_correlated(black_box(&n_i), &n_o, alpha, &mut out)
+    );
+    once!(
+        grp,
+        "torrance_sparrow_smith",
+        batch::torrance_sparrow(&ts, black_box(soa), &mut out)
+    );
+    batch_eval::<T>(&mut grp);
+    grp.finish();
+}
+
+/// The batch BRDF evaluation (GGX, SoA directions).
+fn batch_eval<T: brdf_core::batch::BatchReal>(grp: &mut Group) {
+    let wi = directions::<T>(BATCH_LEN);
+    let wo: Vec<Vec3<T>> = directions::<T>(BATCH_LEN + 9).split_off(9);
+    let comp =
+        |v: &[Vec3<T>], k: usize| -> Vec<T> { v.iter().map(|w| [w.x, w.y, w.z][k]).collect() };
+    let (wix, wiy, wiz) = (comp(&wi, 0), comp(&wi, 1), comp(&wi, 2));
+    let (wox, woy, woz) = (comp(&wo, 0), comp(&wo, 1), comp(&wo, 2));
+    let mut out = vec![T::ZERO; BATCH_LEN];
+    let (mut o1, mut o2) = (vec![T::ZERO; BATCH_LEN], vec![T::ZERO; BATCH_LEN]);
+    let alpha = T::from_f64(0.3);
     let ggx = Ggx::new(
         Rgb::splat(T::from_f64(0.04)),
         alpha,
@@ -347,49 +381,21 @@ fn batches<T: brdf_core::batch::BatchReal>(c: &mut Criterion) {
         MicrofacetSampling::VisibleNormals,
     )
     .unwrap();
-    let mut grp = c.benchmark_group(format!("batch_{}", type_tag::<T>()));
-    grp.throughput(Throughput::Elements(BATCH_LEN as u64));
-    grp.bench_function("g_modified", |b| {
-        b.iter(|| batch::g_modified(&g, black_box(&ti), black_box(&tr), &mut out).unwrap())
-    });
-    grp.bench_function("g_modified_dots", |b| {
-        b.iter(|| batch::g_modified_dots(&g, black_box(soa), &mut out).unwrap())
-    });
-    grp.bench_function("g_blinn_dots", |b| {
-        b.iter(|| batch::g_blinn_dots(black_box(soa), &mut out).unwrap())
-    });
-    grp.bench_function("g_smith_beckmann_correlated", |b| {
-        b.iter(|| batch::g_smith_beckmann_correlated(black_box(&n_i), &n_o, m, &mut out).unwrap())
-    });
-    grp.bench_function("g_smith_ggx_correlated", |b| {
-        b.iter(|| batch::g_smith_ggx_correlated(black_box(&n_i), &n_o, alpha, &mut out).unwrap())
-    });
-    grp.bench_function("v_smith_ggx_correlated", |b| {
-        b.iter(|| batch::v_smith_ggx_correlated(black_box(&n_i), &n_o, alpha, &mut out).unwrap())
-    });
-    grp.bench_function("torrance_sparrow_smith", |b| {
-        b.iter(|| batch::torrance_sparrow(&ts, black_box(soa), &mut out).unwrap())
-    });
-    grp.bench_function("ggx_eval", |b| {
-        b.iter(|| {
-            batch::brdf_eval(
-                &ggx,
-                Vec3Soa {
-                    x: black_box(&wix),
-                    y: &wiy,
-                    z: &wiz,
-                },
-                Vec3Soa {
-                    x: &wox,
-                    y: &woy,
-                    z: &woz,
-                },
-                [&mut out, &mut o1, &mut o2],
-            )
-            .unwrap()
-        })
-    });
-    grp.finish();
+    let wi = Vec3Soa {
+        x: &wix,
+        y: &wiy,
+        z: &wiz,
+    };
+    let wo = Vec3Soa {
+        x: &wox,
+        y: &woy,
+        z: &woz,
+    };
+    once!(
+        grp,
+        "ggx_eval",
+        batch::brdf_eval(&ggx, black_box(wi), wo, [&mut out, &mut o1, &mut o2])
+    );
 }
 
 /// Parse + validate (CRC included) of the default assets: the no_std view and the std loader.
@@ -418,6 +424,7 @@ fn lut_parse(c: &mut Criterion) {
 /// analytic DFG fit and the direct G, over the same inputs as the callgrind harness.
 fn lut_targets(c: &mut Criterion) {
     let (ti, tr) = angle_pairs::<f32>(BATCH);
+    let angles: Vec<(f32, f32)> = ti.iter().copied().zip(tr.iter().copied()).collect();
     let pts: Vec<(f32, f32)> = mu_roughness(BATCH)
         .iter()
         .map(|&(m, r)| (m as f32, r as f32))
@@ -426,123 +433,96 @@ fn lut_targets(c: &mut Criterion) {
     grp.throughput(Throughput::Elements(BATCH as u64));
     let floor = FloorBilinear2::new();
     grp.bench_function("floor_bilinear2", |b| {
-        b.iter(|| {
-            for &(m, r) in &pts {
-                black_box(floor.fetch(black_box(m), black_box(r)));
-            }
-        })
+        each(b, &pts, |(m, r)| floor.fetch(m, r))
     });
     if let Some(bytes) = read_asset(DFG_LINEAR_ASSET) {
         let t = DfgTable::parse(&bytes).unwrap();
-        grp.bench_function("dfg_lut", |b| {
-            b.iter(|| {
-                for &(m, r) in &pts {
-                    black_box(t.ab(black_box(m), black_box(r)));
-                }
-            })
-        });
+        grp.bench_function("dfg_lut", |b| each(b, &pts, |(m, r)| t.ab(m, r)));
         let t = brdf_lut::Lut::from_path(assets_dir().join(DFG_LINEAR_ASSET)).unwrap();
         grp.bench_function("dfg_lut_std", |b| {
-            b.iter(|| {
-                for &(m, r) in &pts {
-                    black_box(t.dfg(black_box(m), black_box(r)).unwrap());
-                }
-            })
+            each(b, &pts, |(m, r)| t.dfg(m, r).unwrap())
         });
     }
     grp.bench_function("dfg_karis", |b| {
-        b.iter(|| {
-            for &(m, r) in &pts {
-                black_box(env_brdf_approx(black_box(m), black_box(r)));
-            }
-        })
+        each(b, &pts, |(m, r)| env_brdf_approx(m, r))
     });
     if let Some(bytes) = read_asset(G2_LINEAR_ASSET) {
         let t = GTable::parse(&bytes).unwrap();
-        grp.bench_function("g_lut2d_linear", |b| {
-            b.iter(|| {
-                for (&a, &r) in ti.iter().zip(&tr) {
-                    black_box(t.g(black_box(a), black_box(r)));
-                }
-            })
-        });
+        grp.bench_function("g_lut2d_linear", |b| each(b, &angles, |(a, r)| t.g(a, r)));
         let t = brdf_lut::Lut::from_path(assets_dir().join(G2_LINEAR_ASSET)).unwrap();
         grp.bench_function("g_lut2d_linear_std", |b| {
-            b.iter(|| {
-                for (&a, &r) in ti.iter().zip(&tr) {
-                    black_box(t.g(black_box(a), black_box(r), SIGMA as f32).unwrap());
-                }
-            })
+            each(b, &angles, |(a, r)| t.g(a, r, SIGMA as f32).unwrap())
         });
     }
     if let Some(bytes) = read_asset(G3_LINEAR_ASSET) {
         let t = GTable3::parse(&bytes).unwrap();
         grp.bench_function("g_lut3d_linear", |b| {
-            b.iter(|| {
-                for (&a, &r) in ti.iter().zip(&tr) {
-                    black_box(t.g(black_box(a), black_box(r), SIGMA as f32));
-                }
-            })
+            each(b, &angles, |(a, r)| t.g(a, r, SIGMA as f32))
         });
     }
-    // Batch entries: one call over all BATCH inputs per iteration (same element count).
+    lut_albedo(&mut grp, &pts);
+    lut_batches(&mut grp, (&ti, &tr), &pts);
+    let g = ModifiedG::<f32>::new(SIGMA as f32).unwrap();
+    grp.bench_function("g_direct_f32", |b| each(b, &angles, |(a, r)| g.g(a, r)));
+    grp.finish();
+}
+
+type Group<'a> = criterion::BenchmarkGroup<'a, criterion::measurement::WallTime>;
+
+/// The albedo tables' scalar lookups, E(μ, r) and E_avg(r).
+fn lut_albedo(grp: &mut Group, pts: &[(f32, f32)]) {
+    if let Some(bytes) = read_asset(E_ASSET) {
+        let t = brdf_lut::AlbedoTable::parse(&bytes[..]).unwrap();
+        grp.bench_function("e_lut", |b| each(b, pts, |(m, r)| t.e(m, r)));
+    }
+    if let Some(bytes) = read_asset(EAVG_ASSET) {
+        let t = brdf_lut::AverageAlbedoTable::parse(&bytes[..]).unwrap();
+        grp.bench_function("eavg_lut", |b| each(b, pts, |(_, r)| t.e_avg(r)));
+    }
+}
+
+/// Batch entries: one call over all BATCH inputs per iteration (same element count).
+fn lut_batches(grp: &mut Group, (ti, tr): (&[f32], &[f32]), pts: &[(f32, f32)]) {
     let mu: Vec<f32> = pts.iter().map(|p| p.0).collect();
     let rr: Vec<f32> = pts.iter().map(|p| p.1).collect();
     let (mut o1, mut o2) = (vec![0f32; BATCH], vec![0f32; BATCH]);
     if let Some(bytes) = read_asset(G2_LINEAR_ASSET) {
         let t = GTable::parse(&bytes[..]).unwrap();
-        grp.bench_function("g_lut2d_linear_batch", |b| {
-            b.iter(|| black_box(t.g_batch(black_box(&ti), black_box(&tr), &mut o1)))
-        });
+        once!(
+            grp,
+            "g_lut2d_linear_batch",
+            t.g_batch(black_box(ti), tr, &mut o1)
+        );
     }
     if let Some(bytes) = read_asset(G3_LINEAR_ASSET) {
         let t = GTable3::parse(&bytes[..]).unwrap();
         let s = SIGMA as f32;
-        grp.bench_function("g_lut3d_linear_batch", |b| {
-            b.iter(|| black_box(t.g_batch(black_box(&ti), black_box(&tr), s, &mut o1)))
-        });
+        once!(
+            grp,
+            "g_lut3d_linear_batch",
+            t.g_batch(black_box(ti), tr, s, &mut o1)
+        );
     }
     if let Some(bytes) = read_asset(DFG_LINEAR_ASSET) {
         let t = DfgTable::parse(&bytes[..]).unwrap();
-        grp.bench_function("dfg_lut_batch", |b| {
-            b.iter(|| black_box(t.ab_batch(black_box(&mu), black_box(&rr), &mut o1, &mut o2)))
-        });
+        once!(
+            grp,
+            "dfg_lut_batch",
+            t.ab_batch(black_box(&mu), &rr, &mut o1, &mut o2)
+        );
     }
     if let Some(bytes) = read_asset(E_ASSET) {
         let t = brdf_lut::AlbedoTable::parse(&bytes[..]).unwrap();
-        grp.bench_function("e_lut", |b| {
-            b.iter(|| {
-                for &(m, r) in &pts {
-                    black_box(t.e(black_box(m), black_box(r)));
-                }
-            })
-        });
-        grp.bench_function("e_lut_batch", |b| {
-            b.iter(|| black_box(t.e_batch(black_box(&mu), black_box(&rr), &mut o1)))
-        });
+        once!(grp, "e_lut_batch", t.e_batch(black_box(&mu), &rr, &mut o1));
     }
     if let Some(bytes) = read_asset(EAVG_ASSET) {
         let t = brdf_lut::AverageAlbedoTable::parse(&bytes[..]).unwrap();
-        grp.bench_function("eavg_lut", |b| {
-            b.iter(|| {
-                for &(_, r) in &pts {
-                    black_box(t.e_avg(black_box(r)));
-                }
-            })
-        });
-        grp.bench_function("eavg_lut_batch", |b| {
-            b.iter(|| black_box(t.e_avg_batch(black_box(&rr), &mut o1)))
-        });
+        once!(
+            grp,
+            "eavg_lut_batch",
+            t.e_avg_batch(black_box(&rr), &mut o1)
+        );
     }
-    let g = ModifiedG::<f32>::new(SIGMA as f32).unwrap();
-    grp.bench_function("g_direct_f32", |b| {
-        b.iter(|| {
-            for (&a, &r) in ti.iter().zip(&tr) {
-                black_box(g.g(black_box(a), black_box(r)));
-            }
-        })
-    });
-    grp.finish();
 }
 
 fn all(c: &mut Criterion) {
