@@ -16,7 +16,8 @@ pub enum Role {
     Theta,
     /// The neighbouring facet's angle φ in radians, [−π/2, π/2].
     Phi,
-    /// μ = cos θ of the view direction, [cos 89°, 1] (log warp by default).
+    /// μ = cos θ of the view direction, [cos 89°, 1] (log warp by default; √ warp for the
+    /// sheen albedo).
     Mu,
     /// The model's roughness in the spec's [`Roughness`] parameterisation.
     Roughness,
@@ -154,6 +155,10 @@ impl Role {
         let (lo, hi, warp) = match self {
             Role::Theta => (0.0, FRAC_PI_2, Warp::SqrtCos),
             Role::Phi => (-FRAC_PI_2, FRAC_PI_2, Warp::Linear),
+            // The sheen table's μ axis is √-warped (nodes at μ = lo + s²(1 − lo), denser
+            // toward grazing like the split-sum speed tier's): its lookup is one square root
+            // where the log warp's is a call of `logf` (harness `sheen_e_lut`).
+            Role::Mu if matches!(s.kind, Kind::SheenAlbedo { .. }) => (MU_MIN, 1.0, Warp::Sqrt),
             Role::Mu => (MU_MIN, 1.0, Warp::Log),
             Role::Sigma => (0.05, 1.0, Warp::Log),
             Role::Eta => (1.0, 3.0, Warp::Linear),
