@@ -296,6 +296,10 @@ fn batches(name: &str, n: usize, i: &Inputs) -> Option<f64> {
     })
 }
 
+/// One group of kernels: the sum of kernel `name`'s results over `n` calls, or `None` if
+/// the group has no kernel of that name.
+type Group = fn(&str, usize, &Inputs) -> Option<f64>;
+
 /// `harness <kernel> <n>` or `harness list`; exits with status 2 on a usage error.
 fn args() -> (String, usize) {
     let args: Vec<String> = std::env::args().collect();
@@ -319,8 +323,7 @@ fn args() -> (String, usize) {
 fn main() {
     let (name, n) = args();
     let inputs = Inputs::new();
-    let groups: [fn(&str, usize, &Inputs) -> Option<f64>; 4] =
-        [direct, g_tables, mu_r_tables, batches];
+    let groups: [Group; 4] = [direct, g_tables, mu_r_tables, batches];
     match groups.iter().find_map(|g| g(&name, n, &inputs)) {
         Some(acc) => {
             black_box(acc);
