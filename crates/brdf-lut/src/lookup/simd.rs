@@ -486,16 +486,15 @@ impl Fast2 {
         }
     }
 
-    /// [`Fast2::ab`]; `SQRT`: a `Sqrt` table.
+    /// The byte offset in the payload of the query's first node (nodes of `NODE` bytes:
+    /// 4 for two u16 channels, 2 for one) and the fractions of both axes ([`Fast2::cells`]).
     #[inline(always)]
-    fn ab_in<const SQRT: bool>(
+    fn node_at<const SQRT: bool, const NODE: u32>(
         &self,
         reader: &Reader,
-        data: &[u8],
-        base: usize,
         x: f32,
         y: f32,
-    ) -> (f32, f32) {
+    ) -> (usize, __m128) {
         let (i, f) = self.cells::<SQRT>(reader, x, y);
         // SAFETY: as above (register-only SSE2).
         #[allow(unused_unsafe)]
@@ -507,7 +506,7 @@ impl Fast2 {
         };
         // Byte offset of node (i0, i1) in the payload: below 2³² for every node of the
         // table (see `Fast2::new`; the wrapping only matters for nodes the clamp never
-        // gives), so the sums cannot overflow a 64-bit usize (`base` is at most
+        // gives), so the callers' sums cannot overflow a 64-bit usize (`base` is at most
         // `data.len()`).
         // (`Sqrt` tables: rows of 2^k bytes, a shift instead of the multiplication: one
         // step shorter on the way to the loads.)
@@ -516,8 +515,21 @@ impl Fast2 {
         } else {
             i1.wrapping_mul(self.row)
         };
+        (i0.wrapping_mul(NODE).wrapping_add(r1) as usize, f)
+    }
+
+    /// [`Fast2::ab`]; `SQRT`: a `Sqrt` table.
+    #[inline(always)]
+    fn ab_in<const SQRT: bool>(
+        &self,
+        reader: &Reader,
+        data: &[u8],
+        base: usize,
+        x: f32,
+        y: f32,
+    ) -> (f32, f32) {
+        let (at, f) = self.node_at::<SQRT, 4>(reader, x, y);
         let row = self.row as usize;
-        let at = i0.wrapping_mul(4).wrapping_add(r1) as usize;
         // One bounds check for both rows.
         if base + at + row + 8 > data.len() {
             return short();
@@ -566,23 +578,8 @@ impl Fast2 {
         x: f32,
         y: f32,
     ) -> f32 {
-        let (i, f) = self.cells::<SQRT>(reader, x, y);
-        // SAFETY: as in `ab_in` (register-only SSE2).
-        #[allow(unused_unsafe)]
-        let (i0, i1) = unsafe {
-            (
-                _mm_cvtsi128_si32(i) as u32,
-                _mm_cvtsi128_si32(_mm_shuffle_epi32(i, 0b01)) as u32,
-            )
-        };
-        // Byte offset of node (i0, i1): below 2³² as in `ab_in`.
-        let r1 = if SQRT {
-            i1.wrapping_shl(u32::from(self.row_shift))
-        } else {
-            i1.wrapping_mul(self.row)
-        };
+        let (at, f) = self.node_at::<SQRT, 2>(reader, x, y);
         let row = self.row as usize;
-        let at = i0.wrapping_mul(2).wrapping_add(r1) as usize;
         // One bounds check for both rows.
         if base + at + row + 4 > data.len() {
             return short().0;
