@@ -265,10 +265,14 @@ impl Prepared {
         self.two(bytes.get(self.header_len..).unwrap_or(&[]), x, y)
     }
 
-    /// Channel 0 of a 2-D one-channel table: the lookup of [`LutView::sample2`] (the same
-    /// function, so the same bits).
+    /// Channel 0 of a 2-D one-channel table: the values of [`LutView::sample2`] bit for bit
+    /// (its function, or the two-lane lookup for linear u16 tables on linear or √ axes).
     #[inline]
     pub(crate) fn two1(&self, payload: &[u8], x: f32, y: f32) -> f32 {
+        #[cfg(all(hosted, target_arch = "x86_64"))]
+        if let Some(v) = self.fast2.e(&self.reader, payload, 0, x, y) {
+            return v;
+        }
         self.reader.sample::<2, 1>(&self.grid, payload, [x, y])[0]
     }
 
@@ -854,23 +858,31 @@ impl<B: AsRef<[u8]>> DfgTable<B> {
     }
 }
 
-impl<B: AsRef<[u8]>> AlbedoTable<B> {
-    /// E(μ, r), clamped coordinates; NaN gives NaN.
-    #[inline]
-    pub fn e(&self, mu: f32, roughness: f32) -> f32 {
-        self.p.two1(self.payload(), mu, roughness)
-    }
-    /// [`AlbedoTable::e`] over slices; returns the number written (the shortest length).
-    /// Bit-identical to the scalar lookup.
-    pub fn e_batch(&self, mu: &[f32], roughness: &[f32], out: &mut [f32]) -> usize {
-        let p = self.payload();
-        let n = mu.len().min(roughness.len()).min(out.len());
-        let x = [&mu[..n], &roughness[..n]];
-        self.p
-            .batch(p, x, [&mut out[..n]], |[m, r]| [self.p.two1(p, m, r)]);
-        n
-    }
+/// The two lookups of a 2-D one-channel albedo table over (μ, r): `e` (clamped
+/// coordinates, NaN gives NaN) and `e_batch` (over slices, returning the number written,
+/// the shortest length; bit-identical to `e`). `$what` names the value in the docs.
+macro_rules! albedo_lookups {
+    ($table:ident, $what:literal) => {
+        impl<B: AsRef<[u8]>> $table<B> {
+            #[doc = concat!($what, ", clamped coordinates; NaN gives NaN.")]
+            #[inline]
+            pub fn e(&self, mu: f32, roughness: f32) -> f32 {
+                self.p.two1(self.payload(), mu, roughness)
+            }
+            #[doc = concat!("[`", stringify!($table), "::e`] over slices; returns the number \
+                written (the shortest length). Bit-identical to the scalar lookup.")]
+            pub fn e_batch(&self, mu: &[f32], roughness: &[f32], out: &mut [f32]) -> usize {
+                let p = self.payload();
+                let n = mu.len().min(roughness.len()).min(out.len());
+                let x = [&mu[..n], &roughness[..n]];
+                self.p
+                    .batch(p, x, [&mut out[..n]], |[m, r]| [self.p.two1(p, m, r)]);
+                n
+            }
+        }
+    };
 }
+albedo_lookups!(AlbedoTable, "E(μ, r)");
 
 typed_table!(
     /// Sheen directional albedo E_sheen(μ, r) = ∫ D V μl dωl of the Charlie sheen with
@@ -880,23 +892,7 @@ typed_table!(
     2
 );
 
-impl<B: AsRef<[u8]>> SheenAlbedoTable<B> {
-    /// E_sheen(μ, r), clamped coordinates; NaN gives NaN.
-    #[inline]
-    pub fn e(&self, mu: f32, roughness: f32) -> f32 {
-        self.p.two1(self.payload(), mu, roughness)
-    }
-    /// [`SheenAlbedoTable::e`] over slices; returns the number written (the shortest
-    /// length). Bit-identical to the scalar lookup.
-    pub fn e_batch(&self, mu: &[f32], roughness: &[f32], out: &mut [f32]) -> usize {
-        let p = self.payload();
-        let n = mu.len().min(roughness.len()).min(out.len());
-        let x = [&mu[..n], &roughness[..n]];
-        self.p
-            .batch(p, x, [&mut out[..n]], |[m, r]| [self.p.two1(p, m, r)]);
-        n
-    }
-}
+albedo_lookups!(SheenAlbedoTable, "E_sheen(μ, r)");
 
 impl<B: AsRef<[u8]>> AverageAlbedoTable<B> {
     /// E_avg(r), clamped coordinate; NaN gives NaN.

@@ -463,15 +463,21 @@ mod tests {
     /// A flat index past the nodes, up to `usize::MAX`, gives NaN: no overflow panic, and
     /// no wrapped byte offset landing on a real node (2⁶² + 1 four-byte values wrap to
     /// offset 4, node 1, on 64-bit targets).
-    #[test]
-    fn node_value_past_the_nodes_is_nan() {
-        let mut buf = [0u8; 1024];
+    /// A linear 3 × 2 table over [0, 1]² whose node (i, j) holds x + y = i/2 + j, in `buf`;
+    /// its length.
+    fn sum_table(buf: &mut [u8]) -> usize {
         let axes = [
             ax(3, 0.0, 1.0, Warp::Linear, Placement::Endpoint),
             ax(2, 0.0, 1.0, Warp::Linear, Placement::Endpoint),
         ];
+        table(buf, axes, Interpolation::Linear, |x, y| x + y)
+    }
+
+    #[test]
+    fn node_value_past_the_nodes_is_nan() {
+        let mut buf = [0u8; 1024];
         // Node (i, j) holds i/2 + j: flat 1 (i = 1, j = 0) is 0.5, the last (5) is 2.
-        let n = table(&mut buf, axes, Interpolation::Linear, |x, y| x + y);
+        let n = sum_table(&mut buf);
         let v = LutView::parse(&buf[..n]).unwrap();
         assert_eq!((v.node_value(1, 0), v.node_value(5, 0)), (0.5, 2.0));
         let wraps = (usize::MAX / 4).wrapping_add(2);
@@ -548,11 +554,7 @@ mod tests {
     #[test]
     fn encode_checks_and_round_trips() {
         let mut buf = [0u8; 1024];
-        let axes = [
-            ax(3, 0.0, 1.0, Warp::Linear, Placement::Endpoint),
-            ax(2, 0.0, 1.0, Warp::Linear, Placement::Endpoint),
-        ];
-        let n = table(&mut buf, axes, Interpolation::Linear, |x, y| x + y);
+        let n = sum_table(&mut buf);
         let v = LutView::parse(&buf[..n]).unwrap();
         assert_eq!(v.payload().len(), 3 * 2 * 4);
         assert_eq!(v.header_len() + 24, n);

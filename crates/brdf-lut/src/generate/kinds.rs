@@ -16,7 +16,8 @@ pub enum Role {
     Theta,
     /// The neighbouring facet's angle φ in radians, [−π/2, π/2].
     Phi,
-    /// μ = cos θ of the view direction, [cos 89°, 1] (log warp by default).
+    /// μ = cos θ of the view direction, [cos 89°, 1] (log warp by default; √ warp for the
+    /// sheen albedo, whose roughness axis is √-warped too).
     Mu,
     /// The model's roughness in the spec's [`Roughness`] parameterisation.
     Roughness,
@@ -151,14 +152,22 @@ impl Role {
 
     /// The default range and warp of `count` endpoint nodes.
     pub fn default_axis(self, s: &Spec, count: u32) -> AxisSpec {
+        let sheen = matches!(s.kind, Kind::SheenAlbedo { .. });
         let (lo, hi, warp) = match self {
             Role::Theta => (0.0, FRAC_PI_2, Warp::SqrtCos),
             Role::Phi => (-FRAC_PI_2, FRAC_PI_2, Warp::Linear),
+            // The sheen table's axes are both √-warped (nodes at lo + s²(hi − lo), denser
+            // toward grazing μ and small r, where E bends most, like the split-sum speed
+            // tier's): its lookup is two square roots, where a log warp's is a call of
+            // `logf`, and its linear u16 form takes the inlined two-lane lookup (harness
+            // `sheen_e_lut`).
+            Role::Mu if sheen => (MU_MIN, 1.0, Warp::Sqrt),
             Role::Mu => (MU_MIN, 1.0, Warp::Log),
             Role::Sigma => (0.05, 1.0, Warp::Log),
             Role::Eta => (1.0, 3.0, Warp::Linear),
             Role::Roughness => match s.roughness {
                 Roughness::Sigma => (0.05, 1.0, Warp::Log),
+                _ if sheen => (0.0, 1.0, Warp::Sqrt),
                 // The modified G needs a width > 0.
                 _ if s.masking == Masking::Modified => (0.05, 1.0, Warp::Linear),
                 _ => (0.0, 1.0, Warp::Linear),

@@ -294,39 +294,31 @@ struct U16;
 struct F16;
 #[cfg_attr(feature = "compact", allow(dead_code))]
 struct F32;
-impl Store for U16 {
-    const BYTES: usize = 2;
-    #[cfg_attr(not(hosted), inline)]
-    #[cfg_attr(hosted, inline(always))]
-    fn at(b: &[u8], k: usize) -> f32 {
-        match b.get(2 * k..2 * k + 2) {
-            Some(&[b0, b1]) => u16::from_le_bytes([b0, b1]) as f32,
-            _ => f32::NAN,
+/// One `Store` impl: `$bytes` bytes per stored number, bound to `[$b, ..]` and turned
+/// into f32 by `$decode`.
+macro_rules! store {
+    ($t:ident, $bytes:literal, [$($b:ident),+], $decode:expr) => {
+        impl Store for $t {
+            const BYTES: usize = $bytes;
+            #[cfg_attr(not(hosted), inline)]
+            #[cfg_attr(hosted, inline(always))]
+            fn at(b: &[u8], k: usize) -> f32 {
+                match b.get($bytes * k..$bytes * k + $bytes) {
+                    Some(&[$($b),+]) => $decode,
+                    _ => f32::NAN,
+                }
+            }
         }
-    }
+    };
 }
-impl Store for F16 {
-    const BYTES: usize = 2;
-    #[cfg_attr(not(hosted), inline)]
-    #[cfg_attr(hosted, inline(always))]
-    fn at(b: &[u8], k: usize) -> f32 {
-        match b.get(2 * k..2 * k + 2) {
-            Some(&[b0, b1]) => f16_to_f32(u16::from_le_bytes([b0, b1])),
-            _ => f32::NAN,
-        }
-    }
-}
-impl Store for F32 {
-    const BYTES: usize = 4;
-    #[cfg_attr(not(hosted), inline)]
-    #[cfg_attr(hosted, inline(always))]
-    fn at(b: &[u8], k: usize) -> f32 {
-        match b.get(4 * k..4 * k + 4) {
-            Some(&[b0, b1, b2, b3]) => f32::from_le_bytes([b0, b1, b2, b3]),
-            _ => f32::NAN,
-        }
-    }
-}
+store!(U16, 2, [b0, b1], u16::from_le_bytes([b0, b1]) as f32);
+store!(F16, 2, [b0, b1], f16_to_f32(u16::from_le_bytes([b0, b1])));
+store!(
+    F32,
+    4,
+    [b0, b1, b2, b3],
+    f32::from_le_bytes([b0, b1, b2, b3])
+);
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Mode {

@@ -2,8 +2,8 @@
 //! choice: [`wide`] runs a batch loop compiled for AVX2 when the processor has it (feature
 //! `std`, x86-64), else for the baseline (SSE2 on x86-64). Here are the scalar steps as
 //! single SSE instructions (`sse`), the AVX2 gathers of the chunk paths
-//! ([`gather_words`]), and the two-lane lookup of 2-D two-channel linear u16 tables
-//! ([`Fast2`], x86-64), whose batch runs eight queries per AVX2 register.
+//! ([`gather_words`]), and the two-lane lookup of 2-D one- and two-channel linear u16
+//! tables ([`Fast2`], x86-64), whose two-channel batch runs eight queries per AVX2 register.
 //!
 //! The scalar lookup of a 2-D, two-channel, linear, u16 table (the split-sum speed tier)
 //! on hosted x86-64, with the two axes side by side in the lanes of one SSE register.
@@ -13,7 +13,8 @@
 //! through each of those steps in one packed instruction (SSE2 is part of the x86-64
 //! baseline), the 2 × 2 nodes of both channels are read as two 8-byte rows (the payload
 //! interleaves the channels, so a row of two nodes is A₀ B₀ A₁ B₁) behind one bounds check,
-//! and both channels and both rows are blended at once.
+//! and both channels and both rows are blended at once. A one-channel table (the sheen
+//! albedo's speed tier) takes the same steps with 4-byte rows ([`Fast2::e`]).
 //!
 //! Bit for bit the values of [`Reader::sample`]: every lane performs the scalar path's IEEE
 //! operations in the same order (no fused multiply–add; `maxps`/`minps` are the scalar
@@ -185,10 +186,10 @@ use crate::header::{Encoding, Warp};
 #[cfg(target_arch = "x86_64")]
 use core::arch::x86_64::{
     __m128, __m128i, _mm_add_ps, _mm_and_ps, _mm_andnot_ps, _mm_cvtepi32_ps, _mm_cvtsi128_si32,
-    _mm_cvtss_f32, _mm_cvttps_epi32, _mm_loadl_epi64, _mm_max_ps, _mm_min_ps, _mm_movehl_ps,
-    _mm_mul_ps, _mm_or_ps, _mm_setr_ps, _mm_setzero_ps, _mm_setzero_si128, _mm_shuffle_epi32,
-    _mm_shuffle_ps, _mm_sqrt_ps, _mm_sub_epi32, _mm_sub_ps, _mm_unpackhi_epi16, _mm_unpacklo_epi16,
-    _mm_unpacklo_epi32,
+    _mm_cvtsi32_si128, _mm_cvtss_f32, _mm_cvttps_epi32, _mm_loadl_epi64, _mm_max_ps, _mm_min_ps,
+    _mm_movehl_ps, _mm_mul_ps, _mm_or_ps, _mm_setr_ps, _mm_setzero_ps, _mm_setzero_si128,
+    _mm_shuffle_epi32, _mm_shuffle_ps, _mm_sqrt_ps, _mm_sub_epi32, _mm_sub_ps, _mm_unpackhi_epi16,
+    _mm_unpacklo_epi16, _mm_unpacklo_epi32,
 };
 
 #[cfg(target_arch = "x86_64")]
@@ -204,6 +205,10 @@ pub(crate) enum Kind {
     /// Any other mix of linear and √ axes: the general form, out of line, with the
     /// constants read from the lanes.
     Mixed,
+    /// [`Kind::Sqrt`] of a one-channel table ([`Fast2::e`]).
+    SqrtOne,
+    /// [`Kind::Mixed`] of a one-channel table ([`Fast2::e`]).
+    MixedOne,
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -255,15 +260,15 @@ impl Fast2 {
         // 2 bytes, so every offset in the payload is below 2³².
         let row = u32::try_from(l1.stride * 2).ok();
         let fits = dims == 2
-            && channels == 2
+            && (channels == 1 || channels == 2)
             && reader.mode == Mode::Linear
             && reader.encoding == Encoding::Unorm16
             && known(l0)
             && known(l1)
             && row.is_some()
             // The scalar reader's layout: axis 0 innermost, the channels interleaved.
-            && l0.stride == 2
-            && l1.stride == 2 * l0.n
+            && l0.stride == channels
+            && l1.stride == channels * l0.n
             && l0.n >= 2
             && l1.n >= 2;
         // The `Sqrt` form: t = a·√(x − lo) (b = +0: endpoint nodes), and the clamp of t to
@@ -275,12 +280,12 @@ impl Fast2 {
                 && l.a > 0.0
                 && l.a * libm::sqrtf(l.hi - l.lo) <= l.last
         };
-        let kind = if !fits {
-            Kind::None
-        } else if sqrt0(l0) && sqrt0(l1) && row.is_some_and(u32::is_power_of_two) {
-            Kind::Sqrt
-        } else {
-            Kind::Mixed
+        let kind = match (fits, channels == 1) {
+            (false, _) => Kind::None,
+            (true, one) if sqrt0(l0) && sqrt0(l1) && row.is_some_and(u32::is_power_of_two) => {
+                [Kind::Sqrt, Kind::SqrtOne][one as usize]
+            }
+            (true, one) => [Kind::Mixed, Kind::MixedOne][one as usize],
         };
         Fast2 {
             lo: [l0.lo, l1.lo],
@@ -310,6 +315,27 @@ impl Fast2 {
             Some(self.ab_in::<true>(reader, data, base, x, y))
         } else if self.kind == Kind::Mixed {
             Some(self.ab_mixed(reader, data, base, x, y))
+        } else {
+            None
+        }
+    }
+
+    /// Channel 0 at (x, y) of a one-channel `reader` table, whose payload starts at byte
+    /// `base` of `data`: [`Reader::sample`]`::<2, 1>` bit for bit, as [`Fast2::ab`] is of
+    /// the two-channel one; `None` if the table does not take this path.
+    #[inline(always)]
+    pub(crate) fn e(
+        &self,
+        reader: &Reader,
+        data: &[u8],
+        base: usize,
+        x: f32,
+        y: f32,
+    ) -> Option<f32> {
+        if self.kind == Kind::SqrtOne {
+            Some(self.e_in::<true>(reader, data, base, x, y))
+        } else if self.kind == Kind::MixedOne {
+            Some(self.e_mixed(reader, data, base, x, y))
         } else {
             None
         }
@@ -405,6 +431,13 @@ impl Fast2 {
         self.ab_in::<false>(reader, data, base, x, y)
     }
 
+    /// [`Fast2::e`] of a `MixedOne` table (out of line, as [`Fast2::ab_mixed`]).
+    #[cold]
+    #[inline(never)]
+    fn e_mixed(&self, reader: &Reader, data: &[u8], base: usize, x: f32, y: f32) -> f32 {
+        self.e_in::<false>(reader, data, base, x, y)
+    }
+
     /// The node index (lanes 0, 1: axis 0, 1; a truncating conversion) and the fraction of
     /// both axes of [`Fast2::ab_in`]'s query: clamp, warp, t = a·w + b, clamp of t, node.
     #[inline(always)]
@@ -453,16 +486,15 @@ impl Fast2 {
         }
     }
 
-    /// [`Fast2::ab`]; `SQRT`: a `Sqrt` table.
+    /// The byte offset in the payload of the query's first node (nodes of `NODE` bytes:
+    /// 4 for two u16 channels, 2 for one) and the fractions of both axes ([`Fast2::cells`]).
     #[inline(always)]
-    fn ab_in<const SQRT: bool>(
+    fn node_at<const SQRT: bool, const NODE: u32>(
         &self,
         reader: &Reader,
-        data: &[u8],
-        base: usize,
         x: f32,
         y: f32,
-    ) -> (f32, f32) {
+    ) -> (usize, __m128) {
         let (i, f) = self.cells::<SQRT>(reader, x, y);
         // SAFETY: as above (register-only SSE2).
         #[allow(unused_unsafe)]
@@ -474,7 +506,7 @@ impl Fast2 {
         };
         // Byte offset of node (i0, i1) in the payload: below 2³² for every node of the
         // table (see `Fast2::new`; the wrapping only matters for nodes the clamp never
-        // gives), so the sums cannot overflow a 64-bit usize (`base` is at most
+        // gives), so the callers' sums cannot overflow a 64-bit usize (`base` is at most
         // `data.len()`).
         // (`Sqrt` tables: rows of 2^k bytes, a shift instead of the multiplication: one
         // step shorter on the way to the loads.)
@@ -483,8 +515,21 @@ impl Fast2 {
         } else {
             i1.wrapping_mul(self.row)
         };
+        (i0.wrapping_mul(NODE).wrapping_add(r1) as usize, f)
+    }
+
+    /// [`Fast2::ab`]; `SQRT`: a `Sqrt` table.
+    #[inline(always)]
+    fn ab_in<const SQRT: bool>(
+        &self,
+        reader: &Reader,
+        data: &[u8],
+        base: usize,
+        x: f32,
+        y: f32,
+    ) -> (f32, f32) {
+        let (at, f) = self.node_at::<SQRT, 4>(reader, x, y);
         let row = self.row as usize;
-        let at = i0.wrapping_mul(4).wrapping_add(r1) as usize;
         // One bounds check for both rows.
         if base + at + row + 8 > data.len() {
             return short();
@@ -520,6 +565,46 @@ impl Fast2 {
             let b = _mm_shuffle_ps(v, v, 0b01);
             (_mm_cvtss_f32(v), _mm_cvtss_f32(b))
         }
+    }
+
+    /// [`Fast2::e`]; `SQRT`: a `SqrtOne` table. [`Fast2::ab_in`]'s steps for one channel:
+    /// the rows are two u16 nodes (4 bytes) each, so lanes 0 and 1 carry the two rows.
+    #[inline(always)]
+    fn e_in<const SQRT: bool>(
+        &self,
+        reader: &Reader,
+        data: &[u8],
+        base: usize,
+        x: f32,
+        y: f32,
+    ) -> f32 {
+        let (at, f) = self.node_at::<SQRT, 2>(reader, x, y);
+        let row = self.row as usize;
+        // One bounds check for both rows.
+        if base + at + row + 4 > data.len() {
+            return short().0;
+        }
+        // SAFETY: base + at + row + 4 ≤ data.len() (checked above), so both 4-byte reads lie
+        // in `data` (unaligned reads); the rest is register-only SSE2.
+        #[allow(unused_unsafe)]
+        let v = unsafe {
+            let p = data.as_ptr().add(base + at);
+            // Stored u16 (node, row): A₀₀ A₁₀ and A₀₁ A₁₁.
+            let r0 = _mm_cvtsi32_si128(p.cast::<i32>().read_unaligned());
+            let r1 = _mm_cvtsi32_si128(p.add(row).cast::<i32>().read_unaligned());
+            // (A₀₀ A₀₁ A₁₀ A₁₁): node 0 of both rows, then node 1, widened to 32 bits.
+            let q = _mm_unpacklo_epi16(_mm_unpacklo_epi16(r0, r1), _mm_setzero_si128());
+            // p₁ − p₀ in the integer unit, exact as in `ab_in`.
+            let p0 = _mm_cvtepi32_ps(q);
+            let d = _mm_cvtepi32_ps(_mm_sub_epi32(_mm_shuffle_epi32(q, 0b1110), q));
+            // Along axis 0: r = p₀ + f₀ (p₁ − p₀) = (r₀, r₁).
+            let r = _mm_add_ps(p0, _mm_mul_ps(_mm_shuffle_ps(f, f, 0), d));
+            // Along axis 1: v = r₀ + f₁ (r₁ − r₀).
+            let f1 = _mm_shuffle_ps(f, f, 0b0101_0101);
+            let v = _mm_add_ps(r, _mm_mul_ps(f1, _mm_sub_ps(_mm_shuffle_ps(r, r, 0b01), r)));
+            _mm_cvtss_f32(v)
+        };
+        reader.offset[0] + reader.scale[0] * v
     }
 }
 

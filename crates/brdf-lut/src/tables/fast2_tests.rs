@@ -1,4 +1,4 @@
-//! The two-lane lookup of 2-D two-channel linear u16 tables (`lookup::simd::Fast2`) and
+//! The two-lane lookup of 2-D one- and two-channel linear u16 tables (`lookup::simd::Fast2`) and
 //! its eight-lane AVX2 batch against the general scalar reader, bit for bit, on the
 //! committed assets and on made-up tables written by the crate's writer. (Here, above the
 //! lookup module, because the tables are built with `write` and prepared from a view.)
@@ -81,6 +81,9 @@ fn check(bytes: &[u8]) -> Kind {
     if f.kind == Kind::None {
         return Kind::None;
     }
+    if p.grid.channels == 1 {
+        return check_one(bytes, &p, &f);
+    }
     let payload = view.payload();
     let hl = p.header_len;
     assert_eq!(&bytes[hl..], payload);
@@ -121,6 +124,40 @@ fn check(bytes: &[u8]) -> Kind {
     if f.kind == Kind::Sqrt {
         batch_equals_scalar(&f, &p.reader, bytes, hl, &xs, &ys);
     }
+    f.kind
+}
+
+/// [`check`] of a one-channel table: `Fast2::e` (from the payload and from the whole file)
+/// against the general scalar reader, bit for bit, NaN exactly where a coordinate is NaN,
+/// and NaN from a payload one byte short of the last block.
+fn check_one(bytes: &[u8], p: &Prepared, f: &Fast2) -> Kind {
+    let hl = p.header_len;
+    let payload = &bytes[hl..];
+    let (xs, ys) = (coords(&p.reader.lanes[0]), coords(&p.reader.lanes[1]));
+    for &x in &xs {
+        for &y in &ys {
+            let [want] = p.reader.sample::<2, 1>(&p.grid, payload, [x, y]);
+            let got = [
+                f.e(&p.reader, payload, 0, x, y),
+                f.e(&p.reader, bytes, hl, x, y),
+            ];
+            // As in `check`: only two NaNs of different signs leave the NaN's bits free.
+            let free = x.is_nan() && y.is_nan() && x.to_bits() != y.to_bits();
+            for v in got {
+                let ok = v.is_some_and(|v| {
+                    v.to_bits() == want.to_bits() || free && v.is_nan() && want.is_nan()
+                });
+                assert!(ok, "({x:e}, {y:e}): {v:?} vs {want:?}");
+            }
+            assert_eq!(x.is_nan() || y.is_nan(), want.is_nan());
+        }
+    }
+    let short = &payload[..payload.len() - 1];
+    let (l0, l1) = (&p.reader.lanes[0], &p.reader.lanes[1]);
+    assert!(f.e(&p.reader, short, 0, l0.hi, l1.hi).unwrap().is_nan());
+    assert!(!f.e(&p.reader, short, 0, l0.lo, l1.lo).unwrap().is_nan());
+    // The two-channel entry points do not take a one-channel table.
+    assert!(f.ab(&p.reader, payload, 0, l0.lo, l1.lo).is_none());
     f.kind
 }
 
@@ -182,7 +219,7 @@ fn asset(name: &str) -> Vec<u8> {
     std::fs::read(p).unwrap()
 }
 
-/// Every committed asset: the two-channel linear ones take the two-lane path (the
+/// Every committed asset: the one- and two-channel linear 2-D ones take the two-lane path (the
 /// split-sum speed tier its inlined form) and equal the general reader bit for bit.
 #[test]
 fn assets_equal_the_general_reader() {
@@ -196,7 +233,10 @@ fn assets_equal_the_general_reader() {
         let bytes = asset(&name);
         let h = *LutView::parse(&bytes).unwrap().header();
         let fits = h.axes.len() == 2
-            && h.channels.len() == 2
+            && (1..=2).contains(&h.channels.len())
+            && h.axes
+                .iter()
+                .all(|a| matches!(a.warp, Warp::Linear | Warp::Sqrt))
             && h.encoding == Encoding::Unorm16
             && h.interpolation == Interpolation::Linear;
         let kind = check(&bytes);
@@ -258,7 +298,7 @@ fn rounding_past_the_last_node_keeps_the_clamp() {
 
 /// Made-up tables of every axis form the path takes (linear, √, endpoint and texel-centre
 /// nodes, 2 to 300 nodes, ranges that do and do not start at 0, negative ends), and
-/// some it does not (log warp, Catmull–Rom, one channel).
+/// some it does not (log warp, Catmull–Rom); two channels and one.
 #[test]
 fn made_up_tables_equal_the_general_reader() {
     let ax = |count, lo, hi, warp, placement| Axis {
@@ -327,6 +367,28 @@ fn made_up_tables_equal_the_general_reader() {
             1,
             Interpolation::Linear,
         ),
+        // One channel: the sheen albedo's default axes (μ √ from cos 89°, r linear from
+        // 0), and other forms.
+        (
+            [ax(64, 0.017_452_4, 1.0, S, E), ax(64, 0.0, 1.0, L, E)],
+            1,
+            Interpolation::Linear,
+        ),
+        (
+            [ax(32, 0.0, 1.0, S, E), ax(3, 0.0, 1.0, S, E)],
+            1,
+            Interpolation::Linear,
+        ),
+        (
+            [ax(37, -1.5, 2.25, L, T), ax(2, 0.1, 1.0, S, E)],
+            1,
+            Interpolation::Linear,
+        ),
+        (
+            [ax(16, 0.0, 1.0, S, E), ax(16, 0.0, 1.0, S, E)],
+            1,
+            Interpolation::CatmullRom,
+        ),
     ];
     let names = ["A", "B"];
     let mut kinds = Vec::new();
@@ -356,9 +418,10 @@ fn made_up_tables_equal_the_general_reader() {
         let bytes = write::encode(&h, &payload).unwrap();
         kinds.push(check(&bytes));
     }
-    use Kind::{Mixed as M, None as N, Sqrt as Q};
+    use Kind::{Mixed as M, MixedOne as M1, None as N, Sqrt as Q, SqrtOne as Q1};
     // Which form each table takes: √ with endpoint nodes and 2^k nodes on axis 0 the
     // inlined one (t at the range ends rounds into [0, n − 1] for these ranges), the
     // rest (37 nodes on axis 0, texel centres, linear axes) out of line.
-    assert_eq!(kinds, [Q, Q, Q, M, M, M, M, M, N, N, N]);
+    let want = [Q, Q, Q, M, M, M, M, M, N, N, Q1, M1, Q1, M1, N];
+    assert_eq!(kinds, want);
 }
