@@ -76,11 +76,11 @@ impl<T: Real> Bank<T> {
 
 impl<T: Real> Brdf<T> for Bank<T> {
     fn flags(&self) -> BrdfFlags {
-        BrdfFlags {
-            reciprocal: matches!(self.tangent, BankTangent::Azimuth(_)),
-            energy_conserving: false,
-            has_delta: false,
-        }
+        BrdfFlags::new(
+            matches!(self.tangent, BankTangent::Azimuth(_)),
+            false,
+            false,
+        )
     }
     fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
         if !above(wi, wo) {

@@ -29,11 +29,7 @@ impl<T: Real> Lambert<T> {
 
 impl<T: Real> Brdf<T> for Lambert<T> {
     fn flags(&self) -> BrdfFlags {
-        BrdfFlags {
-            reciprocal: true,
-            energy_conserving: true,
-            has_delta: false,
-        }
+        BrdfFlags::new(true, true, false)
     }
     /// f = ρ/π.
     fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {

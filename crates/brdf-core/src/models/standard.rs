@@ -126,11 +126,7 @@ impl<T: Real> StandardLighting<T> {
 
 impl<T: Real> Brdf<T> for StandardLighting<T> {
     fn flags(&self) -> BrdfFlags {
-        BrdfFlags {
-            reciprocal: false,
-            energy_conserving: false,
-            has_delta: false,
-        }
+        BrdfFlags::new(false, false, false)
     }
     /// The lit colour for one white unit light at wi seen from wo (not a BRDF, see the
     /// module docs).
