@@ -535,89 +535,77 @@ impl<T: Real> Brdf<T> for StandardLit<T> {
     }
 }
 
-/// Any model of the catalogue (what [`ModelSpec::build`] returns).
-#[derive(Clone, Copy, Debug)]
-#[allow(clippy::large_enum_variant)]
-pub enum AnyBrdf<T> {
-    /// A [`TorranceSparrow`] (from [`ModelId::TorranceSparrow`]).
-    TorranceSparrow(TorranceSparrow<T>),
-    /// A [`Lambert`] (from [`ModelId::Lambert`]).
-    Lambert(Lambert<T>),
-    /// A [`PhongNormalized`] (from [`ModelId::Phong`]).
-    Phong(PhongNormalized<T>),
-    /// A [`BlinnPhongNormalized`] (from [`ModelId::BlinnPhong`]).
-    BlinnPhong(BlinnPhongNormalized<T>),
-    /// A [`CookTorrance`] (from [`ModelId::CookTorrance`]).
-    CookTorrance(CookTorrance<T>),
-    /// A [`LambertSpecularMix`] (from [`ModelId::LambertMirror`]).
-    LambertMirror(LambertSpecularMix<T>),
-    /// A [`ShirleyDamped`] (from [`ModelId::ShirleyDamped`]).
-    ShirleyDamped(ShirleyDamped<T>),
-    /// A [`CoupledSmooth`] (from [`ModelId::CoupledSmooth`]).
-    CoupledSmooth(CoupledSmooth<T>),
-    /// A [`AshikhminShirley`] (from [`ModelId::AshikhminShirley`]).
-    AshikhminShirley(AshikhminShirley<T>),
-    /// A [`Bank`] (from [`ModelId::Bank`]).
-    Bank(Bank<T>),
-    /// A [`Ward`] (from [`ModelId::Ward`]).
-    Ward(Ward<T>),
-    /// A [`Ggx`] (from [`ModelId::Ggx`] or [`ModelId::GgxAnisotropic`]).
-    Ggx(Ggx<T>),
-    /// A [`StandardLit`] (from [`ModelId::Standard`]).
-    Standard(StandardLit<T>),
-    /// A [`Sheen`] (from [`ModelId::Sheen`]).
-    Sheen(Sheen<T>),
-    /// A [`RoughDielectric`] (from [`ModelId::RoughDielectric`]).
-    RoughDielectric(RoughDielectric<T>),
-}
+/// Defines [`AnyBrdf`] and its [`Brdf`] impl (each function forwarded to the variant's
+/// model) from one list of `Variant(Model)`.
+macro_rules! any_brdf {
+    ($($(#[$m:meta])* $v:ident($t:ident),)*) => {
+        /// Any model of the catalogue (what [`ModelSpec::build`] returns).
+        #[derive(Clone, Copy, Debug)]
+        #[allow(clippy::large_enum_variant)]
+        pub enum AnyBrdf<T> {
+            $($(#[$m])* $v($t<T>),)*
+        }
 
-macro_rules! dispatch {
-    ($s:expr, $m:ident => $e:expr) => {
-        match $s {
-            AnyBrdf::TorranceSparrow($m) => $e,
-            AnyBrdf::Lambert($m) => $e,
-            AnyBrdf::Phong($m) => $e,
-            AnyBrdf::BlinnPhong($m) => $e,
-            AnyBrdf::CookTorrance($m) => $e,
-            AnyBrdf::LambertMirror($m) => $e,
-            AnyBrdf::ShirleyDamped($m) => $e,
-            AnyBrdf::CoupledSmooth($m) => $e,
-            AnyBrdf::AshikhminShirley($m) => $e,
-            AnyBrdf::Bank($m) => $e,
-            AnyBrdf::Ward($m) => $e,
-            AnyBrdf::Ggx($m) => $e,
-            AnyBrdf::Standard($m) => $e,
-            AnyBrdf::Sheen($m) => $e,
-            AnyBrdf::RoughDielectric($m) => $e,
+        impl<T: Real> Brdf<T> for AnyBrdf<T> {
+            fn flags(&self) -> BrdfFlags {
+                match self { $(AnyBrdf::$v(m) => Brdf::flags(m),)* }
+            }
+            fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
+                match self { $(AnyBrdf::$v(m) => Brdf::eval(m, wi, wo),)* }
+            }
+            fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
+                match self { $(AnyBrdf::$v(m) => Brdf::pdf(m, wo, wi),)* }
+            }
+            fn sample(&self, wo: Vec3<T>, u: [T; 2]) -> Option<BrdfSample<T>> {
+                match self { $(AnyBrdf::$v(m) => Brdf::sample(m, wo, u),)* }
+            }
+            fn delta(&self, wo: Vec3<T>) -> Option<DeltaLobe<T>> {
+                match self { $(AnyBrdf::$v(m) => Brdf::delta(m, wo),)* }
+            }
+            fn lobe_hint(&self) -> LobeHint<T> {
+                match self { $(AnyBrdf::$v(m) => Brdf::lobe_hint(m),)* }
+            }
         }
     };
+}
+
+any_brdf! {
+    /// A [`TorranceSparrow`] (from [`ModelId::TorranceSparrow`]).
+    TorranceSparrow(TorranceSparrow),
+    /// A [`Lambert`] (from [`ModelId::Lambert`]).
+    Lambert(Lambert),
+    /// A [`PhongNormalized`] (from [`ModelId::Phong`]).
+    Phong(PhongNormalized),
+    /// A [`BlinnPhongNormalized`] (from [`ModelId::BlinnPhong`]).
+    BlinnPhong(BlinnPhongNormalized),
+    /// A [`CookTorrance`] (from [`ModelId::CookTorrance`]).
+    CookTorrance(CookTorrance),
+    /// A [`LambertSpecularMix`] (from [`ModelId::LambertMirror`]).
+    LambertMirror(LambertSpecularMix),
+    /// A [`ShirleyDamped`] (from [`ModelId::ShirleyDamped`]).
+    ShirleyDamped(ShirleyDamped),
+    /// A [`CoupledSmooth`] (from [`ModelId::CoupledSmooth`]).
+    CoupledSmooth(CoupledSmooth),
+    /// A [`AshikhminShirley`] (from [`ModelId::AshikhminShirley`]).
+    AshikhminShirley(AshikhminShirley),
+    /// A [`Bank`] (from [`ModelId::Bank`]).
+    Bank(Bank),
+    /// A [`Ward`] (from [`ModelId::Ward`]).
+    Ward(Ward),
+    /// A [`Ggx`] (from [`ModelId::Ggx`] or [`ModelId::GgxAnisotropic`]).
+    Ggx(Ggx),
+    /// A [`StandardLit`] (from [`ModelId::Standard`]).
+    Standard(StandardLit),
+    /// A [`Sheen`] (from [`ModelId::Sheen`]).
+    Sheen(Sheen),
+    /// A [`RoughDielectric`] (from [`ModelId::RoughDielectric`]).
+    RoughDielectric(RoughDielectric),
 }
 
 impl<T: Real> AnyBrdf<T> {
     /// `true` for the standard lighting model, whose `eval` is a lit colour.
     pub fn is_lit_colour(&self) -> bool {
         matches!(self, AnyBrdf::Standard(_))
-    }
-}
-
-impl<T: Real> Brdf<T> for AnyBrdf<T> {
-    fn flags(&self) -> BrdfFlags {
-        dispatch!(self, m => Brdf::flags(m))
-    }
-    fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
-        dispatch!(self, m => Brdf::eval(m, wi, wo))
-    }
-    fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
-        dispatch!(self, m => Brdf::pdf(m, wo, wi))
-    }
-    fn sample(&self, wo: Vec3<T>, u: [T; 2]) -> Option<BrdfSample<T>> {
-        dispatch!(self, m => Brdf::sample(m, wo, u))
-    }
-    fn delta(&self, wo: Vec3<T>) -> Option<DeltaLobe<T>> {
-        dispatch!(self, m => Brdf::delta(m, wo))
-    }
-    fn lobe_hint(&self) -> LobeHint<T> {
-        dispatch!(self, m => Brdf::lobe_hint(m))
     }
 }
 

@@ -326,8 +326,10 @@ pub(crate) fn u_ok<T: Real>(u: [T; 2]) -> bool {
     u[0].is_finite() && u[1].is_finite()
 }
 
-/// Sampling shared by the smooth-layered models: the Dirac part with probability
-/// `delta.prob`, else the cosine-weighted hemisphere.
+/// Sampling of the models whose only lobes are a Dirac part ([`Brdf::delta`]) and the
+/// cosine-weighted hemisphere: the Dirac part with probability `delta.prob`, else the
+/// hemisphere; a model without a Dirac part (`delta` is `None`) samples the hemisphere
+/// with `u` as given.
 pub(crate) fn sample_delta_or_cosine<T: Real, B: Brdf<T> + ?Sized>(
     b: &B,
     wo: Vec3<T>,
@@ -336,7 +338,9 @@ pub(crate) fn sample_delta_or_cosine<T: Real, B: Brdf<T> + ?Sized>(
     if !valid_wo(wo) || !u_ok(u) {
         return None;
     }
-    let d = b.delta(wo)?;
+    let Some(d) = b.delta(wo) else {
+        return finish(b, wo, crate::sampling::sample_cosine_hemisphere(u));
+    };
     let (spec, u0) = pick(u[0], d.prob);
     if spec {
         return Some(BrdfSample {
@@ -356,18 +360,6 @@ pub(crate) fn cosine_only_pdf<T: Real>(wo: Vec3<T>, wi: Vec3<T>) -> T {
         return T::ZERO;
     }
     crate::sampling::cosine_hemisphere_pdf(wi)
-}
-
-/// Sampling of models that use the cosine-weighted hemisphere alone.
-pub(crate) fn cosine_only_sample<T: Real, B: Brdf<T> + ?Sized>(
-    b: &B,
-    wo: Vec3<T>,
-    u: [T; 2],
-) -> Option<BrdfSample<T>> {
-    if !valid_wo(wo) || !u_ok(u) {
-        return None;
-    }
-    finish(b, wo, crate::sampling::sample_cosine_hemisphere(u))
 }
 
 /// The Dirac part of the smooth-layered models (FCG §24.4): the mirror direction with
