@@ -152,6 +152,24 @@ struct Case<T> {
     r0: f64,
 }
 
+impl<T: Real> Case<T> {
+    /// A case: `name`, the reference's (α, D, G, r0), and the model's f.
+    fn new(
+        name: String,
+        (alpha, d, g, r0): (f64, RefD, RefG, f64),
+        eval: impl Fn(Vec3<T>, Vec3<T>) -> T + 'static,
+    ) -> Self {
+        Case {
+            name,
+            eval: Box::new(eval),
+            alpha,
+            d,
+            g,
+            r0,
+        }
+    }
+}
+
 fn cases<T: Real>() -> Vec<Case<T>> {
     let f = T::from_f64;
     let mut v: Vec<Case<T>> = Vec::new();
@@ -164,33 +182,24 @@ fn cases<T: Real>() -> Vec<Case<T>> {
             (GeometricTerm::None, RefG::None),
         ] {
             let ts = TorranceSparrow::<T>::specular(f(sigma), gt).unwrap();
-            v.push(Case {
-                name: format!("torrance-sparrow alpha {alpha} {gt:?}"),
-                eval: Box::new(move |wi, wo| ts.eval(wi, wo)),
-                alpha: f(alpha).to_f64(),
-                d: RefD::Beckmann,
-                g,
-                r0: 1.0,
-            });
+            v.push(Case::new(
+                format!("torrance-sparrow alpha {alpha} {gt:?}"),
+                (f(alpha).to_f64(), RefD::Beckmann, g, 1.0),
+                move |wi, wo| ts.eval(wi, wo),
+            ));
             // The shader form, with the dots taken from the vectors (local frame, and a
             // general frame whose normal happens to be +z).
-            v.push(Case {
-                name: format!("torrance-sparrow dots alpha {alpha} {gt:?}"),
-                eval: Box::new(move |wi, wo| ts.eval_dots(Dots::from_local(wi, wo))),
-                alpha: f(alpha).to_f64(),
-                d: RefD::Beckmann,
-                g,
-                r0: 1.0,
-            });
+            v.push(Case::new(
+                format!("torrance-sparrow dots alpha {alpha} {gt:?}"),
+                (f(alpha).to_f64(), RefD::Beckmann, g, 1.0),
+                move |wi, wo| ts.eval_dots(Dots::from_local(wi, wo)),
+            ));
             let n = Vec3::new(T::ZERO, T::ZERO, T::ONE);
-            v.push(Case {
-                name: format!("torrance-sparrow from_vectors alpha {alpha} {gt:?}"),
-                eval: Box::new(move |wi, wo| ts.eval_dots(Dots::from_vectors(wi, wo, n))),
-                alpha: f(alpha).to_f64(),
-                d: RefD::Beckmann,
-                g,
-                r0: 1.0,
-            });
+            v.push(Case::new(
+                format!("torrance-sparrow from_vectors alpha {alpha} {gt:?}"),
+                (f(alpha).to_f64(), RefD::Beckmann, g, 1.0),
+                move |wi, wo| ts.eval_dots(Dots::from_vectors(wi, wo, n)),
+            ));
         }
         for (gt, g) in [
             (GeometricTerm::Blinn, RefG::Blinn),
@@ -204,14 +213,11 @@ fn cases<T: Real>() -> Vec<Case<T>> {
                 gt,
             )
             .unwrap();
-            v.push(Case {
-                name: format!("cook-torrance m {alpha} {gt:?}"),
-                eval: Box::new(move |wi, wo| ct.eval(wi, wo).r),
-                alpha: f(alpha).to_f64(),
-                d: RefD::Beckmann,
-                g,
-                r0: f(0.04).to_f64(),
-            });
+            v.push(Case::new(
+                format!("cook-torrance m {alpha} {gt:?}"),
+                (f(alpha).to_f64(), RefD::Beckmann, g, f(0.04).to_f64()),
+                move |wi, wo| ct.eval(wi, wo).r,
+            ));
         }
         for (sf, g) in [
             (SmithForm::Separable, RefG::GgxSeparable),
@@ -224,14 +230,11 @@ fn cases<T: Real>() -> Vec<Case<T>> {
                 MicrofacetSampling::VisibleNormals,
             )
             .unwrap();
-            v.push(Case {
-                name: format!("ggx alpha {alpha} {sf:?}"),
-                eval: Box::new(move |wi, wo| m.eval(wi, wo).r),
-                alpha: f(alpha).to_f64(),
-                d: RefD::Ggx,
-                g,
-                r0: 1.0,
-            });
+            v.push(Case::new(
+                format!("ggx alpha {alpha} {sf:?}"),
+                (f(alpha).to_f64(), RefD::Ggx, g, 1.0),
+                move |wi, wo| m.eval(wi, wo).r,
+            ));
         }
     }
     v
@@ -253,6 +256,36 @@ fn near_mirror_pair(rng: &mut Pcg64, alpha: f64) -> ([f64; 3], [f64; 3]) {
     (dir(ci, pi), dir(co, po))
 }
 
+/// A pair of unit directions near the horizon and f there, as published with the defect
+/// report (12 significant digits).
+struct HorizonPair {
+    wi: [f64; 3],
+    wo: [f64; 3],
+    published: f64,
+}
+
+/// The defect report's pairs (Beckmann, α = 0.05000000074505806, separable Smith, F = 1).
+const HORIZON_PAIRS: &[HorizonPair] = &[
+    HorizonPair {
+        wi: [
+            -0.5536822645109706,
+            -0.8327280167406141,
+            1.0062167677184382e-05,
+        ],
+        wo: [0.5536824247997054, 0.8327279101650903, 1e-05],
+        published: 154134.432937,
+    },
+    HorizonPair {
+        wi: [
+            0.39298152400471775,
+            0.9195463673952927,
+            1.02502789627328e-06,
+        ],
+        wo: [-0.39298152558074945, -0.9195463667217801, 1e-06],
+        published: 159942.898969,
+    },
+];
+
 #[test]
 fn published_horizon_pairs_are_exact() {
     // Beckmann, α = 0.05000000074505806, separable Smith, F = 1. Values published with the
@@ -261,27 +294,7 @@ fn published_horizon_pairs_are_exact() {
     let alpha = 0.05000000074505806;
     let ts = TorranceSparrow::<f64>::specular(alpha / 2f64.sqrt(), GeometricTerm::SmithSeparable)
         .unwrap();
-    let pairs = [
-        (
-            [
-                -0.5536822645109706,
-                -0.8327280167406141,
-                1.0062167677184382e-05,
-            ],
-            [0.5536824247997054, 0.8327279101650903, 1e-05],
-            154134.432937,
-        ),
-        (
-            [
-                0.39298152400471775,
-                0.9195463673952927,
-                1.02502789627328e-06,
-            ],
-            [-0.39298152558074945, -0.9195463667217801, 1e-06],
-            159942.898969,
-        ),
-    ];
-    for (wi, wo, published) in pairs {
+    for &HorizonPair { wi, wo, published } in HORIZON_PAIRS {
         let r = brdf_ref(wi, wo, alpha, RefD::Beckmann, RefG::BeckmannSeparable, 1.0);
         // The published value has 12 significant digits: ±5e-12 relative from rounding.
         assert!(

@@ -60,53 +60,58 @@ fn loader_and_view_agree() {
 fn g_tables_meet_1e3_at_fresh_points() {
     let b3 = asset("g_modified.blut");
     assert!(b3.len() <= 256 * 1024);
-    let t3 = GTable3::parse(&b3).unwrap();
     let mut x = Xs(99);
-    let mut worst = 0f64;
-    for _ in 0..3000 {
-        let (ti, tr) = (x.next() * FRAC_PI_2, x.next() * PI - FRAC_PI_2);
-        let s = 0.05 + 0.95 * x.next();
-        let direct = ModifiedG::<f64, GaussLegendre<32>>::new(s)
-            .unwrap()
-            .g(ti, tr);
-        worst = worst.max((t3.g(ti as f32, tr as f32, s as f32) as f64 - direct).abs());
-    }
+    let worst = g3_errors(&b3, &mut x, 3000)
+        .into_iter()
+        .fold(0f64, f64::max);
     println!("3-D G table: max |err| {worst:.3e}");
     assert!(worst <= 1e-3);
     for s in [0.1, 0.3, 0.5] {
         let b = asset(&format!("g_modified_sigma{s}.blut"));
         assert!(b.len() <= 32 * 1024);
-        let t = GTable::parse(&b).unwrap();
-        let g = ModifiedG::<f64, GaussLegendre<32>>::new(s).unwrap();
-        let mut worst = 0f64;
-        for _ in 0..2000 {
-            let (ti, tr) = (x.next() * FRAC_PI_2, x.next() * PI - FRAC_PI_2);
-            worst = worst.max((t.g(ti as f32, tr as f32) as f64 - g.g(ti, tr)).abs());
-        }
+        let worst = g_table_worst(&b, s, &mut x, 2000);
         println!("sigma {s}: max |err| {worst:.3e}");
         assert!(worst <= 1e-3);
     }
+}
+
+/// |G table − direct modified G (32 × 32 Gauss–Legendre)| of the 3-D (θi, θr, σ) table
+/// `b3` at `n` fresh points from `x` (σ ∈ [0.05, 1]).
+fn g3_errors(b3: &[u8], x: &mut Xs, n: usize) -> Vec<f64> {
+    let t3 = GTable3::parse(b3).unwrap();
+    (0..n)
+        .map(|_| {
+            let (ti, tr) = (x.next() * FRAC_PI_2, x.next() * PI - FRAC_PI_2);
+            let s = 0.05 + 0.95 * x.next();
+            let direct = ModifiedG::<f64, GaussLegendre<32>>::new(s)
+                .unwrap()
+                .g(ti, tr);
+            (t3.g(ti as f32, tr as f32, s as f32) as f64 - direct).abs()
+        })
+        .collect()
+}
+
+/// The largest |G table − direct modified G (32 × 32 Gauss–Legendre)| of the per-σ table
+/// `b` at `n` fresh (θi, θr) from `x`.
+fn g_table_worst(b: &[u8], sigma: f64, x: &mut Xs, n: usize) -> f64 {
+    let t = GTable::parse(b).unwrap();
+    let g = ModifiedG::<f64, GaussLegendre<32>>::new(sigma).unwrap();
+    let mut worst = 0f64;
+    for _ in 0..n {
+        let (ti, tr) = (x.next() * FRAC_PI_2, x.next() * PI - FRAC_PI_2);
+        worst = worst.max((t.g(ti as f32, tr as f32) as f64 - g.g(ti, tr)).abs());
+    }
+    worst
 }
 
 #[test]
 fn speed_tier_g_tables_meet_their_accuracy_at_fresh_points() {
     let b3 = asset("g_modified_linear.blut");
     assert!(b3.len() <= 256 * 1024);
-    let t3 = GTable3::parse(&b3).unwrap();
     let mut x = Xs(4242);
-    let (mut worst, mut sum2) = (0f64, 0f64);
-    let n = 3000;
-    for _ in 0..n {
-        let (ti, tr) = (x.next() * FRAC_PI_2, x.next() * PI - FRAC_PI_2);
-        let s = 0.05 + 0.95 * x.next();
-        let direct = ModifiedG::<f64, GaussLegendre<32>>::new(s)
-            .unwrap()
-            .g(ti, tr);
-        let e = (t3.g(ti as f32, tr as f32, s as f32) as f64 - direct).abs();
-        worst = worst.max(e);
-        sum2 += e * e;
-    }
-    let rms = (sum2 / n as f64).sqrt();
+    let errs = g3_errors(&b3, &mut x, 3000);
+    let worst = errs.iter().copied().fold(0f64, f64::max);
+    let rms = (errs.iter().map(|e| e * e).sum::<f64>() / errs.len() as f64).sqrt();
     println!("3-D trilinear G table: max |err| {worst:.3e}, RMS {rms:.3e}");
     // The claim is the header's: its max over 2,000,000 generator points (about 1.7e-3, the
     // bilinear error across the kinks θr = ±θi); fresh points stay within it.
@@ -117,13 +122,7 @@ fn speed_tier_g_tables_meet_their_accuracy_at_fresh_points() {
     );
     let b = asset("g_modified_sigma0.3_linear.blut");
     assert!(b.len() <= 32 * 1024);
-    let t = GTable::parse(&b).unwrap();
-    let g = ModifiedG::<f64, GaussLegendre<32>>::new(0.3).unwrap();
-    let mut worst = 0f64;
-    for _ in 0..3000 {
-        let (ti, tr) = (x.next() * FRAC_PI_2, x.next() * PI - FRAC_PI_2);
-        worst = worst.max((t.g(ti as f32, tr as f32) as f64 - g.g(ti, tr)).abs());
-    }
+    let worst = g_table_worst(&b, 0.3, &mut x, 3000);
     println!("2-D bilinear G table (sigma 0.3): max |err| {worst:.3e}");
     assert!(worst <= 1e-4);
 }
@@ -457,28 +456,43 @@ fn non_canonical_varints_are_rejected() {
     assert_eq!(LutView::parse(&b).unwrap_err(), LutError::NonCanonical);
 }
 
+/// One axis `name` of `count` nodes on [0, 1] (linear, endpoints).
+fn unit_axis(name: &str, count: u32) -> [brdf_lut::Axis<'_>; 1] {
+    [brdf_lut::Axis {
+        name,
+        count,
+        lo: 0.0,
+        hi: 1.0,
+        ..Default::default()
+    }]
+}
+
+/// An f32, linearly interpolated average-albedo table over `axes`.
+fn eavg_spec<'a>(
+    axes: &'a [brdf_lut::Axis<'a>],
+    channels: &'a [&'a str],
+    generator: brdf_lut::Generator<'a>,
+) -> brdf_lut::write::Spec<'a> {
+    use brdf_lut::{Encoding, Interpolation, TableKind};
+    brdf_lut::write::Spec {
+        kind: TableKind::AverageAlbedo,
+        axes,
+        channels,
+        encoding: Encoding::F32,
+        interpolation: Interpolation::Linear,
+        generator,
+    }
+}
+
 /// NaN or infinite node values in a float payload are rejected at parse (one rule for every
 /// path: a table that parses has finite nodes, so lookups give finite values for finite
 /// input and G stays in [0, 1]).
 #[test]
 fn non_finite_payload_values_are_rejected() {
-    use brdf_lut::write::{self, Spec};
+    use brdf_lut::write;
     use brdf_lut::*;
-    let axes = [Axis {
-        name: "roughness",
-        count: 4,
-        lo: 0.0,
-        hi: 1.0,
-        ..Axis::default()
-    }];
-    let spec = Spec {
-        kind: TableKind::AverageAlbedo,
-        axes: &axes,
-        channels: &["Eavg"],
-        encoding: Encoding::F32,
-        interpolation: Interpolation::Linear,
-        generator: Generator::default(),
-    };
+    let axes = unit_axis("roughness", 4);
+    let spec = eavg_spec(&axes, &["Eavg"], Generator::default());
     // The writer refuses them …
     assert!(matches!(
         write::quantise(&spec, &[1.0, f64::NAN, 0.5, 0.2]),
@@ -501,26 +515,14 @@ fn non_finite_payload_values_are_rejected() {
 /// Header strings reach the terminal escaped.
 #[test]
 fn summary_escapes_control_characters() {
-    use brdf_lut::write::{self, Spec};
+    use brdf_lut::write;
     use brdf_lut::*;
-    let axes = [Axis {
-        name: "r\u{1b}[2J",
-        count: 2,
-        lo: 0.0,
-        hi: 1.0,
-        ..Axis::default()
-    }];
-    let spec = Spec {
-        kind: TableKind::AverageAlbedo,
-        axes: &axes,
-        channels: &["E\u{7}"],
-        encoding: Encoding::F32,
-        interpolation: Interpolation::Linear,
-        generator: Generator {
-            tool: "t\r\n",
-            ..Generator::default()
-        },
+    let axes = unit_axis("r\u{1b}[2J", 2);
+    let generator = Generator {
+        tool: "t\r\n",
+        ..Generator::default()
     };
+    let spec = eavg_spec(&axes, &["E\u{7}"], generator);
     let b = write::build(&spec, &[1.0, 0.5], |_| ErrorStats::default()).unwrap();
     let s = Lut::from_bytes(b).unwrap().summary();
     assert!(!s.contains('\u{1b}') && !s.contains('\u{7}') && !s.contains('\r'));

@@ -18,7 +18,7 @@
 use brdf_core::split_sum::polar::{
     dfg_ggx_polar, e_avg_ggx_polar, e_ggx_polar, DfgGgxPolarRow, Polar,
 };
-use brdf_tests::reference::{integrate, split_sum_ggx};
+use brdf_tests::reference::{check_polar, integrate, split_sum_ggx};
 use std::f64::consts::{FRAC_PI_4, PI};
 
 /// The reference's own uncertainty allowed when checking the estimate (module docs).
@@ -47,30 +47,9 @@ fn rs() -> Vec<f64> {
     vec![1e-3, centre(0), 0.03, 0.1, 0.3, 0.6, 1.0]
 }
 
-/// Checks one result against (A, B) = `want` at tolerance `tol`; returns error/estimate.
+/// [`check_polar`] with this file's reference uncertainty.
 fn check(p: &Polar<f64>, want: [f64; 2], tol: f64, what: &str) -> f64 {
-    let mut ratio = 0f64;
-    for (ch, want) in want.into_iter().enumerate() {
-        let err = (p.value[ch] - want).abs();
-        assert!(
-            err <= tol,
-            "{what} ch {ch}: {} vs {} (error {err:.2e} > tol {tol:e})",
-            p.value[ch],
-            want
-        );
-        assert!(
-            err <= p.error[ch] + REF_UNCERTAINTY,
-            "{what} ch {ch}: estimate {:.2e} below the error {err:.2e}",
-            p.error[ch]
-        );
-        assert!(
-            p.error[ch] <= tol,
-            "{what} ch {ch}: estimate {:.2e}",
-            p.error[ch]
-        );
-        ratio = ratio.max(err / p.error[ch]);
-    }
-    ratio
+    check_polar(p, want, tol, REF_UNCERTAINTY, what)
 }
 
 /// Every (μ, r) of [`mus`] × [`rs`] at tol 2e-6 (½ LSB of 16 bits is 7.6e-6) and 1e-8, the

@@ -16,8 +16,8 @@
 //! estimate ≥ |value − reference| − REF_UNCERTAINTY (the claim a table's header makes).
 
 use brdf_core::split_sum::polar::{Polar, PolarModel, PolarRow};
-use brdf_tests::reference::integrate;
-use std::f64::consts::{FRAC_PI_2, PI};
+use brdf_tests::reference::{check_polar, split_sum_polar_ref, PolarLobe};
+use std::f64::consts::PI;
 
 /// The reference's own uncertainty allowed when checking the estimate (module docs).
 const REF_UNCERTAINTY: f64 = 1e-10;
@@ -33,58 +33,32 @@ fn lambda(z: f64, m: f64) -> f64 {
     ((-(a * a)).exp() / (a * PI.sqrt()) - libm::erfc(a)) * 0.5
 }
 
+/// The Beckmann lobe of width m for [`split_sum_polar_ref`]: q = exp(−tan²θh/m²),
+/// tan²θh = −m² ln q, Λ of [`lambda`], either Smith form.
+struct BeckmannLobe {
+    m: f64,
+    separable: bool,
+}
+
+impl PolarLobe for BeckmannLobe {
+    fn q(&self, tan2: f64) -> f64 {
+        (-tan2 / (self.m * self.m)).exp()
+    }
+    fn tan2(&self, q: f64) -> f64 {
+        -(self.m * self.m) * q.ln()
+    }
+    fn lambda(&self, z: f64) -> f64 {
+        lambda(z, self.m)
+    }
+    fn separable(&self) -> bool {
+        self.separable
+    }
+}
+
 /// The Beckmann split sum (A, B) with height-correlated (or separable) Smith by nested
-/// adaptive Gauss–Kronrod in q = exp(−tan²θh/m²) ∈ (0, 1] and φ ∈ [0, π] (module docs);
-/// per unit dq dφ/π the integrand is G2 (v·h)/(μ cos θh) · (1 − F_c, F_c).
+/// adaptive Gauss–Kronrod in q = exp(−tan²θh/m²) ∈ (0, 1] and φ ∈ [0, π] (module docs).
 fn split_sum_beckmann_ref(mu: f64, m: f64, separable: bool, tol: f64) -> (f64, f64) {
-    let sv = ((1.0 - mu) * (1.0 + mu)).sqrt();
-    let lv = lambda(mu, m);
-    let theta_v = sv.atan2(mu);
-    let q_of = |th: f64| {
-        let t = th.tan();
-        (-(t * t) / (m * m)).exp()
-    };
-    let breaks = [
-        q_of(0.25 * PI - 0.5 * theta_v),
-        q_of((0.25 * PI + 0.5 * theta_v).min(FRAC_PI_2)),
-    ];
-    let channel = |which: usize| {
-        let inner = |q: f64| {
-            if q <= 0.0 {
-                return 0.0;
-            }
-            let t2 = -(m * m) * q.ln();
-            let ch = 1.0 / (1.0 + t2).sqrt();
-            let sh = (t2 / (1.0 + t2)).sqrt();
-            let den = 2.0 * ch * sv * sh;
-            let c0 = if den > 0.0 {
-                mu * (1.0 - 2.0 * ch * ch) / den
-            } else if 1.0 - 2.0 * ch * ch < 0.0 {
-                -1.0
-            } else {
-                1.0
-            };
-            let pmax = c0.clamp(-1.0, 1.0).acos();
-            let f = |phi: f64| {
-                let vh = sv * sh * phi.cos() + mu * ch;
-                let nl = 2.0 * vh * ch - mu;
-                if nl <= 0.0 || vh <= 0.0 {
-                    return 0.0;
-                }
-                let ll = lambda(nl.min(1.0), m);
-                let g2 = if separable {
-                    1.0 / ((1.0 + lv) * (1.0 + ll))
-                } else {
-                    1.0 / (1.0 + lv + ll)
-                };
-                let fc = (1.0 - vh).powi(5);
-                g2 * vh / (mu * ch) * if which == 0 { 1.0 - fc } else { fc }
-            };
-            integrate(f, 0.0, pmax, &[], tol * 1e-2) / PI
-        };
-        integrate(inner, 0.0, 1.0, &breaks, tol)
-    };
-    (channel(0), channel(1))
+    split_sum_polar_ref(mu, &BeckmannLobe { m, separable }, tol)
 }
 
 fn model(m: f64, separable: bool) -> PolarModel<f64> {
@@ -93,31 +67,6 @@ fn model(m: f64, separable: bool) -> PolarModel<f64> {
     } else {
         PolarModel::BeckmannCorrelated(m)
     }
-}
-
-/// Checks one result against (A, B) = `want` at tolerance `tol`; returns error/estimate.
-fn check(p: &Polar<f64>, want: [f64; 2], tol: f64, what: &str) -> f64 {
-    let mut ratio = 0f64;
-    for (ch, want) in want.into_iter().enumerate() {
-        let err = (p.value[ch] - want).abs();
-        assert!(
-            err <= tol,
-            "{what} ch {ch}: {} vs {want} ({err:.2e} > {tol:e})",
-            p.value[ch]
-        );
-        assert!(
-            err <= p.error[ch] + REF_UNCERTAINTY,
-            "{what} ch {ch}: estimate {:.2e} below the error {err:.2e}",
-            p.error[ch]
-        );
-        assert!(
-            p.error[ch] <= tol,
-            "{what} ch {ch}: estimate {:.2e}",
-            p.error[ch]
-        );
-        ratio = ratio.max(err / p.error[ch]);
-    }
-    ratio
 }
 
 /// Grazing (cos 89°), low, mid and normal views at the default tables' widths (m = √2σ for
@@ -141,7 +90,13 @@ fn matches_reference() {
             for (k, tol) in [2e-6, 1e-8].into_iter().enumerate() {
                 let p = row.texel(mu, tol);
                 let what = format!("mu {mu} m {m} separable {separable} tol {tol:e}");
-                worst[k] = worst[k].max(check(&p, [want.0, want.1], tol, &what));
+                worst[k] = worst[k].max(check_polar(
+                    &p,
+                    [want.0, want.1],
+                    tol,
+                    REF_UNCERTAINTY,
+                    &what,
+                ));
             }
         }
     }

@@ -187,55 +187,73 @@ fn same_len(lens: &[usize]) -> Result<usize, BatchError> {
     Ok(expected)
 }
 
-/// Pairs of directions given by their dot products, as structure of arrays:
-/// `n_i[k]` = n·wi, `n_o[k]` = n·wo, `i_o[k]` = wi·wo (the shader form of [`Dots`], built
-/// with [`Dots::new`]: near-mirror pairs near the horizon lose accuracy in n·h, as documented
-/// there).
-#[derive(Clone, Copy, Debug)]
-pub struct DotsSoa<'a, T> {
-    /// cos θi = n·wi.
-    pub n_i: &'a [T],
-    /// cos θo = n·wo.
-    pub n_o: &'a [T],
-    /// wi·wo.
-    pub i_o: &'a [T],
+/// Defines a structure of three equal-length arrays and its iterator over the items
+/// `$make(a[k], b[k], c[k])`.
+macro_rules! soa3 {
+    ($(#[$m:meta])* $name:ident -> $item:ident::$make:ident {
+        $(#[$ma:meta])* $a:ident, $(#[$mb:meta])* $b:ident, $(#[$mc:meta])* $c:ident $(,)?
+    }) => {
+        $(#[$m])*
+        #[derive(Clone, Copy, Debug)]
+        pub struct $name<'a, T> {
+            $(#[$ma])*
+            pub $a: &'a [T],
+            $(#[$mb])*
+            pub $b: &'a [T],
+            $(#[$mc])*
+            pub $c: &'a [T],
+        }
+
+        impl<T: Real> $name<'_, T> {
+            /// The three lengths.
+            fn lens(&self) -> [usize; 3] {
+                [self.$a.len(), self.$b.len(), self.$c.len()]
+            }
+            /// Iterator over the items.
+            #[inline]
+            fn iter(&self) -> impl Iterator<Item = $item<T>> + '_ {
+                self.$a
+                    .iter()
+                    .zip(self.$b)
+                    .zip(self.$c)
+                    .map(|((&a, &b), &c)| $item::$make(a, b, c))
+            }
+        }
+    };
+}
+
+soa3! {
+    /// Pairs of directions given by their dot products, as structure of arrays:
+    /// `n_i[k]` = n·wi, `n_o[k]` = n·wo, `i_o[k]` = wi·wo (the shader form of [`Dots`], built
+    /// with [`Dots::new`]: near-mirror pairs near the horizon lose accuracy in n·h, as
+    /// documented there).
+    DotsSoa -> Dots::new {
+        /// cos θi = n·wi.
+        n_i,
+        /// cos θo = n·wo.
+        n_o,
+        /// wi·wo.
+        i_o,
+    }
 }
 
 impl<T: Real> DotsSoa<'_, T> {
     /// The common length, or the first mismatch against `out_len`.
     fn len_with(&self, out_len: usize) -> Result<usize, BatchError> {
-        same_len(&[self.n_i.len(), self.n_o.len(), self.i_o.len(), out_len])
-    }
-    /// Iterator over the pairs as [`Dots`].
-    #[inline]
-    fn iter(&self) -> impl Iterator<Item = Dots<T>> + '_ {
-        self.n_i
-            .iter()
-            .zip(self.n_o)
-            .zip(self.i_o)
-            .map(|((&n_i, &n_o), &i_o)| Dots::new(n_i, n_o, i_o))
+        let [a, b, c] = self.lens();
+        same_len(&[a, b, c, out_len])
     }
 }
 
-/// Unit local-frame directions as structure of arrays: `x[k]`, `y[k]`, `z[k]`.
-#[derive(Clone, Copy, Debug)]
-pub struct Vec3Soa<'a, T> {
-    /// x components.
-    pub x: &'a [T],
-    /// y components.
-    pub y: &'a [T],
-    /// z components (along the normal).
-    pub z: &'a [T],
-}
-
-impl<T: Real> Vec3Soa<'_, T> {
-    #[inline]
-    fn iter(&self) -> impl Iterator<Item = Vec3<T>> + '_ {
-        self.x
-            .iter()
-            .zip(self.y)
-            .zip(self.z)
-            .map(|((&x, &y), &z)| Vec3::new(x, y, z))
+soa3! {
+    /// Unit local-frame directions as structure of arrays: `x[k]`, `y[k]`, `z[k]`.
+    Vec3Soa -> Vec3::new {
+        /// x components.
+        x,
+        /// y components.
+        y,
+        /// z components (along the normal).
+        z,
     }
 }
 
@@ -354,17 +372,8 @@ pub fn brdf_eval<T: Real, B: Brdf<T> + ?Sized>(
     out: [&mut [T]; 3],
 ) -> Result<(), BatchError> {
     let [r, g, bl] = out;
-    same_len(&[
-        wi.x.len(),
-        wi.y.len(),
-        wi.z.len(),
-        wo.x.len(),
-        wo.y.len(),
-        wo.z.len(),
-        r.len(),
-        g.len(),
-        bl.len(),
-    ])?;
+    let ([ix, iy, iz], [ox, oy, oz]) = (wi.lens(), wo.lens());
+    same_len(&[ix, iy, iz, ox, oy, oz, r.len(), g.len(), bl.len()])?;
     let outs = r.iter_mut().zip(g.iter_mut()).zip(bl.iter_mut());
     for (((or, og), ob), (i, o)) in outs.zip(wi.iter().zip(wo.iter())) {
         let f = b.eval(i, o);

@@ -535,89 +535,77 @@ impl<T: Real> Brdf<T> for StandardLit<T> {
     }
 }
 
-/// Any model of the catalogue (what [`ModelSpec::build`] returns).
-#[derive(Clone, Copy, Debug)]
-#[allow(clippy::large_enum_variant)]
-pub enum AnyBrdf<T> {
-    /// A [`TorranceSparrow`] (from [`ModelId::TorranceSparrow`]).
-    TorranceSparrow(TorranceSparrow<T>),
-    /// A [`Lambert`] (from [`ModelId::Lambert`]).
-    Lambert(Lambert<T>),
-    /// A [`PhongNormalized`] (from [`ModelId::Phong`]).
-    Phong(PhongNormalized<T>),
-    /// A [`BlinnPhongNormalized`] (from [`ModelId::BlinnPhong`]).
-    BlinnPhong(BlinnPhongNormalized<T>),
-    /// A [`CookTorrance`] (from [`ModelId::CookTorrance`]).
-    CookTorrance(CookTorrance<T>),
-    /// A [`LambertSpecularMix`] (from [`ModelId::LambertMirror`]).
-    LambertMirror(LambertSpecularMix<T>),
-    /// A [`ShirleyDamped`] (from [`ModelId::ShirleyDamped`]).
-    ShirleyDamped(ShirleyDamped<T>),
-    /// A [`CoupledSmooth`] (from [`ModelId::CoupledSmooth`]).
-    CoupledSmooth(CoupledSmooth<T>),
-    /// A [`AshikhminShirley`] (from [`ModelId::AshikhminShirley`]).
-    AshikhminShirley(AshikhminShirley<T>),
-    /// A [`Bank`] (from [`ModelId::Bank`]).
-    Bank(Bank<T>),
-    /// A [`Ward`] (from [`ModelId::Ward`]).
-    Ward(Ward<T>),
-    /// A [`Ggx`] (from [`ModelId::Ggx`] or [`ModelId::GgxAnisotropic`]).
-    Ggx(Ggx<T>),
-    /// A [`StandardLit`] (from [`ModelId::Standard`]).
-    Standard(StandardLit<T>),
-    /// A [`Sheen`] (from [`ModelId::Sheen`]).
-    Sheen(Sheen<T>),
-    /// A [`RoughDielectric`] (from [`ModelId::RoughDielectric`]).
-    RoughDielectric(RoughDielectric<T>),
-}
+/// Defines [`AnyBrdf`] and its [`Brdf`] impl (each function forwarded to the variant's
+/// model) from one list of `Variant(Model)`.
+macro_rules! any_brdf {
+    ($($(#[$m:meta])* $v:ident($t:ident),)*) => {
+        /// Any model of the catalogue (what [`ModelSpec::build`] returns).
+        #[derive(Clone, Copy, Debug)]
+        #[allow(clippy::large_enum_variant)]
+        pub enum AnyBrdf<T> {
+            $($(#[$m])* $v($t<T>),)*
+        }
 
-macro_rules! dispatch {
-    ($s:expr, $m:ident => $e:expr) => {
-        match $s {
-            AnyBrdf::TorranceSparrow($m) => $e,
-            AnyBrdf::Lambert($m) => $e,
-            AnyBrdf::Phong($m) => $e,
-            AnyBrdf::BlinnPhong($m) => $e,
-            AnyBrdf::CookTorrance($m) => $e,
-            AnyBrdf::LambertMirror($m) => $e,
-            AnyBrdf::ShirleyDamped($m) => $e,
-            AnyBrdf::CoupledSmooth($m) => $e,
-            AnyBrdf::AshikhminShirley($m) => $e,
-            AnyBrdf::Bank($m) => $e,
-            AnyBrdf::Ward($m) => $e,
-            AnyBrdf::Ggx($m) => $e,
-            AnyBrdf::Standard($m) => $e,
-            AnyBrdf::Sheen($m) => $e,
-            AnyBrdf::RoughDielectric($m) => $e,
+        impl<T: Real> Brdf<T> for AnyBrdf<T> {
+            fn flags(&self) -> BrdfFlags {
+                match self { $(AnyBrdf::$v(m) => Brdf::flags(m),)* }
+            }
+            fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
+                match self { $(AnyBrdf::$v(m) => Brdf::eval(m, wi, wo),)* }
+            }
+            fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
+                match self { $(AnyBrdf::$v(m) => Brdf::pdf(m, wo, wi),)* }
+            }
+            fn sample(&self, wo: Vec3<T>, u: [T; 2]) -> Option<BrdfSample<T>> {
+                match self { $(AnyBrdf::$v(m) => Brdf::sample(m, wo, u),)* }
+            }
+            fn delta(&self, wo: Vec3<T>) -> Option<DeltaLobe<T>> {
+                match self { $(AnyBrdf::$v(m) => Brdf::delta(m, wo),)* }
+            }
+            fn lobe_hint(&self) -> LobeHint<T> {
+                match self { $(AnyBrdf::$v(m) => Brdf::lobe_hint(m),)* }
+            }
         }
     };
+}
+
+any_brdf! {
+    /// A [`TorranceSparrow`] (from [`ModelId::TorranceSparrow`]).
+    TorranceSparrow(TorranceSparrow),
+    /// A [`Lambert`] (from [`ModelId::Lambert`]).
+    Lambert(Lambert),
+    /// A [`PhongNormalized`] (from [`ModelId::Phong`]).
+    Phong(PhongNormalized),
+    /// A [`BlinnPhongNormalized`] (from [`ModelId::BlinnPhong`]).
+    BlinnPhong(BlinnPhongNormalized),
+    /// A [`CookTorrance`] (from [`ModelId::CookTorrance`]).
+    CookTorrance(CookTorrance),
+    /// A [`LambertSpecularMix`] (from [`ModelId::LambertMirror`]).
+    LambertMirror(LambertSpecularMix),
+    /// A [`ShirleyDamped`] (from [`ModelId::ShirleyDamped`]).
+    ShirleyDamped(ShirleyDamped),
+    /// A [`CoupledSmooth`] (from [`ModelId::CoupledSmooth`]).
+    CoupledSmooth(CoupledSmooth),
+    /// A [`AshikhminShirley`] (from [`ModelId::AshikhminShirley`]).
+    AshikhminShirley(AshikhminShirley),
+    /// A [`Bank`] (from [`ModelId::Bank`]).
+    Bank(Bank),
+    /// A [`Ward`] (from [`ModelId::Ward`]).
+    Ward(Ward),
+    /// A [`Ggx`] (from [`ModelId::Ggx`] or [`ModelId::GgxAnisotropic`]).
+    Ggx(Ggx),
+    /// A [`StandardLit`] (from [`ModelId::Standard`]).
+    Standard(StandardLit),
+    /// A [`Sheen`] (from [`ModelId::Sheen`]).
+    Sheen(Sheen),
+    /// A [`RoughDielectric`] (from [`ModelId::RoughDielectric`]).
+    RoughDielectric(RoughDielectric),
 }
 
 impl<T: Real> AnyBrdf<T> {
     /// `true` for the standard lighting model, whose `eval` is a lit colour.
     pub fn is_lit_colour(&self) -> bool {
         matches!(self, AnyBrdf::Standard(_))
-    }
-}
-
-impl<T: Real> Brdf<T> for AnyBrdf<T> {
-    fn flags(&self) -> BrdfFlags {
-        dispatch!(self, m => Brdf::flags(m))
-    }
-    fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
-        dispatch!(self, m => Brdf::eval(m, wi, wo))
-    }
-    fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
-        dispatch!(self, m => Brdf::pdf(m, wo, wi))
-    }
-    fn sample(&self, wo: Vec3<T>, u: [T; 2]) -> Option<BrdfSample<T>> {
-        dispatch!(self, m => Brdf::sample(m, wo, u))
-    }
-    fn delta(&self, wo: Vec3<T>) -> Option<DeltaLobe<T>> {
-        dispatch!(self, m => Brdf::delta(m, wo))
-    }
-    fn lobe_hint(&self) -> LobeHint<T> {
-        dispatch!(self, m => Brdf::lobe_hint(m))
     }
 }
 
@@ -648,7 +636,7 @@ const fn num(
     }
 }
 
-const fn rgb(
+const fn colour(
     name: &'static str,
     channels: [&'static str; 3],
     range: &'static str,
@@ -670,6 +658,14 @@ const fn rgb(
         #[cfg(feature = "catalogue-text")]
         help,
     }
+}
+
+/// `rgb!("kd", range, ui, default, help)`: a colour parameter whose channels are named
+/// `kd_r`, `kd_g`, `kd_b`.
+macro_rules! rgb {
+    ($n:literal, $($rest:expr),+) => {
+        colour($n, [concat!($n, "_r"), concat!($n, "_g"), concat!($n, "_b")], $($rest),+)
+    };
 }
 
 const fn choice(
@@ -695,6 +691,26 @@ const fn choice(
     }
 }
 
+const fn model(
+    id: ModelId,
+    name: &'static str,
+    aliases: &'static [&'static str],
+    flags: ModelFlags,
+    about: &'static str,
+    params: &'static [ParamSpec],
+) -> ModelSpec {
+    let _ = about;
+    ModelSpec {
+        name,
+        aliases,
+        #[cfg(feature = "catalogue-text")]
+        about,
+        params,
+        flags,
+        id,
+    }
+}
+
 const fn flags(lit_colour: bool, has_delta: bool, anisotropic: bool) -> ModelFlags {
     ModelFlags {
         lit_colour,
@@ -703,643 +719,177 @@ const fn flags(lit_colour: bool, has_delta: bool, anisotropic: bool) -> ModelFla
     }
 }
 
+/// Flags of a model: plain (a BRDF, no Dirac part, isotropic), with a Dirac part,
+/// anisotropic, a lit colour.
+const PLAIN: ModelFlags = flags(false, false, false);
+const DELTA: ModelFlags = flags(false, true, false);
+const ANISO: ModelFlags = flags(false, false, true);
+const LIT: ModelFlags = flags(true, false, false);
+
 const SMITH_NAMES: &[&str] = &["separable", "correlated"];
 const SAMPLING_NAMES: &[&str] = &["visible-normals", "normals"];
+const SAMPLING_RANGE: &str = "visible-normals | normals";
+const SAMPLING_HELP: &str = "half-vector density of the sampler";
 const U01: &str = "[0, 1]";
 const U0INF: &str = "[0, inf)";
 const EXP: &str = "[0, 1e6]";
 const ALPHA: &str = "[1e-4, 1e4]";
+const F0_HELP: &str = "Fresnel reflectance at normal incidence";
+/// The GGX models' shared parameters: f0, and the Smith and sampling choices.
+const GGX_F0: ParamSpec = rgb!("f0", U01, (0.0, 1.0), [0.95, 0.64, 0.54], F0_HELP);
+const GGX_SMITH: ParamSpec = choice(
+    "smith",
+    SMITH_NAMES,
+    "separable | correlated",
+    1,
+    "Smith masking form",
+);
+const GGX_SAMPLING: ParamSpec =
+    choice("sampling", SAMPLING_NAMES, SAMPLING_RANGE, 0, SAMPLING_HELP);
 
-/// Every model, in listing order (the WASM module's model ids are indices here).
-pub const MODELS: &[ModelSpec] = &[
-    ModelSpec {
-        name: "torrance-sparrow",
-        aliases: &[],
-        #[cfg(feature = "catalogue-text")]
-        about: "Torrance-Sparrow (paper eq 3): ks D F G/(4 cos_i cos_o) + albedo/pi, Beckmann D \
-                with alpha = sqrt2 sigma, Schlick F(r0), G selectable",
-        params: &[
-            num(
-                "sigma",
-                "1 (RMS slope)",
-                "[7.07e-5, 7.07e3]",
-                (0.05, 1.0),
-                0.01,
-                0.3,
-                "RMS slope of the Gaussian surface (alpha = sqrt2 sigma)",
-            ),
-            choice(
-                "g",
-                G_TERMS,
-                G_RANGE,
-                4,
-                "geometric term (modified = the paper's G)",
-            ),
-            num(
-                "r0",
-                "1",
-                U01,
-                (0.0, 1.0),
-                0.01,
-                0.04,
-                "Fresnel reflectance at normal incidence",
-            ),
-            num("ks", "1", U0INF, (0.0, 4.0), 0.01, 1.0, "specular scale"),
-            num(
-                "albedo",
-                "1",
-                U01,
-                (0.0, 1.0),
-                0.01,
-                0.5,
-                "Lambertian albedo of the diffuse term",
-            ),
-        ],
-        flags: flags(false, false, false),
-        id: ModelId::TorranceSparrow,
-    },
-    ModelSpec {
-        name: "lambert",
-        aliases: &[],
-        #[cfg(feature = "catalogue-text")]
-        about: "Lambertian f = albedo/pi (standard lighting model diffuse, FCG 24.2)",
-        params: &[rgb(
-            "albedo",
-            ["albedo_r", "albedo_g", "albedo_b"],
-            U01,
-            (0.0, 1.0),
-            [0.8, 0.5, 0.3],
-            "hemispherical reflectance",
-        )],
-        flags: flags(false, false, false),
-        id: ModelId::Lambert,
-    },
-    ModelSpec {
-        name: "phong",
-        aliases: &["phong-normalized"],
-        #[cfg(feature = "catalogue-text")]
-        about: "energy-normalised Phong kd/pi + ks (n+2)/(2pi) max(wo.r_i,0)^n",
-        params: &[
-            rgb(
-                "kd",
-                ["kd_r", "kd_g", "kd_b"],
-                U01,
-                (0.0, 1.0),
-                [0.5, 0.2, 0.1],
-                "diffuse reflectance",
-            ),
-            rgb(
-                "ks",
-                ["ks_r", "ks_g", "ks_b"],
-                U01,
-                (0.0, 1.0),
-                [0.3; 3],
-                "specular reflectance",
-            ),
-            num("n", "1", EXP, (0.0, 500.0), 1.0, 40.0, "Phong exponent"),
-        ],
-        flags: flags(false, false, false),
-        id: ModelId::Phong,
-    },
-    ModelSpec {
-        name: "blinn-phong",
-        aliases: &["blinn-phong-normalized"],
-        #[cfg(feature = "catalogue-text")]
-        about: "energy-normalised Blinn-Phong kd/pi + ks (n+2)(n+4)/(8pi(n+2^(-n/2))) (n.h)^n",
-        params: &[
-            rgb(
-                "kd",
-                ["kd_r", "kd_g", "kd_b"],
-                U01,
-                (0.0, 1.0),
-                [0.1, 0.3, 0.5],
-                "diffuse reflectance",
-            ),
-            rgb(
-                "ks",
-                ["ks_r", "ks_g", "ks_b"],
-                U01,
-                (0.0, 1.0),
-                [0.3; 3],
-                "specular reflectance",
-            ),
-            num(
-                "n",
-                "1",
-                EXP,
-                (0.0, 500.0),
-                1.0,
-                80.0,
-                "Blinn-Phong exponent",
-            ),
-        ],
-        flags: flags(false, false, false),
-        id: ModelId::BlinnPhong,
-    },
-    ModelSpec {
-        name: "cook-torrance",
-        aliases: &[],
-        #[cfg(feature = "catalogue-text")]
-        about: "Cook-Torrance kd/pi + ks D F G/(4 cos_i cos_o), Beckmann D of width m = alpha, \
-                Schlick F",
-        params: &[
-            rgb(
-                "kd",
-                ["kd_r", "kd_g", "kd_b"],
-                U01,
-                (0.0, 1.0),
-                [0.4, 0.1, 0.1],
-                "Lambertian reflectance",
-            ),
-            rgb(
-                "ks",
-                ["ks_r", "ks_g", "ks_b"],
-                U01,
-                (0.0, 1.0),
-                [0.6; 3],
-                "specular scale",
-            ),
-            num(
-                "m",
-                "1 (alpha = RMS slope * sqrt 2)",
-                ALPHA,
-                (0.02, 1.0),
-                0.01,
-                0.25,
-                "Beckmann roughness",
-            ),
-            num(
-                "r0",
-                "1",
-                U01,
-                (0.0, 1.0),
-                0.01,
-                0.04,
-                "Fresnel reflectance at normal incidence",
-            ),
-            choice(
-                "g",
-                G_TERMS,
-                G_RANGE,
-                1,
-                "geometric term (blinn = V-groove, paper eq 4)",
-            ),
-            choice(
-                "sampling",
-                SAMPLING_NAMES,
-                "visible-normals | normals",
-                1,
-                "half-vector density of the sampler",
-            ),
-        ],
-        flags: flags(false, false, false),
-        id: ModelId::CookTorrance,
-    },
-    ModelSpec {
-        name: "lambert-mirror",
-        aliases: &[],
-        #[cfg(feature = "catalogue-text")]
-        about: "Lambert plus mirror (FCG 24.4): rd/pi (+ rs times a Dirac mirror)",
-        params: &[
-            rgb(
-                "rd",
-                ["rd_r", "rd_g", "rd_b"],
-                "[0, 1], rd + rs <= 1",
-                (0.0, 0.5),
-                [0.4, 0.4, 0.2],
-                "matte reflectance",
-            ),
-            num(
-                "rs",
-                "1",
-                "[0, 1], rd + rs <= 1",
-                (0.0, 0.5),
-                0.01,
-                0.3,
-                "mirror reflectance",
-            ),
-        ],
-        flags: flags(false, true, false),
-        id: ModelId::LambertMirror,
-    },
-    ModelSpec {
-        name: "shirley-damped",
-        aliases: &["shirley"],
-        #[cfg(feature = "catalogue-text")]
-        about: "Shirley's damped model (FCG 24.4): rd (1 - R_f(theta_o))/pi (+ Dirac); NOT \
-                reciprocal",
-        params: &[
-            rgb(
-                "rd",
-                ["rd_r", "rd_g", "rd_b"],
-                U01,
-                (0.0, 1.0),
-                [0.6, 0.3, 0.2],
-                "matte reflectance",
-            ),
-            num(
-                "r0",
-                "1",
-                U01,
-                (0.0, 1.0),
-                0.01,
-                0.05,
-                "Fresnel reflectance at normal incidence",
-            ),
-        ],
-        flags: flags(false, true, false),
-        id: ModelId::ShirleyDamped,
-    },
-    ModelSpec {
-        name: "coupled-smooth",
-        aliases: &["coupled"],
-        #[cfg(feature = "catalogue-text")]
-        about: "coupled smooth-layered model (FCG eq 24.3): k rm f(theta_i) f(theta_o) (+ Dirac)",
-        params: &[
-            rgb(
-                "rm",
-                ["rm_r", "rm_g", "rm_b"],
-                U01,
-                (0.0, 1.0),
-                [1.0; 3],
-                "matte reflectance R_m",
-            ),
-            num(
-                "r0",
-                "1",
-                "[0, 1)",
-                (0.0, 0.95),
-                0.01,
-                0.05,
-                "Fresnel reflectance at normal incidence",
-            ),
-            choice(
-                "k",
-                &["conserving", "printed"],
-                "conserving | printed",
-                0,
-                "conserving: 21(1-R0)/(20pi); printed (FCG 24.2): 21/(20pi(1-R0)), albedo > 1",
-            ),
-        ],
-        flags: flags(false, true, false),
-        id: ModelId::CoupledSmooth,
-    },
-    ModelSpec {
-        name: "ashikhmin-shirley",
-        aliases: &[],
-        #[cfg(feature = "catalogue-text")]
-        about: "Ashikhmin-Shirley anisotropic Phong (FCG 24.5-24.9) + coupled diffuse (24.7); \
-                u = x, v = y",
-        params: &[
-            rgb(
-                "rs",
-                ["rs_r", "rs_g", "rs_b"],
-                U01,
-                (0.0, 1.0),
-                [0.4; 3],
-                "specular reflectance at normal incidence",
-            ),
-            rgb(
-                "rd",
-                ["rd_r", "rd_g", "rd_b"],
-                U01,
-                (0.0, 1.0),
-                [0.3, 0.1, 0.1],
-                "diffuse reflectance",
-            ),
-            num(
-                "nu",
-                "1",
-                EXP,
-                (1.0, 1000.0),
-                1.0,
-                100.0,
-                "exponent along x",
-            ),
-            num("nv", "1", EXP, (1.0, 1000.0), 1.0, 10.0, "exponent along y"),
-        ],
-        flags: flags(false, false, true),
-        id: ModelId::AshikhminShirley,
-    },
-    ModelSpec {
-        name: "bank",
-        aliases: &[],
-        #[cfg(feature = "catalogue-text")]
-        about: "Bank anisotropic BRDF: kd/pi + ks (sqrt(1-(L.T)^2) sqrt(1-(V.T)^2) - \
-                (L.T)(V.T))^ns",
-        params: &[
-            rgb(
-                "kd",
-                ["kd_r", "kd_g", "kd_b"],
-                U01,
-                (0.0, 1.0),
-                [0.3, 0.2, 0.1],
-                "Lambertian reflectance",
-            ),
-            rgb(
-                "ks",
-                ["ks_r", "ks_g", "ks_b"],
-                U0INF,
-                (0.0, 1.0),
-                [0.5; 3],
-                "specular coefficient",
-            ),
-            num("ns", "1", EXP, (1.0, 500.0), 1.0, 30.0, "specular exponent"),
-            choice(
-                "tangent",
-                &["fixed", "n-cross-v"],
-                "fixed | n-cross-v",
-                0,
-                "fixed material tangent (reciprocal) or T = n x wo (not reciprocal)",
-            ),
-            num(
-                "tangent_azimuth",
-                "rad",
-                "finite",
-                (0.0, core::f64::consts::PI),
-                0.01,
-                0.0,
-                "azimuth of the fixed tangent from x",
-            ),
-        ],
-        flags: flags(false, false, true),
-        id: ModelId::Bank,
-    },
-    ModelSpec {
-        name: "ward",
-        aliases: &[],
-        #[cfg(feature = "catalogue-text")]
-        about: "Ward anisotropic: rd/pi + rs exp(-tan^2 h (cos^2/ax^2 + sin^2/ay^2))/(4pi ax ay \
-                sqrt(cos_i cos_o))",
-        params: &[
-            rgb(
-                "rd",
-                ["rd_r", "rd_g", "rd_b"],
-                U01,
-                (0.0, 1.0),
-                [0.2, 0.2, 0.3],
-                "diffuse reflectance",
-            ),
-            rgb(
-                "rs",
-                ["rs_r", "rs_g", "rs_b"],
-                U01,
-                (0.0, 1.0),
-                [0.3; 3],
-                "specular reflectance",
-            ),
-            num(
-                "ax",
-                "1 (RMS slope)",
-                ALPHA,
-                (0.01, 1.0),
-                0.01,
-                0.1,
-                "roughness along x",
-            ),
-            num(
-                "ay",
-                "1 (RMS slope)",
-                ALPHA,
-                (0.01, 1.0),
-                0.01,
-                0.4,
-                "roughness along y",
-            ),
-        ],
-        flags: flags(false, false, true),
-        id: ModelId::Ward,
-    },
-    ModelSpec {
-        name: "ggx",
-        aliases: &[],
-        #[cfg(feature = "catalogue-text")]
-        about: "Trowbridge-Reitz (GGX) D F G/(4 cos_i cos_o), Schlick F (F90 = 1), Smith G",
-        params: &[
-            rgb(
-                "f0",
-                ["f0_r", "f0_g", "f0_b"],
-                U01,
-                (0.0, 1.0),
-                [0.95, 0.64, 0.54],
-                "Fresnel reflectance at normal incidence",
-            ),
-            num(
-                "alpha",
-                "1",
-                ALPHA,
-                (0.01, 1.0),
-                0.01,
-                0.3,
-                "GGX width (perceptual roughness squared)",
-            ),
-            choice(
-                "smith",
-                SMITH_NAMES,
-                "separable | correlated",
-                1,
-                "Smith masking form",
-            ),
-            choice(
-                "sampling",
-                SAMPLING_NAMES,
-                "visible-normals | normals",
-                0,
-                "half-vector density of the sampler",
-            ),
-        ],
-        flags: flags(false, false, false),
-        id: ModelId::Ggx,
-    },
-    ModelSpec {
-        name: "ggx-anisotropic",
-        aliases: &[],
-        #[cfg(feature = "catalogue-text")]
-        about: "anisotropic GGX: D = 1/(pi ax ay ((h_x/ax)^2 + (h_y/ay)^2 + h_z^2)^2), Smith G \
-                of the projected width, Schlick F",
-        params: &[
-            rgb(
-                "f0",
-                ["f0_r", "f0_g", "f0_b"],
-                U01,
-                (0.0, 1.0),
-                [0.95, 0.64, 0.54],
-                "Fresnel reflectance at normal incidence",
-            ),
-            num(
-                "alpha_x",
-                "1",
-                ALPHA,
-                (0.01, 1.0),
-                0.01,
-                0.1,
-                "GGX width along x",
-            ),
-            num(
-                "alpha_y",
-                "1",
-                ALPHA,
-                (0.01, 1.0),
-                0.01,
-                0.4,
-                "GGX width along y",
-            ),
-            choice(
-                "smith",
-                SMITH_NAMES,
-                "separable | correlated",
-                1,
-                "Smith masking form",
-            ),
-            choice(
-                "sampling",
-                SAMPLING_NAMES,
-                "visible-normals | normals",
-                0,
-                "half-vector density of the sampler",
-            ),
-        ],
-        flags: flags(false, false, true),
-        id: ModelId::GgxAnisotropic,
-    },
-    ModelSpec {
-        name: "standard",
-        aliases: &[],
-        #[cfg(feature = "catalogue-text")]
-        about: "standard lighting model: lit colour for one white unit light at wi, viewer wo: \
-                m_emis + g_amb*m_amb + m_diff max(n.l,0) + m_spec max(cos,0)^gloss (not a BRDF)",
-        params: &[
-            rgb(
-                "emission",
-                ["emission_r", "emission_g", "emission_b"],
-                U0INF,
-                (0.0, 1.0),
-                [0.0; 3],
-                "m_emis",
-            ),
-            rgb(
-                "ambient",
-                ["ambient_r", "ambient_g", "ambient_b"],
-                U0INF,
-                (0.0, 1.0),
-                [0.0; 3],
-                "m_amb",
-            ),
-            num(
-                "g_amb",
-                "1",
-                U0INF,
-                (0.0, 1.0),
-                0.01,
-                0.0,
-                "global ambient g_amb (grey)",
-            ),
-            rgb(
-                "diffuse",
-                ["diffuse_r", "diffuse_g", "diffuse_b"],
-                U0INF,
-                (0.0, 1.0),
-                [0.5, 0.3, 0.2],
-                "m_diff",
-            ),
-            rgb(
-                "specular",
-                ["specular_r", "specular_g", "specular_b"],
-                U0INF,
-                (0.0, 1.0),
-                [0.5; 3],
-                "m_spec",
-            ),
-            num("gloss", "1", EXP, (0.0, 500.0), 1.0, 30.0, "m_gls"),
-            choice(
-                "highlight",
-                &["phong", "blinn-phong"],
-                "phong | blinn-phong",
-                1,
-                "(v.r)^gloss or (n.h)^gloss",
-            ),
-        ],
-        flags: flags(true, false, false),
-        id: ModelId::Standard,
-    },
-    ModelSpec {
-        name: "sheen",
-        aliases: &["charlie"],
-        #[cfg(feature = "catalogue-text")]
-        about: "Charlie sheen (Estevez-Kulla 2017, glTF KHR_materials_sheen): color D V, \
-                D = (2 + 1/alpha) sin^(1/alpha) theta_h/(2pi), alpha = r^2 (>= 1e-4); not \
-                energy conserving (a layer)",
-        params: &[
-            rgb(
-                "color",
-                ["color_r", "color_g", "color_b"],
-                U01,
-                (0.0, 1.0),
-                [1.0; 3],
-                "sheen colour",
-            ),
-            num(
-                "roughness",
-                "1 (perceptual, alpha = r^2)",
-                U01,
-                (0.0, 1.0),
-                0.01,
-                0.5,
-                "sheen roughness r (alpha = r^2, clamped to >= 1e-4)",
-            ),
-            choice(
-                "visibility",
-                SheenVisibility::NAMES,
-                SheenVisibility::RANGE,
-                0,
-                "visibility V, in option order: G2/(4 mu_i mu_o) with the fitted Smith Lambda \
-                 (glTF), or 1/(4(mu_i + mu_o - mu_i mu_o)) (Filament)",
-            ),
-        ],
-        flags: flags(false, false, false),
-        id: ModelId::Sheen,
-    },
-    ModelSpec {
-        name: "rough-dielectric",
-        aliases: &["walter", "rough-glass"],
-        #[cfg(feature = "catalogue-text")]
-        about: "rough dielectric BSDF (Walter et al. 2007): reflection F D G/(4|cos i cos o|) \
-                and refraction (eq 21, radiance convention, eta_o^2) with exact Fresnel and \
-                total internal reflection, separable Smith G; wo below the surface (z < 0) \
-                gives the transmitted part",
-        params: &[
-            num(
-                "alpha",
-                "1",
-                "[0, 1e4]",
-                (0.0, 1.0),
-                0.01,
-                0.3,
-                "microfacet width alpha (floored to 1e-4)",
-            ),
-            num(
-                "eta",
-                "1",
-                "[0.1, 10]",
-                (0.5, 2.5),
-                0.01,
-                1.5,
-                "eta_inside/eta_outside (below 1: the outside is denser, total internal \
-                 reflection; 1: invisible interface, a straight-through Dirac)",
-            ),
-            choice(
-                "distribution",
-                DielectricDistribution::NAMES,
-                DielectricDistribution::RANGE,
-                0,
-                "microfacet distribution D, in option order",
-            ),
-        ],
-        flags: flags(false, true, false),
-        id: ModelId::RoughDielectric,
-    },
-];
+/// Defines [`MODELS`] from one list of `Id "name" [aliases] FLAGS "about" [parameters]`
+/// (rustfmt leaves the list as written: one line a parameter).
+macro_rules! models {
+    ($($id:ident $name:literal [$($alias:literal),*] $flags:ident $about:literal
+        [$($p:expr,)*])*) => {
+        /// Every model, in listing order (the WASM module's model ids are indices here).
+        pub const MODELS: &[ModelSpec] = &[
+            $(model(ModelId::$id, $name, &[$($alias),*], $flags, $about, &[$($p),*]),)*
+        ];
+    };
+}
 
+models! {
+    TorranceSparrow "torrance-sparrow" [] PLAIN
+    "Torrance-Sparrow (paper eq 3): ks D F G/(4 cos_i cos_o) + albedo/pi, Beckmann D with \
+     alpha = sqrt2 sigma, Schlick F(r0), G selectable" [
+        num("sigma", "1 (RMS slope)", "[7.07e-5, 7.07e3]", (0.05, 1.0), 0.01, 0.3,
+            "RMS slope of the Gaussian surface (alpha = sqrt2 sigma)"),
+        choice("g", G_TERMS, G_RANGE, 4, "geometric term (modified = the paper's G)"),
+        num("r0", "1", U01, (0.0, 1.0), 0.01, 0.04, F0_HELP),
+        num("ks", "1", U0INF, (0.0, 4.0), 0.01, 1.0, "specular scale"),
+        num("albedo", "1", U01, (0.0, 1.0), 0.01, 0.5, "Lambertian albedo of the diffuse term"),
+    ]
+    Lambert "lambert" [] PLAIN
+    "Lambertian f = albedo/pi (standard lighting model diffuse, FCG 24.2)" [
+        rgb!("albedo", U01, (0.0, 1.0), [0.8, 0.5, 0.3], "hemispherical reflectance"),
+    ]
+    Phong "phong" ["phong-normalized"] PLAIN
+    "energy-normalised Phong kd/pi + ks (n+2)/(2pi) max(wo.r_i,0)^n" [
+        rgb!("kd", U01, (0.0, 1.0), [0.5, 0.2, 0.1], "diffuse reflectance"),
+        rgb!("ks", U01, (0.0, 1.0), [0.3; 3], "specular reflectance"),
+        num("n", "1", EXP, (0.0, 500.0), 1.0, 40.0, "Phong exponent"),
+    ]
+    BlinnPhong "blinn-phong" ["blinn-phong-normalized"] PLAIN
+    "energy-normalised Blinn-Phong kd/pi + ks (n+2)(n+4)/(8pi(n+2^(-n/2))) (n.h)^n" [
+        rgb!("kd", U01, (0.0, 1.0), [0.1, 0.3, 0.5], "diffuse reflectance"),
+        rgb!("ks", U01, (0.0, 1.0), [0.3; 3], "specular reflectance"),
+        num("n", "1", EXP, (0.0, 500.0), 1.0, 80.0, "Blinn-Phong exponent"),
+    ]
+    CookTorrance "cook-torrance" [] PLAIN
+    "Cook-Torrance kd/pi + ks D F G/(4 cos_i cos_o), Beckmann D of width m = alpha, Schlick F" [
+        rgb!("kd", U01, (0.0, 1.0), [0.4, 0.1, 0.1], "Lambertian reflectance"),
+        rgb!("ks", U01, (0.0, 1.0), [0.6; 3], "specular scale"),
+        num("m", "1 (alpha = RMS slope * sqrt 2)", ALPHA, (0.02, 1.0), 0.01, 0.25,
+            "Beckmann roughness"),
+        num("r0", "1", U01, (0.0, 1.0), 0.01, 0.04, F0_HELP),
+        choice("g", G_TERMS, G_RANGE, 1, "geometric term (blinn = V-groove, paper eq 4)"),
+        choice("sampling", SAMPLING_NAMES, SAMPLING_RANGE, 1, SAMPLING_HELP),
+    ]
+    LambertMirror "lambert-mirror" [] DELTA
+    "Lambert plus mirror (FCG 24.4): rd/pi (+ rs times a Dirac mirror)" [
+        rgb!("rd", "[0, 1], rd + rs <= 1", (0.0, 0.5), [0.4, 0.4, 0.2], "matte reflectance"),
+        num("rs", "1", "[0, 1], rd + rs <= 1", (0.0, 0.5), 0.01, 0.3, "mirror reflectance"),
+    ]
+    ShirleyDamped "shirley-damped" ["shirley"] DELTA
+    "Shirley's damped model (FCG 24.4): rd (1 - R_f(theta_o))/pi (+ Dirac); NOT reciprocal" [
+        rgb!("rd", U01, (0.0, 1.0), [0.6, 0.3, 0.2], "matte reflectance"),
+        num("r0", "1", U01, (0.0, 1.0), 0.01, 0.05, F0_HELP),
+    ]
+    CoupledSmooth "coupled-smooth" ["coupled"] DELTA
+    "coupled smooth-layered model (FCG eq 24.3): k rm f(theta_i) f(theta_o) (+ Dirac)" [
+        rgb!("rm", U01, (0.0, 1.0), [1.0; 3], "matte reflectance R_m"),
+        num("r0", "1", "[0, 1)", (0.0, 0.95), 0.01, 0.05, F0_HELP),
+        choice("k", &["conserving", "printed"], "conserving | printed", 0,
+            "conserving: 21(1-R0)/(20pi); printed (FCG 24.2): 21/(20pi(1-R0)), albedo > 1"),
+    ]
+    AshikhminShirley "ashikhmin-shirley" [] ANISO
+    "Ashikhmin-Shirley anisotropic Phong (FCG 24.5-24.9) + coupled diffuse (24.7); u = x, v = y" [
+        rgb!("rs", U01, (0.0, 1.0), [0.4; 3], "specular reflectance at normal incidence"),
+        rgb!("rd", U01, (0.0, 1.0), [0.3, 0.1, 0.1], "diffuse reflectance"),
+        num("nu", "1", EXP, (1.0, 1000.0), 1.0, 100.0, "exponent along x"),
+        num("nv", "1", EXP, (1.0, 1000.0), 1.0, 10.0, "exponent along y"),
+    ]
+    Bank "bank" [] ANISO
+    "Bank anisotropic BRDF: kd/pi + ks (sqrt(1-(L.T)^2) sqrt(1-(V.T)^2) - (L.T)(V.T))^ns" [
+        rgb!("kd", U01, (0.0, 1.0), [0.3, 0.2, 0.1], "Lambertian reflectance"),
+        rgb!("ks", U0INF, (0.0, 1.0), [0.5; 3], "specular coefficient"),
+        num("ns", "1", EXP, (1.0, 500.0), 1.0, 30.0, "specular exponent"),
+        choice("tangent", &["fixed", "n-cross-v"], "fixed | n-cross-v", 0,
+            "fixed material tangent (reciprocal) or T = n x wo (not reciprocal)"),
+        num("tangent_azimuth", "rad", "finite", (0.0, core::f64::consts::PI), 0.01, 0.0,
+            "azimuth of the fixed tangent from x"),
+    ]
+    Ward "ward" [] ANISO
+    "Ward anisotropic: rd/pi + rs exp(-tan^2 h (cos^2/ax^2 + sin^2/ay^2))/(4pi ax ay \
+     sqrt(cos_i cos_o))" [
+        rgb!("rd", U01, (0.0, 1.0), [0.2, 0.2, 0.3], "diffuse reflectance"),
+        rgb!("rs", U01, (0.0, 1.0), [0.3; 3], "specular reflectance"),
+        num("ax", "1 (RMS slope)", ALPHA, (0.01, 1.0), 0.01, 0.1, "roughness along x"),
+        num("ay", "1 (RMS slope)", ALPHA, (0.01, 1.0), 0.01, 0.4, "roughness along y"),
+    ]
+    Ggx "ggx" [] PLAIN
+    "Trowbridge-Reitz (GGX) D F G/(4 cos_i cos_o), Schlick F (F90 = 1), Smith G" [
+        GGX_F0,
+        num("alpha", "1", ALPHA, (0.01, 1.0), 0.01, 0.3, "GGX width (perceptual roughness squared)"),
+        GGX_SMITH,
+        GGX_SAMPLING,
+    ]
+    GgxAnisotropic "ggx-anisotropic" [] ANISO
+    "anisotropic GGX: D = 1/(pi ax ay ((h_x/ax)^2 + (h_y/ay)^2 + h_z^2)^2), Smith G of the \
+     projected width, Schlick F" [
+        GGX_F0,
+        num("alpha_x", "1", ALPHA, (0.01, 1.0), 0.01, 0.1, "GGX width along x"),
+        num("alpha_y", "1", ALPHA, (0.01, 1.0), 0.01, 0.4, "GGX width along y"),
+        GGX_SMITH,
+        GGX_SAMPLING,
+    ]
+    Standard "standard" [] LIT
+    "standard lighting model: lit colour for one white unit light at wi, viewer wo: m_emis + \
+     g_amb*m_amb + m_diff max(n.l,0) + m_spec max(cos,0)^gloss (not a BRDF)" [
+        rgb!("emission", U0INF, (0.0, 1.0), [0.0; 3], "m_emis"),
+        rgb!("ambient", U0INF, (0.0, 1.0), [0.0; 3], "m_amb"),
+        num("g_amb", "1", U0INF, (0.0, 1.0), 0.01, 0.0, "global ambient g_amb (grey)"),
+        rgb!("diffuse", U0INF, (0.0, 1.0), [0.5, 0.3, 0.2], "m_diff"),
+        rgb!("specular", U0INF, (0.0, 1.0), [0.5; 3], "m_spec"),
+        num("gloss", "1", EXP, (0.0, 500.0), 1.0, 30.0, "m_gls"),
+        choice("highlight", &["phong", "blinn-phong"], "phong | blinn-phong", 1,
+            "(v.r)^gloss or (n.h)^gloss"),
+    ]
+    Sheen "sheen" ["charlie"] PLAIN
+    "Charlie sheen (Estevez-Kulla 2017, glTF KHR_materials_sheen): color D V, D = (2 + \
+     1/alpha) sin^(1/alpha) theta_h/(2pi), alpha = r^2 (>= 1e-4); not energy conserving (a \
+     layer)" [
+        rgb!("color", U01, (0.0, 1.0), [1.0; 3], "sheen colour"),
+        num("roughness", "1 (perceptual, alpha = r^2)", U01, (0.0, 1.0), 0.01, 0.5,
+            "sheen roughness r (alpha = r^2, clamped to >= 1e-4)"),
+        choice("visibility", SheenVisibility::NAMES, SheenVisibility::RANGE, 0,
+            "visibility V, in option order: G2/(4 mu_i mu_o) with the fitted Smith Lambda \
+             (glTF), or 1/(4(mu_i + mu_o - mu_i mu_o)) (Filament)"),
+    ]
+    RoughDielectric "rough-dielectric" ["walter", "rough-glass"] DELTA
+    "rough dielectric BSDF (Walter et al. 2007): reflection F D G/(4|cos i cos o|) and \
+     refraction (eq 21, radiance convention, eta_o^2) with exact Fresnel and total internal \
+     reflection, separable Smith G; wo below the surface (z < 0) gives the transmitted part" [
+        num("alpha", "1", "[0, 1e4]", (0.0, 1.0), 0.01, 0.3,
+            "microfacet width alpha (floored to 1e-4)"),
+        num("eta", "1", "[0.1, 10]", (0.5, 2.5), 0.01, 1.5,
+            "eta_inside/eta_outside (below 1: the outside is denser, total internal \
+             reflection; 1: invisible interface, a straight-through Dirac)"),
+        choice("distribution", DielectricDistribution::NAMES, DielectricDistribution::RANGE, 0,
+            "microfacet distribution D, in option order"),
+    ]
+}
 #[cfg(test)]
 mod tests {
     use super::*;

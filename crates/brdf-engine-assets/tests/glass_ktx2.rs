@@ -3,6 +3,8 @@
 //! integral rounded to binary16 (so within half a unit in the last place of it), the BLUT
 //! file holds the same bits, and the sidecar names what they are.
 
+mod common;
+
 use brdf_lut::generate::glass::glass_e;
 use brdf_lut::generate::INTEGRATION_TOL;
 
@@ -65,14 +67,7 @@ fn glass_ktx2_decodes_to_the_integrals_within_half_rounding() {
             "the BLUT payload is the KTX2 level data"
         );
         let side: serde_json::Value = serde_json::from_slice(&get("json").bytes).unwrap();
-        for key in [
-            "integral",
-            "model",
-            "axes",
-            "orientation",
-            "encoding",
-            "linear",
-        ] {
+        for key in common::SIDECAR_KEYS {
             assert!(side.get(key).is_some(), "sidecar key {key}");
         }
     }

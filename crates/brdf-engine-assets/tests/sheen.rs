@@ -3,6 +3,8 @@
 //! channel and orientation the sidecar states, and the texel values agree with the
 //! half-vector reference within ½ LSB.
 
+mod common;
+
 use brdf_engine_assets::{khronos_sheen, sheen_texels};
 use brdf_lut::generate::sheen_e_reference;
 
@@ -55,14 +57,7 @@ fn sheen_pngs_decode_to_the_texels() {
     assert!(ash[(n - 1) * n] > 0.1);
     for stem in ["lut_charlie", "lut_sheen_E"] {
         let j: serde_json::Value = serde_json::from_slice(get(&format!("{stem}.json"))).unwrap();
-        for key in [
-            "integral",
-            "model",
-            "axes",
-            "orientation",
-            "encoding",
-            "linear",
-        ] {
+        for key in common::SIDECAR_KEYS {
             assert!(j.get(key).is_some(), "{stem}.json lacks {key}");
         }
     }

@@ -24,6 +24,14 @@ fn nodes(bytes: &[u8]) -> Vec<f32> {
         .collect()
 }
 
+/// A spec of `kind`, distribution `d`, masking `m` on a small `counts` grid (μ, r).
+fn small(kind: Kind, d: Distribution, m: Masking, counts: [u32; 2]) -> Spec {
+    let mut s = Spec::new(kind, d, m);
+    s.axes[0].count = counts[0];
+    s.axes[1].count = counts[1];
+    s
+}
+
 fn invalid(s: &Spec) -> String {
     match generate(s, &|_| {}) {
         Err(GenError::Invalid(m)) => m,
@@ -134,13 +142,12 @@ fn g_per_sigma_matches_the_committed_asset() {
 /// f32 storage: 1e-6.
 #[test]
 fn mirror_column_is_the_closed_form() {
-    let mut s = Spec::new(
+    let mut s = small(
         Kind::SplitSum,
         Distribution::Beckmann,
         Masking::SmithSeparable,
+        [5, 3],
     );
-    s.axes[0].count = 5;
-    s.axes[1].count = 3;
     s.encoding = Encoding::F32;
     s.samples = 10;
     let t = generate(&s, &|_| {}).unwrap();
@@ -161,9 +168,7 @@ fn mirror_column_is_the_closed_form() {
 fn separable_albedo_never_exceeds_correlated() {
     for d in [Distribution::Ggx, Distribution::Beckmann] {
         let mk = |m| {
-            let mut s = Spec::new(Kind::Albedo, d, m);
-            s.axes[0].count = 6;
-            s.axes[1].count = 6;
+            let mut s = small(Kind::Albedo, d, m, [6, 6]);
             s.encoding = Encoding::F32;
             s.samples = 10;
             nodes(&generate(&s, &|_| {}).unwrap().bytes)
@@ -204,9 +209,12 @@ fn e_avg_nodes_match_the_core_kernel() {
 /// (the reader interpolates linearly between four corner values of a curved surface).
 #[test]
 fn coarse_table_reports_a_large_error() {
-    let mut s = Spec::new(Kind::SplitSum, Distribution::Ggx, Masking::SmithCorrelated);
-    s.axes[0].count = 2;
-    s.axes[1].count = 2;
+    let mut s = small(
+        Kind::SplitSum,
+        Distribution::Ggx,
+        Masking::SmithCorrelated,
+        [2, 2],
+    );
     s.interpolation = Interpolation::Linear;
     s.samples = 500;
     let t = generate(&s, &|_| {}).unwrap();
@@ -215,13 +223,12 @@ fn coarse_table_reports_a_large_error() {
 
 #[test]
 fn deterministic_and_progress_counts_every_node() {
-    let mut s = Spec::new(
+    let mut s = small(
         Kind::SplitSum,
         Distribution::TorranceSparrow,
         Masking::Blinn,
+        [4, 3],
     );
-    s.axes[0].count = 4;
-    s.axes[1].count = 3;
     s.samples = 20;
     let n = std::sync::atomic::AtomicU64::new(0);
     let a = generate(&s, &|k| {

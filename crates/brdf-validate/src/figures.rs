@@ -4,6 +4,7 @@
 use crate::study::{sim_normalised, ts_normalised, Cell, Model, Sweep};
 use anyhow::{anyhow, Context, Result};
 use brdf_core::models::GeometricTerm;
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
@@ -112,11 +113,7 @@ impl Figure for Fig6<'_> {
                     (tr, m.g(sigma, ti, tr.to_radians()))
                 })
                 .collect();
-            chart
-                .draw_series(LineSeries::new(pts, c.stroke_width(2)))
-                .map_err(pe)?
-                .label(m.name())
-                .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], c.stroke_width(2)));
+            curve(&mut chart, pts, c, m.name())?;
         }
         let sn = &self.sweep.cells;
         chart
@@ -130,37 +127,70 @@ impl Figure for Fig6<'_> {
             .map_err(pe)?
             .label("single-neighbour model, simulated")
             .legend(|(x, y)| Cross::new((x + 9, y), 3, RGBColor(120, 120, 120)));
-        chart
-            .draw_series(sn.iter().map(|c| {
-                let e = 2.0 * c.sim.g.se();
-                ErrorBar::new_vertical(
-                    c.tr,
-                    c.sim.g.mean - e,
-                    c.sim.g.mean,
-                    c.sim.g.mean + e,
-                    BLACK.filled(),
-                    4,
-                )
-            }))
-            .map_err(pe)?;
-        chart
-            .draw_series(
-                sn.iter()
-                    .map(|c| Circle::new((c.tr, c.sim.g.mean), 2, BLACK.filled())),
-            )
-            .map_err(pe)?
-            .label("random surface, ray traced (±2 SE)")
-            .legend(|(x, y)| Circle::new((x + 9, y), 3, BLACK.filled()));
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::LowerMiddle)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .label_font(("sans-serif", 13))
-            .draw()
-            .map_err(pe)?;
-        Ok(())
+        let sim: Vec<_> = sn
+            .iter()
+            .map(|c| {
+                let (g, e) = (c.sim.g.mean, 2.0 * c.sim.g.se());
+                (c.tr, g - e, g, g + e)
+            })
+            .collect();
+        simulated_and_legend(&mut chart, &sim)
     }
+}
+
+/// One model's curve, labelled `name` in the legend.
+fn curve<'a, DB: DrawingBackend + 'a, Y: Ranged<ValueType = f64>>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<RangedCoordf64, Y>>,
+    pts: impl IntoIterator<Item = (f64, f64)>,
+    c: RGBColor,
+    name: &str,
+) -> Result<()> {
+    chart
+        .draw_series(LineSeries::new(pts, c.stroke_width(2)))
+        .map_err(pe)?
+        .label(name)
+        .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], c.stroke_width(2)));
+    Ok(())
+}
+
+/// The ray-traced points (x, mean − 2 SE, mean, mean + 2 SE) as error bars and dots, then
+/// the legend box.
+fn simulated_and_legend<'a, DB: DrawingBackend + 'a, Y: Ranged<ValueType = f64>>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<RangedCoordf64, Y>>,
+    sim: &[(f64, f64, f64, f64)],
+) -> Result<()> {
+    chart
+        .draw_series(
+            sim.iter()
+                .map(|&(x, lo, y, hi)| ErrorBar::new_vertical(x, lo, y, hi, BLACK.filled(), 4)),
+        )
+        .map_err(pe)?;
+    chart
+        .draw_series(
+            sim.iter()
+                .map(|&(x, _, y, _)| Circle::new((x, y), 2, BLACK.filled())),
+        )
+        .map_err(pe)?
+        .label("random surface, ray traced (±2 SE)")
+        .legend(|(x, y)| Circle::new((x + 9, y), 3, BLACK.filled()));
+    legend(chart, SeriesLabelPosition::LowerMiddle, 13)
+}
+
+/// The legend box at `position`, labels in `font` px.
+fn legend<'a, DB: DrawingBackend + 'a, Y: Ranged<ValueType = f64>>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<RangedCoordf64, Y>>,
+    position: SeriesLabelPosition,
+    font: u32,
+) -> Result<()> {
+    chart
+        .configure_series_labels()
+        .position(position)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .label_font(("sans-serif", font))
+        .draw()
+        .map_err(pe)?;
+    Ok(())
 }
 
 /// Fig. 7 analogue: normalised Torrance–Sparrow BRDF at θi = 10°.
@@ -204,44 +234,15 @@ impl Figure for Fig7<'_> {
                     (tr, clip(ts_normalised(sigma, t, 10.0, tr)))
                 })
                 .collect();
-            chart
-                .draw_series(LineSeries::new(pts, c.stroke_width(2)))
-                .map_err(pe)?
-                .label(name)
-                .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], c.stroke_width(2)));
+            curve(&mut chart, pts, c, name)?;
         }
         let row: Vec<&Cell> = self.sweep.cells.iter().collect();
-        let sim = sim_normalised(sigma, &row);
-        chart
-            .draw_series(sim.iter().filter(|p| p.1 > 1e-3).map(|&(tr, f, se)| {
-                ErrorBar::new_vertical(
-                    tr,
-                    clip(f - 2.0 * se),
-                    f,
-                    clip(f + 2.0 * se),
-                    BLACK.filled(),
-                    4,
-                )
-            }))
-            .map_err(pe)?;
-        chart
-            .draw_series(
-                sim.iter()
-                    .filter(|p| p.1 > 1e-3)
-                    .map(|&(tr, f, _)| Circle::new((tr, f), 2, BLACK.filled())),
-            )
-            .map_err(pe)?
-            .label("random surface, ray traced (±2 SE)")
-            .legend(|(x, y)| Circle::new((x + 9, y), 3, BLACK.filled()));
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::LowerMiddle)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .label_font(("sans-serif", 13))
-            .draw()
-            .map_err(pe)?;
-        Ok(())
+        let sim: Vec<_> = sim_normalised(sigma, &row)
+            .into_iter()
+            .filter(|p| p.1 > 1e-3)
+            .map(|(tr, f, se)| (tr, clip(f - 2.0 * se), f, clip(f + 2.0 * se)))
+            .collect();
+        simulated_and_legend(&mut chart, &sim)
     }
 }
 
@@ -423,21 +424,8 @@ impl Figure for Lines {
             .draw()
             .map_err(pe)?;
         for (name, c, pts) in &self.series {
-            let c = *c;
-            chart
-                .draw_series(LineSeries::new(pts.iter().cloned(), c.stroke_width(2)))
-                .map_err(pe)?
-                .label(name.as_str())
-                .legend(move |(x, y)| PathElement::new([(x, y), (x + 18, y)], c.stroke_width(2)));
+            curve(&mut chart, pts.iter().copied(), *c, name)?;
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .label_font(("sans-serif", 12))
-            .draw()
-            .map_err(pe)?;
-        Ok(())
+        legend(&mut chart, SeriesLabelPosition::UpperRight, 12)
     }
 }

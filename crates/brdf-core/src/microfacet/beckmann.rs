@@ -12,39 +12,19 @@
 //! * Visible normals: [`super::beckmann_visible`] (no closed-form inverse; a bracketed
 //!   Newton inversion of the visible-slope CDF).
 
-use super::{clamp_alpha, projected, stretched, Distribution, FRAC_1_SQRT_PI};
+use super::{projected, stretched, Distribution, FRAC_1_SQRT_PI};
 use crate::geometry::{min_cos, Vec3};
 use crate::{ParamError, Real};
 
-/// The anisotropic Beckmann distribution with Smith masking.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Beckmann<T> {
-    ax: T,
-    ay: T,
+widths_distribution! {
+    /// The anisotropic Beckmann distribution with Smith masking.
+    Beckmann
 }
 
 impl<T: Real> Beckmann<T> {
-    /// Checked constructor: αx, αy ∈ [1e-4, 1e4] ([`super::ALPHA_MIN`], [`super::ALPHA_MAX`]).
-    pub fn new(ax: T, ay: T) -> Result<Self, ParamError> {
-        Ok(Self {
-            ax: super::check_alpha("alpha_x", ax)?,
-            ay: super::check_alpha("alpha_y", ay)?,
-        })
-    }
-    /// Isotropic checked constructor, α ∈ [1e-4, 1e4].
-    pub fn isotropic(alpha: T) -> Result<Self, ParamError> {
-        Self::new(alpha, alpha)
-    }
     /// From the paper's RMS slope σ: α = √2 σ (isotropic, checked).
     pub fn from_sigma(sigma: T) -> Result<Self, ParamError> {
         Self::isotropic(crate::roughness::beckmann_m_from_sigma(sigma))
-    }
-    /// Any widths, clamped into [ε², 1/ε²] (module docs of [`super`]); NaN stays NaN.
-    pub fn clamped(ax: T, ay: T) -> Self {
-        Self {
-            ax: clamp_alpha(ax),
-            ay: clamp_alpha(ay),
-        }
     }
 }
 
@@ -53,11 +33,8 @@ impl<T: Real> Distribution<T> for Beckmann<T> {
         (self.ax, self.ay)
     }
     fn d(&self, h: Vec3<T>) -> T {
-        if h.z.is_nan() || self.ax.is_nan() || self.ay.is_nan() {
-            return T::NAN;
-        }
-        if !(h.z > T::ZERO) {
-            return T::ZERO;
+        if let Some(v) = self.d_guard(h.z) {
+            return v;
         }
         let c2 = h.z * h.z;
         if c2 == T::ZERO {

@@ -15,34 +15,14 @@
 
 use super::{clamp_alpha, projected, stretched, Distribution};
 use crate::geometry::{min_cos, Vec3};
-use crate::{ParamError, Real};
+use crate::Real;
 
-/// The anisotropic Trowbridge–Reitz (GGX) distribution with Smith masking.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TrowbridgeReitz<T> {
-    ax: T,
-    ay: T,
+widths_distribution! {
+    /// The anisotropic Trowbridge–Reitz (GGX) distribution with Smith masking.
+    TrowbridgeReitz
 }
 
 impl<T: Real> TrowbridgeReitz<T> {
-    /// Checked constructor: αx, αy ∈ [1e-4, 1e4] ([`super::ALPHA_MIN`], [`super::ALPHA_MAX`]).
-    pub fn new(ax: T, ay: T) -> Result<Self, ParamError> {
-        Ok(Self {
-            ax: super::check_alpha("alpha_x", ax)?,
-            ay: super::check_alpha("alpha_y", ay)?,
-        })
-    }
-    /// Isotropic checked constructor, α ∈ [1e-4, 1e4].
-    pub fn isotropic(alpha: T) -> Result<Self, ParamError> {
-        Self::new(alpha, alpha)
-    }
-    /// Any widths, clamped into [ε², 1/ε²] (module docs of [`super`]); NaN stays NaN.
-    pub fn clamped(ax: T, ay: T) -> Self {
-        Self {
-            ax: clamp_alpha(ax),
-            ay: clamp_alpha(ay),
-        }
-    }
     /// The height-correlated visibility V = G/(4 cos θi cos θo) (module docs); 0 when
     /// either direction is at or below the horizon.
     pub fn v_correlated(&self, wi: Vec3<T>, wo: Vec3<T>) -> T {
@@ -103,19 +83,16 @@ pub(crate) fn v_finish<T: Real>(ci: T, co: T, r_i: T, r_o: T, nan_probe: T) -> T
 }
 
 impl<T: Real> Distribution<T> for TrowbridgeReitz<T> {
-    fn alpha(&self) -> (T, T) {
-        (self.ax, self.ay)
-    }
     fn d(&self, h: Vec3<T>) -> T {
-        if h.z.is_nan() || self.ax.is_nan() || self.ay.is_nan() {
-            return T::NAN;
-        }
-        if !(h.z > T::ZERO) {
-            return T::ZERO;
+        if let Some(v) = self.d_guard(h.z) {
+            return v;
         }
         let s = stretched(self.ax, self.ay, h) + h.z * h.z;
         // 1/(π αx αy) ≤ 1/(π ε⁴) is finite; dividing by s twice never overflows s².
         T::ONE / (T::PI * self.ax * self.ay) / s / s
+    }
+    fn alpha(&self) -> (T, T) {
+        (self.ax, self.ay)
     }
     fn lambda(&self, w: Vec3<T>) -> T {
         let a2 = projected(self.ax, self.ay, w);

@@ -27,6 +27,53 @@
 //! 4.9e-32 … 2.0e31 in `f64`), where every quantity is finite; α → 0 and α → ∞ are limits
 //! the type cannot represent (D tends to a Dirac delta, or G1 to 0).
 
+/// Defines an anisotropic distribution with widths (αx, αy) and its constructors: checked
+/// (αx, αy ∈ [1e-4, 1e4], [`ALPHA_MIN`], [`ALPHA_MAX`]), isotropic, and clamped.
+macro_rules! widths_distribution {
+    ($(#[$m:meta])* $name:ident) => {
+        $(#[$m])*
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct $name<T> {
+            ax: T,
+            ay: T,
+        }
+
+        impl<T: Real> $name<T> {
+            /// Checked constructor: αx, αy ∈ [1e-4, 1e4] ([`super::ALPHA_MIN`],
+            /// [`super::ALPHA_MAX`]).
+            pub fn new(ax: T, ay: T) -> Result<Self, crate::ParamError> {
+                Ok(Self {
+                    ax: super::check_alpha("alpha_x", ax)?,
+                    ay: super::check_alpha("alpha_y", ay)?,
+                })
+            }
+            /// Isotropic checked constructor, α ∈ [1e-4, 1e4].
+            pub fn isotropic(alpha: T) -> Result<Self, crate::ParamError> {
+                Self::new(alpha, alpha)
+            }
+            /// D's guards: NaN for a NaN h_z or width, 0 at or below the horizon;
+            /// `None` where D is to be evaluated.
+            #[inline]
+            fn d_guard(&self, hz: T) -> Option<T> {
+                if hz.is_nan() || self.ax.is_nan() || self.ay.is_nan() {
+                    Some(T::NAN)
+                } else if !(hz > T::ZERO) {
+                    Some(T::ZERO)
+                } else {
+                    None
+                }
+            }
+            /// Any widths, clamped into [ε², 1/ε²] (module docs of [`super`]); NaN stays NaN.
+            pub fn clamped(ax: T, ay: T) -> Self {
+                Self {
+                    ax: super::clamp_alpha(ax),
+                    ay: super::clamp_alpha(ay),
+                }
+            }
+        }
+    };
+}
+
 pub mod beckmann;
 pub mod beckmann_visible;
 pub mod charlie;

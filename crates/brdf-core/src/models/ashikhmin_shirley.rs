@@ -83,11 +83,7 @@ impl<T: Real> AshikhminShirley<T> {
 
 impl<T: Real> Brdf<T> for AshikhminShirley<T> {
     fn flags(&self) -> BrdfFlags {
-        BrdfFlags {
-            reciprocal: true,
-            energy_conserving: self.rs.add(self.rd).max_channel() <= T::ONE,
-            has_delta: false,
-        }
+        BrdfFlags::new(true, self.rs.add(self.rd).max_channel() <= T::ONE, false)
     }
     fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
         self.specular(wi, wo).add(self.diffuse(wi, wo))

@@ -15,7 +15,7 @@
 
 use super::rgb::check_rgb;
 use super::{above, Brdf, BrdfFlags, BrdfSample, Rgb};
-use super::{cosine_only_pdf, cosine_only_sample};
+use super::{cosine_only_pdf, sample_delta_or_cosine};
 use crate::error::check_range;
 use crate::geometry::Vec3;
 use crate::{ParamError, Real};
@@ -76,11 +76,11 @@ impl<T: Real> Bank<T> {
 
 impl<T: Real> Brdf<T> for Bank<T> {
     fn flags(&self) -> BrdfFlags {
-        BrdfFlags {
-            reciprocal: matches!(self.tangent, BankTangent::Azimuth(_)),
-            energy_conserving: false,
-            has_delta: false,
-        }
+        BrdfFlags::new(
+            matches!(self.tangent, BankTangent::Azimuth(_)),
+            false,
+            false,
+        )
     }
     fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
         if !above(wi, wo) {
@@ -101,6 +101,6 @@ impl<T: Real> Brdf<T> for Bank<T> {
         cosine_only_pdf(wo, wi)
     }
     fn sample(&self, wo: Vec3<T>, u: [T; 2]) -> Option<BrdfSample<T>> {
-        cosine_only_sample(self, wo, u)
+        sample_delta_or_cosine(self, wo, u)
     }
 }

@@ -12,14 +12,9 @@
 //! flagged as not energy conserving. Both are reciprocal.
 
 use super::rgb::check_rgb;
-use super::schlick_mirror;
-use super::{
-    above, lobe_prob, sample_delta_or_cosine, valid_wo, Brdf, BrdfFlags, BrdfSample, DeltaLobe, Rgb,
-};
+use super::{above, Brdf, BrdfFlags, BrdfSample, DeltaLobe, Rgb};
 use crate::error::check_range;
-use crate::fresnel::f_schlick;
 use crate::geometry::Vec3;
-use crate::sampling::cosine_hemisphere_pdf;
 use crate::{ParamError, Real};
 
 /// Which constant k multiplies the matte term.
@@ -70,18 +65,11 @@ impl<T: Real> CoupledSmooth<T> {
     pub fn k(&self) -> T {
         self.k
     }
-    fn prob(&self, rf: T) -> T {
-        lobe_prob(rf, self.rm.mean() * (T::ONE - rf))
-    }
 }
 
 impl<T: Real> Brdf<T> for CoupledSmooth<T> {
     fn flags(&self) -> BrdfFlags {
-        BrdfFlags {
-            reciprocal: true,
-            energy_conserving: self.which == CoupledK::Conserving,
-            has_delta: true,
-        }
+        BrdfFlags::new(true, self.which == CoupledK::Conserving, true)
     }
     /// k R_m f(θi) f(θo) (the matte term of eq 24.3).
     fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
@@ -91,17 +79,5 @@ impl<T: Real> Brdf<T> for CoupledSmooth<T> {
         self.rm
             .scale(self.k * matte_shape(wi.z) * matte_shape(wo.z))
     }
-    fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
-        if !valid_wo(wo) {
-            return T::ZERO;
-        }
-        (T::ONE - self.prob(f_schlick(self.r0, wo.z))) * cosine_hemisphere_pdf(wi)
-    }
-    fn sample(&self, wo: Vec3<T>, u: [T; 2]) -> Option<BrdfSample<T>> {
-        sample_delta_or_cosine(self, wo, u)
-    }
-    /// The mirror direction with reflectance R_f(θo) = R0 + (1 − cos θo)^5 (1 − R0).
-    fn delta(&self, wo: Vec3<T>) -> Option<DeltaLobe<T>> {
-        schlick_mirror(self.r0, wo, |rf| self.prob(rf))
-    }
+    smooth_layered_sampling!(rm);
 }

@@ -92,11 +92,7 @@ impl<T: Real> Ggx<T> {
 
 impl<T: Real> Brdf<T> for Ggx<T> {
     fn flags(&self) -> BrdfFlags {
-        BrdfFlags {
-            reciprocal: true,
-            energy_conserving: true,
-            has_delta: false,
-        }
+        BrdfFlags::new(true, true, false)
     }
     fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
         if !above(wi, wo) {

@@ -3,7 +3,7 @@
 
 use super::rgb::check_rgb;
 use super::{above, Brdf, BrdfFlags, BrdfSample, Rgb};
-use super::{cosine_only_pdf, cosine_only_sample};
+use super::{cosine_only_pdf, sample_delta_or_cosine};
 use crate::geometry::Vec3;
 use crate::{ParamError, Real};
 
@@ -29,11 +29,7 @@ impl<T: Real> Lambert<T> {
 
 impl<T: Real> Brdf<T> for Lambert<T> {
     fn flags(&self) -> BrdfFlags {
-        BrdfFlags {
-            reciprocal: true,
-            energy_conserving: true,
-            has_delta: false,
-        }
+        BrdfFlags::new(true, true, false)
     }
     /// f = ρ/π.
     fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
@@ -48,6 +44,6 @@ impl<T: Real> Brdf<T> for Lambert<T> {
         cosine_only_pdf(wo, wi)
     }
     fn sample(&self, wo: Vec3<T>, u: [T; 2]) -> Option<BrdfSample<T>> {
-        cosine_only_sample(self, wo, u)
+        sample_delta_or_cosine(self, wo, u)
     }
 }

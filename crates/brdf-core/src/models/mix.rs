@@ -41,11 +41,7 @@ impl<T: Real> LambertSpecularMix<T> {
 
 impl<T: Real> Brdf<T> for LambertSpecularMix<T> {
     fn flags(&self) -> BrdfFlags {
-        BrdfFlags {
-            reciprocal: true,
-            energy_conserving: true,
-            has_delta: true,
-        }
+        BrdfFlags::new(true, true, true)
     }
     /// R_d/π (the Dirac part is in [`Brdf::delta`]).
     fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {

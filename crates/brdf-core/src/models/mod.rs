@@ -25,6 +25,32 @@
 // `!(x > 0)` is deliberate throughout: it is true for NaN as well.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+/// The sampling half of a smooth-layered model's [`Brdf`] impl (FCG §24.4), for a model
+/// with fields `r0` (Schlick's R0) and `$matte` (the matte reflectance): `delta` is the
+/// mirror with reflectance R_f(θo) ([`schlick_mirror`]), chosen with probability
+/// R_f/(R_f + mean(matte)(1 − R_f)) ([`lobe_prob`]), else the cosine-weighted hemisphere
+/// ([`sample_delta_or_cosine`]); `pdf` is that hemisphere's share.
+macro_rules! smooth_layered_sampling {
+    ($matte:ident) => {
+        fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
+            if !$crate::models::valid_wo(wo) {
+                return T::ZERO;
+            }
+            let rf = $crate::fresnel::f_schlick(self.r0, wo.z);
+            let p = $crate::models::lobe_prob(rf, self.$matte.mean() * (T::ONE - rf));
+            (T::ONE - p) * $crate::sampling::cosine_hemisphere_pdf(wi)
+        }
+        fn sample(&self, wo: Vec3<T>, u: [T; 2]) -> Option<BrdfSample<T>> {
+            $crate::models::sample_delta_or_cosine(self, wo, u)
+        }
+        fn delta(&self, wo: Vec3<T>) -> Option<DeltaLobe<T>> {
+            $crate::models::schlick_mirror(self.r0, wo, |rf| {
+                $crate::models::lobe_prob(rf, self.$matte.mean() * (T::ONE - rf))
+            })
+        }
+    };
+}
+
 pub mod ashikhmin_shirley;
 pub mod bank;
 pub mod cook_torrance;
@@ -71,6 +97,17 @@ pub struct BrdfFlags {
     /// The model has a Dirac (mirror) part, reported by [`Brdf::delta`] and not by
     /// [`Brdf::eval`].
     pub has_delta: bool,
+}
+
+impl BrdfFlags {
+    /// The flags in field order: reciprocal, energy conserving, with a Dirac part.
+    pub const fn new(reciprocal: bool, energy_conserving: bool, has_delta: bool) -> Self {
+        Self {
+            reciprocal,
+            energy_conserving,
+            has_delta,
+        }
+    }
 }
 
 /// One importance sample.
@@ -289,8 +326,10 @@ pub(crate) fn u_ok<T: Real>(u: [T; 2]) -> bool {
     u[0].is_finite() && u[1].is_finite()
 }
 
-/// Sampling shared by the smooth-layered models: the Dirac part with probability
-/// `delta.prob`, else the cosine-weighted hemisphere.
+/// Sampling of the models whose only lobes are a Dirac part ([`Brdf::delta`]) and the
+/// cosine-weighted hemisphere: the Dirac part with probability `delta.prob`, else the
+/// hemisphere; a model without a Dirac part (`delta` is `None`) samples the hemisphere
+/// with `u` as given.
 pub(crate) fn sample_delta_or_cosine<T: Real, B: Brdf<T> + ?Sized>(
     b: &B,
     wo: Vec3<T>,
@@ -299,7 +338,9 @@ pub(crate) fn sample_delta_or_cosine<T: Real, B: Brdf<T> + ?Sized>(
     if !valid_wo(wo) || !u_ok(u) {
         return None;
     }
-    let d = b.delta(wo)?;
+    let Some(d) = b.delta(wo) else {
+        return finish(b, wo, crate::sampling::sample_cosine_hemisphere(u));
+    };
     let (spec, u0) = pick(u[0], d.prob);
     if spec {
         return Some(BrdfSample {
@@ -319,18 +360,6 @@ pub(crate) fn cosine_only_pdf<T: Real>(wo: Vec3<T>, wi: Vec3<T>) -> T {
         return T::ZERO;
     }
     crate::sampling::cosine_hemisphere_pdf(wi)
-}
-
-/// Sampling of models that use the cosine-weighted hemisphere alone.
-pub(crate) fn cosine_only_sample<T: Real, B: Brdf<T> + ?Sized>(
-    b: &B,
-    wo: Vec3<T>,
-    u: [T; 2],
-) -> Option<BrdfSample<T>> {
-    if !valid_wo(wo) || !u_ok(u) {
-        return None;
-    }
-    finish(b, wo, crate::sampling::sample_cosine_hemisphere(u))
 }
 
 /// The Dirac part of the smooth-layered models (FCG §24.4): the mirror direction with

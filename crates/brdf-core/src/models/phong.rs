@@ -40,8 +40,24 @@ fn check_common<T: Real>(kd: Rgb<T>, ks: Rgb<T>, n: T) -> Result<(Rgb<T>, Rgb<T>
     ))
 }
 
-fn conserving<T: Real>(kd: Rgb<T>, ks: Rgb<T>) -> bool {
-    kd.add(ks).max_channel() <= T::ONE
+/// Both models' flags: reciprocal, energy conserving when k_d + k_s ≤ 1 per channel.
+fn kd_ks_flags<T: Real>(kd: Rgb<T>, ks: Rgb<T>) -> BrdfFlags {
+    BrdfFlags::new(true, kd.add(ks).max_channel() <= T::ONE, false)
+}
+
+/// f = k_d/π + k_s · `lobe()` for wi and wo above the horizon, else 0.
+#[inline]
+fn kd_plus_lobe<T: Real>(
+    kd: Rgb<T>,
+    ks: Rgb<T>,
+    wi: Vec3<T>,
+    wo: Vec3<T>,
+    lobe: impl FnOnce() -> T,
+) -> Rgb<T> {
+    if !above(wi, wo) {
+        return Rgb::zero();
+    }
+    kd.scale(T::ONE / T::PI).add(ks.scale(lobe()))
 }
 
 /// Energy-normalised Phong BRDF (see the module docs).
@@ -65,23 +81,17 @@ impl<T: Real> PhongNormalized<T> {
 
 impl<T: Real> Brdf<T> for PhongNormalized<T> {
     fn flags(&self) -> BrdfFlags {
-        BrdfFlags {
-            reciprocal: true,
-            energy_conserving: conserving(self.kd, self.ks),
-            has_delta: false,
-        }
+        kd_ks_flags(self.kd, self.ks)
     }
     fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
-        if !above(wi, wo) {
-            return Rgb::zero();
-        }
-        let c = wo.dot(mirror(wi)).min(T::ONE);
-        let lobe = if c > T::ZERO {
-            (self.n + T::TWO) / (T::TWO * T::PI) * c.powf(self.n)
-        } else {
-            T::ZERO
-        };
-        self.kd.scale(T::ONE / T::PI).add(self.ks.scale(lobe))
+        kd_plus_lobe(self.kd, self.ks, wi, wo, || {
+            let c = wo.dot(mirror(wi)).min(T::ONE);
+            if c > T::ZERO {
+                (self.n + T::TWO) / (T::TWO * T::PI) * c.powf(self.n)
+            } else {
+                T::ZERO
+            }
+        })
     }
     fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
         if !valid_wo(wo) {
@@ -138,22 +148,14 @@ impl<T: Real> BlinnPhongNormalized<T> {
 }
 
 impl<T: Real> Brdf<T> for BlinnPhongNormalized<T> {
-    fn flags(&self) -> BrdfFlags {
-        BrdfFlags {
-            reciprocal: true,
-            energy_conserving: conserving(self.kd, self.ks),
-            has_delta: false,
-        }
-    }
     fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
-        if !above(wi, wo) {
-            return Rgb::zero();
-        }
-        let lobe = match half_vector(wi, wo) {
+        kd_plus_lobe(self.kd, self.ks, wi, wo, || match half_vector(wi, wo) {
             Some(h) if h.z > T::ZERO => self.c * h.z.min(T::ONE).powf(self.n),
             _ => T::ZERO,
-        };
-        self.kd.scale(T::ONE / T::PI).add(self.ks.scale(lobe))
+        })
+    }
+    fn flags(&self) -> BrdfFlags {
+        kd_ks_flags(self.kd, self.ks)
     }
     fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
         mixture_pdf(self.p_lobe(), wo, wi, |h| {

@@ -330,11 +330,7 @@ impl<T: Real> RoughDielectric<T> {
 /// energy is at most 1 (tests/tests/rough_dielectric.rs).
 impl<T: Real> Brdf<T> for RoughDielectric<T> {
     fn flags(&self) -> BrdfFlags {
-        BrdfFlags {
-            reciprocal: true,
-            energy_conserving: true,
-            has_delta: self.eta == T::ONE,
-        }
+        BrdfFlags::new(true, true, self.eta == T::ONE)
     }
     fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
         Rgb::splat(self.eval_bsdf(wi, wo))

@@ -130,11 +130,7 @@ impl<T: Real> Sheen<T> {
 /// and NaN (every channel) when any component of wi or wo is NaN.
 impl<T: Real> Brdf<T> for Sheen<T> {
     fn flags(&self) -> BrdfFlags {
-        BrdfFlags {
-            reciprocal: true,
-            energy_conserving: false,
-            has_delta: false,
-        }
+        BrdfFlags::new(true, false, false)
     }
     fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
         let nan = |w: Vec3<T>| w.x.is_nan() || w.y.is_nan() || w.z.is_nan();

@@ -10,14 +10,10 @@
 //! so the model is energy conserving.
 
 use super::rgb::check_rgb;
-use super::schlick_mirror;
-use super::{
-    above, lobe_prob, sample_delta_or_cosine, valid_wo, Brdf, BrdfFlags, BrdfSample, DeltaLobe, Rgb,
-};
+use super::{above, Brdf, BrdfFlags, BrdfSample, DeltaLobe, Rgb};
 use crate::error::check_range;
 use crate::fresnel::f_schlick;
 use crate::geometry::Vec3;
-use crate::sampling::cosine_hemisphere_pdf;
 use crate::{ParamError, Real};
 
 /// Shirley's damped Lambert-plus-mirror model (non-reciprocal, see the module docs).
@@ -35,18 +31,11 @@ impl<T: Real> ShirleyDamped<T> {
             r0: check_range("r0", r0, T::ZERO, false, T::ONE, "[0, 1]")?,
         })
     }
-    fn prob(&self, rf: T) -> T {
-        lobe_prob(rf, self.rd.mean() * (T::ONE - rf))
-    }
 }
 
 impl<T: Real> Brdf<T> for ShirleyDamped<T> {
     fn flags(&self) -> BrdfFlags {
-        BrdfFlags {
-            reciprocal: false,
-            energy_conserving: true,
-            has_delta: true,
-        }
+        BrdfFlags::new(false, true, true)
     }
     /// R_d (1 − R_f(θo))/π.
     fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
@@ -56,17 +45,5 @@ impl<T: Real> Brdf<T> for ShirleyDamped<T> {
         let rf = f_schlick(self.r0, wo.z);
         self.rd.scale((T::ONE - rf) / T::PI)
     }
-    fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
-        if !valid_wo(wo) {
-            return T::ZERO;
-        }
-        (T::ONE - self.prob(f_schlick(self.r0, wo.z))) * cosine_hemisphere_pdf(wi)
-    }
-    fn sample(&self, wo: Vec3<T>, u: [T; 2]) -> Option<BrdfSample<T>> {
-        sample_delta_or_cosine(self, wo, u)
-    }
-    /// The mirror direction with reflectance R_f(θo).
-    fn delta(&self, wo: Vec3<T>) -> Option<DeltaLobe<T>> {
-        schlick_mirror(self.r0, wo, |rf| self.prob(rf))
-    }
+    smooth_layered_sampling!(rd);
 }

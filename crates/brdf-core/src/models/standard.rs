@@ -20,7 +20,7 @@
 //! reciprocal nor energy conserving, and samples with the cosine-weighted hemisphere.
 
 use super::rgb::check_rgb;
-use super::{cosine_only_pdf, cosine_only_sample};
+use super::{cosine_only_pdf, sample_delta_or_cosine};
 use super::{Brdf, BrdfFlags, BrdfSample, LobeHint, Rgb};
 use crate::error::check_range;
 use crate::geometry::Vec3;
@@ -126,11 +126,7 @@ impl<T: Real> StandardLighting<T> {
 
 impl<T: Real> Brdf<T> for StandardLighting<T> {
     fn flags(&self) -> BrdfFlags {
-        BrdfFlags {
-            reciprocal: false,
-            energy_conserving: false,
-            has_delta: false,
-        }
+        BrdfFlags::new(false, false, false)
     }
     /// The lit colour for one white unit light at wi seen from wo (not a BRDF, see the
     /// module docs).
@@ -145,7 +141,7 @@ impl<T: Real> Brdf<T> for StandardLighting<T> {
         cosine_only_pdf(wo, wi)
     }
     fn sample(&self, wo: Vec3<T>, u: [T; 2]) -> Option<BrdfSample<T>> {
-        cosine_only_sample(self, wo, u)
+        sample_delta_or_cosine(self, wo, u)
     }
     fn lobe_hint(&self) -> LobeHint<T> {
         LobeHint::iso(T::ONE / (T::TWO * self.gloss + T::TWO).sqrt())

@@ -47,11 +47,7 @@ impl<T: Real> Ward<T> {
 
 impl<T: Real> Brdf<T> for Ward<T> {
     fn flags(&self) -> BrdfFlags {
-        BrdfFlags {
-            reciprocal: true,
-            energy_conserving: false,
-            has_delta: false,
-        }
+        BrdfFlags::new(true, false, false)
     }
     fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
         if !above(wi, wo) {

@@ -105,18 +105,6 @@ impl Real for Micro {
         Micro(<f32 as Real>::abs(self.0))
     }
     #[inline]
-    fn sqrt(self) -> Self {
-        Micro(libm::sqrtf(self.0))
-    }
-    #[inline]
-    fn exp(self) -> Self {
-        Micro(Mm::exp(self.0))
-    }
-    #[inline]
-    fn ln(self) -> Self {
-        Micro(Mm::ln(self.0))
-    }
-    #[inline]
     fn sin(self) -> Self {
         Micro(sin_cos_f32(self.0).0)
     }
@@ -129,40 +117,12 @@ impl Real for Micro {
         let (s, c) = sin_cos_f32(self.0);
         (Micro(s), Micro(c))
     }
-    #[inline]
-    fn tan(self) -> Self {
-        Micro(Mm::tan(self.0))
-    }
-    #[inline]
-    fn asin(self) -> Self {
-        Micro(Mm::asin(self.0))
-    }
-    #[inline]
-    fn acos(self) -> Self {
-        Micro(Mm::acos(self.0))
-    }
-    #[inline]
-    fn atan(self) -> Self {
-        Micro(Mm::atan(self.0))
-    }
-    #[inline]
-    fn atan2(self, x: Self) -> Self {
-        Micro(Mm::atan2(self.0, x.0))
-    }
-    #[inline]
-    fn powf(self, e: Self) -> Self {
-        Micro(libm::powf(self.0, e.0))
-    }
-    #[inline]
-    fn floor(self) -> Self {
-        Micro(libm::floorf(self.0))
-    }
-    #[inline]
-    fn erf(self) -> Self {
-        Micro(libm::erff(self.0))
-    }
-    #[inline]
-    fn erfc(self) -> Self {
-        Micro(erfc_f32(self.0))
-    }
+    forward!(Micro:
+        sqrt => libm::sqrtf, exp => Mm::exp, ln => Mm::ln, tan => Mm::tan, asin => Mm::asin,
+        acos => Mm::acos, atan => Mm::atan, floor => libm::floorf, erf => libm::erff,
+        erfc => erfc_f32,
+    );
+    forward!(Micro binary:
+        atan2 => Mm::atan2, powf => libm::powf,
+    );
 }

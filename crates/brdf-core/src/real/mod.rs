@@ -247,36 +247,51 @@ macro_rules! consts {
     };
 }
 
+/// Inlined [`Real`] functions that call one function of the same signature:
+/// `name => path` gives `fn name(self) -> Self { path(self) }`, and after `binary`
+/// `fn name(self, b: Self) -> Self { path(self, b) }`; with a leading `Wrapper:` (a newtype
+/// over the scalar) the call takes and returns the wrapped scalar.
+macro_rules! forward {
+    ($($name:ident => $path:path),* $(,)?) => {
+        $(
+            #[inline]
+            fn $name(self) -> Self {
+                $path(self)
+            }
+        )*
+    };
+    (binary $($name:ident => $path:path),* $(,)?) => {
+        $(
+            #[inline]
+            fn $name(self, b: Self) -> Self {
+                $path(self, b)
+            }
+        )*
+    };
+    ($w:ident: $($name:ident => $path:path),* $(,)?) => {
+        $(
+            #[inline]
+            fn $name(self) -> Self {
+                $w($path(self.0))
+            }
+        )*
+    };
+    ($w:ident binary: $($name:ident => $path:path),* $(,)?) => {
+        $(
+            #[inline]
+            fn $name(self, b: Self) -> Self {
+                $w($path(self.0, b.0))
+            }
+        )*
+    };
+}
+
 impl Real for f64 {
     consts!(f64);
-    #[inline]
-    fn sqrt(self) -> Self {
-        libm::sqrt(self)
-    }
     #[cfg(target_arch = "x86_64")]
     #[inline]
     fn sqrt2(x: [Self; 2]) -> [Self; 2] {
         wide::f64x2::from(x).sqrt().to_array()
-    }
-    #[inline]
-    fn exp(self) -> Self {
-        libm::exp(self)
-    }
-    #[inline]
-    fn exp_bounded(self) -> Self {
-        exp_bounded_f64(self)
-    }
-    #[inline]
-    fn ln(self) -> Self {
-        libm::log(self)
-    }
-    #[inline]
-    fn sin(self) -> Self {
-        libm::sin(self)
-    }
-    #[inline]
-    fn cos(self) -> Self {
-        libm::cos(self)
     }
     #[inline]
     fn sin_cos(self) -> (Self, Self) {
@@ -290,50 +305,6 @@ impl Real for f64 {
         sin_cos2_f64(x)
     }
     #[inline]
-    fn tan(self) -> Self {
-        libm::tan(self)
-    }
-    #[inline]
-    fn asin(self) -> Self {
-        libm::asin(self)
-    }
-    #[inline]
-    fn acos(self) -> Self {
-        libm::acos(self)
-    }
-    #[inline]
-    fn atan(self) -> Self {
-        libm::atan(self)
-    }
-    #[inline]
-    fn atan2(self, x: Self) -> Self {
-        libm::atan2(self, x)
-    }
-    #[inline]
-    fn powf(self, e: Self) -> Self {
-        libm::pow(self, e)
-    }
-    #[inline]
-    fn floor(self) -> Self {
-        libm::floor(self)
-    }
-    #[inline]
-    fn erf(self) -> Self {
-        libm::erf(self)
-    }
-    #[inline]
-    fn erfc(self) -> Self {
-        libm::erfc(self)
-    }
-    #[inline]
-    fn erfc_bounded(self) -> Self {
-        erfc_bounded_f64(self)
-    }
-    #[inline]
-    fn erfcx_bounded(self) -> Self {
-        erfcx_bounded_f64(self)
-    }
-    #[inline]
     fn erfcx2_bounded(x: [Self; 2]) -> [Self; 2] {
         erfcx2_bounded_f64(x)
     }
@@ -341,6 +312,15 @@ impl Real for f64 {
     fn exp_neg2(z: [Self; 2]) -> [Self; 2] {
         exp_neg2_f64(z)
     }
+    forward!(
+        sqrt => libm::sqrt, exp => libm::exp, exp_bounded => exp_bounded_f64, ln => libm::log,
+        sin => libm::sin, cos => libm::cos, tan => libm::tan, asin => libm::asin,
+        acos => libm::acos, atan => libm::atan, floor => libm::floor, erf => libm::erf,
+        erfc => libm::erfc, erfc_bounded => erfc_bounded_f64, erfcx_bounded => erfcx_bounded_f64,
+    );
+    forward!(binary
+        atan2 => libm::atan2, powf => libm::pow,
+    );
 }
 
 /// sin and cos of an `f32`, in f32 arithmetic only.
@@ -499,21 +479,9 @@ pub fn erfc_f32(x: f32) -> f32 {
 impl Real for f32 {
     consts!(f32);
     #[inline]
-    fn sqrt(self) -> Self {
-        libm::sqrtf(self)
-    }
-    #[inline]
-    fn exp(self) -> Self {
-        exp_f32(self)
-    }
-    #[inline]
     fn exp_bounded(self) -> Self {
         let (p, k) = exp_f32_reduced(if self < -87.0 { -87.0 } else { self });
         p * f32::from_bits(((k + 127) as u32) << 23)
-    }
-    #[inline]
-    fn ln(self) -> Self {
-        libm::logf(self)
     }
     #[inline]
     fn sin(self) -> Self {
@@ -527,42 +495,14 @@ impl Real for f32 {
     fn sin_cos(self) -> (Self, Self) {
         sin_cos_f32(self)
     }
-    #[inline]
-    fn tan(self) -> Self {
-        libm::tanf(self)
-    }
-    #[inline]
-    fn asin(self) -> Self {
-        libm::asinf(self)
-    }
-    #[inline]
-    fn acos(self) -> Self {
-        libm::acosf(self)
-    }
-    #[inline]
-    fn atan(self) -> Self {
-        libm::atanf(self)
-    }
-    #[inline]
-    fn atan2(self, x: Self) -> Self {
-        libm::atan2f(self, x)
-    }
-    #[inline]
-    fn powf(self, e: Self) -> Self {
-        libm::powf(self, e)
-    }
-    #[inline]
-    fn floor(self) -> Self {
-        libm::floorf(self)
-    }
-    #[inline]
-    fn erf(self) -> Self {
-        libm::erff(self)
-    }
-    #[inline]
-    fn erfc(self) -> Self {
-        erfc_f32(self)
-    }
+    forward!(
+        sqrt => libm::sqrtf, exp => exp_f32, ln => libm::logf, tan => libm::tanf,
+        asin => libm::asinf, acos => libm::acosf, atan => libm::atanf, floor => libm::floorf,
+        erf => libm::erff, erfc => erfc_f32,
+    );
+    forward!(binary
+        atan2 => libm::atan2f, powf => libm::powf,
+    );
 }
 
 #[cfg(feature = "micromath")]

@@ -535,32 +535,17 @@ fn split(p: &Patch, t: ([f64; 2], [f64; 2]), tol: [f64; 2], width: [f64; 2]) -> 
 
 /// The two halves of `p` along x (`along_x`) or y, without node values.
 fn halves(p: Patch, along_x: bool) -> [Patch; 2] {
-    let blank = Patch { f: Vec::new(), ..p };
-    if along_x {
-        let h = 0.5 * (blank.x[0] + blank.x[1]);
-        [
-            Patch {
-                x: [blank.x[0], h],
-                ..blank.clone()
-            },
-            Patch {
-                x: [h, blank.x[1]],
-                ..blank
-            },
-        ]
-    } else {
-        let h = 0.5 * (blank.y[0] + blank.y[1]);
-        [
-            Patch {
-                y: [blank.y[0], h],
-                ..blank.clone()
-            },
-            Patch {
-                y: [h, blank.y[1]],
-                ..blank
-            },
-        ]
-    }
+    let r = if along_x { p.x } else { p.y };
+    let h = 0.5 * (r[0] + r[1]);
+    [[r[0], h], [h, r[1]]].map(|half| {
+        let (x, y) = if along_x { (half, p.y) } else { (p.x, half) };
+        Patch {
+            x,
+            y,
+            f: Vec::new(),
+            est: p.est,
+        }
+    })
 }
 
 /// The (μ, r) of the patch's tensor Lobatto nodes of degree `n` (x-node major).

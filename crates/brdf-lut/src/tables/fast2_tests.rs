@@ -11,8 +11,21 @@ use crate::write;
 use crate::LutView;
 use std::vec::Vec;
 
-fn same(a: (f32, f32), b: [f32; 2]) -> bool {
-    a.0.to_bits() == b[0].to_bits() && a.1.to_bits() == b[1].to_bits()
+/// `v` equals `want` bit for bit, except that two different NaNs (signs) meeting in one
+/// operation give either one: x86 returns the first operand's, and the compiler may swap
+/// the operands of a multiplication. Only then (x and y NaNs of different bits) are the
+/// NaNs' bits left free.
+fn agrees(x: f32, y: f32, v: (f32, f32), want: [f32; 2]) -> bool {
+    let same = v.0.to_bits() == want[0].to_bits() && v.1.to_bits() == want[1].to_bits();
+    let free = x.is_nan() && y.is_nan() && x.to_bits() != y.to_bits();
+    same || free && v.0.is_nan() && v.1.is_nan() && want[0].is_nan()
+}
+
+/// The table of `spec` holding `values`, written by the crate's writer.
+fn encode(spec: &write::Spec, values: &[f64]) -> Vec<u8> {
+    let (chans, payload) = write::quantise(spec, values).unwrap();
+    let h = write::header(spec, chans, Default::default()).unwrap();
+    write::encode(&h, &payload).unwrap()
 }
 
 /// Coordinates for one axis of `lane`: special values, the range ends and their f32
@@ -96,15 +109,7 @@ fn check(bytes: &[u8]) -> Kind {
                 f.ab(&p.reader, payload, 0, x, y),
                 f.ab(&p.reader, bytes, hl, x, y),
             );
-            // Two different NaNs (signs) meeting in one operation give either one: x86
-            // returns the first operand's, and the compiler may swap the operands of a
-            // multiplication. Only then are the NaNs' bits left free.
-            let free = x.is_nan() && y.is_nan() && x.to_bits() != y.to_bits();
-            let ok = |v: Option<(f32, f32)>| {
-                v.is_some_and(|v| {
-                    same(v, want) || free && v.0.is_nan() && v.1.is_nan() && want[0].is_nan()
-                })
-            };
+            let ok = |v: Option<(f32, f32)>| v.is_some_and(|v| agrees(x, y, v, want));
             assert!(ok(a) && ok(b), "({x:e}, {y:e}): {a:?} {b:?} vs {want:?}");
             // NaN in either coordinate (only then) gives NaN in both channels.
             assert_eq!(
@@ -198,9 +203,7 @@ fn batch_equals_scalar(f: &Fast2, r: &Reader, bytes: &[u8], hl: usize, xs: &[f32
         assert!(unsafe { f.batch_avx2(r, data, hl, limit, x, y, [&mut a, &mut b]) });
         for k in 0..n {
             let want = f.ab(r, data, hl, x[k], y[k]).unwrap();
-            let free = x[k].is_nan() && y[k].is_nan() && x[k].to_bits() != y[k].to_bits();
-            let ok = same((a[k], b[k]), [want.0, want.1])
-                || free && a[k].is_nan() && b[k].is_nan() && want.0.is_nan();
+            let ok = agrees(x[k], y[k], (a[k], b[k]), [want.0, want.1]);
             assert!(
                 ok,
                 "{k} ({:e}, {:e}): {:?} vs {want:?}",
@@ -282,18 +285,14 @@ fn rounding_past_the_last_node_keeps_the_clamp() {
     let values: Vec<f64> = (0..spec.nodes() * 2)
         .map(|k| (0.37 * k as f64).sin())
         .collect();
-    let (chans, payload) = write::quantise(&spec, &values).unwrap();
-    let h = write::header(&spec, chans, Default::default()).unwrap();
-    assert_eq!(check(&write::encode(&h, &payload).unwrap()), Kind::Mixed);
+    assert_eq!(check(&encode(&spec, &values)), Kind::Mixed);
     // The same table with the other range takes the inlined form.
     let axes = [ax(1.0), ax(1.0)];
     let spec = write::Spec {
         axes: &axes,
         ..spec
     };
-    let (chans, payload) = write::quantise(&spec, &values).unwrap();
-    let h = write::header(&spec, chans, Default::default()).unwrap();
-    assert_eq!(check(&write::encode(&h, &payload).unwrap()), Kind::Sqrt);
+    assert_eq!(check(&encode(&spec, &values)), Kind::Sqrt);
 }
 
 /// Made-up tables of every axis form the path takes (linear, √, endpoint and texel-centre
@@ -311,52 +310,18 @@ fn made_up_tables_equal_the_general_reader() {
     };
     use Placement::{Endpoint as E, TexelCentre as T};
     use Warp::{Linear as L, Log, Sqrt as S};
+    // (axes, channels, interpolation); two channels and linear unless said.
+    let lin = |a, b| ([a, b], 2, Interpolation::Linear);
     let cases = [
-        (
-            [ax(256, 0.0, 1.0, S, E), ax(256, 0.0, 1.0, S, E)],
-            2,
-            Interpolation::Linear,
-        ),
-        (
-            [ax(2, 0.0, 1.0, S, E), ax(3, 0.0, 1.0, S, E)],
-            2,
-            Interpolation::Linear,
-        ),
-        (
-            [ax(64, 0.05, 0.93, S, E), ax(19, 0.1, 1.0, S, E)],
-            2,
-            Interpolation::Linear,
-        ),
-        (
-            [ax(37, 0.05, 0.93, S, E), ax(19, 0.1, 1.0, S, E)],
-            2,
-            Interpolation::Linear,
-        ),
-        (
-            [ax(16, 0.0, 1.0, S, T), ax(9, 0.0, 1.0, S, T)],
-            2,
-            Interpolation::Linear,
-        ),
-        (
-            [ax(33, -1.5, 2.25, L, E), ax(17, 0.0, 1.0, S, E)],
-            2,
-            Interpolation::Linear,
-        ),
-        (
-            [ax(8, 0.0, 1.0, S, E), ax(300, -3.0, -1.0, L, T)],
-            2,
-            Interpolation::Linear,
-        ),
-        (
-            [ax(64, 0.0, 1.0, L, E), ax(64, 0.0, 1.0, L, E)],
-            2,
-            Interpolation::Linear,
-        ),
-        (
-            [ax(16, 0.1, 1.0, Log, E), ax(16, 0.0, 1.0, S, E)],
-            2,
-            Interpolation::Linear,
-        ),
+        lin(ax(256, 0.0, 1.0, S, E), ax(256, 0.0, 1.0, S, E)),
+        lin(ax(2, 0.0, 1.0, S, E), ax(3, 0.0, 1.0, S, E)),
+        lin(ax(64, 0.05, 0.93, S, E), ax(19, 0.1, 1.0, S, E)),
+        lin(ax(37, 0.05, 0.93, S, E), ax(19, 0.1, 1.0, S, E)),
+        lin(ax(16, 0.0, 1.0, S, T), ax(9, 0.0, 1.0, S, T)),
+        lin(ax(33, -1.5, 2.25, L, E), ax(17, 0.0, 1.0, S, E)),
+        lin(ax(8, 0.0, 1.0, S, E), ax(300, -3.0, -1.0, L, T)),
+        lin(ax(64, 0.0, 1.0, L, E), ax(64, 0.0, 1.0, L, E)),
+        lin(ax(16, 0.1, 1.0, Log, E), ax(16, 0.0, 1.0, S, E)),
         (
             [ax(16, 0.0, 1.0, S, E), ax(16, 0.0, 1.0, S, E)],
             2,
@@ -413,10 +378,7 @@ fn made_up_tables_equal_the_general_reader() {
                 (0.37 * k as f64).sin() + 0.2 * u
             })
             .collect();
-        let (chans, payload) = write::quantise(&spec, &values).unwrap();
-        let h = write::header(&spec, chans, Default::default()).unwrap();
-        let bytes = write::encode(&h, &payload).unwrap();
-        kinds.push(check(&bytes));
+        kinds.push(check(&encode(&spec, &values)));
     }
     use Kind::{Mixed as M, MixedOne as M1, None as N, Sqrt as Q, SqrtOne as Q1};
     // Which form each table takes: √ with endpoint nodes and 2^k nodes on axis 0 the
