@@ -318,7 +318,7 @@ fn bevy_ktx2_rg16f_zstd() {
     let d = generate("bevy", n);
     sidecar(&d, "dfg");
     let bytes = file(&d, "dfg.ktx2");
-    let rd = ktx2::Reader::new(&bytes[..]).unwrap();
+    let rd = ktx2::Reader::new(bytes).unwrap();
     let h = rd.header();
     assert_eq!(h.format, Some(ktx2::Format::R16G16_SFLOAT));
     assert_eq!(
@@ -365,7 +365,7 @@ fn filament_dds_rgba16f() {
     assert_eq!(u32at(128), 10, "DXGI_FORMAT_R16G16B16A16_FLOAT");
     assert_eq!(bytes.len(), 148 + n * n * 8);
     let data = &bytes[148..];
-    let via_crate = ddsfile::Dds::read(&bytes[..]).unwrap();
+    let via_crate = ddsfile::Dds::read(bytes).unwrap();
     assert_eq!(via_crate.get_data(0).unwrap(), data);
     let f = |o: usize| f16::from_bits(u16::from_le_bytes([data[o], data[o + 1]])).to_f64();
     let e = exact(n);
@@ -489,8 +489,8 @@ fn wgsl_validates_with_naga() {
         let side = sidecar(&d, stem);
         let name = side["shaders"]["function"].as_str().unwrap().to_string();
         let wgsl = std::str::from_utf8(file(&d, &format!("{stem}.wgsl"))).unwrap();
-        let module = naga::front::wgsl::parse_str(&wgsl)
-            .unwrap_or_else(|e| panic!("{target}: {}", e.emit_to_string(&wgsl)));
+        let module = naga::front::wgsl::parse_str(wgsl)
+            .unwrap_or_else(|e| panic!("{target}: {}", e.emit_to_string(wgsl)));
         naga::valid::Validator::new(
             naga::valid::ValidationFlags::all(),
             naga::valid::Capabilities::all(),
