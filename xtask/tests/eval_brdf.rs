@@ -4,7 +4,7 @@
 use std::process::Output;
 
 mod common;
-use common::stderr;
+use common::{fails_with, stderr};
 
 /// `cargo xtask eval brdf args` with `stdin` as input.
 fn run(args: &[&str], stdin: &str) -> Output {
@@ -179,12 +179,10 @@ fn bad_input_is_a_clear_error() {
     );
 
     let o = run(&["--model", "ggx", "--param", "beta=1"], "0,0,1,0,0,1\n");
-    assert!(!o.status.success());
-    assert!(stderr(&o).contains("no parameter `beta`"), "{}", stderr(&o));
+    fails_with(&o, "no parameter `beta`");
 
     let o = run(&["--model", "ggx", "--param", "alpha=0"], "0,0,1,0,0,1\n");
-    assert!(!o.status.success());
-    assert!(stderr(&o).contains("alpha"), "{}", stderr(&o));
+    fails_with(&o, "alpha");
 
     let o = run(&["--model", "ggx", "--param", "alpha"], "");
     assert!(!o.status.success());
@@ -193,8 +191,7 @@ fn bad_input_is_a_clear_error() {
         &["--model", "ggx"],
         "0,0,1,0,0,1\n0,0,1,0,0,1\n0,0,1,0,zero,1\n",
     );
-    assert!(!o.status.success());
-    assert!(stderr(&o).contains("line 3"), "{}", stderr(&o));
+    fails_with(&o, "line 3");
 
     let o = run(&["--model", "ggx"], "0,0,1,0,0\n");
     assert!(!o.status.success());

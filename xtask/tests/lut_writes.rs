@@ -5,7 +5,7 @@
 use std::path::{Path, PathBuf};
 
 mod common;
-use common::{assets, listing, stderr as err, xtask};
+use common::{assets, fails_with, listing, stderr as err, xtask};
 use std::process::{Command, Stdio};
 
 /// A small committed table copied into `dir` under `name`.
@@ -26,15 +26,13 @@ fn export_never_overwrites_its_input() {
             args.push("--force");
         }
         let o = xtask(&args, d.path());
-        assert!(!o.status.success());
-        assert!(err(&o).contains("it is the input"), "{}", err(&o));
+        fails_with(&o, "it is the input");
         assert_eq!(std::fs::read(&inp).unwrap(), before);
     }
     // A table named table.png exported with --png16: the default output is the input.
     let png = input(d.path(), "table.png");
     let o = xtask(&["lut", "export", "table.png", "--png16"], d.path());
-    assert!(!o.status.success());
-    assert!(err(&o).contains("it is the input"), "{}", err(&o));
+    fails_with(&o, "it is the input");
     assert_eq!(std::fs::read(&png).unwrap(), before);
     assert_eq!(listing(d.path()), ["mine.blut", "table.png"]);
 }
@@ -72,8 +70,7 @@ fn export_defaults_to_the_current_folder_and_needs_force_to_replace() {
         &["lut", "export", src.to_str().unwrap(), "--png16"],
         d.path(),
     );
-    assert!(!o.status.success());
-    assert!(err(&o).contains("--force"), "{}", err(&o));
+    fails_with(&o, "--force");
     assert_eq!(
         std::fs::read(d.path().join("kc_eavg_ggx.png.json")).unwrap(),
         b"mine"
@@ -108,8 +105,7 @@ fn export_refuses_assets_folder() {
         ],
         d.path(),
     );
-    assert!(!o.status.success());
-    assert!(err(&o).contains("committed default tables"), "{}", err(&o));
+    fails_with(&o, "committed default tables");
     assert!(!target.exists());
 }
 
@@ -128,8 +124,7 @@ fn modified_default_table_never_replaces_the_committed_asset() {
     let d = tempfile::tempdir().unwrap();
     let committed = std::fs::read(assets().join("dfg_ggx.blut")).unwrap();
     let o = xtask(&["lut", "--only", "dfg_ggx", "--res", "32x32"], d.path());
-    assert!(!o.status.success());
-    assert!(err(&o).contains("--out"), "{}", err(&o));
+    fails_with(&o, "--out");
     // Naming assets/ explicitly is refused too, --force or not.
     let a = assets();
     let o = xtask(
@@ -145,8 +140,7 @@ fn modified_default_table_never_replaces_the_committed_asset() {
         ],
         d.path(),
     );
-    assert!(!o.status.success());
-    assert!(err(&o).contains("committed default tables"), "{}", err(&o));
+    fails_with(&o, "committed default tables");
     assert_eq!(
         std::fs::read(assets().join("dfg_ggx.blut")).unwrap(),
         committed
@@ -166,8 +160,7 @@ fn modified_default_table_never_replaces_the_committed_asset() {
     assert!(o.status.success(), "{}", err(&o));
     assert_eq!(listing(&out), ["kc_eavg_ggx.blut"]);
     let o = xtask(&args, d.path());
-    assert!(!o.status.success());
-    assert!(err(&o).contains("--force"), "{}", err(&o));
+    fails_with(&o, "--force");
     let mut forced = args.to_vec();
     forced.push("--force");
     let o = xtask(&forced, d.path());
@@ -231,8 +224,7 @@ fn max_error_fails_an_overridden_default_table() {
     let mut strict = args.to_vec();
     strict.extend_from_slice(&["--max-error", "0.01"]);
     let o = xtask(&strict, d.path());
-    assert!(!o.status.success());
-    assert!(err(&o).contains("dfg_ggx.blut"), "{}", err(&o));
+    fails_with(&o, "dfg_ggx.blut");
     assert!(err(&o).contains("exceeds --max-error"), "{}", err(&o));
     assert!(!out.exists() || listing(&out).is_empty());
     let o = xtask(&args, d.path());

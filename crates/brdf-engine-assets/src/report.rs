@@ -357,6 +357,32 @@ pub struct EngineRow {
     pub ours_texels: Errs,
 }
 
+impl EngineRow {
+    /// The row of engine `e`: our table `ours` and the shipped one `theirs` (when found) at
+    /// the report's [`POINTS`] random points ([`points`] with [`SEED`]) and at every
+    /// `n/64`-th texel centre, `n` being the engine's native size. With `extra`, that
+    /// table's errors at the same points too (the report's 16-bit Khronos PNG).
+    pub fn compute(
+        e: &Shipped,
+        ours: &Table,
+        theirs: Option<&Table>,
+        extra: Option<&Table>,
+    ) -> (EngineRow, Option<Errs>) {
+        let n = e.engine.native_size();
+        let pts = points(n, POINTS, SEED);
+        let step = (n / 64).max(1);
+        let row = EngineRow {
+            label: e.label.to_string(),
+            step,
+            shipped: theirs.map(|t| errors(t, &pts)),
+            ours: errors(ours, &pts),
+            shipped_texels: theirs.map(|t| texel_errors(t, step)),
+            ours_texels: texel_errors(ours, step),
+        };
+        (row, extra.map(|t| errors(t, &pts)))
+    }
+}
+
 /// The data of `docs/engines.md`.
 pub struct EnginesReport {
     /// Random points per engine.

@@ -1,6 +1,6 @@
 //! The texels come from the one generator and agree with brdf-core's independent converged
 //! split-sum integrator at each texel centre; bad sizes are refused before any work. The layouts themselves are checked
-//! end to end, file by file with independent decoders, in `xtask/tests/lut_engine.rs`.
+//! end to end, file by file with independent decoders, in `tests/engine_files.rs`.
 
 use brdf_core::split_sum::converged::dfg_ggx_converged;
 use brdf_engine_assets::{split_sum_texels, Engine, Error, MAX_SIZE};

@@ -32,6 +32,7 @@
 //! The kinds it knows are one list ([`Kind::def`], `generate/kinds.rs`).
 
 mod defaults;
+pub mod describe;
 pub mod glass;
 mod integrate;
 mod kinds;
@@ -40,6 +41,7 @@ mod sheen;
 mod verify;
 
 pub use defaults::{default_set, Asset, DEFAULT_SET_TOOL};
+pub use describe::{check_limits, DescribeError, Description, Value};
 pub use integrate::{
     ggx_converged, reference, GgxQuery, Work, REFERENCE_TOL, TOL as INTEGRATION_TOL,
 };
@@ -50,7 +52,10 @@ pub use sheen::{
     GRID_NODE_TOL as SHEEN_GRID_NODE_TOL, GRID_R_MIN as SHEEN_GRID_R_MIN,
     REFERENCE_TOL as SHEEN_REFERENCE_TOL, TOL as SHEEN_TOL,
 };
-pub use verify::{check_nodes, sample_nodes, NodeCheck};
+pub use verify::{
+    check_nodes, check_recorded_bound, measure_table, sample_nodes, verify_points,
+    worse_than_recorded, BoundCheck, NodeCheck, OverBudget, VerifyPoints,
+};
 
 use crate::write;
 use crate::{

@@ -3,12 +3,12 @@
 //! up with broadcasting through `brdf_lut::LutView::sample`, and the header as a dict.
 
 use crate::arrays::{self, num, Float, Kernel};
-use brdf_lut::generate::{self, Distribution, Kind, Masking, Roughness, Spec};
-use brdf_lut::{Encoding, Interpolation, Lut, Placement, Warp};
+use brdf_lut::generate::{self, DescribeError, Description, Spec, Value};
+use brdf_lut::Lut;
 use pyo3::create_exception;
 use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyBytes, PyDict, PyList};
+use pyo3::types::{PyBool, PyBytes, PyDict, PyList};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -34,248 +34,55 @@ fn load_err(e: brdf_lut::Error) -> PyErr {
     }
 }
 
-/// One of `options` by name, or `ValueError` naming the field and the options.
-fn choose<T: Copy>(field: &str, v: &str, options: &[(&str, T)]) -> PyResult<T> {
-    options
-        .iter()
-        .find(|(n, _)| *n == v)
-        .map(|(_, t)| *t)
-        .ok_or_else(|| {
-            let names: Vec<&str> = options.iter().map(|(n, _)| *n).collect();
-            PyValueError::new_err(format!(
-                "spec field `{field}`: {v:?} is not one of {}",
-                names.join(", ")
-            ))
-        })
+/// A Python value as the library's description value.
+fn value(v: &Bound<'_, PyAny>) -> Value {
+    if v.is_instance_of::<PyBool>() {
+        return Value::Other("bool".into());
+    }
+    if let Ok(s) = v.extract::<String>() {
+        return Value::Text(s);
+    }
+    if let Ok(i) = v.extract::<i64>() {
+        return Value::Int(i);
+    }
+    if let Ok(x) = v.extract::<f64>() {
+        return Value::Float(x);
+    }
+    let t = v.get_type().name().map(|n| n.to_string()).unwrap_or_default();
+    Value::Other(t)
 }
 
-const WARPS: &[(&str, Warp)] = &[
-    ("linear", Warp::Linear),
-    ("log", Warp::Log),
-    ("sqrt", Warp::Sqrt),
-    ("cos", Warp::Cos),
-    ("sqrt-cos", Warp::SqrtCos),
-];
-const PLACEMENTS: &[(&str, Placement)] = &[
-    ("endpoint", Placement::Endpoint),
-    ("texel-centre", Placement::TexelCentre),
-    ("texel-center", Placement::TexelCentre),
-];
-
-/// The spec's fields by their TOML name (`max-error`; `max_error` also accepted).
-struct Fields<'py> {
-    d: Bound<'py, PyDict>,
+fn spec_err(e: DescribeError) -> PyErr {
+    PyValueError::new_err(format!("spec: {e}"))
 }
 
-const KEYS: &[&str] = &[
-    "kind",
-    "model",
-    "masking",
-    "roughness",
-    "sigma",
-    "res",
-    "encoding",
-    "interpolation",
-    "samples",
-    "seed",
-    "max-error",
-    "axes",
-    "out",
-];
-
-impl<'py> Fields<'py> {
-    fn new(d: &Bound<'py, PyDict>) -> PyResult<Self> {
-        let norm = PyDict::new(d.py());
-        for (k, v) in d.iter() {
-            let k: String = k.extract()?;
-            let k = k.replace('_', "-");
-            if !KEYS.contains(&k.as_str()) {
-                return Err(PyValueError::new_err(format!(
-                    "spec: unknown field `{k}` (fields: {})",
-                    KEYS.join(", ")
-                )));
-            }
-            norm.set_item(k, v)?;
-        }
-        Ok(Self { d: norm })
-    }
-    fn get<T: for<'a> FromPyObject<'a, 'py>>(&self, k: &str) -> PyResult<Option<T>> {
-        match self.d.get_item(k)? {
-            None => Ok(None),
-            Some(v) => v.extract::<T>().map(Some).map_err(|_| {
-                PyValueError::new_err(format!(
-                    "spec field `{k}`: {} has the wrong type",
-                    v.repr().map(|r| r.to_string()).unwrap_or_default()
-                ))
-            }),
-        }
-    }
-}
-
-/// Kind, distribution and masking, with xtask's defaults.
-fn kind_model(f: &Fields<'_>) -> PyResult<Spec> {
-    let kind_s: String = f.get("kind")?.ok_or_else(|| {
-        PyValueError::new_err(
-            "spec field `kind` is missing (g-per-sigma, g-over-sigma, split-sum, e, e-avg)",
-        )
-    })?;
-    let sigma: Option<f64> = f.get("sigma")?;
-    let kind = match kind_s.as_str() {
-        "g-per-sigma" => Kind::GPerSigma {
-            sigma: sigma
-                .ok_or_else(|| PyValueError::new_err("a g-per-sigma spec needs field `sigma`"))?,
-        },
-        "g-over-sigma" => Kind::GOverSigma,
-        "split-sum" => Kind::SplitSum,
-        "e" => Kind::Albedo,
-        "e-avg" => Kind::AverageAlbedo,
-        o => {
-            return Err(PyValueError::new_err(format!(
-            "spec field `kind`: {o:?} is not one of g-per-sigma, g-over-sigma, split-sum, e, e-avg"
-        )))
-        }
-    };
-    if sigma.is_some() && !matches!(kind, Kind::GPerSigma { .. }) {
-        return Err(PyValueError::new_err(
-            "spec field `sigma` is the fixed σ of a g-per-sigma table; other kinds take a σ axis",
-        ));
-    }
-    let g_table = matches!(kind, Kind::GPerSigma { .. } | Kind::GOverSigma);
-    let dist = match f.get::<String>("model")? {
-        Some(m) => choose("model", &m, &generate::distribution_options())?,
-        None if g_table => Distribution::TorranceSparrow,
-        None => {
-            return Err(PyValueError::new_err(
-                "spec field `model` is missing (ggx, beckmann, torrance-sparrow)",
-            ))
-        }
-    };
-    let masking = match f.get::<String>("masking")? {
-        Some(m) => choose("masking", &m, &Masking::options())?,
-        None if dist == Distribution::TorranceSparrow => Masking::Modified,
-        None => Masking::SmithCorrelated,
-    };
-    let mut spec = Spec::new(kind, dist, masking);
-    if let Some(r) = f.get::<String>("roughness")? {
-        spec.roughness = choose("roughness", &r, &Roughness::ALL.map(|r| (r.name(), r)))?;
-        spec.axes = spec.default_axes();
-    }
-    Ok(spec)
-}
-
-/// The `axes` table, then `res`.
-fn axes(f: &Fields<'_>, spec: &mut Spec) -> PyResult<()> {
-    let names = spec.axis_names();
-    let index = |name: &str| {
-        names.iter().position(|n| *n == name).ok_or_else(|| {
-            PyValueError::new_err(format!(
-                "spec: no axis `{name}`; this table's axes are {}",
-                names.join(", ")
-            ))
-        })
-    };
-    if let Some(ax) = f.get::<Bound<'_, PyDict>>("axes")? {
-        let mut items: Vec<(String, Bound<'_, PyAny>)> = Vec::new();
-        for (k, v) in ax.iter() {
-            items.push((k.extract()?, v));
-        }
-        items.sort_by(|a, b| a.0.cmp(&b.0));
-        for (name, v) in items {
-            let i = index(&name)?;
-            let a = Fields {
-                d: v.cast_into::<PyDict>().map_err(|_| {
-                    PyValueError::new_err(format!("spec axis `{name}` must be a dict"))
-                })?,
-            };
-            for (k, _) in a.d.iter() {
-                let k: String = k.extract()?;
-                if !["count", "lo", "hi", "warp", "placement"].contains(&k.as_str()) {
-                    return Err(PyValueError::new_err(format!(
-                        "spec axis `{name}`: unknown field `{k}` (count, lo, hi, warp, placement)"
-                    )));
+/// The dict read into the library's description (the fields of `cargo xtask lut generate`'s
+/// TOML file, `brdf_lut::generate::Description`); `out` may be any path-like.
+fn description(d: &Bound<'_, PyDict>) -> PyResult<Description> {
+    let mut desc = Description::default();
+    for (k, v) in d.iter() {
+        let k: String = k.extract()?;
+        match k.as_str() {
+            "axes" => {
+                let axes = v
+                    .cast_into::<PyDict>()
+                    .map_err(|_| PyValueError::new_err("spec field `axes` must be a dict"))?;
+                for (name, fields) in axes.iter() {
+                    let name: String = name.extract()?;
+                    let fields = fields.cast_into::<PyDict>().map_err(|_| {
+                        PyValueError::new_err(format!("spec axis `{name}` must be a dict"))
+                    })?;
+                    for (f, x) in fields.iter() {
+                        let f: String = f.extract()?;
+                        desc.set_axis(&name, &f, value(&x)).map_err(spec_err)?;
+                    }
                 }
             }
-            let x = &mut spec.axes[i];
-            x.count = a.get("count")?.unwrap_or(x.count);
-            x.lo = a.get("lo")?.unwrap_or(x.lo);
-            x.hi = a.get("hi")?.unwrap_or(x.hi);
-            if let Some(w) = a.get::<String>("warp")? {
-                x.warp = choose("warp", &w, WARPS)?;
-            }
-            if let Some(p) = a.get::<String>("placement")? {
-                x.placement = choose("placement", &p, PLACEMENTS)?;
-            }
+            "out" => desc.out = Some(v.extract::<PathBuf>()?),
+            _ => desc.set(&k, value(&v)).map_err(spec_err)?,
         }
     }
-    if let Some(res) = f.get::<String>("res")? {
-        let counts: Vec<u32> = res
-            .split('x')
-            .map(|t| {
-                t.trim().parse::<u32>().map_err(|_| {
-                    PyValueError::new_err(format!(
-                        "spec field `res` {res:?}: {t:?} is not a whole number"
-                    ))
-                })
-            })
-            .collect::<PyResult<_>>()?;
-        if counts.len() != names.len() {
-            return Err(PyValueError::new_err(format!(
-                "spec field `res` {res:?} gives {} sizes; this table has {} axes ({})",
-                counts.len(),
-                names.len(),
-                names.join(", ")
-            )));
-        }
-        for (x, c) in spec.axes.iter_mut().zip(counts) {
-            x.count = c;
-        }
-    }
-    Ok(())
-}
-
-/// A `Spec` from the dict, as `cargo xtask lut generate --config` reads its TOML file.
-fn spec_from(d: &Bound<'_, PyDict>) -> PyResult<(Spec, Option<f64>, Option<PathBuf>)> {
-    let f = Fields::new(d)?;
-    let mut spec = kind_model(&f)?;
-    axes(&f, &mut spec)?;
-    if let Some(e) = f.get::<String>("encoding")? {
-        spec.encoding = choose(
-            "encoding",
-            &e,
-            &[
-                ("u16", Encoding::Unorm16),
-                ("f16", Encoding::F16),
-                ("f32", Encoding::F32),
-            ],
-        )?;
-    }
-    if let Some(i) = f.get::<String>("interpolation")? {
-        spec.interpolation = choose(
-            "interpolation",
-            &i,
-            &[
-                ("linear", Interpolation::Linear),
-                ("catmull-rom", Interpolation::CatmullRom),
-            ],
-        )?;
-    }
-    if let Some(n) = f.get::<u32>("samples")? {
-        spec.samples = n;
-    }
-    if let Some(s) = f.get::<u64>("seed")? {
-        spec.seed = s;
-    }
-    let max_error: Option<f64> = f.get("max-error")?;
-    if let Some(e) = max_error {
-        if !(e.is_finite() && e > 0.0) {
-            return Err(PyValueError::new_err(format!(
-                "spec field `max-error` = {e} must be a positive number"
-            )));
-        }
-    }
-    spec.validate()
-        .map_err(|e| PyValueError::new_err(format!("spec: {e}")))?;
-    Ok((spec, max_error, f.get::<PathBuf>("out")?))
+    Ok(desc)
 }
 
 thread_local! {
@@ -636,18 +443,12 @@ impl Table {
 ///     Interrupted.
 #[pyfunction]
 pub fn build_table(py: Python<'_>, spec: &Bound<'_, PyDict>) -> PyResult<Table> {
-    let (spec, max_error, out) = spec_from(spec)?;
-    let g = run_generate(py, spec)?;
-    if let Some(lim) = max_error {
-        let e = f64::from(g.error.max_abs);
-        if e.is_nan() || e > lim {
-            return Err(lut_err(format!(
-                "measured max |error| {e:.3e} exceeds max-error {lim:.3e}; nothing written"
-            )));
-        }
-    }
+    let desc = description(spec)?;
+    let spec = desc.spec().map_err(spec_err)?;
+    let g = run_generate(py, spec.clone())?;
+    desc.check_max_error(&spec, g.error.max_abs).map_err(lut_err)?;
     let lut = Lut::from_bytes(g.bytes).map_err(load_err)?;
-    if let Some(p) = out {
+    if let Some(p) = desc.out {
         py.detach(|| write_atomic(&p, lut.bytes()))
             .map_err(|e| PyOSError::new_err(format!("{}: {e}", p.display())))?;
     }

@@ -6,8 +6,8 @@ use super::generate;
 use anyhow::{bail, Context, Result};
 use brdf_engine_assets::report::sheen::{compare_sheen, SheenCompare};
 use brdf_engine_assets::report::{
-    decode_khronos, errors, points, render_engines, texel_errors, DecodeError, EngineRow,
-    EnginesReport, Errs, Shipped, Table, POINTS, SEED, SHIPPED,
+    decode_khronos, render_engines, DecodeError, EngineRow, EnginesReport, Errs, Shipped, Table,
+    POINTS, SHIPPED,
 };
 use brdf_validate::figures::{DiffMaps, DiffPanel};
 use std::path::{Path, PathBuf};
@@ -33,16 +33,14 @@ pub fn run(out: PathBuf, anchors: Option<PathBuf>, doc: Option<PathBuf>) -> Resu
     }
     let figures = doc.parent().unwrap_or(Path::new(".")).join("figures");
     report.sheen = sheen(&anchor_dirs, &figures)?;
-    let tmp = doc.with_extension("md.tmp");
-    std::fs::write(&tmp, render_engines(&report)?)
-        .with_context(|| format!("writing {}", tmp.display()))?;
-    std::fs::rename(&tmp, &doc).with_context(|| format!("writing {}", doc.display()))?;
+    crate::fsio::replace(&doc, render_engines(&report)?.as_bytes())?;
     println!("report: wrote {}", doc.display());
     Ok(())
 }
 
-/// One engine's row: our file in `dir` (generated when missing) and the shipped one from the
-/// first anchors folder that has it; for Khronos also our 16-bit PNG at the same points.
+/// One engine's row ([`EngineRow::compute`]): our file in `dir` (generated when missing)
+/// and the shipped one from the first anchors folder that has it; for Khronos also our
+/// 16-bit PNG at the same points.
 fn compare(e: &Shipped, dir: &Path, anchor_dirs: &[PathBuf]) -> Result<(EngineRow, Option<Errs>)> {
     let n = e.engine.native_size();
     let ours_path = dir.join(e.ours);
@@ -58,8 +56,6 @@ fn compare(e: &Shipped, dir: &Path, anchor_dirs: &[PathBuf]) -> Result<(EngineRo
             ours.n
         );
     }
-    let pts = points(n, POINTS, SEED);
-    let step = (n / 64).max(1);
     let theirs_path = anchor_dirs
         .iter()
         .map(|d| d.join(e.theirs))
@@ -76,34 +72,21 @@ fn compare(e: &Shipped, dir: &Path, anchor_dirs: &[PathBuf]) -> Result<(EngineRo
     };
     let k16 = match e.engine {
         brdf_engine_assets::Engine::Khronos => {
-            let t = read_table(&dir.join("lut_ggx_16bit.png"), decode_khronos)?;
-            Some(errors(&t, &pts))
+            Some(read_table(&dir.join("lut_ggx_16bit.png"), decode_khronos)?)
         }
         _ => None,
     };
-    let row = EngineRow {
-        label: e.label.to_string(),
-        step,
-        shipped: theirs.as_ref().map(|t| errors(t, &pts)),
-        ours: errors(&ours, &pts),
-        shipped_texels: theirs.as_ref().map(|t| texel_errors(t, step)),
-        ours_texels: texel_errors(&ours, step),
-    };
-    Ok((row, k16))
+    Ok(EngineRow::compute(e, &ours, theirs.as_ref(), k16.as_ref()))
 }
 
+/// A table file (a regular file of at most 64 MiB) decoded by `decode`.
 fn read_table(p: &Path, decode: fn(&[u8]) -> Result<Table, DecodeError>) -> Result<Table> {
-    let meta = std::fs::metadata(p).with_context(|| format!("reading {}", p.display()))?;
-    if meta.len() > 64 << 20 {
-        bail!(
-            "{}: {} bytes is too large for a table",
-            p.display(),
-            meta.len()
-        );
-    }
-    let bytes = std::fs::read(p).with_context(|| format!("reading {}", p.display()))?;
+    let bytes = crate::fsio::read_limited(p, MAX_TABLE_BYTES)?;
     decode(&bytes).with_context(|| format!("decoding {}", p.display()))
 }
+
+/// The largest engine table file read.
+const MAX_TABLE_BYTES: u64 = 64 << 20;
 
 /// The shipped Khronos sheen textures against the converged sheen albedo (every 16th texel)
 /// and their difference maps, `figures/sheen_difference.svg|png`; `None` when the anchors
@@ -117,23 +100,13 @@ fn sheen(anchor_dirs: &[PathBuf], figures: &Path) -> Result<Option<SheenCompare>
         println!("report: shipped Khronos sheen textures absent: their comparison skipped");
         return Ok(None);
     };
-    let read = |p: &Path| -> Result<Vec<u8>> {
-        let len = std::fs::metadata(p)?.len();
-        if len > 64 << 20 {
-            bail!("{}: {len} bytes is too large for a table", p.display());
-        }
-        std::fs::read(p).with_context(|| format!("reading {}", p.display()))
-    };
+    let read = |p: &Path| crate::fsio::read_limited(p, MAX_TABLE_BYTES);
     let cmp = compare_sheen(&read(&c)?, &read(&s)?, 16)?;
     let panels = cmp
         .diffs
         .iter()
         .map(|d| {
-            // Colour limit: the 99th percentile of |difference| (two digits), saturating beyond.
-            let mut a: Vec<f64> = d.texels.iter().map(|t| t.2.abs()).collect();
-            a.sort_by(f64::total_cmp);
-            let p99 = a.get(a.len() * 99 / 100).copied().unwrap_or(1.0).max(1e-4);
-            let lim = sig2_up(p99);
+            let lim = d.colour_limit();
             DiffPanel {
                 caption: format!("{} (colour ±{lim})", d.label),
                 cells: d.texels.clone(),
@@ -156,10 +129,4 @@ fn sheen(anchor_dirs: &[PathBuf], figures: &Path) -> Result<Option<SheenCompare>
         figures.display()
     );
     Ok(Some(cmp))
-}
-
-/// `v` rounded up to two significant digits.
-fn sig2_up(v: f64) -> f64 {
-    let scale = 10f64.powi(1 - v.log10().floor() as i32);
-    (v * scale).ceil() / scale
 }

@@ -3,8 +3,8 @@
 
 use super::GenArgs;
 use anyhow::{anyhow, bail, Context, Result};
-use brdf_lut::generate::{self, Asset, Spec};
-use brdf_lut::{Encoding, ErrorStats, LutView};
+use brdf_lut::generate::{self, Asset};
+use brdf_lut::{ErrorStats, LutView};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -41,35 +41,20 @@ pub fn progress(len: u64, msg: String) -> ProgressBar {
     pb
 }
 
-/// `--res` and `--encoding` applied to every selected asset.
+/// `--res` and `--encoding` applied to every selected asset (the library's reading of a
+/// description, [`brdf_lut::generate::Description::apply`]), each then checked against the
+/// work-size limits before anything is computed.
 fn apply_overrides(assets: &mut [Asset], g: &GenArgs) -> Result<()> {
+    let desc = generate::Description {
+        res: g.res.clone(),
+        encoding: g.encoding.clone(),
+        ..Default::default()
+    };
     for a in assets.iter_mut() {
-        let s = &mut a.spec;
-        if let Some(res) = &g.res {
-            let n: Vec<u32> = res
-                .split('x')
-                .map(|t| t.trim().parse::<u32>())
-                .collect::<Result<_, _>>()
-                .with_context(|| format!("--res `{res}` is not like 64x64"))?;
-            if n.len() != s.axes.len() {
-                bail!(
-                    "--res `{res}` has {} numbers, {} has {} axes",
-                    n.len(),
-                    a.file,
-                    s.axes.len()
-                );
-            }
-            for (x, &c) in s.axes.iter_mut().zip(&n) {
-                x.count = c;
-            }
-        }
-        if let Some(e) = &g.encoding {
-            s.encoding = match e.as_str() {
-                "u16" => Encoding::Unorm16,
-                "f16" => Encoding::F16,
-                "f32" => Encoding::F32,
-                o => bail!("unknown encoding `{o}` (u16, f16 or f32)"),
-            };
+        let at = |e: generate::DescribeError| anyhow!("{}: {}", a.file, e.with_flags());
+        desc.apply(&a.file, &mut a.spec).map_err(at)?;
+        if g.res.is_some() {
+            generate::check_limits(&a.spec).map_err(at)?;
         }
     }
     Ok(())
@@ -221,24 +206,6 @@ fn build(a: &Asset) -> Result<generate::Generated> {
     let res = generate::generate(&a.spec, &|k| pb.inc(k));
     pb.finish_and_clear();
     res.map_err(|e| anyhow!("{}: {e}", a.file))
-}
-
-/// Max and RMS |table − direct kernel| at `n` random points (seeded), measured by the
-/// library with the spec the table's header describes (NaN when it describes none).
-pub fn measure(view: &LutView<'_>, n: u32, seed: u64) -> ErrorStats {
-    let h = view.header();
-    match Spec::from_header(h) {
-        Some(mut spec) => {
-            (spec.samples, spec.seed) = (n, seed);
-            generate::measure(&spec, view, &h.axes)
-        }
-        None => ErrorStats {
-            max_abs: f32::NAN,
-            rms: f32::NAN,
-            samples: n,
-            seed,
-        },
-    }
 }
 
 /// The table of generated or verified files: size, interpolation error (max, RMS, points),

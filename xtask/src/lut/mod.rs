@@ -5,7 +5,7 @@ mod export;
 mod gen;
 mod generate;
 
-use anyhow::{anyhow, bail, Context, Result};
+use anyhow::{bail, Context, Result};
 use clap::Subcommand;
 use std::path::{Path, PathBuf};
 
@@ -81,10 +81,7 @@ enum Cmd {
 
 pub fn run(a: Args) -> Result<()> {
     match a.cmd {
-        None => {
-            check_set_limits(&a.gen)?;
-            gen::generate(a.gen)
-        }
+        None => gen::generate(a.gen),
         Some(Cmd::Generate(g)) => generate::run(*g),
         Some(Cmd::Verify {
             files,
@@ -109,69 +106,26 @@ nodes x channels of a table built <= 2^25; estimated work of one generation <= 6
 core, of verifying one table <= 20 s of one core (more recorded points are verified at as \
 many as fit, with a note); input files <= 64 MiB (TOML 1 MiB), regular files only.";
 
-/// Checks the default set's overrides (`--res`) against the tool's limits before anything
-/// is computed (each selected asset's grid and estimated work).
-pub fn check_set_limits(g: &GenArgs) -> Result<()> {
-    let Some(res) = &g.res else { return Ok(()) };
-    let counts: Vec<u64> = res
-        .split('x')
-        // Digits too many for u64: beyond the limit, which the check below names.
-        .map(|t| crate::args::whole::<u64>(t.trim()).map(|n| n.unwrap_or(u64::MAX)))
-        .collect::<Result<_, String>>()
-        .map_err(|e| anyhow!(e))
-        .with_context(|| format!("--res `{res}` is not like 64x64"))?;
-    let only = g.only.as_deref().unwrap_or("");
-    for a in brdf_lut::generate::default_set()
-        .iter()
-        .filter(|a| a.file.contains(only))
-    {
-        let (s, def) = (&a.spec, a.spec.kind.def());
-        if s.axes.len() != counts.len() {
-            continue; // `apply_overrides` names the mismatch.
-        }
-        let check = || -> Result<(), brdf_lut::limits::LimitError> {
-            let nodes = brdf_lut::limits::check_grid(&counts, def.channels.len() as u64)?;
-            let model = s.model().unwrap_or(brdf_lut::Model::ModifiedG);
-            brdf_lut::limits::check_generate(def.table, model, nodes, s.samples as u64)
-        };
-        check().map_err(|e| anyhow::anyhow!("{}: --res {res}: {e}", a.file))?;
-    }
-    Ok(())
-}
-
-/// How many points `lut verify` measures on a table: `--samples`, else the header's count,
-/// within the tool's limits (a count that does not fit the kind's time budget: an error for
-/// `--samples`, a note and the budget's count for the header's).
+/// How many points `lut verify` measures on a table (the library's
+/// [`brdf_lut::generate::verify_points`]), with a note when the header's count is capped.
 fn verify_points(name: &str, h: &brdf_lut::Header<'_>, samples: Option<u32>) -> Result<u32> {
-    use brdf_lut::limits;
-    let cap = limits::max_verify_points(h.kind, h.generator.model);
-    let cost = limits::cost_per_point_us(h.kind, h.generator.model);
-    let budget = limits::MAX_VERIFY_SECONDS;
-    if let Some(n) = samples {
-        if n > cap {
-            bail!(
-                "{name}: --samples {n}: a {:?} table of model {:?} costs about {cost} us a \
-                 point; at most {cap} points fit `lut verify`'s budget of {budget} s of one core \
-                 (docs/lut-format.md, Limits)",
-                h.kind,
-                h.generator.model
-            );
-        }
-        return Ok(n);
-    }
-    let recorded = h.error.samples;
-    let n = recorded.clamp(1, cap);
-    if n < recorded {
+    let p = brdf_lut::generate::verify_points(h, samples)
+        .map_err(|e| anyhow::anyhow!("{name}: --samples {e}"))?;
+    if let Some(recorded) = p.capped_from {
         eprintln!(
-            "note: {name}: verifying {n} of the {recorded} recorded points (about {cost} us a \
-             point for a {:?} table; the limit is {budget} s of one core per table)",
-            h.kind
+            "note: {name}: verifying {} of the {recorded} recorded points (about {} us a \
+             point for a {:?} table; the limit is {} s of one core per table)",
+            p.n,
+            p.cost_us,
+            h.kind,
+            brdf_lut::limits::MAX_VERIFY_SECONDS
         );
     }
-    Ok(n)
+    Ok(p.n)
 }
 
 fn verify(files: Vec<PathBuf>, samples: Option<u32>, seed: u64, tolerance: f64) -> Result<()> {
+    use brdf_lut::generate::{measure_table, worse_than_recorded};
     if let Some(n) = samples {
         brdf_lut::limits::check_samples("--samples", n as u64)?;
     }
@@ -199,9 +153,8 @@ fn verify(files: Vec<PathBuf>, samples: Option<u32>, seed: u64, tolerance: f64) 
         let n = verify_points(&name, h, samples)?;
         eprintln!("verifying {name}: {n} points");
         // Every table is measured with the kernels its header names (library generator).
-        let st = gen::measure(&view, n, seed);
-        let limit = recorded.max_abs as f64 * (1.0 + tolerance) + 1e-6;
-        if st.max_abs.is_nan() || st.max_abs as f64 > limit {
+        let st = measure_table(&view, n, seed);
+        if worse_than_recorded(st.max_abs, recorded.max_abs, tolerance) {
             worse.push(format!(
                 "{name}: measured max |err| {:.3e} > recorded {:.3e} x (1 + {tolerance}) + 1e-6",
                 st.max_abs, recorded.max_abs
@@ -232,46 +185,41 @@ pub const VERIFY_NODES: usize = 64;
 
 /// The recorded integration bound checked at [`VERIFY_NODES`] spread nodes (and the
 /// smallest-μ column) against an independent, much finer rule
-/// (`brdf_lut::generate::check_nodes`): the failures, each naming its node. A version 1
-/// file records no bound (a note, no failure); a header the generator cannot describe
+/// ([`brdf_lut::generate::check_recorded_bound`]): the failure, naming its node. A version
+/// 1 file records no bound (a note, no failure); a header the generator cannot describe
 /// fails.
 fn verify_nodes(name: &str, view: &brdf_lut::LutView<'_>) -> Option<String> {
-    let h = view.header();
-    let Some(bound) = h.integration else {
-        eprintln!("note: {name}: no integration bound recorded (a version 1 file)");
-        return None;
+    use brdf_lut::generate::BoundCheck;
+    let (bound, worst, count) = match brdf_lut::generate::check_recorded_bound(view, VERIFY_NODES) {
+        BoundCheck::NotRecorded => {
+            eprintln!("note: {name}: no integration bound recorded (a version 1 file)");
+            return None;
+        }
+        BoundCheck::NoSpec => {
+            return Some(format!(
+                "{name}: the header describes no table the generator builds"
+            ))
+        }
+        BoundCheck::Checked {
+            bound,
+            worst,
+            count,
+        } => (bound, worst, count),
     };
-    let Some(spec) = brdf_lut::generate::Spec::from_header(h) else {
-        return Some(format!(
-            "{name}: the header describes no table the generator builds"
-        ));
-    };
-    let checks = brdf_lut::generate::check_nodes(&spec, view, bound as f64, VERIFY_NODES);
-    let excess = |c: &&brdf_lut::generate::NodeCheck| (c.stored - c.reference).abs() - c.allowed;
-    let worst = checks
-        .iter()
-        .max_by(|a, b| excess(a).total_cmp(&excess(b)))?;
+    let diff = (worst.stored - worst.reference).abs();
     eprintln!(
-        "{name}: {} node values within the recorded integration bound {bound:.3e} (closest: \
-         |diff| {:.3e} of {:.3e} allowed)",
-        checks.len(),
-        (worst.stored - worst.reference).abs(),
+        "{name}: {count} node values within the recorded integration bound {bound:.3e} \
+         (closest: |diff| {diff:.3e} of {:.3e} allowed)",
         worst.allowed
     );
     if worst.ok() {
         return None;
     }
     Some(format!(
-        "{name}: node {} at {:?}, channel {}: stored {:.9e}, reference {:.9e}, |diff| {:.3e} > \
-         {:.3e} allowed (recorded integration bound {bound:.3e} + half a quantisation step + \
+        "{name}: node {} at {:?}, channel {}: stored {:.9e}, reference {:.9e}, |diff| {diff:.3e} \
+         > {:.3e} allowed (recorded integration bound {bound:.3e} + half a quantisation step + \
          the reference's estimate)",
-        worst.node,
-        worst.at,
-        worst.channel,
-        worst.stored,
-        worst.reference,
-        (worst.stored - worst.reference).abs(),
-        worst.allowed
+        worst.node, worst.at, worst.channel, worst.stored, worst.reference, worst.allowed
     ))
 }
 

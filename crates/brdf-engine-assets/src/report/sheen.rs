@@ -35,6 +35,23 @@ pub struct SheenDiff {
     pub median: f64,
 }
 
+impl SheenDiff {
+    /// The colour limit of this difference map: the 99th percentile of |difference| (at
+    /// least 1e-4), rounded up to two significant digits; larger differences saturate.
+    pub fn colour_limit(&self) -> f64 {
+        let mut a: Vec<f64> = self.texels.iter().map(|t| t.2.abs()).collect();
+        a.sort_by(f64::total_cmp);
+        let p99 = a.get(a.len() * 99 / 100).copied().unwrap_or(1.0).max(1e-4);
+        sig2_up(p99)
+    }
+}
+
+/// `v` > 0 rounded up to two significant digits: ⌈v·s⌉/s with s = 10^(1 − ⌊log₁₀ v⌋).
+pub fn sig2_up(v: f64) -> f64 {
+    let scale = 10f64.powi(1 - v.log10().floor() as i32);
+    (v * scale).ceil() / scale
+}
+
 /// The three comparisons and how many sampled texels no unit texture can hold.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SheenCompare {
@@ -138,5 +155,18 @@ fn stats(label: &'static str, texels: Vec<(f64, f64, f64)>) -> SheenDiff {
         at: (top.0, top.1),
         median: abs.get(abs.len() / 2).copied().unwrap_or(f64::NAN),
         texels,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    /// Two significant digits, rounded up (hand-computed): 0.0123 → 0.013, 0.25 stays
+    /// (exact in binary), 0.0101 → 0.011, 3.01 → 3.1.
+    #[test]
+    fn sig2_up_rounds_up_to_two_digits() {
+        for (v, want) in [(0.0123, 0.013), (0.25, 0.25), (0.0101, 0.011), (3.01, 3.1)] {
+            let got = super::sig2_up(v);
+            assert!((got - want).abs() <= 1e-12 * want, "{v}: {got}");
+        }
     }
 }

@@ -101,3 +101,154 @@ pub fn check_nodes(spec: &Spec, view: &LutView<'_>, bound: f64, count: usize) ->
     }
     out
 }
+
+/// How many random points `lut verify` measures a table at: the count asked for, else the
+/// header's recorded count capped by the kind's time budget
+/// ([`crate::limits::max_verify_points`], docs/lut-format.md, Limits).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct VerifyPoints {
+    /// Points to measure.
+    pub n: u32,
+    /// The recorded count when the budget capped it to `n`.
+    pub capped_from: Option<u32>,
+    /// Estimated microseconds of one core per point.
+    pub cost_us: u64,
+}
+
+/// A count asked for that does not fit the kind's verification budget.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct OverBudget {
+    /// Points asked for.
+    pub asked: u32,
+    /// The most that fit.
+    pub cap: u32,
+    /// Estimated microseconds of one core per point.
+    pub cost_us: u64,
+    /// The table's kind.
+    pub kind: crate::TableKind,
+    /// The table's model.
+    pub model: crate::Model,
+}
+
+impl core::fmt::Display for OverBudget {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(
+            f,
+            "{} points: a {:?} table of model {:?} costs about {} us a point; at most {} \
+             points fit `lut verify`'s budget of {} s of one core (docs/lut-format.md, Limits)",
+            self.asked,
+            self.kind,
+            self.model,
+            self.cost_us,
+            self.cap,
+            crate::limits::MAX_VERIFY_SECONDS
+        )
+    }
+}
+
+impl std::error::Error for OverBudget {}
+
+/// The points to verify the table of header `h` at ([`VerifyPoints`]): `asked` when it fits
+/// the budget (an error otherwise), else the recorded count, capped.
+pub fn verify_points(
+    h: &crate::Header<'_>,
+    asked: Option<u32>,
+) -> Result<VerifyPoints, OverBudget> {
+    use crate::limits;
+    let (kind, model) = (h.kind, h.generator.model);
+    let cap = limits::max_verify_points(kind, model);
+    let cost_us = limits::cost_per_point_us(kind, model);
+    if let Some(n) = asked {
+        if n > cap {
+            return Err(OverBudget {
+                asked: n,
+                cap,
+                cost_us,
+                kind,
+                model,
+            });
+        }
+        return Ok(VerifyPoints {
+            n,
+            capped_from: None,
+            cost_us,
+        });
+    }
+    let recorded = h.error.samples;
+    let n = recorded.clamp(1, cap);
+    Ok(VerifyPoints {
+        n,
+        capped_from: (n < recorded).then_some(recorded),
+        cost_us,
+    })
+}
+
+/// Max and RMS |table − direct kernel| at `n` random points (seeded by `seed`), measured
+/// ([`super::measure`]) with the spec the table's header describes; NaN statistics when
+/// it describes no table this generator builds (NaN fails every comparison).
+pub fn measure_table(view: &LutView<'_>, n: u32, seed: u64) -> crate::ErrorStats {
+    let h = view.header();
+    match Spec::from_header(h) {
+        Some(mut spec) => {
+            (spec.samples, spec.seed) = (n, seed);
+            super::measure(&spec, view, &h.axes)
+        }
+        None => crate::ErrorStats {
+            max_abs: f32::NAN,
+            rms: f32::NAN,
+            samples: n,
+            seed,
+        },
+    }
+}
+
+/// Whether a measured max |error| is worse than the recorded one allows: measured >
+/// recorded × (1 + `tolerance`) + 1e-6, or not a number.
+pub fn worse_than_recorded(measured: f32, recorded: f32, tolerance: f64) -> bool {
+    let limit = recorded as f64 * (1.0 + tolerance) + 1e-6;
+    measured.is_nan() || measured as f64 > limit
+}
+
+/// The recorded integration bound of a table checked at nodes ([`check_nodes`]).
+#[derive(Clone, Debug, PartialEq)]
+pub enum BoundCheck {
+    /// The header records no bound (a version 1 file).
+    NotRecorded,
+    /// The header describes no table this generator builds.
+    NoSpec,
+    /// The bound and the nodes checked against it (at least one).
+    Checked {
+        /// The recorded bound.
+        bound: f32,
+        /// The checked node with the largest excess |stored − reference| − allowed.
+        worst: NodeCheck,
+        /// Node values checked.
+        count: usize,
+    },
+}
+
+/// The recorded integration bound of `view` at `count` spread nodes (and the smallest-μ
+/// column), against the independent finer rule ([`check_nodes`]).
+pub fn check_recorded_bound(view: &LutView<'_>, count: usize) -> BoundCheck {
+    let h = view.header();
+    let Some(bound) = h.integration else {
+        return BoundCheck::NotRecorded;
+    };
+    let Some(spec) = Spec::from_header(h) else {
+        return BoundCheck::NoSpec;
+    };
+    let checks = check_nodes(&spec, view, bound as f64, count);
+    let excess = |c: &NodeCheck| (c.stored - c.reference).abs() - c.allowed;
+    let worst = checks
+        .iter()
+        .max_by(|a, b| excess(a).total_cmp(&excess(b)))
+        .cloned();
+    match worst {
+        Some(worst) => BoundCheck::Checked {
+            bound,
+            worst,
+            count: checks.len(),
+        },
+        None => BoundCheck::NoSpec,
+    }
+}
