@@ -4,6 +4,7 @@
 // renderer that samples one texture at a list of points, and the bound check of its values.
 
 import assert from 'node:assert/strict';
+import { after, before } from 'node:test';
 import http from 'node:http';
 import { mkdtemp, readFile, rm } from 'node:fs/promises';
 import { tmpdir } from 'node:os';
@@ -243,6 +244,21 @@ export async function render(context, server, arg) {
   assert.equal(result.err, 0, 'GL error');
   assert.deepEqual(problems, []);
   return result;
+}
+
+// Serves `root` (`types` as for serve) and launches the browser before the calling test
+// file's tests, closes both after them; returns render bound to them: draw(arg).
+export function useBrowser(root, types) {
+  const env = {};
+  before(async () => {
+    env.server = await serve(root, types);
+    env.browser = await launch();
+  });
+  after(async () => {
+    await env.browser?.close();
+    await env.server?.close();
+  });
+  return (arg) => render(env.browser.context, env.server, arg);
 }
 
 // Asserts |gpu(k) - want(p)| <= bound(p) at every point p = rows[k]; logs the max error, the

@@ -17,36 +17,25 @@
 // integral at their nodes + the texel encoding (half a unorm16 unit of the .blut + half an f16
 // ulp) + the GPU's 8-bit filter weights + f32 arithmetic.
 
-import { test, before, after } from 'node:test';
+import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFile } from 'node:fs/promises';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { check, launch, render, serve } from '../webgl_lut.mjs';
+import { check, useBrowser } from '../webgl_lut.mjs';
 
 const webDir = path.dirname(path.dirname(fileURLToPath(import.meta.url)));
 const lutDir = path.resolve(webDir, '../../target/lut-engine-web');
 
-let server;
-let browser;
-
-before(async () => {
-  server = await serve(lutDir, {
-    '/lut_ggx.png': 'image/png',
-    '/native/dfg_ggx.f16.bin': 'application/octet-stream',
-  });
-  browser = await launch();
-});
-
-after(async () => {
-  await browser?.close();
-  await server?.close();
+const draw = useBrowser(lutDir, {
+  '/lut_ggx.png': 'image/png',
+  '/native/dfg_ggx.f16.bin': 'application/octet-stream',
 });
 
 // The (A, B) a GLSL function `call(u_lut, mu, r)` from the file `glsl` returns at every row's
 // (mu, r) with the texture `tex` bound: renderTexture of webgl_lut.mjs.
 async function sample(rows, glsl, call, tex) {
-  return render(browser.context, server, {
+  return draw({
     points: rows.map((p) => [p[0], p[1]]),
     tex,
     glsl: await readFile(glsl, 'utf8'),

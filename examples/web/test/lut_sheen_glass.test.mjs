@@ -23,32 +23,21 @@
 // with u and v swapped, lut_charlie 0.1 texel off along mu, glass_e with v and w swapped or
 // 0.05 texel off along eta.
 
-import { test, before, after } from 'node:test';
+import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFile } from 'node:fs/promises';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { check, decodePng, launch, render, serve } from '../webgl_lut.mjs';
+import { check, decodePng, useBrowser } from '../webgl_lut.mjs';
 
 const webDir = path.dirname(path.dirname(fileURLToPath(import.meta.url)));
 const lutDir = path.resolve(webDir, '../../target/lut-engine-web');
 
-let server;
-let browser;
-
-before(async () => {
-  server = await serve(lutDir, {
-    '/sheen/lut_charlie.png': 'image/png',
-    '/glass/glass_e.rg16f.bin': 'application/octet-stream',
-    '/glass/glass_e_inv.rg16f.bin': 'application/octet-stream',
+const draw = useBrowser(lutDir, {
+  '/sheen/lut_charlie.png': 'image/png',
+  '/glass/glass_e.rg16f.bin': 'application/octet-stream',
+  '/glass/glass_e_inv.rg16f.bin': 'application/octet-stream',
   });
-  browser = await launch();
-});
-
-after(async () => {
-  await browser?.close();
-  await server?.close();
-});
 
 test('sheen textures lut_charlie.png (B, 8-bit) and lut_sheen_E.png (R16F) sampled in WebGL2', async () => {
   const dir = path.join(lutDir, 'sheen');
@@ -62,12 +51,12 @@ test('sheen textures lut_charlie.png (B, 8-bit) and lut_sheen_E.png (R16F) sampl
     assert.equal(png.samples[3 * i + 2], c, 'lut_sheen_E.png: R = G = B');
   });
   const xy = points.map((p) => [p[0], p[1]]);
-  const ek = await render(browser.context, server, {
+  const ek = await draw({
     points: xy,
     tex: { kind: 'r16f', width: n, height: n, codes },
     expr: 'vec2(texture(u_lut, x.xy).r, 0.0)',
   });
-  const ash = await render(browser.context, server, {
+  const ash = await draw({
     points: xy,
     tex: { kind: 'png8', url: '/sheen/lut_charlie.png' },
     expr: 'texture(u_lut, x.xy).bg',
@@ -92,7 +81,7 @@ for (const stem of ['glass_e', 'glass_e_inv']) {
     const dir = path.join(lutDir, 'glass');
     const { n, points } = JSON.parse(await readFile(path.join(dir, `${stem}_points.json`), 'utf8'));
     assert.ok(points.length >= 2000, `${points.length} points`);
-    const res = await render(browser.context, server, {
+    const res = await draw({
       points: points.map((p) => [p[0], p[1], p[2]]),
       tex: { kind: 'rg16f', url: `/glass/${stem}.rg16f.bin`, dims: n },
       expr: 'texture(u_lut, x).rg',
