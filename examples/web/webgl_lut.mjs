@@ -1,8 +1,10 @@
-// Helpers of the WebGL2 table tests (test/lut_sheen_glass.test.mjs): a PNG reader that
-// keeps 16-bit samples (browsers decode 16-bit PNGs to 8 bits), a static file server, the
-// headless Chromium launch (as test/lut_engine.test.mjs: Debian's chromium, SwiftShader)
-// and the in-page renderer that samples one texture at a list of points.
+// Helpers of the WebGL2 table tests (test/lut_engine.test.mjs, test/lut_sheen_glass.test.mjs):
+// a PNG reader that keeps 16-bit samples (browsers decode 16-bit PNGs to 8 bits), a static
+// file server, the headless Chromium launch (Debian's chromium, SwiftShader), the in-page
+// renderer that samples one texture at a list of points, and the bound check of its values.
 
+import assert from 'node:assert/strict';
+import { after, before } from 'node:test';
 import http from 'node:http';
 import { mkdtemp, readFile, rm } from 'node:fs/promises';
 import { tmpdir } from 'node:os';
@@ -118,15 +120,18 @@ export async function launch() {
 
 // Runs in the page: uploads one texture (`tex`), evaluates the GLSL expression `expr` (a
 // vec2 of `u_lut` and the point `x`, a vec3) at every point of `points` ([x, y, z] each,
-// given as f32 values) in a fragment shader and reads the RGBA32F target back. Texture kinds:
+// given as f32 values) in a fragment shader, with `glsl` (function definitions, e.g. an
+// emitted sampling function) pasted verbatim before main, and reads the RGBA32F target back.
+// Texture kinds:
 // - png8: a PNG at `url` decoded by the browser, uploaded as the glTF Sample Viewer uploads
 //   its LUTs (RGBA8, no flip, no colour conversion, no premultiplication);
 // - r16f: `codes` (width × height 16-bit UNORM codes, row 0 first), each code / 65535
 //   rounded to the nearest binary16 by Float16Array (ties to even), uploaded as R16F;
-// - rg16f3d: raw little-endian binary16 (R, G) pairs at `url`, x fastest, then y, then z,
-//   uploaded as a TEXTURE_3D RG16F of `dims`.
+// - rg16f: raw little-endian binary16 (R, G) pairs at `url`, x fastest, then y (then z),
+//   read explicitly little-endian whatever the host order, uploaded as a TEXTURE_2D or, for
+//   three `dims`, a TEXTURE_3D RG16F (row j of the data is texture row j, v = (j + 0.5) / h).
 // All LINEAR, CLAMP_TO_EDGE, one level.
-export async function renderTexture({ points, tex, expr }) {
+export async function renderTexture({ points, tex, expr, glsl = '' }) {
   const W = 64;
   const H = Math.ceil(points.length / W);
   const canvas = document.createElement('canvas');
@@ -139,7 +144,8 @@ export async function renderTexture({ points, tex, expr }) {
   gl.pixelStorei(gl.UNPACK_PREMULTIPLY_ALPHA_WEBGL, false);
   gl.pixelStorei(gl.UNPACK_COLORSPACE_CONVERSION_WEBGL, gl.NONE);
   gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
-  const target = tex.kind === 'rg16f3d' ? gl.TEXTURE_3D : gl.TEXTURE_2D;
+  const is3d = tex.kind === 'rg16f' && tex.dims.length === 3;
+  const target = is3d ? gl.TEXTURE_3D : gl.TEXTURE_2D;
   gl.activeTexture(gl.TEXTURE0);
   gl.bindTexture(target, gl.createTexture());
   if (tex.kind === 'png8') {
@@ -156,14 +162,18 @@ export async function renderTexture({ points, tex, expr }) {
     gl.texImage2D(gl.TEXTURE_2D, 0, gl.R16F, tex.width, tex.height, 0, gl.RED, gl.HALF_FLOAT,
       new Uint16Array(h.buffer));
   } else {
-    const [nx, ny, nz] = tex.dims;
+    const [nx, ny, nz = 1] = tex.dims;
     const buf = await (await fetch(tex.url)).arrayBuffer();
     if (buf.byteLength !== nx * ny * nz * 4) return { error: `size ${buf.byteLength}` };
     const dv = new DataView(buf);
     const half = new Uint16Array(buf.byteLength / 2);
     for (let i = 0; i < half.length; i++) half[i] = dv.getUint16(2 * i, true);
-    gl.texImage3D(gl.TEXTURE_3D, 0, gl.RG16F, nx, ny, nz, 0, gl.RG, gl.HALF_FLOAT, half);
-    gl.texParameteri(target, gl.TEXTURE_WRAP_R, gl.CLAMP_TO_EDGE);
+    if (is3d) {
+      gl.texImage3D(gl.TEXTURE_3D, 0, gl.RG16F, nx, ny, nz, 0, gl.RG, gl.HALF_FLOAT, half);
+      gl.texParameteri(target, gl.TEXTURE_WRAP_R, gl.CLAMP_TO_EDGE);
+    } else {
+      gl.texImage2D(gl.TEXTURE_2D, 0, gl.RG16F, nx, ny, 0, gl.RG, gl.HALF_FLOAT, half);
+    }
   }
   gl.texParameteri(target, gl.TEXTURE_MIN_FILTER, gl.LINEAR);
   gl.texParameteri(target, gl.TEXTURE_MAG_FILTER, gl.LINEAR);
@@ -181,7 +191,7 @@ export async function renderTexture({ points, tex, expr }) {
       vec2 p = vec2(float((gl_VertexID & 1) * 4 - 1), float((gl_VertexID >> 1) * 4 - 1));
       gl_Position = vec4(p, 0.0, 1.0);
     }`;
-  const sampler = tex.kind === 'rg16f3d' ? 'sampler3D' : 'sampler2D';
+  const sampler = is3d ? 'sampler3D' : 'sampler2D';
   const fs = `#version 300 es
     precision highp float;
     precision highp sampler2D;
@@ -189,6 +199,7 @@ export async function renderTexture({ points, tex, expr }) {
     uniform ${sampler} u_lut;
     uniform sampler2D u_pts;
     out vec4 o;
+    ${glsl}
     void main() {
       vec3 x = texelFetch(u_pts, ivec2(gl_FragCoord.xy), 0).xyz;
       o = vec4(${expr}, 0.0, 1.0);
@@ -218,4 +229,57 @@ export async function renderTexture({ points, tex, expr }) {
   const out = new Float32Array(W * H * 4);
   gl.readPixels(0, 0, W, H, gl.RGBA, gl.FLOAT, out);
   return { err: gl.getError(), values: Array.from(out.slice(0, points.length * 4)), renderer: gl.getParameter(gl.RENDERER) };
+}
+
+// Opens a blank page of `server` in the browser's `context`, runs renderTexture(arg) in it
+// and asserts that it ran without error (no GL error, no page error); returns its result.
+export async function render(context, server, arg) {
+  const page = await context.newPage();
+  const problems = [];
+  page.on('pageerror', (e) => problems.push(e.message));
+  await page.goto(`${server.url}/index.html`);
+  const result = await page.evaluate(renderTexture, arg);
+  await page.close();
+  assert.equal(result.error, undefined, result.error);
+  assert.equal(result.err, 0, 'GL error');
+  assert.deepEqual(problems, []);
+  return result;
+}
+
+// Serves `root` (`types` as for serve) and launches the browser before the calling test
+// file's tests, closes both after them; returns render bound to them: draw(arg).
+export function useBrowser(root, types) {
+  const env = {};
+  before(async () => {
+    env.server = await serve(root, types);
+    env.browser = await launch();
+  });
+  after(async () => {
+    await env.browser?.close();
+    await env.server?.close();
+  });
+  return (arg) => render(env.browser.context, env.server, arg);
+}
+
+// Asserts |gpu(k) - want(p)| <= bound(p) at every point p = rows[k]; logs the max error, the
+// max of error / bound and the bound's median, 95th percentile and maximum; returns the
+// maximum bound.
+export function check(name, rows, gpu, want, bound, what) {
+  let worst = 0;
+  let ratio = 0;
+  const bounds = [];
+  rows.forEach((p, k) => {
+    const e = Math.abs(gpu(k) - want(p));
+    assert.ok(e <= bound(p), `${name} at ${p.slice(0, 3)}: GPU ${gpu(k)}, ${what} ${want(p)}, bound ${bound(p)}`);
+    worst = Math.max(worst, e);
+    ratio = Math.max(ratio, e / bound(p));
+    bounds.push(bound(p));
+  });
+  bounds.sort((x, y) => x - y);
+  const q = (f) => bounds[Math.min(bounds.length - 1, Math.floor(f * bounds.length))].toExponential(2);
+  console.log(
+    `${name}: ${rows.length} points, max |GPU - ${what}| ${worst.toExponential(3)}, ` +
+      `max |err|/bound ${ratio.toFixed(3)}; bound median ${q(0.5)}, 95% ${q(0.95)}, max ${q(1)}`,
+  );
+  return bounds[bounds.length - 1];
 }

@@ -16,11 +16,6 @@ pub fn check(outputs: &[&Path], policy: &lib::Policy) -> anyhow::Result<()> {
     Ok(lib::check(outputs, policy)?)
 }
 
-/// [`lib::replace`]: a generated file replaced atomically.
-pub fn replace(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
-    Ok(lib::replace(path, bytes)?)
-}
-
 /// [`lib::read_limited`]: a regular file of at most `limit` bytes.
 pub fn read_limited(path: &Path, limit: u64) -> anyhow::Result<Vec<u8>> {
     Ok(lib::read_limited(path, limit)?)

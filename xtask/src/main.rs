@@ -1,24 +1,19 @@
 //! `cargo xtask …`: the project's command line (table generation, evaluation for scripting,
-//! benchmarks, firmware, plots, CI). Each subcommand lives in its own module.
+//! benchmarks, firmware, plots, CI). The table and evaluation commands live in this crate's
+//! modules; the repository's own jobs in their crates, called from here: the target runners
+//! in `tools/runners` (brdf-runners), CI, MSRV, packaging and the published LUTs in
+//! `tools/maint` (brdf-maint), the benchmark run in `crates/brdf-bench` (`brdf_bench::run`).
 
+use brdf_maint::{anchors, ci, msrv, package};
+use brdf_runners::{cffi, firmware, wasm, web};
 use clap::{Parser, Subcommand};
 
-mod anchors;
 mod args;
-mod bench;
-mod cffi;
-mod ci;
-mod device;
 mod engine;
 mod eval;
-mod firmware;
 mod fsio;
 mod lut;
-mod msrv;
-mod package;
 mod plot;
-mod wasm;
-mod web;
 
 #[derive(Parser)]
 #[command(name = "cargo xtask", about = "brdf-kernels tasks", version)]
@@ -34,7 +29,7 @@ enum Cmd {
     /// Generate, verify, inspect and export the LUT assets (default: generate the default set).
     Lut(lut::Args),
     /// Run the benchmark suite with short settings and write docs/benchmarks.md.
-    Bench(bench::Args),
+    Bench(brdf_bench::run::Args),
     /// Build the Cortex-M firmware, run it under QEMU and compare with the host.
     Firmware(firmware::FirmwareArgs),
     /// Check the C header, build the C example for the Cortex-M4F and the host, run both and
@@ -66,10 +61,10 @@ fn main() {
         Cmd::Package(a) => package::run(a),
         Cmd::Ci(a) => ci::run(a),
         Cmd::Lut(a) => lut::run(a),
-        Cmd::Bench(a) => bench::run(a),
+        Cmd::Bench(a) => brdf_bench::run::run(a),
         Cmd::Firmware(a) => firmware::run(a),
-        Cmd::Wasm(a) => wasm::run_cmd(a),
-        Cmd::Web(a) => web::run_cmd(a),
+        Cmd::Wasm(a) => wasm::run(a),
+        Cmd::Web(a) => web::run(a),
         Cmd::Cffi(a) => cffi::run(a),
         Cmd::Plot(a) => plot::run(a),
     };

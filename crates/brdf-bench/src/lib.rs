@@ -4,10 +4,14 @@
 //! and of the callgrind harness (`src/bin/harness.rs`), so that criterion, callgrind and the
 //! SciPy peer (`peer/g_peer.py`) all evaluate the same inputs.
 //!
+//! [`run`] is `cargo xtask bench`: it runs the suite, the harness and the peers and writes
+//! the report ([`report`]) to docs/benchmarks.md.
+//!
 //! Also holds the one kernel that exists only as a point of comparison: Karis's analytic
 //! approximation of the split-sum pair ([`env_brdf_approx`]).
 
 pub mod report;
+pub mod run;
 
 use brdf_core::{Dots, Real};
 use brdf_lut::LutView;
@@ -106,9 +110,15 @@ pub fn env_brdf_approx<T: Real>(mu: T, r: T) -> (T, T) {
     (f(-1.04) * t + c2, f(1.04) * t + c3)
 }
 
+/// The workspace root (this crate lives in `crates/brdf-bench`).
+pub fn workspace_root() -> PathBuf {
+    let here = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    here.ancestors().nth(2).unwrap_or(here).to_path_buf()
+}
+
 /// The workspace's `assets/` directory (the default LUT set).
 pub fn assets_dir() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../assets")
+    workspace_root().join("assets")
 }
 
 /// Reads one default asset; `None` (and a message on stderr) when it is missing or invalid,

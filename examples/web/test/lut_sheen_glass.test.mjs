@@ -1,5 +1,5 @@
 // WebGL2 test of the sheen and rough-glass engine textures (issue 23): the files and points
-// written by `cargo xtask web` (xtask/src/engine/web.rs, prepare_sheen and prepare_glass)
+// written by `cargo xtask web` (tools/runners/src/web/prepare.rs, prepare_sheen and prepare_glass)
 // into target/lut-engine-web/{sheen,glass}/ are uploaded to headless Chromium's WebGL2
 // (SwiftShader) and sampled with texture() at 2,048 random points each; every expected
 // value and bound comes from the Rust side.
@@ -13,8 +13,9 @@
 // 8-bit filter weights x the texels' spread + f32; and with the bilinear value of the texels
 // the Rust `png` crate decoded, within the last three terms only.
 //
-// Rough glass (12^3, (u, v, w) = (mu, r, (eta - 1)/2), light from outside): the KTX2's level
-// 0 (R16G16_SFLOAT) as a TEXTURE_3D RG16F, compared with the f64 trilinear value of its
+// Rough glass (12^3, (u, v, w) = (mu, r, (eta - lo)/(hi - lo))), both tables: light from
+// outside (glass_e, eta in [1, 3]) and from inside (glass_e_inv, eta in [1/3, 1]): the KTX2's
+// level 0 (R16G16_SFLOAT) as a TEXTURE_3D RG16F, compared with the f64 trilinear value of its
 // binary16 texels within 3 axes x 2^-9 x spread + f32, and with the BLUT's
 // GlassAlbedoTable::rt lookup within that bound plus the lookup's own f32 bound.
 //
@@ -22,66 +23,21 @@
 // with u and v swapped, lut_charlie 0.1 texel off along mu, glass_e with v and w swapped or
 // 0.05 texel off along eta.
 
-import { test, before, after } from 'node:test';
+import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { readFile } from 'node:fs/promises';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { decodePng, serve, launch, renderTexture } from '../webgl_lut.mjs';
+import { check, decodePng, useBrowser } from '../webgl_lut.mjs';
 
 const webDir = path.dirname(path.dirname(fileURLToPath(import.meta.url)));
 const lutDir = path.resolve(webDir, '../../target/lut-engine-web');
 
-let server;
-let browser;
-
-before(async () => {
-  server = await serve(lutDir, {
-    '/sheen/lut_charlie.png': 'image/png',
-    '/glass/glass_e.rg16f.bin': 'application/octet-stream',
+const draw = useBrowser(lutDir, {
+  '/sheen/lut_charlie.png': 'image/png',
+  '/glass/glass_e.rg16f.bin': 'application/octet-stream',
+  '/glass/glass_e_inv.rg16f.bin': 'application/octet-stream',
   });
-  browser = await launch();
-});
-
-after(async () => {
-  await browser?.close();
-  await server?.close();
-});
-
-async function render(arg) {
-  const page = await browser.context.newPage();
-  const problems = [];
-  page.on('pageerror', (e) => problems.push(e.message));
-  await page.goto(`${server.url}/index.html`);
-  const result = await page.evaluate(renderTexture, arg);
-  await page.close();
-  assert.equal(result.error, undefined, result.error);
-  assert.equal(result.err, 0, 'GL error');
-  assert.deepEqual(problems, []);
-  return result;
-}
-
-// Asserts |gpu(k) - want(p)| <= bound(p) at every point; logs the max error, the max of
-// error / bound and the bound's median, 95th percentile and maximum; returns the maximum.
-function check(name, rows, gpu, want, bound, what) {
-  let worst = 0;
-  let ratio = 0;
-  const bounds = [];
-  rows.forEach((p, k) => {
-    const e = Math.abs(gpu(k) - want(p));
-    assert.ok(e <= bound(p), `${name} at ${p.slice(0, 3)}: GPU ${gpu(k)}, ${what} ${want(p)}, bound ${bound(p)}`);
-    worst = Math.max(worst, e);
-    ratio = Math.max(ratio, e / bound(p));
-    bounds.push(bound(p));
-  });
-  bounds.sort((x, y) => x - y);
-  const q = (f) => bounds[Math.min(bounds.length - 1, Math.floor(f * bounds.length))].toExponential(2);
-  console.log(
-    `${name}: ${rows.length} points, max |GPU - ${what}| ${worst.toExponential(3)}, ` +
-      `max |err|/bound ${ratio.toFixed(3)}; bound median ${q(0.5)}, 95% ${q(0.95)}, max ${q(1)}`,
-  );
-  return bounds[bounds.length - 1];
-}
 
 test('sheen textures lut_charlie.png (B, 8-bit) and lut_sheen_E.png (R16F) sampled in WebGL2', async () => {
   const dir = path.join(lutDir, 'sheen');
@@ -95,12 +51,12 @@ test('sheen textures lut_charlie.png (B, 8-bit) and lut_sheen_E.png (R16F) sampl
     assert.equal(png.samples[3 * i + 2], c, 'lut_sheen_E.png: R = G = B');
   });
   const xy = points.map((p) => [p[0], p[1]]);
-  const ek = await render({
+  const ek = await draw({
     points: xy,
     tex: { kind: 'r16f', width: n, height: n, codes },
     expr: 'vec2(texture(u_lut, x.xy).r, 0.0)',
   });
-  const ash = await render({
+  const ash = await draw({
     points: xy,
     tex: { kind: 'png8', url: '/sheen/lut_charlie.png' },
     expr: 'texture(u_lut, x.xy).bg',
@@ -120,23 +76,25 @@ test('sheen textures lut_charlie.png (B, 8-bit) and lut_sheen_E.png (R16F) sampl
   points.forEach((_, k) => assert.equal(ash.values[4 * k + 1], 0));
 });
 
-test('rough glass glass_e (3-D RG16F) sampled with texture(sampler3D) in WebGL2', async () => {
-  const dir = path.join(lutDir, 'glass');
-  const { n, points } = JSON.parse(await readFile(path.join(dir, 'glass_points.json'), 'utf8'));
-  assert.ok(points.length >= 2000, `${points.length} points`);
-  const res = await render({
-    points: points.map((p) => [p[0], p[1], p[2]]),
-    tex: { kind: 'rg16f3d', url: '/glass/glass_e.rg16f.bin', dims: n },
-    expr: 'texture(u_lut, x).rg',
+for (const stem of ['glass_e', 'glass_e_inv']) {
+  test(`rough glass ${stem} (3-D RG16F) sampled with texture(sampler3D) in WebGL2`, async () => {
+    const dir = path.join(lutDir, 'glass');
+    const { n, points } = JSON.parse(await readFile(path.join(dir, `${stem}_points.json`), 'utf8'));
+    assert.ok(points.length >= 2000, `${points.length} points`);
+    const res = await draw({
+      points: points.map((p) => [p[0], p[1], p[2]]),
+      tex: { kind: 'rg16f', url: `/glass/${stem}.rg16f.bin`, dims: n },
+      expr: 'texture(u_lut, x).rg',
+    });
+    console.log(`${stem}: ${n.join('x')} on ${res.renderer}`);
+    // Row: [u, v, w, R, T, bound R, bound T, R_blut, T_blut, b_R, b_T].
+    for (const c of [0, 1]) {
+      const name = `${stem}.${'RT'[c]}`;
+      const gpu = (k) => res.values[4 * k + c];
+      const maxBound = check(`${name} vs table`, points, gpu, (p) => p[3 + c], (p) => p[5 + c], 'trilinear of its f16 texels');
+      check(`${name} vs BLUT rt`, points, gpu, (p) => p[7 + c], (p) => p[5 + c] + p[9 + c], 'GlassAlbedoTable::rt');
+      // Not vacuous: the values span [0, 1]; the bound is 3 x 2^-9 x the local spread + 1e-6.
+      assert.ok(maxBound < 0.01, `${name}: max bound ${maxBound}`);
+    }
   });
-  console.log(`glass_e: ${n.join('x')} on ${res.renderer}`);
-  // Row: [u, v, w, R, T, bound R, bound T, R_blut, T_blut, b_R, b_T].
-  for (const c of [0, 1]) {
-    const name = `glass_e.${'RT'[c]}`;
-    const gpu = (k) => res.values[4 * k + c];
-    const maxBound = check(`${name} vs table`, points, gpu, (p) => p[3 + c], (p) => p[5 + c], 'trilinear of its f16 texels');
-    check(`${name} vs BLUT rt`, points, gpu, (p) => p[7 + c], (p) => p[5 + c] + p[9 + c], 'GlassAlbedoTable::rt');
-    // Not vacuous: the values span [0, 1]; the bound is 3 x 2^-9 x the local spread + 1e-6.
-    assert.ok(maxBound < 0.01, `${name}: max bound ${maxBound}`);
-  }
-});
+}

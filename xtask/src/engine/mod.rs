@@ -5,10 +5,9 @@
 //! with the engines' shipped tables and writes docs/engines.md.
 
 mod report;
-pub mod web;
 
 use anyhow::{bail, Context, Result};
-pub use brdf_engine_assets::{centre, integral, Engine, File, SplitSumTexels, MAX_SIZE};
+pub use brdf_engine_assets::{Engine, File, SplitSumTexels, MAX_SIZE};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::{Path, PathBuf};
 

@@ -1,7 +1,7 @@
 //! What the firmware runner (`cargo xtask firmware`, Rust on the Cortex-M4F) and the C
 //! runner (`cargo xtask cffi`, C on the Cortex-M4F and on the host) share: installing QEMU
 //! (`.ci/install-qemu.sh`), running an ELF on `mps2-an386` with semihosting and a host
-//! program, each under a timeout, and the child cargo/make steps; what the programs print
+//! program, each under a timeout; what the programs print
 //! and how a run is judged ([`protocol`]); flash and RAM read from an ELF ([`elf`]).
 
 pub(crate) mod elf;
@@ -13,11 +13,6 @@ use std::process::Command;
 
 /// Wall-clock limit for one QEMU run.
 pub const QEMU_TIMEOUT_S: u32 = 60;
-
-/// The repository root (xtask lives in it).
-pub(crate) fn repo_root() -> PathBuf {
-    crate::fsio::workspace_root()
-}
 
 pub(crate) fn ensure_qemu(root: &Path) -> Result<PathBuf> {
     let script = root.join(".ci/install-qemu.sh");
@@ -40,26 +35,6 @@ pub(crate) fn ensure_qemu(root: &Path) -> Result<PathBuf> {
         .filter(|l| !l.is_empty())
         .context("install-qemu.sh printed no binary path")?;
     Ok(PathBuf::from(bin))
-}
-
-pub(crate) fn target_base(root: &Path) -> PathBuf {
-    std::env::var_os("CARGO_TARGET_DIR")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| root.join("target"))
-}
-
-/// The cargo that runs xtask (`$CARGO`), for the child builds.
-pub(crate) fn cargo() -> String {
-    std::env::var("CARGO").unwrap_or_else(|_| "cargo".into())
-}
-
-/// Runs a build step (`what` names it in the messages) and fails unless it succeeds.
-pub(crate) fn run_step(cmd: &mut Command, what: &str) -> Result<()> {
-    let st = cmd.status().with_context(|| format!("running {what}"))?;
-    if !st.success() {
-        bail!("{what} failed ({st})");
-    }
-    Ok(())
 }
 
 /// A finished (or timed-out) run.

@@ -1,8 +1,8 @@
 //! The Python parts of the benchmark run: the virtual environments, the SciPy peer
 //! (`crates/brdf-bench/peer/g_peer.py`) and the Python package's own benchmark.
 
-use brdf_bench::report::Peer;
-use brdf_bench::{angle_pairs, SIGMA};
+use crate::report::Peer;
+use crate::{angle_pairs, SIGMA};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 

@@ -1,11 +1,14 @@
-//! Inputs of the WebGL2 engine-LUT test (examples/web/test/lut_engine.test.mjs): the khronos
-//! table at 64² with its GLSL function, and random (μ, r) points with the f64 integral and
-//! the error bound the GPU sample must meet.
+//! Inputs of the WebGL2 engine-LUT tests (examples/web/test/lut_engine.test.mjs,
+//! lut_sheen_glass.test.mjs): the tables as the engines' files hold them, with their GLSL
+//! functions, and random points with the f64 integral and the error bound the GPU sample
+//! must meet.
 
-use super::{centre, compute_grid, integral, write_set, File as OutFile};
 use anyhow::{bail, Context, Result};
+use brdf_engine_assets::export::{export, Format};
+use brdf_engine_assets::fsio::{write_together, Policy};
 use brdf_engine_assets::report::Table;
 use brdf_engine_assets::sidecar::Mapping;
+use brdf_engine_assets::{centre, integral, File as OutFile};
 use rand::{Rng, SeedableRng};
 use rayon::prelude::*;
 use std::path::Path;
@@ -17,7 +20,7 @@ pub const POINTS: usize = 2048;
 
 /// Writes `dir/lut_ggx.png`, `dir/lut_ggx.glsl`, … and `dir/points.json`.
 pub fn prepare(dir: &Path) -> Result<()> {
-    let grid = compute_grid(N, true)?;
+    let grid = brdf_engine_assets::split_sum_texels(N, &|_| {})?;
     let files = brdf_engine_assets::khronos(&grid)?;
     let exact = Table {
         n: N,
@@ -54,7 +57,7 @@ pub fn prepare(dir: &Path) -> Result<()> {
         name: "points.json".into(),
         bytes: serde_json::to_vec(&serde_json::json!({ "n": N, "points": rows }))?,
     });
-    write_set(dir, &files, true)
+    write_set(dir, &files)
 }
 
 fn spread(t: &Table, mu: f64, r: f64) -> (f64, f64) {
@@ -111,10 +114,10 @@ const COORD_TEXELS: f64 = 2e-4;
 ///   coordinate error [`COORD_TEXELS`], both times the spread of the four texels;
 /// - 1e-6 for the f32 blend and decode of values ≤ 1.
 pub fn prepare_native(dir: &Path) -> Result<()> {
-    let asset = crate::fsio::assets_dir().join(NATIVE_ASSET);
+    let asset = crate::workspace_root().join("assets").join(NATIVE_ASSET);
     std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
     let out = dir.join(NATIVE_EXPORT);
-    export_in_process(&asset, &out)?;
+    export_raw_f16(&asset, &out)?;
     let ex = read_export(&out)?;
     let exact = exact_grid(&ex.axes)?;
     let half_unit = node_half_unit(&asset)?;
@@ -142,7 +145,6 @@ pub fn prepare_native(dir: &Path) -> Result<()> {
             name: "native_points.json".into(),
             bytes: serde_json::to_vec(&doc)?,
         }],
-        true,
     )
 }
 
@@ -212,7 +214,7 @@ fn exact_grid(axes: &[Mapping; 2]) -> Result<Table> {
 
 /// Half a unit of the asset's stored encoding.
 fn node_half_unit(asset: &Path) -> Result<f64> {
-    let lut = crate::fsio::load_lut(asset)?;
+    let lut = brdf_engine_assets::fsio::load_lut(asset)?;
     Ok(match lut.view()?.header().encoding {
         brdf_lut::Encoding::Unorm16 => 0.5 / 65535.0,
         brdf_lut::Encoding::F16 => 2f64.powi(-12),
@@ -335,20 +337,41 @@ fn point_rows(
         .collect()
 }
 
-/// Runs `cargo xtask lut export ASSET --raw-f16 -o OUT --force` in this process.
-fn export_in_process(asset: &Path, out: &Path) -> Result<()> {
-    use clap::{Args as _, FromArgMatches as _};
-    let cmd = crate::lut::Args::augment_args(clap::Command::new("lut"));
-    let m = cmd.try_get_matches_from([
-        "lut".as_ref(),
-        "export".as_ref(),
-        asset.as_os_str(),
-        "--raw-f16".as_ref(),
-        "-o".as_ref(),
-        out.as_os_str(),
-        "--force".as_ref(),
-    ])?;
-    crate::lut::run(crate::lut::Args::from_arg_matches(&m)?)
+/// `lut export ASSET --raw-f16 -o OUT --force`: the library's export (the one `cargo xtask
+/// lut export` writes) as `out`, `out.json`, `out.glsl` and `out.wgsl`.
+fn export_raw_f16(asset: &Path, out: &Path) -> Result<()> {
+    let lut = brdf_engine_assets::fsio::load_lut(asset)?;
+    let name = |p: &Path| {
+        p.file_name()
+            .map_or(String::new(), |s| s.to_string_lossy().into())
+    };
+    let e = export(&lut.view()?, Format::RawF16, &name(out), &name(asset))?;
+    let (glsl, wgsl) = e.shaders.context("a 2-D table's export has shaders")?;
+    let with = |ext: &str| format!("{}{ext}", name(out));
+    let files = [
+        (name(out), e.texture),
+        (with(".json"), e.sidecar),
+        (with(".glsl"), glsl.into_bytes()),
+        (with(".wgsl"), wgsl.into_bytes()),
+    ];
+    let files = files.map(|(name, bytes)| OutFile { name, bytes });
+    write_set(out.parent().context("an output folder")?, &files)
+}
+
+/// Writes a test's files into `dir` (created when missing) through the library's safe
+/// writer, replacing the previous run's; `assets/` is never written.
+fn write_set(dir: &Path, files: &[OutFile]) -> Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    let files: Vec<_> = files
+        .iter()
+        .map(|f| (dir.join(&f.name), f.bytes.clone()))
+        .collect();
+    let policy = Policy {
+        force: true,
+        inputs: Vec::new(),
+        protected: Some(crate::workspace_root().join("assets")),
+    };
+    Ok(write_together(&files, &policy)?)
 }
 
 /// Half an IEEE binary16 ulp at |v|: 2^(e − 11) for 2^e ≤ |v| < 2^(e+1) (normal range,
@@ -548,57 +571,68 @@ pub fn prepare_sheen(dir: &Path) -> Result<()> {
         name: "sheen_points.json".into(),
         bytes: serde_json::to_vec(&serde_json::json!({ "n": n, "points": rows }))?,
     });
-    write_set(dir, &files, true)
+    write_set(dir, &files)
 }
 
-/// Coordinate error of `GlassAlbedoTable::rt`'s f32 arithmetic (η = 1 + 2w rounded to f32,
+/// Coordinate error of `GlassAlbedoTable::rt`'s f32 arithmetic (η = lo + (hi − lo)w rounded to f32,
 /// then (η − lo)/(hi − lo)·n − ½), in texels per axis: a few f32 ulps of values ≤ 3 times
 /// n ≤ 256 is below 1e-4.
 const RT_COORD_TEXELS: f64 = 1e-4;
 
-/// Writes, into `dir`, the rough-glass texture at [`GLASS_N`]³ (`brdf_engine_assets::glass`,
-/// light from outside, η ∈ [1, 3]): its files, `glass_e.rg16f.bin` (the KTX2's level 0,
-/// Zstandard-decoded here, checked equal to the BLUT payload: texel (x, y, z) at byte
-/// 4(x + N(y + N z)), R then G as little-endian binary16) and `glass_points.json`: [`POINTS`]
-/// random texture coordinates (u, v, w) = (μ, r, (η − 1)/2) as f32, every 20th outside
-/// [0, 1]³ (clamp to edge), each `[u, v, w, R, T, bound R, bound T, R_blut, T_blut, b_R, b_T]`:
-/// (R, T) the trilinear value in f64 of the f16 texels (clamp to edge), bound = 3 axes ×
-/// 2⁻⁹ × the spread of the eight texels read + 1e-6 (f32 blend; the f16 texels are exact
-/// in f32); (R, T)_blut = `GlassAlbedoTable::rt(μ, r, η)` of the BLUT, checked here within
-/// b = 3 × [`RT_COORD_TEXELS`] × spread + 1e-6 of the trilinear value (its axis map is the
+/// Writes, into `dir`, the rough-glass textures at [`GLASS_N`]³ (`brdf_engine_assets::glass`)
+/// for both directions of light: from outside (`glass_e`, η ∈ [1, 3]) and from inside
+/// (`glass_e_inv`, η ∈ [1/3, 1]). Per table: its files, `<stem>.rg16f.bin` (the KTX2's level
+/// 0, Zstandard-decoded here, checked equal to the BLUT payload: texel (x, y, z) at byte
+/// 4(x + N(y + N z)), R then G as little-endian binary16) and `<stem>_points.json`:
+/// [`POINTS`] random texture coordinates (u, v, w) = (μ, r, (η − lo)/(hi − lo)) as f32, every
+/// 20th outside [0, 1]³ (clamp to edge), each
+/// `[u, v, w, R, T, bound R, bound T, R_blut, T_blut, b_R, b_T]`: (R, T) the trilinear value
+/// in f64 of the f16 texels (clamp to edge), bound = 3 axes × 2⁻⁹ × the spread of the eight
+/// texels read + 1e-6 (f32 blend; the f16 texels are exact in f32); (R, T)_blut =
+/// `GlassAlbedoTable::rt(μ, r, η)` of the BLUT, checked here within b = 3 ×
+/// [`RT_COORD_TEXELS`] × spread + 1e-6 of the trilinear value (its axis map is the
 /// texture's: texel centres, linear, clamped).
 pub fn prepare_glass(dir: &Path) -> Result<()> {
+    for inside in [false, true] {
+        glass_set(dir, inside)?;
+    }
+    Ok(())
+}
+
+/// One direction of [`prepare_glass`].
+fn glass_set(dir: &Path, inside: bool) -> Result<()> {
     let n = GLASS_N;
-    let mut files = brdf_engine_assets::glass([n; 3], false, &|_| {})?;
-    let get = |name: &str| {
+    let stem = if inside { "glass_e_inv" } else { "glass_e" };
+    let mut files = brdf_engine_assets::glass([n; 3], inside, &|_| {})?;
+    let get = |name: String| {
         files
             .iter()
             .find(|f| f.name == name)
             .map(|f| f.bytes.clone())
             .with_context(|| format!("glass wrote no {name}"))
     };
-    let level = ktx2_level0(&get("glass_e.ktx2")?, n)?;
-    let blut_bytes = get("glass_e.blut")?;
+    let level = ktx2_level0(&get(format!("{stem}.ktx2"))?, n)?;
+    let blut_bytes = get(format!("{stem}.blut"))?;
     let blut = brdf_lut::GlassAlbedoTable::parse(&blut_bytes[..])?;
     if blut.view()?.payload() != &level[..] {
-        bail!("glass_e.ktx2: level 0 differs from the BLUT payload");
+        bail!("{stem}.ktx2: level 0 differs from the BLUT payload");
     }
     let f = |o: usize| half::f16::from_le_bytes([level[o], level[o + 1]]).to_f64();
     let rt: [Vec<f64>; 2] = [0, 2].map(|c| (0..n * n * n).map(|k| f(4 * k + c)).collect());
-    let pts = glass_points();
-    let rows = pts
+    let eta = if inside { (1.0 / 3.0, 1.0) } else { (1.0, 3.0) };
+    let rows = glass_points()
         .iter()
-        .map(|&[u, v, w]| glass_row(&rt, &blut, [u, v, w]))
+        .map(|&x| glass_row(&rt, &blut, eta, x))
         .collect::<Result<Vec<_>>>()?;
     files.push(OutFile {
-        name: "glass_e.rg16f.bin".into(),
+        name: format!("{stem}.rg16f.bin"),
         bytes: level,
     });
     files.push(OutFile {
-        name: "glass_points.json".into(),
+        name: format!("{stem}_points.json"),
         bytes: serde_json::to_vec(&serde_json::json!({ "n": [n, n, n], "points": rows }))?,
     });
-    write_set(dir, &files, true)
+    write_set(dir, &files)
 }
 
 /// Level 0 of a Zstandard-supercompressed R16G16_SFLOAT n³ KTX2, decompressed.
@@ -640,14 +674,15 @@ fn glass_points() -> Vec<[f64; 3]> {
         .collect()
 }
 
-/// One row of `glass_points.json` (doc of [`prepare_glass`]); fails when the BLUT lookup
-/// leaves its bound.
+/// One row of `<stem>_points.json` (doc of [`prepare_glass`]) for the table over
+/// η ∈ [lo, hi]; fails when the BLUT lookup leaves its bound.
 fn glass_row(
     rt: &[Vec<f64>; 2],
     blut: &brdf_lut::GlassAlbedoTable<&[u8]>,
+    (lo, hi): (f64, f64),
     x: [f64; 3],
 ) -> Result<serde_json::Value> {
-    let eta = (1.0 + 2.0 * x[2]) as f32;
+    let eta = (lo + (hi - lo) * x[2]) as f32;
     let (br, bt) = blut.rt(x[0] as f32, x[1] as f32, eta);
     let mut out = [[0.0f64; 2]; 4];
     for (c, b) in [(0, br as f64), (1, bt as f64)] {
@@ -656,8 +691,8 @@ fn glass_row(
         let brt = 3.0 * RT_COORD_TEXELS * (mx - mn) + F32_BLEND;
         if (b - v).abs() > brt {
             bail!(
-                "glass_e.blut: rt at {x:?} channel {c} is {b}, the texture's trilinear \
-                 value {v} (bound {brt:e}): the axis maps differ"
+                "glass BLUT over η ∈ [{lo}, {hi}]: rt at {x:?} channel {c} is {b}, the \
+                 texture's trilinear value {v} (bound {brt:e}): the axis maps differ"
             );
         }
         for (k, y) in [v, gpu, b, brt].into_iter().enumerate() {

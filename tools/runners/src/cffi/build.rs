@@ -1,7 +1,7 @@
 //! The C ABI's build steps: the header (rustc's macro expansion read by cbindgen), the
 //! cross compiler, the device and host libraries and `examples/c`.
 
-use crate::device::{cargo, run_step, target_base};
+use crate::run_step;
 use anyhow::{bail, Context, Result};
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -34,7 +34,7 @@ pub fn generate_header(root: &Path) -> Result<String> {
 
 /// brdf-ffi's source with every macro expanded, as rustc prints it (host target).
 fn expand_ffi(root: &Path) -> Result<String> {
-    let out = Command::new(cargo())
+    let out = crate::cargo()
         .current_dir(root)
         .args([
             "rustc",
@@ -52,7 +52,10 @@ fn expand_ffi(root: &Path) -> Result<String> {
             "brdf_header",
         ])
         .env("RUSTC_BOOTSTRAP", "1")
-        .env("CARGO_TARGET_DIR", target_base(root).join("cffi-expand"))
+        .env(
+            "CARGO_TARGET_DIR",
+            crate::target_dir(root).join("cffi-expand"),
+        )
         .output()
         .context("running cargo rustc -Zunpretty=expanded for brdf-ffi")?;
     if !out.status.success() || out.stdout.is_empty() {
@@ -136,7 +139,7 @@ fn is_root() -> bool {
 /// libbrdf_ffi.a for the Cortex-M4F, in its own target folder (size-optimised, fat LTO).
 pub(crate) fn build_device_lib(root: &Path, base: &Path) -> Result<PathBuf> {
     let tdir = base.join("cffi-rust-device");
-    let mut cmd = Command::new(cargo());
+    let mut cmd = crate::cargo();
     cmd.current_dir(root)
         .args(["rustc", "-p", "brdf-ffi", "--release", "--locked"])
         .args(["--target", "thumbv7em-none-eabihf"])
@@ -152,7 +155,7 @@ pub(crate) fn build_device_lib(root: &Path, base: &Path) -> Result<PathBuf> {
 
 /// libbrdf_ffi.a and libbrdf_ffi.so for the host (the workspace's release profile).
 pub(crate) fn build_host_lib(root: &Path, base: &Path) -> Result<PathBuf> {
-    let mut cmd = Command::new(cargo());
+    let mut cmd = crate::cargo();
     cmd.current_dir(root)
         .args(["build", "-p", "brdf-ffi", "--release", "--locked"]);
     run_step(&mut cmd, "building libbrdf_ffi for the host")?;

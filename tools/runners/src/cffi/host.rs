@@ -46,29 +46,27 @@ trait Scalar: Copy {
     fn val(self) -> Val;
 }
 
-impl Scalar for f32 {
-    fn from_arg(a: Arg) -> Result<Self> {
-        match a {
-            Arg::F32(b) => Ok(f32::from_bits(b)),
-            _ => bail!("expected an f32 argument, got {a:?}"),
+/// [`Scalar`] for one width: `Arg::$v` read as `$t`, printed as `Val::$v`.
+macro_rules! scalar {
+    ($t:ty, $v:ident) => {
+        impl Scalar for $t {
+            fn from_arg(a: Arg) -> Result<Self> {
+                match a {
+                    Arg::$v(b) => Ok(<$t>::from_bits(b)),
+                    _ => bail!(
+                        concat!("expected an ", stringify!($t), " argument, got {:?}"),
+                        a
+                    ),
+                }
+            }
+            fn val(self) -> Val {
+                Val::$v(self.to_bits())
+            }
         }
-    }
-    fn val(self) -> Val {
-        Val::F32(self.to_bits())
-    }
+    };
 }
-
-impl Scalar for f64 {
-    fn from_arg(a: Arg) -> Result<Self> {
-        match a {
-            Arg::F64(b) => Ok(f64::from_bits(b)),
-            _ => bail!("expected an f64 argument, got {a:?}"),
-        }
-    }
-    fn val(self) -> Val {
-        Val::F64(self.to_bits())
-    }
-}
+scalar!(f32, F32);
+scalar!(f64, F64);
 
 /// A result struct of the C ABI as printed values.
 trait Vals {

@@ -25,7 +25,7 @@ mod elf;
 mod host;
 
 use crate::device::protocol::{self, print_rows, Output, Row, Val};
-use crate::device::{ensure_qemu, repo_root, run_qemu, run_timed, target_base, RunOut};
+use crate::device::{ensure_qemu, run_qemu, run_timed, RunOut};
 use anyhow::{bail, Context, Result};
 use brdf_ffi::BRDF_ABI_VERSION;
 use std::path::{Path, PathBuf};
@@ -60,7 +60,7 @@ fn check_header(root: &Path, write: bool) -> Result<()> {
     if committed == header {
         println!("cffi: {HEADER} is up to date");
     } else if write {
-        crate::fsio::replace(&path, header.as_bytes())?;
+        brdf_engine_assets::fsio::replace(&path, header.as_bytes())?;
         println!("cffi: wrote {HEADER}");
     } else {
         bail!("{HEADER} is out of date: run `cargo xtask cffi --write-header` and commit it");
@@ -71,7 +71,7 @@ fn check_header(root: &Path, write: bool) -> Result<()> {
 /// Steps 2 and 3: the tools, both libraries and the programs; returns the output folder.
 fn build_all(root: &Path) -> Result<PathBuf> {
     build::ensure_arm_gcc()?;
-    let base = target_base(root);
+    let base = crate::target_dir(root);
     let out = base.join("cffi");
     let device_lib = build::build_device_lib(root, &base)?;
     let host_dir = build::build_host_lib(root, &base)?;
@@ -143,7 +143,7 @@ fn judge(
 }
 
 pub fn run(a: Args) -> Result<()> {
-    let root = repo_root();
+    let root = crate::workspace_root();
     let t = Instant::now();
     check_header(&root, a.write_header)?;
     let t_header = t.elapsed();

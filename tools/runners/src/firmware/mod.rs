@@ -18,12 +18,12 @@ pub mod compare;
 pub mod size;
 
 use crate::device::protocol::{self, print_rows};
-use crate::device::{cargo, ensure_qemu, repo_root, run_qemu, run_step, target_base};
+use crate::device::{ensure_qemu, run_qemu};
+use crate::run_step;
 use anyhow::{bail, Result};
 use compare::{compare, micromath_tol, HostTables};
 use size::{print_sizes, sizes, Sizes, KERNEL_FLASH_BUDGET};
 use std::path::{Path, PathBuf};
-use std::process::Command;
 use std::time::Instant;
 
 #[derive(clap::Args)]
@@ -61,8 +61,8 @@ fn locked_version(lock: &Path, krate: &str) -> Option<String> {
 /// crate) for the Cortex-M4F; returns the ELF.
 fn build(root: &Path, micromath: bool) -> Result<PathBuf> {
     let variant = if micromath { "micromath" } else { "libm" };
-    let tdir = target_base(root).join("firmware").join(variant);
-    let mut cmd = Command::new(cargo());
+    let tdir = crate::target_dir(root).join("firmware").join(variant);
+    let mut cmd = crate::cargo();
     cmd.current_dir(root.join("crates/brdf-firmware"))
         .args(["build", "--release", "--locked"])
         .args(["--target", "thumbv7em-none-eabihf"])
@@ -91,7 +91,7 @@ fn note_lock_differences(root: &Path) {
 }
 
 pub fn run(a: FirmwareArgs) -> Result<()> {
-    let root = repo_root();
+    let root = crate::workspace_root();
     let math = if a.micromath { "micromath" } else { "libm" };
 
     // 1. QEMU (idempotent installer; prints the binary on its last line).
@@ -194,7 +194,7 @@ fn readme_error(root: &Path, update: bool, sizes: &Sizes) -> Result<Option<Strin
         Some(claimed) if update => {
             let text = size::readme_with_sizes(&readme, measured.0, measured.1)
                 .expect("the figures were just found");
-            crate::fsio::replace(&path, text.as_bytes())?;
+            brdf_engine_assets::fsio::replace(&path, text.as_bytes())?;
             println!(
                 "README.md: kernel flash {} → {} B, static RAM {} → {} B",
                 claimed.0, measured.0, claimed.1, measured.1

@@ -39,7 +39,7 @@ fn status(mut cmd: Command, what: &str) -> Result<()> {
 }
 
 pub fn run(a: Args) -> Result<()> {
-    let root = crate::fsio::workspace_root();
+    let root = crate::workspace_root();
     let pkgs: Vec<&str> = PUBLISHABLE.iter().flat_map(|n| ["-p", *n]).collect();
 
     let mut args = vec!["doc", "--no-deps", "--all-features"];

@@ -123,10 +123,6 @@ const OPTIONAL: &[(&str, &str)] = &[
 /// Largest package archive accepted (the three.js tarball is ~5 MB).
 const MAX_ARCHIVE: u64 = 64 << 20;
 
-fn repo_root() -> PathBuf {
-    crate::fsio::workspace_root()
-}
-
 fn sha256_hex(bytes: &[u8]) -> String {
     Sha256::digest(bytes)
         .iter()
@@ -140,7 +136,7 @@ fn cached_ok(path: &Path, want: &str) -> bool {
 }
 
 pub fn run(a: Args) -> Result<()> {
-    let root = repo_root();
+    let root = crate::workspace_root();
     let cache = root.join(".cache/anchors");
     let mut problems = Vec::new();
     for src in SOURCES {

@@ -7,7 +7,7 @@
 //! `expected.json`, `web-expected.json`, `size.txt`.
 
 use anyhow::{bail, Context, Result};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 use std::time::Instant;
 
@@ -21,52 +21,14 @@ pub struct WasmArgs {
     pub no_test: bool,
 }
 
-/// The workspace root.
-pub fn root() -> PathBuf {
-    crate::fsio::workspace_root()
-}
-
-/// Cargo's target directory (honours `CARGO_TARGET_DIR`).
-fn target_dir(root: &Path) -> PathBuf {
-    match std::env::var_os("CARGO_TARGET_DIR") {
-        Some(d) => {
-            let d = PathBuf::from(d);
-            if d.is_absolute() {
-                d
-            } else {
-                root.join(d)
-            }
-        }
-        None => root.join("target"),
-    }
-}
-
-/// Runs a command in `dir`, failing with its command line when it fails.
-pub fn run(dir: &Path, cmd: &mut Command) -> Result<()> {
-    let line = format!("{cmd:?}");
-    println!("$ {line}");
-    let st = cmd
-        .current_dir(dir)
-        .status()
-        .with_context(|| format!("cannot start {line}"))?;
-    if !st.success() {
-        bail!("{line} failed ({st})");
-    }
-    Ok(())
-}
-
 /// The wasm-opt passes, in order.
 pub const WASM_OPT_PASSES: [&str; 5] = ["-Oz", "--flatten", "--rereloop", "-Oz", "-Oz"];
 
-fn cargo() -> Command {
-    Command::new(std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into()))
-}
-
 /// Builds and optimises the module; returns (size before, size after) `wasm-opt`.
 pub fn build(root: &Path) -> Result<(u64, u64)> {
-    run(
+    crate::run_in(
         root,
-        cargo().args([
+        crate::cargo().args([
             "build",
             "-p",
             "brdf-wasm",
@@ -85,7 +47,7 @@ pub fn build(root: &Path) -> Result<(u64, u64)> {
             "profile.release.panic=\"abort\"",
         ]),
     )?;
-    let raw = target_dir(root).join("wasm32-unknown-unknown/release/brdf_wasm.wasm");
+    let raw = crate::target_dir(root).join("wasm32-unknown-unknown/release/brdf_wasm.wasm");
     let before = std::fs::metadata(&raw)
         .with_context(|| format!("{} missing after the build", raw.display()))?
         .len();
@@ -95,7 +57,7 @@ pub fn build(root: &Path) -> Result<(u64, u64)> {
     if Command::new("wasm-opt").arg("--version").output().is_err() {
         bail!("wasm-opt not found: install Debian's binaryen (bash .ci/install-web.sh)");
     }
-    run(
+    crate::run_in(
         root,
         Command::new("wasm-opt")
             // -Oz, then flattened and re-reloop'ed and -Oz twice more: binaryen's own
@@ -117,7 +79,7 @@ pub fn build(root: &Path) -> Result<(u64, u64)> {
         if after <= BUDGET { "within" } else { "OVER" }
     );
     print!("{report}");
-    crate::fsio::replace(&pkg.join("size.txt"), report.as_bytes())?;
+    brdf_engine_assets::fsio::replace(&pkg.join("size.txt"), report.as_bytes())?;
     if after > BUDGET {
         bail!("the optimised module ({after} bytes) exceeds the 64 KiB budget");
     }
@@ -126,9 +88,9 @@ pub fn build(root: &Path) -> Result<(u64, u64)> {
 
 /// Writes `expected.json` and `web-expected.json` with the host build.
 pub fn expected(root: &Path) -> Result<()> {
-    run(
+    crate::run_in(
         root,
-        cargo()
+        crate::cargo()
             .args([
                 "run",
                 "--release",
@@ -142,14 +104,14 @@ pub fn expected(root: &Path) -> Result<()> {
     )
 }
 
-pub fn run_cmd(a: WasmArgs) -> Result<()> {
-    let root = root();
+pub fn run(a: WasmArgs) -> Result<()> {
+    let root = crate::workspace_root();
     let t0 = Instant::now();
     build(&root)?;
     expected(&root)?;
     let t1 = Instant::now();
     if !a.no_test {
-        run(
+        crate::run_in(
             &root,
             Command::new("node").args(["--test", "crates/brdf-wasm/test/"]),
         )?;

@@ -2,8 +2,8 @@
 //! generator, the converged reference rows, and the numpy Monte Carlo peer on them.
 
 use super::{python, Env};
+use crate::report::tablegen::{self as tg, TableGen, KHRONOS_SIZE, PEER_SAMPLES};
 use anyhow::Result;
-use brdf_bench::report::tablegen::{self as tg, TableGen, KHRONOS_SIZE, PEER_SAMPLES};
 use std::process::Command;
 
 /// Every table of the default set (on grids of at most `shrink` nodes per axis when given)

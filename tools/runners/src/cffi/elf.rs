@@ -272,7 +272,7 @@ fn readme_sizes(path: &Path, s: &Sizes, stack: Option<u64>, update: bool) -> Res
         return Ok(());
     }
     if update {
-        crate::fsio::replace(path, out.as_bytes())?;
+        brdf_engine_assets::fsio::replace(path, out.as_bytes())?;
         println!(
             "README.md: C size table rewritten ({} rows changed)",
             stale.len()

@@ -29,10 +29,6 @@ const NO_STD_TARGET: &str = "thumbv7em-none-eabihf";
 #[derive(clap::Args)]
 pub struct Args {}
 
-fn root() -> std::path::PathBuf {
-    crate::fsio::workspace_root()
-}
-
 /// `1.81` → `1.81.0`; a full `1.81.2` stays.
 fn toolchain_of(rust_version: &str) -> String {
     if rust_version.split('.').count() == 2 {
@@ -151,7 +147,7 @@ fn check_publishable(root: &std::path::Path, tc: &str, names: &[String]) -> Resu
 }
 
 pub fn run(_a: Args) -> Result<()> {
-    let root = root();
+    let root = crate::workspace_root();
     let (plan, extra) = plan(&root)?;
     let mut toolchains = group(&plan);
     for (_, tc) in &extra {
@@ -199,7 +195,7 @@ mod tests {
     /// The README states each publishable crate's minimum Rust; it must be the declared one.
     #[test]
     fn readme_states_the_declared_rust_versions() {
-        let root = super::root();
+        let root = crate::workspace_root();
         let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
         for name in PUBLISHABLE {
             let manifest = root.join("crates").join(name).join("Cargo.toml");

@@ -7,8 +7,11 @@
 //! `examples/web/test/lut_engine.test.mjs` (a WebGL2 fragment shader samples the table), and
 //! `lut export --raw-f16` of assets/dfg_ggx.blut with its GLSL function and test points to
 //! target/lut-engine-web/native/ for the same file's native-export test; the Khronos sheen
-//! textures (64²) and the rough-glass 3-D texture (12³) with their test points to
+//! textures (64²) and the rough-glass 3-D textures (12³, light from outside and from inside)
+//! with their test points ([`prepare`]) to
 //! target/lut-engine-web/{sheen,glass}/ for `examples/web/test/lut_sheen_glass.test.mjs`.
+
+mod prepare;
 
 use crate::wasm::WasmArgs;
 use anyhow::{bail, Result};
@@ -22,14 +25,14 @@ pub struct WebArgs {
     pub with_node_tests: bool,
 }
 
-pub fn run_cmd(a: WebArgs) -> Result<()> {
-    let root = crate::wasm::root();
-    crate::wasm::run_cmd(WasmArgs {
+pub fn run(a: WebArgs) -> Result<()> {
+    let root = crate::workspace_root();
+    crate::wasm::run(WasmArgs {
         no_test: !a.with_node_tests,
     })?;
     let web = root.join("examples/web");
     if !web.join("node_modules/playwright-core").is_dir() {
-        crate::wasm::run(
+        crate::run_in(
             &web,
             Command::new("npm").args(["ci", "--no-audit", "--no-fund"]),
         )?;
@@ -37,18 +40,18 @@ pub fn run_cmd(a: WebArgs) -> Result<()> {
     if !std::path::Path::new("/usr/bin/chromium").exists() {
         bail!("/usr/bin/chromium missing: install Debian's chromium (bash .ci/install-web.sh)");
     }
-    crate::engine::web::prepare(&root.join("target/lut-engine-web"))?;
-    crate::engine::web::prepare_native(&root.join("target/lut-engine-web/native"))?;
+    prepare::prepare(&root.join("target/lut-engine-web"))?;
+    prepare::prepare_native(&root.join("target/lut-engine-web/native"))?;
     let t = Instant::now();
-    crate::engine::web::prepare_sheen(&root.join("target/lut-engine-web/sheen"))?;
+    prepare::prepare_sheen(&root.join("target/lut-engine-web/sheen"))?;
     let ts = t.elapsed().as_secs_f64();
-    crate::engine::web::prepare_glass(&root.join("target/lut-engine-web/glass"))?;
+    prepare::prepare_glass(&root.join("target/lut-engine-web/glass"))?;
     println!(
-        "web: sheen textures and points {ts:.1} s, glass texture and points {:.1} s",
+        "web: sheen textures and points {ts:.1} s, glass textures and points {:.1} s",
         t.elapsed().as_secs_f64() - ts
     );
     let t = Instant::now();
-    crate::wasm::run(
+    crate::run_in(
         &root,
         Command::new("node").args(["--test", "examples/web/test/"]),
     )?;

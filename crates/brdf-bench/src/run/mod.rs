@@ -9,8 +9,8 @@
 mod python;
 mod tablegen;
 
+use crate::report::{self, Counts, Data, Machine, Peer};
 use anyhow::{bail, Context, Result};
-use brdf_bench::report::{self, Counts, Data, Machine, Peer};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
@@ -61,7 +61,7 @@ struct Env {
 
 impl Env {
     fn new() -> Env {
-        let root = crate::fsio::workspace_root();
+        let root = crate::workspace_root();
         let target = match std::env::var_os("CARGO_TARGET_DIR").map(PathBuf::from) {
             Some(t) if t.is_absolute() => t,
             Some(t) => root.join(t),
@@ -126,7 +126,7 @@ fn measure(env: &Env, a: &Args) -> Result<Data> {
     let est = report::read_estimates(&crit_dir).map_err(anyhow::Error::msg)?;
     let t_crit = t_start.elapsed().as_secs_f64();
     eprintln!("== SciPy peer");
-    let peer = python::run_peer(&env.root, brdf_bench::BATCH, 7);
+    let peer = python::run_peer(&env.root, crate::BATCH, 7);
     eprintln!("== accuracy");
     let acc = report::accuracy();
     eprintln!("== callgrind");
@@ -277,7 +277,7 @@ fn callgrind(env: &Env) -> Counts {
     Ok(rows)
 }
 
-/// Wall time of `cargo xtask lut` (this binary) writing the default set to a temporary
+/// Wall time of `cargo xtask lut` (the running xtask binary) writing the default set to a temporary
 /// directory, and the set's size.
 fn time_generation() -> Result<(f64, u64, usize)> {
     let exe = std::env::current_exe()?;
