@@ -33,7 +33,7 @@ pub fn run(out: PathBuf, anchors: Option<PathBuf>, doc: Option<PathBuf>) -> Resu
     }
     let figures = doc.parent().unwrap_or(Path::new(".")).join("figures");
     report.sheen = sheen(&anchor_dirs, &figures)?;
-    crate::fsio::replace(&doc, render_engines(&report)?.as_bytes())?;
+    brdf_engine_assets::fsio::replace(&doc, render_engines(&report)?.as_bytes())?;
     println!("report: wrote {}", doc.display());
     Ok(())
 }
