@@ -6,7 +6,7 @@
 //! reciprocal convention, docs/conventions.md §4), 5 the modified G with eq 12 as printed.
 //! σ is the RMS slope (finite, > 0; accuracy specified for [0.05, 1]).
 
-use crate::memory::usable;
+use crate::memory::{batch_ok, map2};
 use crate::status::{BAD_BUFFER, BAD_PARAM};
 use brdf_core::geometry::{clamp_theta_i, clamp_theta_r};
 use brdf_core::masking::{
@@ -150,21 +150,14 @@ pub unsafe extern "C" fn brdf_g_batch(
     out: *mut f32,
     n: u32,
 ) -> i32 {
-    if n > MAX_BATCH || !usable(theta_i) || !usable(theta_r) || !usable(out.cast_const()) {
+    if !batch_ok(n, &[theta_i, theta_r, out.cast_const()]) {
         return BAD_BUFFER;
     }
     let Some(g) = PreparedG::new(kind, sigma) else {
         return BAD_PARAM;
     };
-    // SAFETY: the pointers are non-null and aligned (checked) and valid for n f32 (the
-    // contract); element k is read before it is written, so `out` may be an input.
-    unsafe {
-        for k in 0..n as usize {
-            let v = g.in_plane(*theta_i.add(k), *theta_r.add(k));
-            *out.add(k) = v;
-        }
-    }
-    n as i32
+    // SAFETY: the pointers passed `batch_ok` and are valid for n f32 (the contract).
+    unsafe { map2(theta_i, theta_r, out, n, |a, b| g.in_plane(a, b)) }
 }
 
 /// Batch [`brdf_g_dots`]: `dots` holds n triples (n·wi, n·wo, wi·wo), `out` n values.
@@ -181,7 +174,7 @@ pub unsafe extern "C" fn brdf_g_dots_batch(
     out: *mut f32,
     n: u32,
 ) -> i32 {
-    if n > MAX_BATCH || !usable(dots) || !usable(out.cast_const()) {
+    if !batch_ok(n, &[dots, out.cast_const()]) {
         return BAD_BUFFER;
     }
     let Some(g) = PreparedG::new(kind, sigma) else {
