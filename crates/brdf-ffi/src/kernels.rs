@@ -21,6 +21,7 @@ use crate::{
 use brdf_core::albedo::directional_albedo;
 use brdf_core::fresnel::Fresnel;
 use brdf_core::masking::{self, Convention, ModifiedG};
+use brdf_core::microfacet::{from_cos, Beckmann, Distribution, TrowbridgeReitz};
 use brdf_core::models::{
     Brdf, BrdfFlags, BrdfSample, DeltaLobe, DielectricDistribution, GeometricTerm, Ggx, LobeHint,
     MicrofacetSampling, Rgb, RoughDielectric, Sheen, SheenVisibility, SmithForm, TorranceSparrow,
@@ -166,31 +167,42 @@ fn rough_ok<T: Real>(r: T) -> bool {
     r.is_finite() && r > T::ZERO
 }
 
+/// One-sided Smith G1 = 1/(1 + Λ) of the microfacet distribution `d` of width `r` at
+/// cos θ = n·w (the direction [`from_cos`]); NaN for a bad width or distribution.
 fn g1_smith<T: Real>(d: BrdfSmithDistribution, cos_t: T, r: T) -> T {
     if !rough_ok(r) {
         return T::NAN;
     }
+    let w = from_cos(cos_t);
     match d {
-        BRDF_SMITH_BECKMANN => masking::g1_smith_beckmann(cos_t, r),
-        BRDF_SMITH_GGX => masking::g1_smith_ggx(cos_t, r),
+        BRDF_SMITH_BECKMANN => Beckmann::clamped(r, r).g1(w),
+        BRDF_SMITH_GGX => TrowbridgeReitz::clamped(r, r).g1(w),
         _ => T::NAN,
     }
 }
 
+/// Smith's G of the pair n·wi = `ci`, n·wo = `co` for the distribution `d` of width `r` in
+/// form `f`; NaN for a bad width, distribution or form.
 fn g_smith<T: Real>(d: BrdfSmithDistribution, f: BrdfSmithForm, ci: T, co: T, r: T) -> T {
     if !rough_ok(r) {
         return T::NAN;
     }
-    match (d, f) {
-        (BRDF_SMITH_BECKMANN, BRDF_SMITH_FORM_SEPARABLE) => {
-            masking::g_smith_beckmann_separable(ci, co, r)
-        }
-        (BRDF_SMITH_BECKMANN, BRDF_SMITH_FORM_CORRELATED) => {
-            masking::g_smith_beckmann_correlated(ci, co, r)
-        }
-        (BRDF_SMITH_GGX, BRDF_SMITH_FORM_SEPARABLE) => masking::g_smith_ggx_separable(ci, co, r),
-        (BRDF_SMITH_GGX, BRDF_SMITH_FORM_CORRELATED) => masking::g_smith_ggx_correlated(ci, co, r),
+    let Some(f) = smith_form(f) else {
+        return T::NAN;
+    };
+    match d {
+        BRDF_SMITH_BECKMANN => g_of_form(Beckmann::clamped(r, r), f, ci, co),
+        BRDF_SMITH_GGX => g_of_form(TrowbridgeReitz::clamped(r, r), f, ci, co),
         _ => T::NAN,
+    }
+}
+
+/// G = G1(wi) G1(wo) or 1/(1 + Λ(wi) + Λ(wo)) of `m` at the cosines `ci`, `co`.
+fn g_of_form<T: Real, D: Distribution<T>>(m: D, f: SmithForm, ci: T, co: T) -> T {
+    let (wi, wo) = (from_cos(ci), from_cos(co));
+    match f {
+        SmithForm::Separable => m.g_separable(wi, wo),
+        SmithForm::Correlated => m.g_correlated(wi, wo),
     }
 }
 

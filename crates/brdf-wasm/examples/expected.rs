@@ -11,9 +11,8 @@
 
 use brdf_core::catalogue;
 use brdf_core::fresnel::Fresnel;
-use brdf_core::masking::{
-    g_blinn, g_smith_beckmann_correlated, g_smith_beckmann_separable, Convention, ModifiedG,
-};
+use brdf_core::masking::{g_blinn, Convention, ModifiedG};
+use brdf_core::microfacet::{from_cos, Beckmann, Distribution};
 use brdf_core::models::{Brdf, GeometricTerm, TorranceSparrow};
 use brdf_core::{Dots, Real, Vec3};
 use brdf_lut::{DfgTable, GTable, GTable3};
@@ -100,11 +99,13 @@ fn native_g(kind: u32, sigma: f32, ti: f32, tr: f32) -> f32 {
     let ti_c = ti.clamp(0.0, core::f32::consts::FRAC_PI_2);
     let tr_c = tr.clamp(-core::f32::consts::FRAC_PI_2, core::f32::consts::FRAC_PI_2);
     let m = f32::from_f64(core::f64::consts::SQRT_2) * sigma;
+    let smith = Beckmann::clamped(m, m);
+    let (wi, wo) = (from_cos(Real::cos(ti_c)), from_cos(Real::cos(tr_c)));
     match kind {
         0 => 1.0,
         1 => g_blinn(ti, tr),
-        2 => g_smith_beckmann_separable(Real::cos(ti_c), Real::cos(tr_c), m),
-        3 => g_smith_beckmann_correlated(Real::cos(ti_c), Real::cos(tr_c), m),
+        2 => smith.g_separable(wi, wo),
+        3 => smith.g_correlated(wi, wo),
         4 => ModifiedG::<f32>::new(sigma).unwrap().g(ti, tr),
         _ => ModifiedG::<f32>::new(sigma)
             .unwrap()
