@@ -134,7 +134,8 @@ fn convention(c: BrdfConvention) -> Option<Convention> {
 }
 
 /// A `BRDF_GEOMETRIC_*` value is the term's index in the model catalogue's list of masking
-/// terms (`brdf_core::catalogue::MASKINGS`; tests/catalogue.rs checks brdf.h against it).
+/// terms (`brdf_core::catalogue::MASKINGS`, through `masking_index!`; tests/catalogue.rs
+/// checks that brdf.h names every term).
 fn geometric_term(g: BrdfGeometricTerm) -> Option<GeometricTerm> {
     GeometricTerm::ALL.get(g as usize).copied()
 }
