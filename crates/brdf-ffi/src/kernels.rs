@@ -21,11 +21,16 @@ use crate::{
 use brdf_core::albedo::directional_albedo;
 use brdf_core::fresnel::Fresnel;
 use brdf_core::masking::{self, Convention, ModifiedG};
+use brdf_core::microfacet::{from_cos, Beckmann, Distribution, TrowbridgeReitz};
 use brdf_core::models::{
     Brdf, BrdfFlags, BrdfSample, DeltaLobe, DielectricDistribution, GeometricTerm, Ggx, LobeHint,
     MicrofacetSampling, Rgb, RoughDielectric, Sheen, SheenVisibility, SmithForm, TorranceSparrow,
 };
 use brdf_core::{Dots, Real, Vec3};
+
+// `masking_index!`, `sheen_visibility_index!`, `dielectric_distribution_index!`: an option
+// name of the model catalogue to its index there, as an integer literal (build.rs).
+include!(concat!(env!("OUT_DIR"), "/catalogue_index.rs"));
 
 /// Which reading of the paper's eq 12 the modified G uses (a `BRDF_CONVENTION_*` value).
 pub type BrdfConvention = u32;
@@ -51,17 +56,17 @@ pub const BRDF_SMITH_FORM_CORRELATED: BrdfSmithForm = 1;
 /// The G of the Torrance–Sparrow BRDF (a `BRDF_GEOMETRIC_*` value).
 pub type BrdfGeometricTerm = u32;
 /// G = 1.
-pub const BRDF_GEOMETRIC_NONE: BrdfGeometricTerm = 0;
+pub const BRDF_GEOMETRIC_NONE: BrdfGeometricTerm = masking_index!("none");
 /// Blinn's V-groove G (paper eq 4).
-pub const BRDF_GEOMETRIC_BLINN: BrdfGeometricTerm = 1;
+pub const BRDF_GEOMETRIC_BLINN: BrdfGeometricTerm = masking_index!("blinn");
 /// Smith–Beckmann, separable, m = √2σ.
-pub const BRDF_GEOMETRIC_SMITH_SEPARABLE: BrdfGeometricTerm = 2;
+pub const BRDF_GEOMETRIC_SMITH_SEPARABLE: BrdfGeometricTerm = masking_index!("smith-separable");
 /// Smith–Beckmann, height-correlated, m = √2σ.
-pub const BRDF_GEOMETRIC_SMITH_CORRELATED: BrdfGeometricTerm = 3;
+pub const BRDF_GEOMETRIC_SMITH_CORRELATED: BrdfGeometricTerm = masking_index!("smith-correlated");
 /// The paper's modified G, reciprocal convention.
-pub const BRDF_GEOMETRIC_MODIFIED: BrdfGeometricTerm = 4;
+pub const BRDF_GEOMETRIC_MODIFIED: BrdfGeometricTerm = masking_index!("modified");
 /// The paper's modified G with eq 12 as printed.
-pub const BRDF_GEOMETRIC_MODIFIED_PRINTED: BrdfGeometricTerm = 5;
+pub const BRDF_GEOMETRIC_MODIFIED_PRINTED: BrdfGeometricTerm = masking_index!("modified-printed");
 
 /// The Fresnel term of the Torrance–Sparrow BRDF (a `BRDF_FRESNEL_*` value), evaluated at
 /// wi·h; its parameter is passed beside it.
@@ -81,32 +86,22 @@ pub const BRDF_FRESNEL_DIELECTRIC: BrdfFresnel = 3;
 pub type BrdfSheenVisibility = u32;
 /// V = G2/(4 (n·wi)(n·wo)) with Estevez and Kulla's fitted Smith Λ (glTF
 /// `KHR_materials_sheen`).
-pub const BRDF_SHEEN_VISIBILITY_ESTEVEZ_KULLA: BrdfSheenVisibility = 0;
+pub const BRDF_SHEEN_VISIBILITY_ESTEVEZ_KULLA: BrdfSheenVisibility =
+    sheen_visibility_index!("estevez-kulla");
 /// Ashikhmin's V = 1/(4 (n·wi + n·wo − (n·wi)(n·wo))) (Filament's cloth).
-pub const BRDF_SHEEN_VISIBILITY_ASHIKHMIN: BrdfSheenVisibility = 1;
+pub const BRDF_SHEEN_VISIBILITY_ASHIKHMIN: BrdfSheenVisibility =
+    sheen_visibility_index!("ashikhmin");
 
 /// The microfacet distribution of the rough dielectric BSDF (a
 /// `BRDF_DIELECTRIC_DISTRIBUTION_*` value): the index of the option in the model catalogue's
 /// `distribution` choice.
 pub type BrdfDielectricDistribution = u32;
 /// Trowbridge–Reitz (GGX), width α.
-pub const BRDF_DIELECTRIC_DISTRIBUTION_GGX: BrdfDielectricDistribution = 0;
+pub const BRDF_DIELECTRIC_DISTRIBUTION_GGX: BrdfDielectricDistribution =
+    dielectric_distribution_index!("ggx");
 /// Beckmann, width α.
-pub const BRDF_DIELECTRIC_DISTRIBUTION_BECKMANN: BrdfDielectricDistribution = 1;
-
-// The constants are the catalogue's option indices (checked when the crate compiles).
-const _: () = {
-    let all = DielectricDistribution::ALL;
-    assert!(all.len() == 2);
-    assert!(matches!(
-        all[BRDF_DIELECTRIC_DISTRIBUTION_GGX as usize],
-        DielectricDistribution::Ggx
-    ));
-    assert!(matches!(
-        all[BRDF_DIELECTRIC_DISTRIBUTION_BECKMANN as usize],
-        DielectricDistribution::Beckmann
-    ));
-};
+pub const BRDF_DIELECTRIC_DISTRIBUTION_BECKMANN: BrdfDielectricDistribution =
+    dielectric_distribution_index!("beckmann");
 
 /// Storage words (8 bytes each) of the modified-G handles.
 pub const BRDF_MODIFIED_G_WORDS: usize = 8;
@@ -139,7 +134,8 @@ fn convention(c: BrdfConvention) -> Option<Convention> {
 }
 
 /// A `BRDF_GEOMETRIC_*` value is the term's index in the model catalogue's list of masking
-/// terms (`brdf_core::catalogue::MASKINGS`; tests/catalogue.rs checks brdf.h against it).
+/// terms (`brdf_core::catalogue::MASKINGS`, through `masking_index!`; tests/catalogue.rs
+/// checks that brdf.h names every term).
 fn geometric_term(g: BrdfGeometricTerm) -> Option<GeometricTerm> {
     GeometricTerm::ALL.get(g as usize).copied()
 }
@@ -172,31 +168,42 @@ fn rough_ok<T: Real>(r: T) -> bool {
     r.is_finite() && r > T::ZERO
 }
 
+/// One-sided Smith G1 = 1/(1 + Λ) of the microfacet distribution `d` of width `r` at
+/// cos θ = n·w (the direction [`from_cos`]); NaN for a bad width or distribution.
 fn g1_smith<T: Real>(d: BrdfSmithDistribution, cos_t: T, r: T) -> T {
     if !rough_ok(r) {
         return T::NAN;
     }
+    let w = from_cos(cos_t);
     match d {
-        BRDF_SMITH_BECKMANN => masking::g1_smith_beckmann(cos_t, r),
-        BRDF_SMITH_GGX => masking::g1_smith_ggx(cos_t, r),
+        BRDF_SMITH_BECKMANN => Beckmann::clamped(r, r).g1(w),
+        BRDF_SMITH_GGX => TrowbridgeReitz::clamped(r, r).g1(w),
         _ => T::NAN,
     }
 }
 
+/// Smith's G of the pair n·wi = `ci`, n·wo = `co` for the distribution `d` of width `r` in
+/// form `f`; NaN for a bad width, distribution or form.
 fn g_smith<T: Real>(d: BrdfSmithDistribution, f: BrdfSmithForm, ci: T, co: T, r: T) -> T {
     if !rough_ok(r) {
         return T::NAN;
     }
-    match (d, f) {
-        (BRDF_SMITH_BECKMANN, BRDF_SMITH_FORM_SEPARABLE) => {
-            masking::g_smith_beckmann_separable(ci, co, r)
-        }
-        (BRDF_SMITH_BECKMANN, BRDF_SMITH_FORM_CORRELATED) => {
-            masking::g_smith_beckmann_correlated(ci, co, r)
-        }
-        (BRDF_SMITH_GGX, BRDF_SMITH_FORM_SEPARABLE) => masking::g_smith_ggx_separable(ci, co, r),
-        (BRDF_SMITH_GGX, BRDF_SMITH_FORM_CORRELATED) => masking::g_smith_ggx_correlated(ci, co, r),
+    let Some(f) = smith_form(f) else {
+        return T::NAN;
+    };
+    match d {
+        BRDF_SMITH_BECKMANN => g_of_form(Beckmann::clamped(r, r), f, ci, co),
+        BRDF_SMITH_GGX => g_of_form(TrowbridgeReitz::clamped(r, r), f, ci, co),
         _ => T::NAN,
+    }
+}
+
+/// G = G1(wi) G1(wo) or 1/(1 + Λ(wi) + Λ(wo)) of `m` at the cosines `ci`, `co`.
+fn g_of_form<T: Real, D: Distribution<T>>(m: D, f: SmithForm, ci: T, co: T) -> T {
+    let (wi, wo) = (from_cos(ci), from_cos(co));
+    match f {
+        SmithForm::Separable => m.g_separable(wi, wo),
+        SmithForm::Correlated => m.g_correlated(wi, wo),
     }
 }
 
@@ -252,11 +259,22 @@ fn wo_of_mu<T: Real>(mu: T) -> Option<Option<Vec3<T>>> {
     Some(Some(Vec3::new((T::ONE - c * c).sqrt(), T::ZERO, c)))
 }
 
-fn ts_albedo<T: Real>(ts: &TorranceSparrow<T>, mu: T) -> T {
-    match wo_of_mu(mu) {
-        None => T::NAN,
-        Some(None) => T::ZERO,
-        Some(Some(wo)) => directional_albedo(&TsLobe(ts), wo).r,
+/// Directional albedo per channel of a prepared model for a viewer at μ = n·wo (clamped to
+/// ≤ 1): 0 for μ ≤ 0; all NaN for NaN μ or a missing handle.
+fn albedo_of<T: Real, M: Brdf<T>>(m: Option<&M>, mu: T) -> Rgb<T> {
+    match (m, wo_of_mu(mu)) {
+        (Some(m), Some(Some(wo))) => directional_albedo(m, wo),
+        (Some(_), Some(None)) => Rgb::zero(),
+        _ => Rgb::splat(T::NAN),
+    }
+}
+
+/// f per channel of a prepared model at unit directions `wi`, `wo`; all NaN for a missing
+/// handle or a non-finite component.
+fn eval_at<T: Real, M: Brdf<T>>(m: Option<&M>, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
+    match m {
+        Some(m) if vec_ok(wi) && vec_ok(wo) => m.eval(wi, wo),
+        _ => Rgb::splat(T::NAN),
     }
 }
 
@@ -266,27 +284,11 @@ fn ggx_new<T: Real>(f0: Rgb<T>, alpha: T, form: BrdfSmithForm) -> Result<Ggx<T>,
         .map_err(|_| BRDF_STATUS_INVALID_ARGUMENT)
 }
 
-fn ggx_albedo<T: Real>(g: &Ggx<T>, mu: T) -> Rgb<T> {
-    match wo_of_mu(mu) {
-        None => Rgb::splat(T::NAN),
-        Some(None) => Rgb::zero(),
-        Some(Some(wo)) => directional_albedo(g, wo),
-    }
-}
-
 fn sheen_new<T: Real>(color: Rgb<T>, r: T, v: BrdfSheenVisibility) -> Result<Sheen<T>, BrdfStatus> {
     let v = *SheenVisibility::ALL
         .get(v as usize)
         .ok_or(BRDF_STATUS_INVALID_ARGUMENT)?;
     Sheen::new(color, r, v).map_err(|_| BRDF_STATUS_INVALID_ARGUMENT)
-}
-
-fn sheen_albedo<T: Real>(m: &Sheen<T>, mu: T) -> Rgb<T> {
-    match wo_of_mu(mu) {
-        None => Rgb::splat(T::NAN),
-        Some(None) => Rgb::zero(),
-        Some(Some(wo)) => directional_albedo(m, wo),
-    }
 }
 
 fn finite3<T: Real>(a: T, b: T, c: T) -> bool {
@@ -498,32 +500,23 @@ macro_rules! typed_abi {
             pub b: $t,
         }
 
-        /// A prepared modified G for one surface (σ, convention). Fill it with
-        #[doc = concat!(" `", stringify!($mg_init), "`; the fields are private to the library.")]
-        #[repr(C)]
-        pub struct $MG {
-            tag: u64,
-            storage: [u64; BRDF_MODIFIED_G_WORDS],
+        handle! {
+            /// A prepared modified G for one surface (σ, convention). Fill it with
+            #[doc = concat!(" `", stringify!($mg_init), "`; the fields are private to the library.")]
+            $MG[BRDF_MODIFIED_G_WORDS] = ModifiedG<$t>, $tag_mg
         }
-        handle!($MG, ModifiedG<$t>, $tag_mg);
 
-        #[doc = concat!(" A prepared Torrance–Sparrow BRDF. Fill it with `", stringify!($ts_init), "`; the")]
-        /// fields are private to the library.
-        #[repr(C)]
-        pub struct $TS {
-            tag: u64,
-            storage: [u64; BRDF_TORRANCE_SPARROW_WORDS],
+        handle! {
+            #[doc = concat!(" A prepared Torrance–Sparrow BRDF. Fill it with `", stringify!($ts_init), "`; the")]
+            /// fields are private to the library.
+            $TS[BRDF_TORRANCE_SPARROW_WORDS] = TorranceSparrow<$t>, $tag_ts
         }
-        handle!($TS, TorranceSparrow<$t>, $tag_ts);
 
-        #[doc = concat!(" A prepared GGX BRDF. Fill it with `", stringify!($ggx_init), "`; the fields are private to the")]
-        /// library.
-        #[repr(C)]
-        pub struct $Ggx {
-            tag: u64,
-            storage: [u64; BRDF_GGX_WORDS],
+        handle! {
+            #[doc = concat!(" A prepared GGX BRDF. Fill it with `", stringify!($ggx_init), "`; the fields are private to the")]
+            /// library.
+            $Ggx[BRDF_GGX_WORDS] = Ggx<$t>, $tag_ggx
         }
-        handle!($Ggx, Ggx<$t>, $tag_ggx);
 
         impl From<masking::GTerms<$t>> for $Terms {
             fn from(t: masking::GTerms<$t>) -> Self {
@@ -538,6 +531,12 @@ macro_rules! typed_abi {
         impl From<Rgb<$t>> for $Rgb {
             fn from(c: Rgb<$t>) -> Self {
                 Self { r: c.r, g: c.g, b: c.b }
+            }
+        }
+
+        impl From<$Rgb> for Rgb<$t> {
+            fn from(c: $Rgb) -> Self {
+                Rgb::new(c.r, c.g, c.b)
             }
         }
 
@@ -773,10 +772,7 @@ macro_rules! typed_abi {
         #[no_mangle]
         pub unsafe extern "C" fn $ts_albedo(ts: *const $TS, mu: $t) -> $t {
             // SAFETY: `ts` is null or a readable handle (the caller's contract).
-            match unsafe { $TS::get(ts) } {
-                Some(t) => ts_albedo(t, mu),
-                None => <$t>::NAN,
-            }
+            albedo_of(unsafe { $TS::get(ts) }.map(TsLobe).as_ref(), mu).r
         }
 
         /// Prepares the GGX (Trowbridge–Reitz) BRDF f = D F G / (4 (n·wi)(n·wo)) with per-channel
@@ -792,7 +788,7 @@ macro_rules! typed_abi {
             alpha: $t,
             smith_form: BrdfSmithForm,
         ) -> BrdfStatus {
-            let new = || ggx_new(Rgb::new(f0.r, f0.g, f0.b), alpha, smith_form);
+            let new = || ggx_new(f0.into(), alpha, smith_form);
             // SAFETY: the caller's contract for `out` is the one `init` needs.
             unsafe { init(out, $Ggx::clear, $Ggx::put, new) }
         }
@@ -804,13 +800,7 @@ macro_rules! typed_abi {
         #[no_mangle]
         pub unsafe extern "C" fn $ggx_eval(g: *const $Ggx, wi: $Vec3, wo: $Vec3) -> $Rgb {
             // SAFETY: `g` is null or a readable handle (the caller's contract).
-            let c = match unsafe { $Ggx::get(g) } {
-                Some(m) if finite3(wi.x, wi.y, wi.z) && finite3(wo.x, wo.y, wo.z) => {
-                    m.eval(wi.into(), wo.into())
-                }
-                _ => Rgb::splat(<$t>::NAN),
-            };
-            c.into()
+            eval_at(unsafe { $Ggx::get(g) }, wi.into(), wo.into()).into()
         }
 
         /// Directional albedo per channel of the GGX BRDF for a viewer at μ = n·wo; arguments and
@@ -819,39 +809,9 @@ macro_rules! typed_abi {
         #[no_mangle]
         pub unsafe extern "C" fn $ggx_albedo(g: *const $Ggx, mu: $t) -> $Rgb {
             // SAFETY: `g` is null or a readable handle (the caller's contract).
-            let c = match unsafe { $Ggx::get(g) } {
-                Some(m) => ggx_albedo(m, mu),
-                None => Rgb::splat(<$t>::NAN),
-            };
-            c.into()
+            albedo_of(unsafe { $Ggx::get(g) }, mu).into()
         }
     };
-}
-
-typed_abi! {
-    f32; BrdfGTermsF32, BrdfVec3F32, BrdfRgbF32;
-    BrdfModifiedGF32 = TAG_MODIFIED_G_F32, BrdfTorranceSparrowF32 = TAG_TS_F32,
-    BrdfGgxF32 = TAG_GGX_F32;
-    brdf_modified_g_init_f32, brdf_modified_g_terms_f32, brdf_modified_g_f32,
-    brdf_modified_g_terms_dots_f32, brdf_modified_g_dots_f32, brdf_modified_g_dots_batch_f32,
-    brdf_g_blinn_f32, brdf_g_blinn_dots_f32, brdf_g1_smith_f32, brdf_g_smith_f32,
-    brdf_torrance_sparrow_init_f32, brdf_torrance_sparrow_eval_f32,
-    brdf_torrance_sparrow_eval_nh_f32, brdf_torrance_sparrow_specular_f32,
-    brdf_torrance_sparrow_eval_batch_f32, brdf_torrance_sparrow_albedo_f32,
-    brdf_ggx_init_f32, brdf_ggx_eval_f32, brdf_ggx_albedo_f32,
-}
-
-typed_abi! {
-    f64; BrdfGTermsF64, BrdfVec3F64, BrdfRgbF64;
-    BrdfModifiedGF64 = TAG_MODIFIED_G_F64, BrdfTorranceSparrowF64 = TAG_TS_F64,
-    BrdfGgxF64 = TAG_GGX_F64;
-    brdf_modified_g_init_f64, brdf_modified_g_terms_f64, brdf_modified_g_f64,
-    brdf_modified_g_terms_dots_f64, brdf_modified_g_dots_f64, brdf_modified_g_dots_batch_f64,
-    brdf_g_blinn_f64, brdf_g_blinn_dots_f64, brdf_g1_smith_f64, brdf_g_smith_f64,
-    brdf_torrance_sparrow_init_f64, brdf_torrance_sparrow_eval_f64,
-    brdf_torrance_sparrow_eval_nh_f64, brdf_torrance_sparrow_specular_f64,
-    brdf_torrance_sparrow_eval_batch_f64, brdf_torrance_sparrow_albedo_f64,
-    brdf_ggx_init_f64, brdf_ggx_eval_f64, brdf_ggx_albedo_f64,
 }
 
 /// Emits the sheen handle and its exports for one scalar type `$t` (the vector and colour
@@ -861,14 +821,11 @@ macro_rules! sheen_abi {
         $t:ident; $Vec3:ident, $Rgb:ident; $Sheen:ident = $tag:ident;
         $init:ident, $eval:ident, $eval_dots:ident, $albedo:ident $(,)?
     ) => {
-        #[doc = concat!(" A prepared sheen BRDF. Fill it with `", stringify!($init), "`; the fields are private to the")]
-        /// library.
-        #[repr(C)]
-        pub struct $Sheen {
-            tag: u64,
-            storage: [u64; BRDF_SHEEN_WORDS],
+        handle! {
+            #[doc = concat!(" A prepared sheen BRDF. Fill it with `", stringify!($init), "`; the fields are private to the")]
+            /// library.
+            $Sheen[BRDF_SHEEN_WORDS] = Sheen<$t>, $tag
         }
-        handle!($Sheen, Sheen<$t>, $tag);
 
         /// Prepares the Charlie sheen BRDF of Estevez and Kulla (2017), f = color · D · V, with
         /// D = (2 + 1/α) sin^(1/α)θh / (2π), α = r² (perceptual roughness `roughness` ∈ [0, 1];
@@ -883,7 +840,7 @@ macro_rules! sheen_abi {
             roughness: $t,
             visibility: BrdfSheenVisibility,
         ) -> BrdfStatus {
-            let new = || sheen_new(Rgb::new(color.r, color.g, color.b), roughness, visibility);
+            let new = || sheen_new(color.into(), roughness, visibility);
             // SAFETY: the caller's contract for `out` is the one `init` needs.
             unsafe { init(out, $Sheen::clear, $Sheen::put, new) }
         }
@@ -896,13 +853,7 @@ macro_rules! sheen_abi {
         #[no_mangle]
         pub unsafe extern "C" fn $eval(s: *const $Sheen, wi: $Vec3, wo: $Vec3) -> $Rgb {
             // SAFETY: `s` is null or a readable handle (the caller's contract).
-            let c = match unsafe { $Sheen::get(s) } {
-                Some(m) if finite3(wi.x, wi.y, wi.z) && finite3(wo.x, wo.y, wo.z) => {
-                    m.eval(wi.into(), wo.into())
-                }
-                _ => Rgb::splat(<$t>::NAN),
-            };
-            c.into()
+            eval_at(unsafe { $Sheen::get(s) }, wi.into(), wo.into()).into()
         }
 
         /// The sheen BRDF from the dot products n·wi, n·wo and wi·wo of unit vectors (the module
@@ -925,23 +876,9 @@ macro_rules! sheen_abi {
         #[no_mangle]
         pub unsafe extern "C" fn $albedo(s: *const $Sheen, mu: $t) -> $Rgb {
             // SAFETY: `s` is null or a readable handle (the caller's contract).
-            let c = match unsafe { $Sheen::get(s) } {
-                Some(m) => sheen_albedo(m, mu),
-                None => Rgb::splat(<$t>::NAN),
-            };
-            c.into()
+            albedo_of(unsafe { $Sheen::get(s) }, mu).into()
         }
     };
-}
-
-sheen_abi! {
-    f32; BrdfVec3F32, BrdfRgbF32; BrdfSheenF32 = TAG_SHEEN_F32;
-    brdf_sheen_init_f32, brdf_sheen_eval_f32, brdf_sheen_eval_dots_f32, brdf_sheen_albedo_f32,
-}
-
-sheen_abi! {
-    f64; BrdfVec3F64, BrdfRgbF64; BrdfSheenF64 = TAG_SHEEN_F64;
-    brdf_sheen_init_f64, brdf_sheen_eval_f64, brdf_sheen_eval_dots_f64, brdf_sheen_albedo_f64,
 }
 
 /// Emits the rough dielectric handle, its sample and Dirac structs and its exports for one
@@ -952,14 +889,11 @@ macro_rules! rough_dielectric_abi {
         $init:ident, $eval:ident, $eval_adjoint:ident, $pdf:ident, $sample:ident,
         $delta:ident $(,)?
     ) => {
-        #[doc = concat!(" A prepared rough dielectric BSDF. Fill it with `", stringify!($init), "`; the fields are")]
-        /// private to the library.
-        #[repr(C)]
-        pub struct $RD {
-            tag: u64,
-            storage: [u64; BRDF_ROUGH_DIELECTRIC_WORDS],
+        handle! {
+            #[doc = concat!(" A prepared rough dielectric BSDF. Fill it with `", stringify!($init), "`; the fields are")]
+            /// private to the library.
+            $RD[BRDF_ROUGH_DIELECTRIC_WORDS] = RoughDielectric<$t>, $tag
         }
-        handle!($RD, RoughDielectric<$t>, $tag);
 
         /// A sampled direction of a BSDF for a given wo.
         #[repr(C)]
@@ -1106,18 +1040,57 @@ macro_rules! rough_dielectric_abi {
     };
 }
 
-rough_dielectric_abi! {
-    f32; BrdfVec3F32, BrdfRgbF32;
-    BrdfRoughDielectricF32 = TAG_RD_F32, BrdfBsdfSampleF32, BrdfDeltaLobeF32;
-    brdf_rough_dielectric_init_f32, brdf_rough_dielectric_eval_f32,
-    brdf_rough_dielectric_eval_adjoint_f32, brdf_rough_dielectric_pdf_f32,
-    brdf_rough_dielectric_sample_f32, brdf_rough_dielectric_delta_f32,
+/// Instantiates every typed export for the scalar type `$t` (`f32` or `f64`): the C names
+/// are the base names with the suffix `_f32`/`_f64` (types: `F32`/`F64`), built here once so
+/// the two instantiations cannot drift apart.
+macro_rules! scalar_abi {
+    ($t:ident) => {
+        paste::paste! {
+            typed_abi! {
+                $t; [<BrdfGTerms $t:upper>], [<BrdfVec3 $t:upper>], [<BrdfRgb $t:upper>];
+                [<BrdfModifiedG $t:upper>] = [<TAG_MODIFIED_G_ $t:upper>],
+                [<BrdfTorranceSparrow $t:upper>] = [<TAG_TS_ $t:upper>],
+                [<BrdfGgx $t:upper>] = [<TAG_GGX_ $t:upper>];
+                [<brdf_modified_g_init_ $t>], [<brdf_modified_g_terms_ $t>],
+                [<brdf_modified_g_ $t>], [<brdf_modified_g_terms_dots_ $t>],
+                [<brdf_modified_g_dots_ $t>], [<brdf_modified_g_dots_batch_ $t>],
+                [<brdf_g_blinn_ $t>], [<brdf_g_blinn_dots_ $t>], [<brdf_g1_smith_ $t>],
+                [<brdf_g_smith_ $t>], [<brdf_torrance_sparrow_init_ $t>],
+                [<brdf_torrance_sparrow_eval_ $t>], [<brdf_torrance_sparrow_eval_nh_ $t>],
+                [<brdf_torrance_sparrow_specular_ $t>], [<brdf_torrance_sparrow_eval_batch_ $t>],
+                [<brdf_torrance_sparrow_albedo_ $t>], [<brdf_ggx_init_ $t>],
+                [<brdf_ggx_eval_ $t>], [<brdf_ggx_albedo_ $t>],
+            }
+        }
+    };
+    (@sheen $t:ident) => {
+        paste::paste! {
+            sheen_abi! {
+                $t; [<BrdfVec3 $t:upper>], [<BrdfRgb $t:upper>];
+                [<BrdfSheen $t:upper>] = [<TAG_SHEEN_ $t:upper>];
+                [<brdf_sheen_init_ $t>], [<brdf_sheen_eval_ $t>], [<brdf_sheen_eval_dots_ $t>],
+                [<brdf_sheen_albedo_ $t>],
+            }
+        }
+    };
+    (@rough_dielectric $t:ident) => {
+        paste::paste! {
+            rough_dielectric_abi! {
+                $t; [<BrdfVec3 $t:upper>], [<BrdfRgb $t:upper>];
+                [<BrdfRoughDielectric $t:upper>] = [<TAG_RD_ $t:upper>],
+                [<BrdfBsdfSample $t:upper>], [<BrdfDeltaLobe $t:upper>];
+                [<brdf_rough_dielectric_init_ $t>], [<brdf_rough_dielectric_eval_ $t>],
+                [<brdf_rough_dielectric_eval_adjoint_ $t>], [<brdf_rough_dielectric_pdf_ $t>],
+                [<brdf_rough_dielectric_sample_ $t>], [<brdf_rough_dielectric_delta_ $t>],
+            }
+        }
+    };
 }
 
-rough_dielectric_abi! {
-    f64; BrdfVec3F64, BrdfRgbF64;
-    BrdfRoughDielectricF64 = TAG_RD_F64, BrdfBsdfSampleF64, BrdfDeltaLobeF64;
-    brdf_rough_dielectric_init_f64, brdf_rough_dielectric_eval_f64,
-    brdf_rough_dielectric_eval_adjoint_f64, brdf_rough_dielectric_pdf_f64,
-    brdf_rough_dielectric_sample_f64, brdf_rough_dielectric_delta_f64,
-}
+// The header lists the items in this order: each family's f32 half, then its f64 half.
+scalar_abi!(f32);
+scalar_abi!(f64);
+scalar_abi!(@sheen f32);
+scalar_abi!(@sheen f64);
+scalar_abi!(@rough_dielectric f32);
+scalar_abi!(@rough_dielectric f64);

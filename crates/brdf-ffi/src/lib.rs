@@ -165,6 +165,23 @@ pub extern "C" fn brdf_status_str(status: BrdfStatus) -> *const core::ffi::c_cha
     s.as_ptr()
 }
 
+/// Compile-time proof that a `T` fits a handle's `W` storage words in size and alignment
+/// (evaluated where [`store`] and [`load`] are instantiated).
+struct Fits<T, const W: usize>(core::marker::PhantomData<T>);
+
+impl<T, const W: usize> Fits<T, W> {
+    const OK: () = {
+        assert!(
+            core::mem::size_of::<T>() <= 8 * W,
+            "handle storage too small"
+        );
+        assert!(
+            core::mem::align_of::<T>() <= 8,
+            "handle storage under-aligned"
+        );
+    };
+}
+
 /// Stores `value` in a handle's storage words and then writes `tag`. The tag is cleared
 /// first, so a handle is valid only after a complete store.
 ///
@@ -178,18 +195,9 @@ pub(crate) unsafe fn store<T, const W: usize>(
     value: T,
     t: u64,
 ) {
-    const {
-        assert!(
-            core::mem::size_of::<T>() <= 8 * W,
-            "handle storage too small"
-        );
-        assert!(
-            core::mem::align_of::<T>() <= 8,
-            "handle storage under-aligned"
-        );
-    }
+    let () = Fits::<T, W>::OK;
     // SAFETY: both pointers are valid for writes (the contract); `T` fits the storage words
-    // in size and alignment (checked at compile time above).
+    // in size and alignment (`Fits`, checked at compile time).
     unsafe {
         tag.write(0);
         storage.cast::<T>().write(value);
@@ -208,30 +216,42 @@ pub(crate) unsafe fn load<'a, T, const W: usize>(
     storage: *const [u64; W],
     t: u64,
 ) -> Option<&'a T> {
-    const {
-        assert!(
-            core::mem::size_of::<T>() <= 8 * W,
-            "handle storage too small"
-        );
-        assert!(
-            core::mem::align_of::<T>() <= 8,
-            "handle storage under-aligned"
-        );
-    }
+    let () = Fits::<T, W>::OK;
     // SAFETY: `tag` is non-null (checked first) and points into a live handle (the contract).
     if tag.is_null() || storage.is_null() || unsafe { tag.read() } != t {
         return None;
     }
     // SAFETY: the tag says `store` wrote a `T` there (the contract); `T` fits the storage in
-    // size and alignment (checked at compile time above).
+    // size and alignment (`Fits`, checked at compile time).
     Some(unsafe { &*storage.cast::<T>() })
 }
 
-/// Implements `put`/`get` for a handle struct with fields `tag: u64` and
-/// `storage: [u64; W]`.
+/// Defines a handle struct `$h` (its docs, `#[repr(C)]`, a tag word and `$words` storage
+/// words) holding a `$inner` under tag `$tag`, with `put`/`get`/`clear`.
 macro_rules! handle {
-    ($h:ty, $inner:ty, $tag:expr) => {
+    ($(#[$doc:meta])* $h:ident[$words:ident] = $inner:ty, $tag:expr) => {
+        $(#[$doc])*
+        #[repr(C)]
+        pub struct $h {
+            tag: u64,
+            storage: [u64; $words],
+        }
+
         impl $h {
+            /// The handle's tag and storage fields as raw pointers (nothing is read).
+            ///
+            /// # Safety
+            /// `h` non-null and pointing to a live handle.
+            #[inline]
+            unsafe fn fields(h: *mut Self) -> (*mut u64, *mut [u64; $words]) {
+                // SAFETY: `h` points to a live handle (the contract); no reference is formed.
+                unsafe {
+                    (
+                        core::ptr::addr_of_mut!((*h).tag),
+                        core::ptr::addr_of_mut!((*h).storage),
+                    )
+                }
+            }
             /// Stores `v` and then the tag.
             ///
             /// # Safety
@@ -240,12 +260,8 @@ macro_rules! handle {
             pub(crate) unsafe fn put(h: *mut Self, v: $inner) {
                 // SAFETY: `h` is valid for writes (the contract), so are its two fields.
                 unsafe {
-                    $crate::store(
-                        core::ptr::addr_of_mut!((*h).tag),
-                        core::ptr::addr_of_mut!((*h).storage),
-                        v,
-                        $tag,
-                    )
+                    let (tag, storage) = Self::fields(h);
+                    $crate::store(tag, storage, v, $tag)
                 }
             }
             /// The stored value, `None` for a null handle or a tag other than this type's.
@@ -257,14 +273,12 @@ macro_rules! handle {
                 if h.is_null() {
                     return None;
                 }
-                // SAFETY: `h` is non-null and points to a live handle (the contract); only
-                // `put` writes this type's tag, after a complete store of `$inner`.
+                // SAFETY: `h` is non-null and points to a live handle (the contract; the
+                // fields are only read); only `put` writes this type's tag, after a
+                // complete store of `$inner`.
                 unsafe {
-                    $crate::load(
-                        core::ptr::addr_of!((*h).tag),
-                        core::ptr::addr_of!((*h).storage),
-                        $tag,
-                    )
+                    let (tag, storage) = Self::fields(h.cast_mut());
+                    $crate::load(tag, storage, $tag)
                 }
             }
             /// Clears the tag: the handle is refused until the next `put`.
@@ -275,7 +289,7 @@ macro_rules! handle {
             pub(crate) unsafe fn clear(h: *mut Self) {
                 if !h.is_null() {
                     // SAFETY: `h` is non-null and valid for writes (the contract).
-                    unsafe { core::ptr::addr_of_mut!((*h).tag).write(0) };
+                    unsafe { Self::fields(h).0.write(0) };
                 }
             }
         }

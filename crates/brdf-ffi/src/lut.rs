@@ -27,54 +27,35 @@ const TAG_DFG: u64 = 0x4252_4446_4c44_4647;
 const TAG_E: u64 = 0x4252_4446_4c45_3032;
 const TAG_EAVG: u64 = 0x4252_4446_4c45_4156;
 
-/// A parsed per-σ modified-G table (2-D passing-factor table, reciprocal convention). Fill
-/// it with `brdf_g_table_parse`; the fields are private to the library.
-#[repr(C)]
-pub struct BrdfGTable {
-    tag: u64,
-    storage: [u64; BRDF_TABLE_WORDS],
+handle! {
+    /// A parsed per-σ modified-G table (2-D passing-factor table, reciprocal convention). Fill
+    /// it with `brdf_g_table_parse`; the fields are private to the library.
+    BrdfGTable[BRDF_TABLE_WORDS] = GTable<&'static [u8]>, TAG_G
 }
-handle!(BrdfGTable, GTable<&'static [u8]>, TAG_G);
 
-/// A parsed modified-G table over σ (3-D passing-factor table). Fill it with
-/// `brdf_g_table3_parse`; the fields are private to the library.
-#[repr(C)]
-pub struct BrdfGTable3 {
-    tag: u64,
-    storage: [u64; BRDF_TABLE_WORDS],
+handle! {
+    /// A parsed modified-G table over σ (3-D passing-factor table). Fill it with
+    /// `brdf_g_table3_parse`; the fields are private to the library.
+    BrdfGTable3[BRDF_TABLE_WORDS] = GTable3<&'static [u8]>, TAG_G3
 }
-handle!(BrdfGTable3, GTable3<&'static [u8]>, TAG_G3);
 
-/// A parsed split-sum table (A, B) over (μ, roughness). Fill it with `brdf_dfg_table_parse`;
-/// the fields are private to the library.
-#[repr(C)]
-pub struct BrdfDfgTable {
-    tag: u64,
-    storage: [u64; BRDF_TABLE_WORDS],
+handle! {
+    /// A parsed split-sum table (A, B) over (μ, roughness). Fill it with `brdf_dfg_table_parse`;
+    /// the fields are private to the library.
+    BrdfDfgTable[BRDF_TABLE_WORDS] = DfgTable<&'static [u8]>, TAG_DFG
 }
-handle!(BrdfDfgTable, DfgTable<&'static [u8]>, TAG_DFG);
 
-/// A parsed directional-albedo table E(μ, roughness). Fill it with
-/// `brdf_albedo_table_parse`; the fields are private to the library.
-#[repr(C)]
-pub struct BrdfAlbedoTable {
-    tag: u64,
-    storage: [u64; BRDF_TABLE_WORDS],
+handle! {
+    /// A parsed directional-albedo table E(μ, roughness). Fill it with
+    /// `brdf_albedo_table_parse`; the fields are private to the library.
+    BrdfAlbedoTable[BRDF_TABLE_WORDS] = AlbedoTable<&'static [u8]>, TAG_E
 }
-handle!(BrdfAlbedoTable, AlbedoTable<&'static [u8]>, TAG_E);
 
-/// A parsed average-albedo table E_avg(roughness). Fill it with
-/// `brdf_average_albedo_table_parse`; the fields are private to the library.
-#[repr(C)]
-pub struct BrdfAverageAlbedoTable {
-    tag: u64,
-    storage: [u64; BRDF_TABLE_WORDS],
+handle! {
+    /// A parsed average-albedo table E_avg(roughness). Fill it with
+    /// `brdf_average_albedo_table_parse`; the fields are private to the library.
+    BrdfAverageAlbedoTable[BRDF_TABLE_WORDS] = AverageAlbedoTable<&'static [u8]>, TAG_EAVG
 }
-handle!(
-    BrdfAverageAlbedoTable,
-    AverageAlbedoTable<&'static [u8]>,
-    TAG_EAVG
-);
 
 /// The split-sum pair: specular E = F0·A + F90·B.
 #[repr(C)]

@@ -494,69 +494,55 @@ fn smith<'py>(
     arrays::one_or_tuple(py, arrays::run(py, &args, &[SCALAR], &k)?)
 }
 
-/// Smith's separable G = G1(θi) G1(θo).
-///
-/// Parameters
-/// ----------
-/// cos_i, cos_o : array_like
-///     cos θi = n·wi and cos θo = n·wo, broadcast together.
-/// width : float
-///     Beckmann m (= √2 σ for RMS slope σ) or GGX α, > 0.
-/// distribution : {"beckmann", "ggx"}
-///     The microfacet distribution (default "beckmann").
-///
-/// Returns
-/// -------
-/// numpy.ndarray or float
-///     G in [0, 1]; dtype as in :func:`g_modified`.
-///
-/// Raises
-/// ------
-/// ValueError
-///     width not finite and > 0, unknown distribution, shapes that do not broadcast.
-#[pyfunction]
-#[pyo3(signature = (cos_i, cos_o, width, *, distribution="beckmann"))]
-pub fn g_smith_separable<'py>(
-    py: Python<'py>,
-    cos_i: &Bound<'py, PyAny>,
-    cos_o: &Bound<'py, PyAny>,
-    width: f64,
-    distribution: &str,
-) -> PyResult<Bound<'py, PyAny>> {
-    smith(py, cos_i, cos_o, width, distribution, false)
+/// Defines a Python function `$name(cos_i, cos_o, width, *, distribution="beckmann")`:
+/// Smith's G in the form `correlated` picks, documented by `$summary` and the shared
+/// parameter sections (one definition for both forms).
+macro_rules! smith_function {
+    ($summary:literal, $name:ident, correlated = $correlated:literal) => {
+        #[doc = $summary]
+        ///
+        /// Parameters
+        /// ----------
+        /// cos_i, cos_o : array_like
+        ///     cos θi = n·wi and cos θo = n·wo, broadcast together.
+        /// width : float
+        ///     Beckmann m (= √2 σ for RMS slope σ) or GGX α, > 0.
+        /// distribution : {"beckmann", "ggx"}
+        ///     The microfacet distribution (default "beckmann").
+        ///
+        /// Returns
+        /// -------
+        /// numpy.ndarray or float
+        ///     G in [0, 1]; dtype as in :func:`g_modified`.
+        ///
+        /// Raises
+        /// ------
+        /// ValueError
+        ///     width not finite and > 0, unknown distribution, shapes that do not broadcast.
+        #[pyfunction]
+        #[pyo3(signature = (cos_i, cos_o, width, *, distribution="beckmann"))]
+        pub fn $name<'py>(
+            py: Python<'py>,
+            cos_i: &Bound<'py, PyAny>,
+            cos_o: &Bound<'py, PyAny>,
+            width: f64,
+            distribution: &str,
+        ) -> PyResult<Bound<'py, PyAny>> {
+            smith(py, cos_i, cos_o, width, distribution, $correlated)
+        }
+    };
 }
 
-/// Smith's height-correlated G = 1/(1 + Λ(θi) + Λ(θo)).
-///
-/// Parameters
-/// ----------
-/// cos_i, cos_o : array_like
-///     cos θi and cos θo, broadcast together.
-/// width : float
-///     Beckmann m (= √2 σ) or GGX α, > 0.
-/// distribution : {"beckmann", "ggx"}
-///     The microfacet distribution (default "beckmann").
-///
-/// Returns
-/// -------
-/// numpy.ndarray or float
-///     G in [0, 1]; dtype as in :func:`g_modified`.
-///
-/// Raises
-/// ------
-/// ValueError
-///     As in :func:`g_smith_separable`.
-#[pyfunction]
-#[pyo3(signature = (cos_i, cos_o, width, *, distribution="beckmann"))]
-pub fn g_smith_correlated<'py>(
-    py: Python<'py>,
-    cos_i: &Bound<'py, PyAny>,
-    cos_o: &Bound<'py, PyAny>,
-    width: f64,
-    distribution: &str,
-) -> PyResult<Bound<'py, PyAny>> {
-    smith(py, cos_i, cos_o, width, distribution, true)
-}
+smith_function!(
+    " Smith's separable G = G1(θi) G1(θo).",
+    g_smith_separable,
+    correlated = false
+);
+smith_function!(
+    " Smith's height-correlated G = 1/(1 + Λ(θi) + Λ(θo)).",
+    g_smith_correlated,
+    correlated = true
+);
 
 /// The functions of this module.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {

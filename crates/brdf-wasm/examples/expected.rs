@@ -11,9 +11,8 @@
 
 use brdf_core::catalogue;
 use brdf_core::fresnel::Fresnel;
-use brdf_core::masking::{
-    g_blinn, g_smith_beckmann_correlated, g_smith_beckmann_separable, Convention, ModifiedG,
-};
+use brdf_core::masking::{g_blinn, Convention, ModifiedG};
+use brdf_core::microfacet::{from_cos, Beckmann, Distribution};
 use brdf_core::models::{Brdf, GeometricTerm, TorranceSparrow};
 use brdf_core::{Dots, Real, Vec3};
 use brdf_lut::{DfgTable, GTable, GTable3};
@@ -100,11 +99,13 @@ fn native_g(kind: u32, sigma: f32, ti: f32, tr: f32) -> f32 {
     let ti_c = ti.clamp(0.0, core::f32::consts::FRAC_PI_2);
     let tr_c = tr.clamp(-core::f32::consts::FRAC_PI_2, core::f32::consts::FRAC_PI_2);
     let m = f32::from_f64(core::f64::consts::SQRT_2) * sigma;
+    let smith = Beckmann::clamped(m, m);
+    let (wi, wo) = (from_cos(Real::cos(ti_c)), from_cos(Real::cos(tr_c)));
     match kind {
         0 => 1.0,
         1 => g_blinn(ti, tr),
-        2 => g_smith_beckmann_separable(Real::cos(ti_c), Real::cos(tr_c), m),
-        3 => g_smith_beckmann_correlated(Real::cos(ti_c), Real::cos(tr_c), m),
+        2 => smith.g_separable(wi, wo),
+        3 => smith.g_correlated(wi, wo),
         4 => ModifiedG::<f32>::new(sigma).unwrap().g(ti, tr),
         _ => ModifiedG::<f32>::new(sigma)
             .unwrap()
@@ -158,6 +159,19 @@ fn native_model(name: &str, q: &[f32], wi: Vec3<f32>, wo: Vec3<f32>) -> Option<[
     Some([c.r, c.g, c.b])
 }
 
+impl Group {
+    /// An empty group of calls to `export` with argument kinds `types`.
+    fn new(name: impl Into<String>, export: &'static str, types: &'static str) -> Self {
+        Group {
+            name: name.into(),
+            export,
+            types,
+            rows: vec![],
+            out: vec![],
+        }
+    }
+}
+
 fn main() {
     let out_dir = PathBuf::from(
         std::env::args()
@@ -167,94 +181,112 @@ fn main() {
     std::fs::create_dir_all(&out_dir).expect("create output directory");
     let mut rng = Rng(0x5EED_B4DF_2015_0184);
     let mut groups: Vec<Group> = Vec::new();
-    let r = core::f32::consts::FRAC_PI_2;
-
-    // G, in-plane and from dots, every kind: random σ and angles, a few edge rows first.
+    // The groups in the order the random sequence is drawn: changing it changes every row.
     for kind in 0..6u32 {
-        let mut g = Group {
-            name: format!("g/{}", GeometricTerm::ALL[kind as usize].name()),
-            export: "brdf_g",
-            types: "ufff",
-            rows: vec![],
-            out: vec![],
-        };
-        let edge: [[f32; 3]; 8] = [
-            [0.3, 0.0, 0.0],
-            [0.3, r, -r],
-            [0.3, 2.0, -3.0],
-            [0.3, -0.1, 0.4],
-            [0.3, f32::NAN, 0.2],
-            [0.0, 0.3, 0.3],
-            [-1.0, 0.3, 0.3],
-            [f32::INFINITY, 0.3, 0.3],
-        ];
-        let mut rows: Vec<[f32; 3]> = edge.to_vec();
-        while rows.len() < N + edge.len() {
-            rows.push([rng.f(0.05, 1.0), rng.f(0.0, r), rng.f(-r, r)]);
-        }
-        for [s, ti, tr] in rows {
-            g.rows.push(vec![kind, bits(s), bits(ti), bits(tr)]);
-            g.out.push(vec![bits(native_g(kind, s, ti, tr))]);
-        }
-        groups.push(g);
-
-        // Batch: one σ for the whole array.
-        let mut g = Group {
-            name: format!("g_batch/{}", GeometricTerm::ALL[kind as usize].name()),
-            export: "brdf_g_batch",
-            types: "ufff",
-            rows: vec![],
-            out: vec![],
-        };
-        let s = rng.f(0.05, 1.0);
-        for _ in 0..N {
-            let (ti, tr) = (rng.f(0.0, r), rng.f(-r, r));
-            g.rows.push(vec![kind, bits(s), bits(ti), bits(tr)]);
-            g.out.push(vec![bits(native_g(kind, s, ti, tr))]);
-        }
-        groups.push(g);
-
-        let mut g = Group {
-            name: format!("g_dots/{}", GeometricTerm::ALL[kind as usize].name()),
-            export: "brdf_g_dots",
-            types: "uffff",
-            rows: vec![],
-            out: vec![],
-        };
-        for k in 0..N + 2 {
-            let s = if k == 0 { 0.0 } else { rng.f(0.05, 1.0) };
-            let (wi, wo) = (rng.dir(), rng.dir());
-            let mut d = shader_dots(wi, wo);
-            if k == 1 {
-                d.n_i = f32::NAN;
-            }
-            g.rows
-                .push(vec![kind, bits(s), bits(d.n_i), bits(d.n_o), bits(d.i_o)]);
-            g.out.push(vec![bits(native_g_dots(kind, s, d))]);
-        }
-        groups.push(g);
-
-        let mut g = Group {
-            name: format!("g_dots_batch/{}", GeometricTerm::ALL[kind as usize].name()),
-            export: "brdf_g_dots_batch",
-            types: "uffff",
-            rows: vec![],
-            out: vec![],
-        };
-        let s = rng.f(0.05, 1.0);
-        for _ in 0..N {
-            let d = shader_dots(rng.dir(), rng.dir());
-            g.rows
-                .push(vec![kind, bits(s), bits(d.n_i), bits(d.n_o), bits(d.i_o)]);
-            g.out.push(vec![bits(native_g_dots(kind, s, d))]);
-        }
-        groups.push(g);
+        g_groups(&mut rng, kind, &mut groups);
+        g_dots_groups(&mut rng, kind, &mut groups);
     }
+    torrance_sparrow_groups(&mut rng, &mut groups);
+    for (id, spec) in brdf_wasm::models::MODELS.iter().enumerate() {
+        model_groups(&mut rng, id as u32, spec, &mut groups);
+    }
+    lut_groups(&mut rng, &mut groups);
+    write_expected(&out_dir, &groups);
+    write_web(&out_dir);
+}
 
-    // The Torrance–Sparrow shader-form exports: three dots, and three dots with n·h. The
-    // second group mixes random pairs with near-mirror pairs near the horizon (cos θ from
-    // 1e-6 to 1e-2), where n·h is what keeps the value exact; n·h = normalize(wi + wo).z in
-    // f32, as a shader computes it.
+/// Writes `expected.json`: the LUT assets per slot and every group.
+fn write_expected(out_dir: &std::path::Path, groups: &[Group]) {
+    let body: Vec<String> = groups.iter().map(json_group).collect();
+    let luts: Vec<String> = LUTS
+        .iter()
+        .map(|(slot, file)| format!("\"{slot}\":\"assets/{file}\""))
+        .collect();
+    let json = format!(
+        "{{\"generator\":\"brdf-wasm/examples/expected.rs\",\"luts\":{{{}}},\"groups\":[\n{}\n]}}\n",
+        luts.join(","),
+        body.join(",\n")
+    );
+    let p = out_dir.join("expected.json");
+    std::fs::write(&p, json).expect("write expected.json");
+    let total: usize = groups.iter().map(|g| g.rows.len()).sum();
+    println!(
+        "wrote {} ({} groups, {total} rows)",
+        p.display(),
+        groups.len()
+    );
+}
+
+/// G of `kind` from in-plane angles: random σ and angles after a few edge rows, then the
+/// batch export with one σ for the whole array.
+fn g_groups(rng: &mut Rng, kind: u32, groups: &mut Vec<Group>) {
+    let r = core::f32::consts::FRAC_PI_2;
+    let term = GeometricTerm::ALL[kind as usize].name();
+    let mut g = Group::new(format!("g/{term}"), "brdf_g", "ufff");
+    let edge: [[f32; 3]; 8] = [
+        [0.3, 0.0, 0.0],
+        [0.3, r, -r],
+        [0.3, 2.0, -3.0],
+        [0.3, -0.1, 0.4],
+        [0.3, f32::NAN, 0.2],
+        [0.0, 0.3, 0.3],
+        [-1.0, 0.3, 0.3],
+        [f32::INFINITY, 0.3, 0.3],
+    ];
+    let mut rows: Vec<[f32; 3]> = edge.to_vec();
+    while rows.len() < N + edge.len() {
+        rows.push([rng.f(0.05, 1.0), rng.f(0.0, r), rng.f(-r, r)]);
+    }
+    for [s, ti, tr] in rows {
+        g.rows.push(vec![kind, bits(s), bits(ti), bits(tr)]);
+        g.out.push(vec![bits(native_g(kind, s, ti, tr))]);
+    }
+    groups.push(g);
+
+    let mut g = Group::new(format!("g_batch/{term}"), "brdf_g_batch", "ufff");
+    let s = rng.f(0.05, 1.0);
+    for _ in 0..N {
+        let (ti, tr) = (rng.f(0.0, r), rng.f(-r, r));
+        g.rows.push(vec![kind, bits(s), bits(ti), bits(tr)]);
+        g.out.push(vec![bits(native_g(kind, s, ti, tr))]);
+    }
+    groups.push(g);
+}
+
+/// G of `kind` from dot products: a σ = 0 row, a NaN row, random rows; then the batch
+/// export with one σ.
+fn g_dots_groups(rng: &mut Rng, kind: u32, groups: &mut Vec<Group>) {
+    let term = GeometricTerm::ALL[kind as usize].name();
+    let mut g = Group::new(format!("g_dots/{term}"), "brdf_g_dots", "uffff");
+    for k in 0..N + 2 {
+        let s = if k == 0 { 0.0 } else { rng.f(0.05, 1.0) };
+        let (wi, wo) = (rng.dir(), rng.dir());
+        let mut d = shader_dots(wi, wo);
+        if k == 1 {
+            d.n_i = f32::NAN;
+        }
+        g.rows
+            .push(vec![kind, bits(s), bits(d.n_i), bits(d.n_o), bits(d.i_o)]);
+        g.out.push(vec![bits(native_g_dots(kind, s, d))]);
+    }
+    groups.push(g);
+
+    let mut g = Group::new(format!("g_dots_batch/{term}"), "brdf_g_dots_batch", "uffff");
+    let s = rng.f(0.05, 1.0);
+    for _ in 0..N {
+        let d = shader_dots(rng.dir(), rng.dir());
+        g.rows
+            .push(vec![kind, bits(s), bits(d.n_i), bits(d.n_o), bits(d.i_o)]);
+        g.out.push(vec![bits(native_g_dots(kind, s, d))]);
+    }
+    groups.push(g);
+}
+
+/// The Torrance–Sparrow shader-form exports: three dots, and three dots with n·h. The
+/// second group mixes random pairs with near-mirror pairs near the horizon (cos θ from
+/// 1e-6 to 1e-2), where n·h is what keeps the value exact; n·h = normalize(wi + wo).z in
+/// f32, as a shader computes it.
+fn torrance_sparrow_groups(rng: &mut Rng, groups: &mut Vec<Group>) {
     for (name, export, types) in [
         ("torrance_sparrow", "brdf_torrance_sparrow", "fufffff"),
         (
@@ -264,19 +296,13 @@ fn main() {
         ),
     ] {
         let with_nh = types.len() == 10;
-        let mut g = Group {
-            name: name.into(),
-            export,
-            types,
-            rows: vec![],
-            out: vec![],
-        };
+        let mut g = Group::new(name, export, types);
         for k in 0..N {
             let s = rng.f(0.05, 1.0);
             let kind = (rng.next() % 6) as u32;
             let (r0, ks, albedo) = (rng.f(0.0, 1.0), rng.f(0.0, 2.0), rng.f(0.0, 1.0));
             let (wi, wo) = if with_nh && k % 2 == 1 {
-                grazing_mirror_pair(&mut rng)
+                grazing_mirror_pair(rng)
             } else {
                 (rng.dir(), rng.dir())
             };
@@ -304,93 +330,63 @@ fn main() {
         }
         groups.push(g);
     }
+}
 
-    // Every model through brdf_eval: random parameters in range (integer ones integral),
-    // random directions. Rows: model id, parameters (the model's slots), wi, wo. Out: status,
-    // r, g, b.
-    for (id, spec) in brdf_wasm::models::MODELS.iter().enumerate() {
-        let mut g = Group {
-            name: format!("model/{}", spec.name),
-            export: "brdf_eval",
-            types: "u",
-            rows: vec![],
-            out: vec![],
-        };
-        for k in 0..N + 1 {
-            let mut q: Vec<f32> = (0..spec.slots())
-                .map(|k| {
-                    let p = spec.slot(k).expect("slot").param;
-                    let (lo, hi) = (p.ui.0 as f32, p.ui.1 as f32);
-                    if p.step == 1.0 {
-                        (rng.next() % (hi as u64 + 1 - lo as u64)) as f32 + lo
-                    } else {
-                        rng.f(lo, hi)
-                    }
-                })
-                .collect();
-            if k == 0 {
-                q[0] = f32::NAN; // must be rejected
-            }
-            let (wi, wo) = (rng.dir(), rng.dir());
-            let mut row = vec![id as u32];
-            row.extend(q.iter().map(|x| bits(*x)));
-            row.extend([wi.x, wi.y, wi.z, wo.x, wo.y, wo.z].map(bits));
-            g.rows.push(row);
-            let res = if q.iter().any(|x| !x.is_finite()) {
-                None
+/// Random parameters of a model in its slider ranges (integer ones integral).
+fn random_params(rng: &mut Rng, spec: &catalogue::ModelSpec) -> Vec<f32> {
+    (0..spec.slots())
+        .map(|k| {
+            let p = spec.slot(k).expect("slot").param;
+            let (lo, hi) = (p.ui.0 as f32, p.ui.1 as f32);
+            if p.step == 1.0 {
+                (rng.next() % (hi as u64 + 1 - lo as u64)) as f32 + lo
             } else {
-                native_model(spec.name, &q, wi, wo)
-            };
-            g.out.push(match res {
-                Some(v) => vec![0, bits(v[0]), bits(v[1]), bits(v[2])],
-                None => vec![brdf_wasm::status::BAD_PARAM as u32],
-            });
-        }
-        groups.push(g);
+                rng.f(lo, hi)
+            }
+        })
+        .collect()
+}
 
-        // Batch: the default parameters for every row.
-        let q: Vec<f32> = spec.defaults::<f32>()[..spec.slots()].to_vec();
-        let mut g = Group {
-            name: format!("model_batch/{}", spec.name),
-            export: "brdf_eval_batch",
-            types: "u",
-            rows: vec![],
-            out: vec![],
+/// A row of the model exports: model id, parameters (the model's slots), wi, wo.
+fn model_row(id: u32, q: &[f32], wi: Vec3<f32>, wo: Vec3<f32>) -> Vec<u32> {
+    let mut row = vec![id];
+    row.extend(q.iter().map(|x| bits(*x)));
+    row.extend([wi.x, wi.y, wi.z, wo.x, wo.y, wo.z].map(bits));
+    row
+}
+
+/// Model `id` through brdf_eval (random parameters, the first row with a NaN one, which must
+/// be rejected; out: status, r, g, b) and brdf_eval_batch (the defaults for every row).
+fn model_groups(rng: &mut Rng, id: u32, spec: &catalogue::ModelSpec, groups: &mut Vec<Group>) {
+    let mut g = Group::new(format!("model/{}", spec.name), "brdf_eval", "u");
+    for k in 0..N + 1 {
+        let mut q = random_params(rng, spec);
+        if k == 0 {
+            q[0] = f32::NAN; // must be rejected
+        }
+        let (wi, wo) = (rng.dir(), rng.dir());
+        g.rows.push(model_row(id, &q, wi, wo));
+        let res = if q.iter().any(|x| !x.is_finite()) {
+            None
+        } else {
+            native_model(spec.name, &q, wi, wo)
         };
-        for _ in 0..N {
-            let (wi, wo) = (rng.dir(), rng.dir());
-            let mut row = vec![id as u32];
-            row.extend(q.iter().map(|x| bits(*x)));
-            row.extend([wi.x, wi.y, wi.z, wo.x, wo.y, wo.z].map(bits));
-            g.rows.push(row);
-            let v = native_model(spec.name, &q, wi, wo).expect("defaults are valid");
-            g.out.push(vec![0, bits(v[0]), bits(v[1]), bits(v[2])]);
-        }
-        groups.push(g);
+        g.out.push(match res {
+            Some(v) => vec![0, bits(v[0]), bits(v[1]), bits(v[2])],
+            None => vec![brdf_wasm::status::BAD_PARAM as u32],
+        });
     }
+    groups.push(g);
 
-    lut_groups(&mut rng, &mut groups);
-
-    let body: Vec<String> = groups.iter().map(json_group).collect();
-    let luts: Vec<String> = LUTS
-        .iter()
-        .map(|(slot, file)| format!("\"{slot}\":\"assets/{file}\""))
-        .collect();
-    let json = format!(
-        "{{\"generator\":\"brdf-wasm/examples/expected.rs\",\"luts\":{{{}}},\"groups\":[\n{}\n]}}\n",
-        luts.join(","),
-        body.join(",\n")
-    );
-    let p = out_dir.join("expected.json");
-    std::fs::write(&p, json).expect("write expected.json");
-    let total: usize = groups.iter().map(|g| g.rows.len()).sum();
-    println!(
-        "wrote {} ({} groups, {total} rows)",
-        p.display(),
-        groups.len()
-    );
-
-    write_web(&out_dir);
+    let q: Vec<f32> = spec.defaults::<f32>()[..spec.slots()].to_vec();
+    let mut g = Group::new(format!("model_batch/{}", spec.name), "brdf_eval_batch", "u");
+    for _ in 0..N {
+        let (wi, wo) = (rng.dir(), rng.dir());
+        g.rows.push(model_row(id, &q, wi, wo));
+        let v = native_model(spec.name, &q, wi, wo).expect("defaults are valid");
+        g.out.push(vec![0, bits(v[0]), bits(v[1]), bits(v[2])]);
+    }
+    groups.push(g);
 }
 
 /// The default assets per LUT slot of the module (see src/lut.rs).
@@ -417,13 +413,7 @@ fn lut_groups(rng: &mut Rng, groups: &mut Vec<Group>) {
     let dfg_bytes = asset(LUTS[2].1);
     let dfg = DfgTable::parse(&dfg_bytes).expect("valid DFG table");
 
-    let mut g = Group {
-        name: "lut/g_modified".into(),
-        export: "brdf_g_lut",
-        types: "fff",
-        rows: vec![],
-        out: vec![],
-    };
+    let mut g = Group::new("lut/g_modified", "brdf_g_lut", "fff");
     let edge: [[f32; 3]; 4] = [
         [0.3, f32::NAN, 0.1],
         [f32::NAN, 0.3, 0.1],
@@ -440,13 +430,7 @@ fn lut_groups(rng: &mut Rng, groups: &mut Vec<Group>) {
     }
     groups.push(g);
 
-    let mut g = Group {
-        name: "lut_batch/g_modified".into(),
-        export: "brdf_g_lut_batch",
-        types: "fff",
-        rows: vec![],
-        out: vec![],
-    };
+    let mut g = Group::new("lut_batch/g_modified", "brdf_g_lut_batch", "fff");
     let s = rng.f(0.05, 1.0);
     for _ in 0..N {
         let (ti, tr) = (rng.f(0.0, r), rng.f(-r, r));
@@ -455,13 +439,7 @@ fn lut_groups(rng: &mut Rng, groups: &mut Vec<Group>) {
     }
     groups.push(g);
 
-    let mut g = Group {
-        name: "lut/g_modified_sigma0.3".into(),
-        export: "brdf_g_lut_fixed",
-        types: "ff",
-        rows: vec![],
-        out: vec![],
-    };
+    let mut g = Group::new("lut/g_modified_sigma0.3", "brdf_g_lut_fixed", "ff");
     for _ in 0..N {
         let (ti, tr) = (rng.f(0.0, r), rng.f(-r, r));
         g.rows.push(vec![bits(ti), bits(tr)]);
@@ -473,13 +451,7 @@ fn lut_groups(rng: &mut Rng, groups: &mut Vec<Group>) {
         ("lut/dfg_ggx", "brdf_dfg"),
         ("lut_batch/dfg_ggx", "brdf_dfg_batch"),
     ] {
-        let mut g = Group {
-            name: name.into(),
-            export,
-            types: "ff",
-            rows: vec![],
-            out: vec![],
-        };
+        let mut g = Group::new(name, export, "ff");
         for k in 0..N {
             let (mu, rough) = if k == 0 {
                 (-0.5, 2.0) // clamped to the table's ranges
@@ -496,8 +468,21 @@ fn lut_groups(rng: &mut Rng, groups: &mut Vec<Group>) {
 
 /// Fig. 6 curves (θi = 30°, σ = 0.3, θr = −90°…90° in 1° steps) and sphere pixels.
 fn write_web(out_dir: &std::path::Path) {
-    use brdf_wasm::render::pixel;
     let mut s = String::from("{\"curves\":{");
+    write_curves(&mut s);
+    // The page's status line names the module's model count: the native catalogue's.
+    write!(s, "}},\"models\":{}", catalogue::MODELS.len()).unwrap();
+    s.push_str(",\"size\":256,\"spheres\":[");
+    write_spheres(&mut s);
+    s.push_str("]}\n");
+    let p = out_dir.join("web-expected.json");
+    std::fs::write(&p, s).expect("write web-expected.json");
+    println!("wrote {}", p.display());
+}
+
+/// The Fig. 6 curves: Blinn's, the modified and Smith's G directly, then the modified G
+/// from the default table over σ.
+fn write_curves(s: &mut String) {
     let sigma = 0.3f32;
     let ti = (30.0f64 * core::f64::consts::PI / 180.0) as f32;
     let tr: Vec<f32> = (-90..=90)
@@ -516,20 +501,14 @@ fn write_web(out_dir: &std::path::Path) {
         }
         write!(s, "\"{name}\":{}", json_u32s(&v)).unwrap();
     }
-    // The same modified G from the default table over σ.
     let g3_bytes = asset(LUTS[0].1);
     let g3 = GTable3::parse(&g3_bytes).expect("valid G table");
     let v: Vec<u32> = tr.iter().map(|&t| bits(g3.g(ti, t, sigma))).collect();
     write!(s, ",\"modified_lut\":{}", json_u32s(&v)).unwrap();
-    // The page's status line names the module's model count: the native catalogue's.
-    write!(s, "}},\"models\":{}", catalogue::MODELS.len()).unwrap();
-    s.push_str(",\"size\":256,\"spheres\":[");
-    let size = 256u32;
-    let points: Vec<(u32, u32)> = (0..41)
-        .flat_map(|i| (0..41).map(move |j| (3 + 6 * i, 3 + 6 * j)))
-        .filter(|(i, j)| i % 30 == 3 || j % 30 == 3 || (i + j) % 48 == 6)
-        .collect();
-    // (model, parameters): the page's default, then settings reached by moving sliders.
+}
+
+/// (model id, parameters): the page's default, then settings reached by moving sliders.
+fn web_settings() -> Vec<(u32, Vec<f64>)> {
     let settings: Vec<(&str, Vec<f64>)> = vec![
         ("torrance-sparrow", vec![0.3, 4.0, 0.04, 1.0, 0.5]),
         ("torrance-sparrow", vec![0.12, 2.0, 0.5, 0.8, 0.2]),
@@ -550,7 +529,7 @@ fn write_web(out_dir: &std::path::Path) {
             vec![0.95, 0.64, 0.54, 0.05, 0.5, 1.0, 0.0],
         ),
     ];
-    let settings: Vec<(u32, Vec<f64>)> = settings
+    settings
         .into_iter()
         .map(|(name, q)| {
             let id = brdf_wasm::models::MODELS
@@ -559,8 +538,18 @@ fn write_web(out_dir: &std::path::Path) {
                 .expect("model exists") as u32;
             (id, q)
         })
+        .collect()
+}
+
+/// The lit-sphere pixels of every web setting at fixed points of a 256² image.
+fn write_spheres(s: &mut String) {
+    use brdf_wasm::render::pixel;
+    let size = 256u32;
+    let points: Vec<(u32, u32)> = (0..41)
+        .flat_map(|i| (0..41).map(move |j| (3 + 6 * i, 3 + 6 * j)))
+        .filter(|(i, j)| i % 30 == 3 || j % 30 == 3 || (i + j) % 48 == 6)
         .collect();
-    for (k, (id, q)) in settings.iter().enumerate() {
+    for (k, (id, q)) in web_settings().iter().enumerate() {
         let q32: Vec<f32> = q.iter().map(|x| *x as f32).collect();
         let m = brdf_wasm::models::Model::new(*id, &q32).expect("valid web setting");
         let px: Vec<String> = points
@@ -583,8 +572,4 @@ fn write_web(out_dir: &std::path::Path) {
         )
         .unwrap();
     }
-    s.push_str("]}\n");
-    let p = out_dir.join("web-expected.json");
-    std::fs::write(&p, s).expect("write web-expected.json");
-    println!("wrote {}", p.display());
 }

@@ -6,12 +6,11 @@
 //! reciprocal convention, docs/conventions.md §4), 5 the modified G with eq 12 as printed.
 //! σ is the RMS slope (finite, > 0; accuracy specified for [0.05, 1]).
 
-use crate::memory::usable;
+use crate::memory::{batch_ok, map2};
 use crate::status::{BAD_BUFFER, BAD_PARAM};
 use brdf_core::geometry::{clamp_theta_i, clamp_theta_r};
-use brdf_core::masking::{
-    g_blinn, g_smith_beckmann_correlated, g_smith_beckmann_separable, Convention, ModifiedG,
-};
+use brdf_core::masking::{g_blinn, Convention, ModifiedG};
+use brdf_core::microfacet::{from_cos, Beckmann, Distribution};
 use brdf_core::models::{GeometricTerm, TorranceSparrow};
 use brdf_core::Dots;
 
@@ -27,8 +26,8 @@ pub enum PreparedG {
     Blinn,
     /// Smith–Beckmann with m = √2σ, separable or height-correlated.
     Smith {
-        /// Beckmann roughness m = √2σ.
-        m: f32,
+        /// The Beckmann distribution of width m = √2σ.
+        dist: Beckmann<f32>,
         /// Height-correlated instead of separable.
         correlated: bool,
     },
@@ -48,7 +47,7 @@ impl PreparedG {
             GeometricTerm::None => PreparedG::One,
             GeometricTerm::Blinn => PreparedG::Blinn,
             GeometricTerm::SmithSeparable | GeometricTerm::SmithCorrelated => PreparedG::Smith {
-                m: ts.beckmann_m(),
+                dist: Beckmann::clamped(ts.beckmann_m(), ts.beckmann_m()),
                 correlated: term == GeometricTerm::SmithCorrelated,
             },
             GeometricTerm::Modified | GeometricTerm::ModifiedPrinted => {
@@ -71,14 +70,10 @@ impl PreparedG {
         match *self {
             PreparedG::One => 1.0,
             PreparedG::Blinn => g_blinn(theta_i, theta_r),
-            PreparedG::Smith { m, correlated } => {
+            PreparedG::Smith { dist, correlated } => {
                 let ci = libm_cos(clamp_theta_i(theta_i));
                 let co = libm_cos(clamp_theta_r(theta_r));
-                if correlated {
-                    g_smith_beckmann_correlated(ci, co, m)
-                } else {
-                    g_smith_beckmann_separable(ci, co, m)
-                }
+                smith(dist, correlated, ci, co)
             }
             PreparedG::Modified(g, _) => g.g(theta_i, theta_r),
         }
@@ -96,15 +91,20 @@ impl PreparedG {
                 }
             }
             PreparedG::Blinn => brdf_core::masking::g_blinn_dots(d),
-            PreparedG::Smith { m, correlated } => {
-                if correlated {
-                    g_smith_beckmann_correlated(d.n_i, d.n_o, m)
-                } else {
-                    g_smith_beckmann_separable(d.n_i, d.n_o, m)
-                }
-            }
+            PreparedG::Smith { dist, correlated } => smith(dist, correlated, d.n_i, d.n_o),
             PreparedG::Modified(_, ts) => ts.g(d),
         }
+    }
+}
+
+/// Smith's G of `dist` at the cosines n·wi = `ci`, n·wo = `co` (the directions
+/// [`from_cos`]): G1(wi) G1(wo), or 1/(1 + Λ(wi) + Λ(wo)) when `correlated`.
+fn smith(dist: Beckmann<f32>, correlated: bool, ci: f32, co: f32) -> f32 {
+    let (wi, wo) = (from_cos(ci), from_cos(co));
+    if correlated {
+        dist.g_correlated(wi, wo)
+    } else {
+        dist.g_separable(wi, wo)
     }
 }
 
@@ -150,21 +150,14 @@ pub unsafe extern "C" fn brdf_g_batch(
     out: *mut f32,
     n: u32,
 ) -> i32 {
-    if n > MAX_BATCH || !usable(theta_i) || !usable(theta_r) || !usable(out.cast_const()) {
+    if !batch_ok(n, &[theta_i, theta_r, out.cast_const()]) {
         return BAD_BUFFER;
     }
     let Some(g) = PreparedG::new(kind, sigma) else {
         return BAD_PARAM;
     };
-    // SAFETY: the pointers are non-null and aligned (checked) and valid for n f32 (the
-    // contract); element k is read before it is written, so `out` may be an input.
-    unsafe {
-        for k in 0..n as usize {
-            let v = g.in_plane(*theta_i.add(k), *theta_r.add(k));
-            *out.add(k) = v;
-        }
-    }
-    n as i32
+    // SAFETY: the pointers passed `batch_ok` and are valid for n f32 (the contract).
+    unsafe { map2(theta_i, theta_r, out, n, |a, b| g.in_plane(a, b)) }
 }
 
 /// Batch [`brdf_g_dots`]: `dots` holds n triples (n·wi, n·wo, wi·wo), `out` n values.
@@ -181,7 +174,7 @@ pub unsafe extern "C" fn brdf_g_dots_batch(
     out: *mut f32,
     n: u32,
 ) -> i32 {
-    if n > MAX_BATCH || !usable(dots) || !usable(out.cast_const()) {
+    if !batch_ok(n, &[dots, out.cast_const()]) {
         return BAD_BUFFER;
     }
     let Some(g) = PreparedG::new(kind, sigma) else {

@@ -22,8 +22,7 @@
 //! never a panic or an out-of-bounds read), and a table of another length or checksum gives
 //! NaN ([`NO_LUT`]).
 
-use crate::g::MAX_BATCH;
-use crate::memory::{usable, StaticBuf};
+use crate::memory::{batch_ok, map2, usable, StaticBuf};
 use crate::status::{BAD_BUFFER, BAD_LUT, NO_LUT, OK};
 use brdf_lut::{DfgTable, GTable, GTable3, LutError, LutView, TableLayout};
 use core::cell::UnsafeCell;
@@ -218,21 +217,12 @@ pub unsafe extern "C" fn brdf_g_lut_batch(
     out: *mut f32,
     n: u32,
 ) -> i32 {
-    if n > MAX_BATCH || !usable(theta_i) || !usable(theta_r) || !usable(out.cast_const()) {
+    if !batch_ok(n, &[theta_i, theta_r, out.cast_const()]) {
         return BAD_BUFFER;
     }
-    with_g3(|t| {
-        // SAFETY: the pointers are non-null and aligned (checked) and valid for n f32 (the
-        // contract); element k is read before it is written.
-        unsafe {
-            for k in 0..n as usize {
-                let v = t.g(*theta_i.add(k), *theta_r.add(k), sigma);
-                *out.add(k) = v;
-            }
-        }
-        n as i32
-    })
-    .unwrap_or(NO_LUT)
+    // SAFETY: the pointers passed `batch_ok` and are valid for n f32 (the contract).
+    with_g3(|t| unsafe { map2(theta_i, theta_r, out, n, |a, b| t.g(a, b, sigma)) })
+        .unwrap_or(NO_LUT)
 }
 
 /// The modified G from the one-σ table (slot 1) at in-plane angles (radians). NaN without a
@@ -282,7 +272,7 @@ pub unsafe extern "C" fn brdf_dfg_batch(
     out: *mut f32,
     n: u32,
 ) -> i32 {
-    if n > MAX_BATCH || !usable(mu) || !usable(roughness) || !usable(out.cast_const()) {
+    if !batch_ok(n, &[mu, roughness, out.cast_const()]) {
         return BAD_BUFFER;
     }
     with_dfg(|t| {

@@ -66,3 +66,29 @@ pub extern "C" fn brdf_scratch_len() -> u32 {
 pub(crate) fn usable<T>(p: *const T) -> bool {
     !p.is_null() && (p as usize).is_multiple_of(core::mem::align_of::<T>())
 }
+
+/// The buffer check of every batch export: `n` at most [`crate::g::MAX_BATCH`] and every
+/// array [`usable`]. A `false` is the export's `BAD_BUFFER`, checked before anything else.
+pub(crate) fn batch_ok(n: u32, arrays: &[*const f32]) -> bool {
+    n <= crate::g::MAX_BATCH && arrays.iter().all(|&p| usable(p))
+}
+
+/// `out[k] = f(a[k], b[k])` for k < n, each element read before it is written (so `out`
+/// may coincide with an input); returns n.
+///
+/// # Safety
+/// `a` and `b` valid for reads and `out` for writes of n f32 ([`batch_ok`] checked the
+/// pointers' null and alignment).
+pub(crate) unsafe fn map2(
+    a: *const f32,
+    b: *const f32,
+    out: *mut f32,
+    n: u32,
+    f: impl Fn(f32, f32) -> f32,
+) -> i32 {
+    for k in 0..n as usize {
+        // SAFETY: element k < n is in bounds of each array (the contract).
+        unsafe { *out.add(k) = f(*a.add(k), *b.add(k)) };
+    }
+    n as i32
+}

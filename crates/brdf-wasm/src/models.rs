@@ -8,8 +8,7 @@
 //! Directions are unit vectors in the local shading frame (z = normal, x = tangent for the
 //! anisotropic models), pointing away from the surface. Values in 1/sr.
 
-use crate::g::MAX_BATCH;
-use crate::memory::usable;
+use crate::memory::{batch_ok, usable};
 use crate::status::{BAD_BUFFER, BAD_PARAM};
 use brdf_core::catalogue::AnyBrdf;
 use brdf_core::fresnel::Fresnel;
@@ -135,19 +134,14 @@ pub unsafe extern "C" fn brdf_eval(
     wo_y: f32,
     wo_z: f32,
 ) -> i32 {
-    if !usable(out.cast_const()) {
-        return BAD_BUFFER;
+    // A batch of one row: the same checks, in the same order, and the same value.
+    let row = [wi_x, wi_y, wi_z, wo_x, wo_y, wo_z];
+    // SAFETY: `params` and `out` as the batch needs for n = 1 (the contract); `row` holds 6
+    // f32 on the stack.
+    match unsafe { brdf_eval_batch(id, params, row.as_ptr(), out, 1) } {
+        1 => 0,
+        status => status,
     }
-    // SAFETY: `params` is as `build` needs (the contract).
-    let Some(m) = (unsafe { build(id, params) }) else {
-        return BAD_PARAM;
-    };
-    let v = m.eval(Vec3::new(wi_x, wi_y, wi_z), Vec3::new(wo_x, wo_y, wo_z));
-    for (c, x) in v.iter().enumerate() {
-        // SAFETY: `out` is non-null and aligned (checked) and valid for 3 f32 (the contract).
-        unsafe { *out.add(c) = *x };
-    }
-    0
 }
 
 /// Batch [`brdf_eval`]: `dirs` holds n rows (wi_x, wi_y, wi_z, wo_x, wo_y, wo_z), `out` gets
@@ -165,7 +159,7 @@ pub unsafe extern "C" fn brdf_eval_batch(
     out: *mut f32,
     n: u32,
 ) -> i32 {
-    if n > MAX_BATCH || !usable(dirs) || !usable(out.cast_const()) {
+    if !batch_ok(n, &[dirs, out.cast_const()]) {
         return BAD_BUFFER;
     }
     // SAFETY: `params` is as `build` needs (the contract).

@@ -186,9 +186,10 @@ pub(crate) fn stretched<T: Real>(ax: T, ay: T, h: Vec3<T>) -> T {
 
 /// A unit direction at polar cosine `c` in the x–z plane, (√((1 − c)(1 + c)), 0, c): the
 /// isotropic stand-in used by the dot-product functions ((1 − c)(1 + c) has no cancellation
-/// near c = 1, unlike 1 − c²).
+/// near c = 1, unlike 1 − c²), and by the front ends (C ABI, WASM) that take cosines. c is
+/// clamped to ≤ 1; NaN in, NaN out.
 #[inline]
-pub(crate) fn from_cos<T: Real>(c: T) -> Vec3<T> {
+pub fn from_cos<T: Real>(c: T) -> Vec3<T> {
     // Not `min`, which would turn NaN into 1: NaN in, NaN out.
     let c = if c > T::ONE { T::ONE } else { c };
     Vec3::new(
