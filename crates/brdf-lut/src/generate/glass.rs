@@ -50,7 +50,9 @@ use brdf_core::microfacet::visible_cap::GgxVisibleCap;
 use brdf_core::microfacet::{Distribution as _, TrowbridgeReitz};
 use brdf_core::models::rough_dielectric::{refract, ALPHA_FLOOR};
 use brdf_core::quadrature::kronrod::{gk15_combine, gk15_nodes};
-use brdf_core::split_sum::converged::{integrate_cap, CapIntegrand, GgxSplitSum};
+use brdf_core::split_sum::converged::{
+    ggx_cap_row_form, integrate_cap, CapIntegrand, GgxSplitSum, MAX_FORMS,
+};
 use std::format;
 
 /// Tolerance of `lut verify`'s E_avg reference: 10× below the generator's [`TOL`].
@@ -59,11 +61,68 @@ pub const AVERAGE_REFERENCE_TOL: f64 = 2e-7;
 /// Halvings of a μ panel of E_avg at most.
 const MAX_MU_DEPTH: u32 = 12;
 
+/// The quadratic forms in h whose zeros hold the cuts and edges of the rough-glass
+/// integrands on the GGX cap (`ggx_cap_row_form`'s M = [M_xx, M_yy, M_zz, M_xz]), for
+/// wo = (s, 0, μ) and h ∝ h̃, c = wo·h:
+///
+/// * the reflection horizon n·wi_r = 2c h_z − μ ∝ 2(wo·h̃)h̃_z − μ|h̃|²;
+/// * the TIR edge (η < 1) η² − 1 + c² = 0, on the visible cap (c ≥ 0) the sign of
+///   (wo·h̃)² − (1 − η²)|h̃|²;
+/// * the refracted horizon (η < 1): wi_t ∝ −wo/η + (c/η − q)h, q = √(η² − 1 + c²)/η
+///   (`refract`), so n·wi_t < 0 ⟺ μ > h_z(c − ηq); this holds where c h_z ≤ μ, and
+///   elsewhere (both sides positive, squared) ⟺ (η² − 1)h_z² + 2cμh_z − μ² > 0, i.e. the sign
+///   of (η² − 1)h̃_z² + 2μ(wo·h̃)h̃_z − μ²|h̃|². For η ≥ 1, c − ηq ≤ 0: always below.
+#[derive(Clone, Copy)]
+struct Forms {
+    alpha: f64,
+    /// The stretched view of the cap map (`GgxVisibleCap`).
+    v: (f64, f64),
+    s: f64,
+    mu: f64,
+    eta: f64,
+}
+
+impl Forms {
+    fn new(alpha: f64, mu: f64, s: f64, eta: f64) -> Self {
+        let (x, z) = (alpha * s, mu);
+        let len = (x * x + z * z).sqrt();
+        Self {
+            alpha,
+            v: (x / len, z / len),
+            s,
+            mu,
+            eta,
+        }
+    }
+    /// The cap edge's graded breaks (`CapIntegrand::edge_grades`): down to a gap of α/16,
+    /// the ring in which the GGX map's tail facets turn to the horizon, and at least 2.
+    fn grades(&self) -> u32 {
+        let k = libm::ceil(libm::log(16.0 * core::f64::consts::PI / self.alpha) / libm::log(4.0));
+        (k as u32).max(2)
+    }
+    fn row(&self, m: [f64; 4], cp: f64, sp: f64) -> [f64; 6] {
+        ggx_cap_row_form(m, self.alpha, self.v, cp, sp)
+    }
+    fn horizon(&self) -> [f64; 4] {
+        [-self.mu, -self.mu, self.mu, self.s]
+    }
+    fn tir(&self) -> [f64; 4] {
+        let k = (1.0 - self.eta) * (1.0 + self.eta);
+        [self.s * self.s - k, -k, self.mu * self.mu - k, self.s * self.mu]
+    }
+    fn refracted_horizon(&self) -> [f64; 4] {
+        let m2 = self.mu * self.mu;
+        let e = (self.eta - 1.0) * (self.eta + 1.0);
+        [-m2, -m2, e + m2, self.mu * self.s]
+    }
+}
+
 /// The reflected part on visible normals: F(wo·h) G1(wi_r) where n·wi_r > 0.
 struct Reflected {
     wo: Vec3<f64>,
     eta: f64,
     dist: TrowbridgeReitz<f64>,
+    forms: Forms,
     /// The GGX split sum's integrand on the same map: its support is also n·wi_r, and its
     /// row form gives the horizon cuts exactly.
     form: GgxSplitSum<f64>,
@@ -82,6 +141,19 @@ impl CapIntegrand<f64> for Reflected {
     fn row_form(&self, cp: f64, sp: f64) -> Option<[f64; 6]> {
         self.form.row_form(cp, sp)
     }
+    /// η < 1: the horizon and the TIR edge, where F reaches 1 as a square root
+    /// (`Forms`); η ≥ 1: F is smooth, the row form alone.
+    fn row_forms(&self, cp: f64, sp: f64, out: &mut [[f64; 6]; MAX_FORMS]) -> Option<usize> {
+        if !(self.eta < 1.0) {
+            return None;
+        }
+        let f = &self.forms;
+        *out = [f.row(f.horizon(), cp, sp), f.row(f.tir(), cp, sp)];
+        Some(2)
+    }
+    fn edge_grades(&self) -> u32 {
+        self.forms.grades()
+    }
     /// F(wo·h) G1(wi_r).
     fn value(&self, h: Vec3<f64>, _s: f64) -> [f64; 2] {
         let wi = self.wo.reflect(h);
@@ -98,6 +170,7 @@ struct Refracted {
     wo: Vec3<f64>,
     eta: f64,
     dist: TrowbridgeReitz<f64>,
+    forms: Forms,
 }
 
 impl Refracted {
@@ -128,6 +201,19 @@ impl CapIntegrand<f64> for Refracted {
             None => -1.0,
         }
     }
+    /// η < 1: the TIR edge (1 − F → 0 as a square root) and the refracted horizon
+    /// (`Forms`); η ≥ 1: no cut (the support is positive on the whole visible cap).
+    fn row_forms(&self, cp: f64, sp: f64, out: &mut [[f64; 6]; MAX_FORMS]) -> Option<usize> {
+        if !(self.eta < 1.0) {
+            return Some(0);
+        }
+        let f = &self.forms;
+        *out = [f.row(f.tir(), cp, sp), f.row(f.refracted_horizon(), cp, sp)];
+        Some(2)
+    }
+    fn edge_grades(&self) -> u32 {
+        self.forms.grades()
+    }
     /// (1 − F(wo·h)) G1(wi_t mirrored to the +n side).
     fn value(&self, h: Vec3<f64>, _s: f64) -> [f64; 2] {
         match self.ray(h) {
@@ -153,6 +239,7 @@ pub fn glass_e(mu: f64, alpha: f64, eta: f64, tol: f64) -> ([f64; 2], Work) {
     let wo = Vec3::new(sv, 0.0, mu);
     let map = GgxVisibleCap::new(alpha, mu);
     let form = GgxSplitSum::new(alpha, mu);
+    let forms = Forms::new(alpha, mu, sv, eta);
     let r = integrate_cap(
         &map,
         &Reflected {
@@ -160,13 +247,37 @@ pub fn glass_e(mu: f64, alpha: f64, eta: f64, tol: f64) -> ([f64; 2], Work) {
             eta,
             dist,
             form,
+            forms,
         },
         tol,
     );
-    let t = integrate_cap(&map, &Refracted { wo, eta, dist }, tol);
+    let t = integrate_cap(
+        &map,
+        &Refracted {
+            wo,
+            eta,
+            dist,
+            forms,
+        },
+        tol,
+    );
+    if std::env::var("GD").is_ok() {
+        std::eprintln!("R rows {} evals {} cut {} | T rows {} evals {} cut {}", r.rows, r.evals, r.cut_evals, t.rows, t.evals, t.cut_evals);
+    }
     let evals = (r.evals + r.cut_evals + t.evals + t.cut_evals) as u64;
     let error = r.error[0].max(t.error[0]);
     ([r.value[0], t.value[0]], Work { error, evals })
+}
+
+/// DEBUG
+pub fn debug_rows(mu: f64, alpha: f64, eta: f64, phi: f64, tol: f64) -> ([f64; 2], usize) {
+    let dist = TrowbridgeReitz::isotropic(alpha).unwrap();
+    let sv = ((1.0 - mu) * (1.0 + mu)).max(0.0).sqrt();
+    let wo = Vec3::new(sv, 0.0, mu);
+    let map = GgxVisibleCap::new(alpha, mu);
+    let forms = Forms::new(alpha, mu, sv, eta);
+    let r = brdf_core::split_sum::converged::debug_row(&map, &Refracted { wo, eta, dist, forms }, phi, tol);
+    (r.0, r.2)
 }
 
 /// 2∫ₐᵇ (R, T)(μ) μ dμ by K15 in μ, halving where |K15 − G7| plus the panel width × its
