@@ -20,7 +20,13 @@
 //! t = tan(θ/2) (or tan((π − θ)/2) past π/2), whose sign changes are isolated by the
 //! derivative sequence and bisected (`row_cuts`); a generic integrand falls back to a
 //! scan of s graded toward the cap edge refined by the Illinois method (`lit_intervals`;
-//! it can miss a lit piece narrower than the scan spacing). On each lit piece the row
+//! it can miss a lit piece narrower than the scan spacing). An integrand whose support and
+//! square-root edges are zeros of several quadratic forms in h (rough glass: the horizons
+//! and the total-internal-reflection cone) gives them all ([`CapIntegrand::row_forms`],
+//! [`ggx_cap_row_form`]): the row is cut at each, the pieces stay unmerged, a piece's ends
+//! at cuts are taken through θ = a + (b − a)w(u) with w′ vanishing there ([`Ends`]: a
+//! square-root edge becomes analytic in u), and every change of the piece count between
+//! the φ scan's samples becomes a φ break. On each lit piece the row
 //! integral ∫ g sin θ dθ is taken on panels graded toward the cap edge (breaks at
 //! θ_max − θ_max/4ᵏ: for small α the lobe's tail lies in a ring of width ~α there) by the
 //! 15-point Gauss–Kronrod rule with its embedded 7-point Gauss–Legendre rule
@@ -553,14 +559,6 @@ fn lit<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
         None => lit_intervals(map, f, cs, work),
     };
     (p, n, false)
-}
-
-/// DEBUG
-pub fn debug_row<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(map: &M, f: &F, phi: T, tol: T) -> ([T; 2], [T; 2], usize) {
-    let mut w = Work::default();
-    let r = row(map, f, phi, tol, &mut w);
-    let (sp, cp) = phi.sin_cos();
-    (r.0, r.1, lit(map, f, (cp, sp), &mut w).1)
 }
 
 /// One row at azimuth φ: its lit intervals, each by [`row_adapt`].

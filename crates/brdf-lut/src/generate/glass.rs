@@ -28,8 +28,13 @@
 //! Kronrod panels with embedded 7-point Gauss estimates in θ and φ. The support of R is
 //! n·wi_r (the horizon, where G1 → 0 linearly); that of T is min(η² − 1 + (wo·h)², −n·wi_t):
 //! the horizon of the refracted ray and the total-internal-reflection edge, past which
-//! 1 − F = 0 (F → 1 as a square root there: each row ends on it, where the adaptive panels
-//! resolve the root behaviour). E_avg integrates E in μ by adaptive K15/G7 panels,
+//! 1 − F = 0 (F → 1 as a square root there, in R and T). For η < 1 every such edge is the
+//! zero of a quadratic form in h (`Forms`), so each row is cut exactly at all of them
+//! (`CapIntegrand::row_forms`) and a piece's end on a cut is integrated in u with
+//! θ = a + (b − a)u² (or its mirror): the square root becomes analytic in u and the Gauss
+//! rules converge geometrically (`converged::Ends`). For η ≥ 1 no refracted ray is cut
+//! (c − √(η² − 1 + c²) ≤ 0: it always leaves below the surface). The graded breaks toward
+//! the cap edge stop at a gap ~α (`Forms::grades`). E_avg integrates E in μ by adaptive K15/G7 panels,
 //! broken at μ_c = √(1 − η²) for η < 1 (where TIR sets in at normal incidence on the mean
 //! surface and E(μ) bends sharply for small α).
 //!
@@ -94,10 +99,11 @@ impl Forms {
             eta,
         }
     }
-    /// The cap edge's graded breaks (`CapIntegrand::edge_grades`): down to a gap of α/16,
-    /// the ring in which the GGX map's tail facets turn to the horizon, and at least 2.
+    /// The cap edge's graded breaks (`CapIntegrand::edge_grades`): down to a gap of ~α, the
+    /// ring in which the GGX map's tail facets turn to the horizon (θ_max/4ᵏ ≤ α), and at
+    /// least 2; the last panel's own halvings resolve the rest.
     fn grades(&self) -> u32 {
-        let k = libm::ceil(libm::log(16.0 * core::f64::consts::PI / self.alpha) / libm::log(4.0));
+        let k = libm::ceil(libm::log(core::f64::consts::PI / self.alpha) / libm::log(4.0));
         (k as u32).max(2)
     }
     fn row(&self, m: [f64; 4], cp: f64, sp: f64) -> [f64; 6] {
@@ -261,23 +267,9 @@ pub fn glass_e(mu: f64, alpha: f64, eta: f64, tol: f64) -> ([f64; 2], Work) {
         },
         tol,
     );
-    if std::env::var("GD").is_ok() {
-        std::eprintln!("R rows {} evals {} cut {} | T rows {} evals {} cut {}", r.rows, r.evals, r.cut_evals, t.rows, t.evals, t.cut_evals);
-    }
     let evals = (r.evals + r.cut_evals + t.evals + t.cut_evals) as u64;
     let error = r.error[0].max(t.error[0]);
     ([r.value[0], t.value[0]], Work { error, evals })
-}
-
-/// DEBUG
-pub fn debug_rows(mu: f64, alpha: f64, eta: f64, phi: f64, tol: f64) -> ([f64; 2], usize) {
-    let dist = TrowbridgeReitz::isotropic(alpha).unwrap();
-    let sv = ((1.0 - mu) * (1.0 + mu)).max(0.0).sqrt();
-    let wo = Vec3::new(sv, 0.0, mu);
-    let map = GgxVisibleCap::new(alpha, mu);
-    let forms = Forms::new(alpha, mu, sv, eta);
-    let r = brdf_core::split_sum::converged::debug_row(&map, &Refracted { wo, eta, dist, forms }, phi, tol);
-    (r.0, r.2)
 }
 
 /// 2∫ₐᵇ (R, T)(μ) μ dμ by K15 in μ, halving where |K15 − G7| plus the panel width × its
