@@ -147,7 +147,10 @@ impl Ends {
             Ends::None => (u, T::ONE),
             Ends::Lo => (u * u, T::TWO * u),
             Ends::Hi => (T::ONE - v * v, T::TWO * v),
-            Ends::Both => (u * u * (T::from_f64(3.0) - T::TWO * u), T::from_f64(6.0) * u * v),
+            Ends::Both => (
+                u * u * (T::from_f64(3.0) - T::TWO * u),
+                T::from_f64(6.0) * u * v,
+            ),
         }
     }
 }
