@@ -28,13 +28,16 @@
 //! Kronrod panels with embedded 7-point Gauss estimates in θ and φ. The support of R is
 //! n·wi_r (the horizon, where G1 → 0 linearly); that of T is min(η² − 1 + (wo·h)², −n·wi_t):
 //! the horizon of the refracted ray and the total-internal-reflection edge, past which
-//! 1 − F = 0 (F → 1 as a square root there, in R and T). For η < 1 every such edge is the
-//! zero of a quadratic form in h (`Forms`), so each row is cut exactly at all of them
+//! 1 − F = 0 (F → 1 as a square root there, in R and T). For η < 1 both edges of T are
+//! zeros of quadratic forms in h (`Forms`), so each row of T is cut exactly at all of them
 //! (`CapIntegrand::row_forms`) and a piece's end on a cut is integrated in u with
 //! θ = a + (b − a)u² (or its mirror): the square root becomes analytic in u and the Gauss
 //! rules converge geometrically (`converged::Ends`). For η ≥ 1 no refracted ray is cut
 //! (c − √(η² − 1 + c²) ≤ 0: it always leaves below the surface). The graded breaks toward
-//! the cap edge stop at a gap ~α (`Forms::grades`). E_avg integrates E in μ by adaptive K15/G7 panels,
+//! the cap edge stop at a gap ~α (`Forms::grades`; R for η < 1 keeps the full grading).
+//! R keeps its single row form (the horizon): for η < 1 the TIR kink of F lies inside its
+//! pieces, resolved (less surely: tests/glass_tables.rs keeps a failing point) by the
+//! adaptive panels. E_avg integrates E in μ by adaptive K15/G7 panels,
 //! broken at μ_c = √(1 − η²) for η < 1 (where TIR sets in at normal incidence on the mean
 //! surface and E(μ) bends sharply for small α).
 //!
