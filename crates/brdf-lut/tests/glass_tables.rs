@@ -335,8 +335,8 @@ fn default_table_node_within_its_estimate() {
 /// values from an independent brute-force rule: the midpoint rule on an 8000 × 8000 grid
 /// in the cap's (θ, φ) with the same integrand written directly from F, G1 and the
 /// refraction (no cuts, no adaptivity); its 2000-, 4000- and 8000-point values agree to
-/// 2e-7, which with the generator's estimate bounds the allowed difference. T only (its
-/// rows are cut at every edge); R: `inside_reflection_agrees_with_a_brute_force_rule`.
+/// 2e-7, which with the generator's estimate bounds the allowed difference. T only; R:
+/// `inside_reflection_agrees_with_a_brute_force_rule`.
 #[test]
 fn inside_points_agree_with_a_brute_force_rule() {
     brute_force_points(&[1]);

@@ -28,15 +28,17 @@
 //! Kronrod panels with embedded 7-point Gauss estimates in θ and φ. The support of R is
 //! n·wi_r (the horizon, where G1 → 0 linearly); that of T is min(η² − 1 + (wo·h)², −n·wi_t):
 //! the horizon of the refracted ray and the total-internal-reflection edge, past which
-//! 1 − F = 0 (F → 1 as a square root there, in R and T). For η < 1 both edges of T are
-//! zeros of quadratic forms in h (`Forms`), so each row of T is cut exactly at all of them
-//! (`CapIntegrand::row_forms`) and a piece's end on a cut is integrated in u with
-//! θ = a + (b − a)u² (or its mirror): the square root becomes analytic in u and the Gauss
-//! rules converge geometrically (`converged::Ends`). For η ≥ 1 no refracted ray is cut
-//! (c − √(η² − 1 + c²) ≤ 0: it always leaves below the surface). The graded breaks toward
-//! the cap edge stop at a gap ~α (`Forms::grades`; R for η < 1 keeps the full grading).
-//! R keeps its single row form (the horizon): for η < 1 the TIR kink of F lies inside its
-//! pieces, resolved (less surely: tests/glass_tables.rs keeps a failing point) by the
+//! 1 − F = 0 (F → 1 as a square root there, in R and T). For η ≥ 1 no refracted ray is cut
+//! (c − √(η² − 1 + c²) ≤ 0: it always leaves below the surface): T's rows are whole
+//! (`CapIntegrand::row_forms` = 0 forms) and the graded breaks toward the cap edge stop at a
+//! gap ~α for both channels (`cap_edge_grades`). For η < 1 (inside) both channels take the
+//! same path as before that speed-up: R's rows are cut at its horizon (the split sum's row
+//! form), T's lit intervals are found by scanning its support, both graded to the last bit;
+//! the TIR edge then lies inside R's pieces and ends T's, resolved by the adaptive panels
+//! (less surely for R: tests/glass_tables.rs keeps a failing point). Exact TIR and
+//! refracted-horizon cuts for T with square-root end substitutions (`converged::Ends`) were
+//! tried and left out: faster per node, but at one measured point 7.1e-7 off, past their
+//! estimate and 5× the scan's error.
 //! adaptive panels. E_avg integrates E in μ by adaptive K15/G7 panels,
 //! broken at μ_c = √(1 − η²) for η < 1 (where TIR sets in at normal incidence on the mean
 //! surface and E(μ) bends sharply for small α).
@@ -58,9 +60,7 @@ use brdf_core::microfacet::visible_cap::GgxVisibleCap;
 use brdf_core::microfacet::{Distribution as _, TrowbridgeReitz};
 use brdf_core::models::rough_dielectric::{refract, ALPHA_FLOOR};
 use brdf_core::quadrature::kronrod::{gk15_combine, gk15_nodes};
-use brdf_core::split_sum::converged::{
-    ggx_cap_row_form, integrate_cap, CapIntegrand, GgxSplitSum, MAX_FORMS,
-};
+use brdf_core::split_sum::converged::{integrate_cap, CapIntegrand, GgxSplitSum, MAX_FORMS};
 use std::format;
 
 /// Tolerance of `lut verify`'s E_avg reference: 10× below the generator's [`TOL`].
@@ -69,62 +69,12 @@ pub const AVERAGE_REFERENCE_TOL: f64 = 2e-7;
 /// Halvings of a μ panel of E_avg at most.
 const MAX_MU_DEPTH: u32 = 12;
 
-/// The quadratic forms in h whose zeros hold the cuts and edges of the rough-glass
-/// integrands on the GGX cap (`ggx_cap_row_form`'s M = [M_xx, M_yy, M_zz, M_xz]), for
-/// wo = (s, 0, μ) and h ∝ h̃, c = wo·h:
-///
-/// * the TIR edge (η < 1) η² − 1 + c² = 0, on the visible cap (c ≥ 0) the sign of
-///   (wo·h̃)² − (1 − η²)|h̃|²;
-/// * the refracted horizon (η < 1): wi_t ∝ −wo/η + (c/η − q)h, q = √(η² − 1 + c²)/η
-///   (`refract`), so n·wi_t < 0 ⟺ μ > h_z(c − ηq); this holds where c h_z ≤ μ, and
-///   elsewhere (both sides positive, squared) ⟺ (η² − 1)h_z² + 2cμh_z − μ² > 0, i.e. the sign
-///   of (η² − 1)h̃_z² + 2μ(wo·h̃)h̃_z − μ²|h̃|². For η ≥ 1, c − ηq ≤ 0: always below.
-#[derive(Clone, Copy)]
-struct Forms {
-    alpha: f64,
-    /// The stretched view of the cap map (`GgxVisibleCap`).
-    v: (f64, f64),
-    s: f64,
-    mu: f64,
-    eta: f64,
-}
-
-impl Forms {
-    fn new(alpha: f64, mu: f64, s: f64, eta: f64) -> Self {
-        let (x, z) = (alpha * s, mu);
-        let len = (x * x + z * z).sqrt();
-        Self {
-            alpha,
-            v: (x / len, z / len),
-            s,
-            mu,
-            eta,
-        }
-    }
-    /// The cap edge's graded breaks (`CapIntegrand::edge_grades`): down to a gap of ~α, the
-    /// ring in which the GGX map's tail facets turn to the horizon (θ_max/4ᵏ ≤ α), and at
-    /// least 2; the last panel's own halvings resolve the rest.
-    fn grades(&self) -> u32 {
-        let k = libm::ceil(libm::log(core::f64::consts::PI / self.alpha) / libm::log(4.0));
-        (k as u32).max(2)
-    }
-    fn row(&self, m: [f64; 4], cp: f64, sp: f64) -> [f64; 6] {
-        ggx_cap_row_form(m, self.alpha, self.v, cp, sp)
-    }
-    fn tir(&self) -> [f64; 4] {
-        let k = (1.0 - self.eta) * (1.0 + self.eta);
-        [
-            self.s * self.s - k,
-            -k,
-            self.mu * self.mu - k,
-            self.s * self.mu,
-        ]
-    }
-    fn refracted_horizon(&self) -> [f64; 4] {
-        let m2 = self.mu * self.mu;
-        let e = (self.eta - 1.0) * (self.eta + 1.0);
-        [-m2, -m2, e + m2, self.mu * self.s]
-    }
+/// The cap edge's graded breaks (`CapIntegrand::edge_grades`) for η ≥ 1: down to a gap of
+/// ~α, the ring in which the GGX map's tail facets turn to the horizon (θ_max/4ᵏ ≤ α,
+/// θ_max ≤ π), and at least 2; the last panel's own halvings resolve the rest.
+fn cap_edge_grades(alpha: f64) -> u32 {
+    let k = libm::ceil(libm::log(core::f64::consts::PI / alpha) / libm::log(4.0));
+    (k as u32).max(2)
 }
 
 /// The reflected part on visible normals: F(wo·h) G1(wi_r) where n·wi_r > 0.
@@ -132,7 +82,8 @@ struct Reflected {
     wo: Vec3<f64>,
     eta: f64,
     dist: TrowbridgeReitz<f64>,
-    forms: Forms,
+    /// `cap_edge_grades(α)`.
+    grades: u32,
     /// The GGX split sum's integrand on the same map: its support is also n·wi_r, and its
     /// row form gives the horizon cuts exactly.
     form: GgxSplitSum<f64>,
@@ -154,14 +105,14 @@ impl CapIntegrand<f64> for Reflected {
     // No row forms: the single row form (the horizon). Passing the TIR cone as a second
     // form (a square-root kink of F for η < 1) was tried and left out: at (μ, α, η) =
     // (0.2, 1, 0.34) the φ integral of the unmerged pieces did not converge (open).
-    /// η ≥ 1: `Forms::grades`; η < 1 the default (to the last bit): with the TIR kink
+    /// η ≥ 1: `cap_edge_grades`; η < 1 the default (to the last bit): with the TIR kink
     /// inside the pieces the coarser grading let the estimate miss 2.6e-5 at
     /// (0.0314, α = 0.684, 0.349).
     fn edge_grades(&self) -> u32 {
         if self.eta < 1.0 {
             brdf_core::split_sum::converged::MAX_GRADE
         } else {
-            self.forms.grades()
+            self.grades
         }
     }
     /// F(wo·h) G1(wi_r).
@@ -180,7 +131,8 @@ struct Refracted {
     wo: Vec3<f64>,
     eta: f64,
     dist: TrowbridgeReitz<f64>,
-    forms: Forms,
+    /// `cap_edge_grades(α)`.
+    grades: u32,
 }
 
 impl Refracted {
@@ -211,18 +163,23 @@ impl CapIntegrand<f64> for Refracted {
             None => -1.0,
         }
     }
-    /// η < 1: the TIR edge (1 − F → 0 as a square root) and the refracted horizon
-    /// (`Forms`); η ≥ 1: no cut (the support is positive on the whole visible cap).
-    fn row_forms(&self, cp: f64, sp: f64, out: &mut [[f64; 6]; MAX_FORMS]) -> Option<usize> {
-        if !(self.eta < 1.0) {
-            return Some(0);
-        }
-        let f = &self.forms;
-        *out = [f.row(f.tir(), cp, sp), f.row(f.refracted_horizon(), cp, sp)];
-        Some(2)
+    /// η ≥ 1: no cut (the support is positive on the whole visible cap): `Some(0)`, one
+    /// unmerged piece per row and chained φ transitions. η < 1: `None`, the scan of the
+    /// support (`converged::lit_intervals`) with the full edge grading, as before the row
+    /// forms: the TIR edge and the refracted horizon as exact cuts with square-root ends
+    /// (`Forms` in commit 051fef9) were measured 7.1e-7 off at (μ, r, η) =
+    /// (0.661, 0.659, 0.690) with an estimate of 4.2e-7, where the scan is 1.4e-7 off
+    /// (brute-force midpoint rule, 8000²).
+    fn row_forms(&self, _cp: f64, _sp: f64, _out: &mut [[f64; 6]; MAX_FORMS]) -> Option<usize> {
+        (!(self.eta < 1.0)).then_some(0)
     }
+    /// η ≥ 1: `cap_edge_grades`; η < 1 the default (to the last bit).
     fn edge_grades(&self) -> u32 {
-        self.forms.grades()
+        if self.eta < 1.0 {
+            brdf_core::split_sum::converged::MAX_GRADE
+        } else {
+            self.grades
+        }
     }
     /// (1 − F(wo·h)) G1(wi_t mirrored to the +n side).
     fn value(&self, h: Vec3<f64>, _s: f64) -> [f64; 2] {
@@ -249,7 +206,7 @@ pub fn glass_e(mu: f64, alpha: f64, eta: f64, tol: f64) -> ([f64; 2], Work) {
     let wo = Vec3::new(sv, 0.0, mu);
     let map = GgxVisibleCap::new(alpha, mu);
     let form = GgxSplitSum::new(alpha, mu);
-    let forms = Forms::new(alpha, mu, sv, eta);
+    let grades = cap_edge_grades(alpha);
     let r = integrate_cap(
         &map,
         &Reflected {
@@ -257,7 +214,7 @@ pub fn glass_e(mu: f64, alpha: f64, eta: f64, tol: f64) -> ([f64; 2], Work) {
             eta,
             dist,
             form,
-            forms,
+            grades,
         },
         tol,
     );
@@ -267,7 +224,7 @@ pub fn glass_e(mu: f64, alpha: f64, eta: f64, tol: f64) -> ([f64; 2], Work) {
             wo,
             eta,
             dist,
-            forms,
+            grades,
         },
         tol,
     );
