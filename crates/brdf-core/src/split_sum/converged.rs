@@ -20,13 +20,10 @@
 //! t = tan(θ/2) (or tan((π − θ)/2) past π/2), whose sign changes are isolated by the
 //! derivative sequence and bisected (`row_cuts`); a generic integrand falls back to a
 //! scan of s graded toward the cap edge refined by the Illinois method (`lit_intervals`;
-//! it can miss a lit piece narrower than the scan spacing). An integrand whose support and
-//! square-root edges are zeros of several quadratic forms in h (rough glass: the horizons
-//! and the total-internal-reflection cone) gives them all ([`CapIntegrand::row_forms`],
-//! [`ggx_cap_row_form`]): the row is cut at each, the pieces stay unmerged, a piece's ends
-//! at cuts are taken through θ = a + (b − a)w(u) with w′ vanishing there ([`Ends`]: a
-//! square-root edge becomes analytic in u), and every change of the piece count between
-//! the φ scan's samples becomes a φ break. On each lit piece the row
+//! it can miss a lit piece narrower than the scan spacing). An integrand whose support is
+//! positive on the whole visible cap says so ([`CapIntegrand::uncut`]): each row is then
+//! one piece [0, θ_max], and every change of the piece count between the φ scan's samples
+//! becomes a φ break (`transitions`). On each lit piece the row
 //! integral ∫ g sin θ dθ is taken on panels graded toward the cap edge (breaks at
 //! θ_max − θ_max/4ᵏ: for small α the lobe's tail lies in a ring of width ~α there) by the
 //! 15-point Gauss–Kronrod rule with its embedded 7-point Gauss–Legendre rule
@@ -68,15 +65,12 @@ pub trait CapIntegrand<T: Real> {
     fn row_form(&self, _cp: T, _sp: T) -> Option<[T; 6]> {
         None
     }
-    /// Row forms (as [`CapIntegrand::row_form`], at most [`MAX_FORMS`], written to `out`)
-    /// whose sign changes together contain every point of the row where the support changes
-    /// sign **or the integrand has a square-root edge** (as 1 − F at total internal
-    /// reflection): `Some(count)`. The row is then cut at all of them, the pieces are not
-    /// merged, and each piece's ends at a cut are integrated through a substitution that
-    /// makes a square-root edge analytic ([`Ends`]). `None` (the default): the single
-    /// [`CapIntegrand::row_form`] path.
-    fn row_forms(&self, _cp: T, _sp: T, _out: &mut [[T; 6]; MAX_FORMS]) -> Option<usize> {
-        None
+    /// Whether the support is positive wherever the map is defined (no cuts): each row is
+    /// then the one piece [0, θ_max] (if lit at its middle), and the φ transitions are
+    /// searched on a denser scan (`transitions`). `false` (the default): the rows are cut
+    /// by [`CapIntegrand::row_form`] or the scan.
+    fn uncut(&self) -> bool {
+        false
     }
     /// How many graded breaks θ_max − θ_max/4ᵏ a row gets toward the cap edge (`piece`):
     /// [`MAX_GRADE`] by default (to the last bit). An integrand that knows the scale of its
@@ -84,74 +78,6 @@ pub trait CapIntegrand<T: Real> {
     /// the last panel's own halvings resolve it) may stop sooner.
     fn edge_grades(&self) -> u32 {
         MAX_GRADE
-    }
-}
-
-/// Row forms per integrand at most ([`CapIntegrand::row_forms`]).
-pub const MAX_FORMS: usize = 2;
-
-/// The row form of a quadratic form Q(h̃) = M_xx h̃_x² + M_yy h̃_y² + M_zz h̃_z² + 2M_xz h̃_x h̃_z
-/// (`m` = [M_xx, M_yy, M_zz, M_xz]) of the unnormalised normal h̃ = (αH_x, αH_y, H_z) of the
-/// GGX cap map ([`GgxVisibleCap`]: H = (sin θ cos φ + V_x, sin θ sin φ, cos θ + V_z), V the
-/// stretched view (v_x, v_z)) along the row (cos φ, sin φ) = `(cp, sp)`: expanding the
-/// products of H's components gives k = (M_xx α²V_x² + M_zz V_z² + 2M_xz αV_xV_z,
-/// 2M_zz V_z + 2M_xz αV_x, 2(M_xx α²V_x + M_xz αV_z) cos φ, M_zz,
-/// α²(M_xx cos²φ + M_yy sin²φ), 2M_xz α cos φ). Any support whose sign is that of a
-/// quadratic form in h (e.g. n·l, or (wo·h)² − c²) has its cuts among this form's.
-pub fn ggx_cap_row_form<T: Real>(m: [T; 4], alpha: T, (vx, vz): (T, T), cp: T, sp: T) -> [T; 6] {
-    let [xx, yy, zz, xz] = m;
-    let (a, a2) = (alpha, alpha * alpha);
-    [
-        xx * a2 * vx * vx + zz * vz * vz + T::TWO * xz * a * vx * vz,
-        T::TWO * (zz * vz + xz * a * vx),
-        T::TWO * (xx * a2 * vx + xz * a * vz) * cp,
-        zz,
-        a2 * (xx * cp * cp + yy * sp * sp),
-        T::TWO * xz * a * cp,
-    ]
-}
-
-/// Which ends of a row panel lie on a square-root edge, and the substitution θ = a + (b − a)w(u),
-/// u ∈ [0, 1], that takes it: `Lo` w = u², `Hi` w = 1 − (1 − u)², `Both` w = u²(3 − 2u).
-/// A function that behaves as √(θ − a) at an end becomes u·(analytic) there, times the
-/// Jacobian w′ ∝ u: analytic in u, so the Gauss rules converge geometrically again
-/// (the substitution of Gauss–Jacobi type for end-point singularities, e.g. Davis &
-/// Rabinowitz, *Methods of Numerical Integration*, §2.12).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Ends {
-    /// No substitution: u = θ.
-    None,
-    /// The lower end.
-    Lo,
-    /// The upper end.
-    Hi,
-    /// Both ends.
-    Both,
-}
-
-impl Ends {
-    /// From whether each end is a square-root edge.
-    fn of(lo: bool, hi: bool) -> Self {
-        match (lo, hi) {
-            (false, false) => Ends::None,
-            (true, false) => Ends::Lo,
-            (false, true) => Ends::Hi,
-            (true, true) => Ends::Both,
-        }
-    }
-    /// (w(u), w′(u)).
-    #[inline]
-    fn w<T: Real>(self, u: T) -> (T, T) {
-        let v = T::ONE - u;
-        match self {
-            Ends::None => (u, T::ONE),
-            Ends::Lo => (u * u, T::TWO * u),
-            Ends::Hi => (T::ONE - v * v, T::TWO * v),
-            Ends::Both => (
-                u * u * (T::from_f64(3.0) - T::TWO * u),
-                T::from_f64(6.0) * u * v,
-            ),
-        }
     }
 }
 
@@ -282,7 +208,7 @@ fn refine<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
 /// Support samples per row when looking for the lit intervals.
 pub const SCAN: usize = 48;
 
-/// The lit intervals of the row (cos φ, sin φ) (at most [`MERGED_PIECES`]): s is sampled at
+/// The lit intervals of the row (cos φ, sin φ) (at most [`MAX_PIECES`]): s is sampled at
 /// θ_k = θ_max(1 − (1 − k/SCAN)²), graded toward the cap edge, where the map's singular
 /// point lies and the lit set of grazing views can fold back; each sign change is refined
 /// by [`refine`].
@@ -305,7 +231,7 @@ fn lit_intervals<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
         if (s0 > T::ZERO) != (s1 > T::ZERO) {
             let x = refine(map, f, cs, (t0, s0), (t1, s1), work);
             match start.take() {
-                Some(a) if n < MERGED_PIECES => {
+                Some(a) if n < MAX_PIECES => {
                     out[n] = (a, x);
                     n += 1;
                 }
@@ -316,7 +242,7 @@ fn lit_intervals<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
         (t0, s0) = (t1, s1);
     }
     if let Some(a) = start {
-        if n < MERGED_PIECES {
+        if n < MAX_PIECES {
             out[n] = (a, tmax);
             n += 1;
         }
@@ -409,32 +335,28 @@ fn row_cuts<T: Real>(k: [T; 6], tmax: T, out: &mut [T; 8]) -> usize {
     n
 }
 
-/// The lit intervals of the row (cos φ, sin φ) from the exact cuts of its row forms
-/// ([`row_cuts`] of each form in `k`): the breakpoints 0, the cuts and θ_max, sorted; a gap
-/// between two is lit where s > 0 at its midpoint. With `merge`, adjacent lit gaps are
-/// merged (at most [`MERGED_PIECES`]); without, each lit gap is its own piece (the cuts
-/// are then also the integrand's edges: [`CapIntegrand::row_forms`]).
-fn lit_from_forms<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
+/// The lit intervals of the row (cos φ, sin φ) from the exact cuts of its row form `k`
+/// ([`row_cuts`]; `None`: no cuts): the breakpoints 0, the cuts and θ_max, sorted; a gap
+/// between two is lit where s > 0 at its midpoint, and adjacent lit gaps are merged (at
+/// most [`MAX_PIECES`]).
+fn lit_from_form<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     map: &M,
     f: &F,
     cs: (T, T),
-    k: &[[T; 6]],
-    merge: bool,
+    k: Option<[T; 6]>,
     work: &mut Work,
 ) -> ([(T, T); MAX_PIECES], usize) {
     let tmax = map.theta_max();
-    let mut br = [T::ZERO; 2 + 8 * MAX_FORMS];
+    let mut br = [T::ZERO; 10];
     let mut nc = 0;
-    for k in k {
+    if let Some(k) = k {
         let mut cuts = [T::ZERO; 8];
-        let m = row_cuts(*k, tmax, &mut cuts);
-        br[1 + nc..1 + nc + m].copy_from_slice(&cuts[..m]);
-        nc += m;
+        nc = row_cuts(k, tmax, &mut cuts);
+        br[1..1 + nc].copy_from_slice(&cuts[..nc]);
     }
     br[nc + 1] = tmax;
     let br = &mut br[..nc + 2];
     br.sort_unstable_by(|a, b| a.partial_cmp(b).unwrap_or(core::cmp::Ordering::Equal));
-    let cap = if merge { MERGED_PIECES } else { MAX_PIECES };
     let mut out = [(T::ZERO, T::ZERO); MAX_PIECES];
     let mut n = 0;
     for w in br.windows(2) {
@@ -446,9 +368,9 @@ fn lit_from_forms<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
         if !(support_at(map, f, (a + b) * T::HALF, cs.0, cs.1) > T::ZERO) {
             continue;
         }
-        if merge && n > 0 && out[n - 1].1 == a {
+        if n > 0 && out[n - 1].1 == a {
             out[n - 1].1 = b;
-        } else if n < cap {
+        } else if n < MAX_PIECES {
             out[n] = (a, b);
             n += 1;
         }
@@ -456,53 +378,16 @@ fn lit_from_forms<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     (out, n)
 }
 
-/// Lit intervals per row at most where adjacent ones are merged (the scan and the single
-/// row form).
-pub const MERGED_PIECES: usize = 4;
-/// Lit pieces per row at most (the unmerged pieces of [`CapIntegrand::row_forms`]).
-pub const MAX_PIECES: usize = 2 + 8 * MAX_FORMS;
+/// Lit intervals per row at most (adjacent ones merged).
+pub const MAX_PIECES: usize = 4;
 
-/// A row panel in the variable u of its substitution: θ = `lo` + `len`·w(u) ([`Ends`];
-/// `Ends::None` with lo = 0, len = 1 is θ = u exactly).
-#[derive(Clone, Copy)]
-struct Seg<T> {
-    lo: T,
-    len: T,
-    ends: Ends,
-}
-
-impl<T: Real> Seg<T> {
-    /// The panel [a, b] with square-root edges at the ends `ends`: (the map, u-range).
-    fn new(a: T, b: T, ends: Ends) -> (Self, (T, T)) {
-        match ends {
-            Ends::None => (Self::plain(), (a, b)),
-            _ => (
-                Self {
-                    lo: a,
-                    len: b - a,
-                    ends,
-                },
-                (T::ZERO, T::ONE),
-            ),
-        }
-    }
-    fn plain() -> Self {
-        Self {
-            lo: T::ZERO,
-            len: T::ONE,
-            ends: Ends::None,
-        }
-    }
-}
-
-/// ∫ g sin θ dθ on one row panel `seg` over u ∈ [a, b] by K15, halving (in u) where
-/// |K15 − G7| > `tol` (per channel): (value, estimate).
+/// ∫ₐᵇ g sin θ dθ on one row panel by K15, halving where |K15 − G7| > `tol` (per
+/// channel): (value, estimate).
 #[allow(clippy::too_many_arguments)]
 fn row_adapt<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     map: &M,
     f: &F,
     (cp, sp): (T, T),
-    seg: Seg<T>,
     a: T,
     b: T,
     tol: T,
@@ -511,11 +396,8 @@ fn row_adapt<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
 ) -> ([T; 2], [T; 2]) {
     let t = gk15_nodes(a, b);
     let mut y = [[T::ZERO; 2]; 15];
-    for (y, u) in y.iter_mut().zip(&t) {
-        let (w, dw) = seg.ends.w(*u);
-        let j = seg.len * dw;
-        let g = node(map, f, seg.lo + seg.len * w, cp, sp);
-        *y = [g[0] * j, g[1] * j];
+    for (y, t) in y.iter_mut().zip(&t) {
+        *y = node(map, f, *t, cp, sp);
     }
     work.evals = work.evals.saturating_add(15);
     let (v, e) = gk15_combine(&y, (b - a) * T::HALF);
@@ -528,40 +410,35 @@ fn row_adapt<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
         return (v, e);
     }
     let h = tol * T::HALF;
-    let (v0, e0) = row_adapt(map, f, (cp, sp), seg, a, m, h, depth + 1, work);
-    let (v1, e1) = row_adapt(map, f, (cp, sp), seg, m, b, h, depth + 1, work);
+    let (v0, e0) = row_adapt(map, f, (cp, sp), a, m, h, depth + 1, work);
+    let (v1, e1) = row_adapt(map, f, (cp, sp), m, b, h, depth + 1, work);
     (
         [v0[0] + v1[0], v0[1] + v1[1]],
         [e0[0] + e1[0], e0[1] + e1[1]],
     )
 }
 
-/// The lit intervals of the row (cos φ, sin φ): from the exact cuts of the integrand's row
-/// forms where it has several ([`CapIntegrand::row_forms`]: unmerged, with square-root
-/// edges at the cuts; the third value is then true), else of its row form
-/// ([`lit_from_forms`]), else by scanning ([`lit_intervals`]). A single form that finds
-/// nothing lit is checked by the scan: where the form degenerates (at μ = 1, α = 1 its
-/// quartic in tan(θ/2) loses its leading term and the only cut falls on the cap edge) the
-/// scan still finds the lit cap.
+/// The lit intervals of the row (cos φ, sin φ): the whole row for an uncut integrand
+/// ([`CapIntegrand::uncut`]), else from the exact cuts of its row form ([`lit_from_form`]),
+/// else by scanning ([`lit_intervals`]). A form that finds nothing lit is checked by the
+/// scan: where the form degenerates (at μ = 1, α = 1 its quartic in tan(θ/2) loses its
+/// leading term and the only cut falls on the cap edge) the scan still finds the lit cap.
 fn lit<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     map: &M,
     f: &F,
     cs: (T, T),
     work: &mut Work,
-) -> ([(T, T); MAX_PIECES], usize, bool) {
-    let mut forms = [[T::ZERO; 6]; MAX_FORMS];
-    if let Some(n) = f.row_forms(cs.0, cs.1, &mut forms) {
-        let (p, n) = lit_from_forms(map, f, cs, &forms[..n.min(MAX_FORMS)], false, work);
-        return (p, n, true);
+) -> ([(T, T); MAX_PIECES], usize) {
+    if f.uncut() {
+        return lit_from_form(map, f, cs, None, work);
     }
-    let (p, n) = match f.row_form(cs.0, cs.1) {
-        Some(k) => match lit_from_forms(map, f, cs, &[k], true, work) {
+    match f.row_form(cs.0, cs.1) {
+        Some(k) => match lit_from_form(map, f, cs, Some(k), work) {
             (_, 0) => lit_intervals(map, f, cs, work),
             found => found,
         },
         None => lit_intervals(map, f, cs, work),
-    };
-    (p, n, false)
+    }
 }
 
 /// One row at azimuth φ: its lit intervals, each by [`row_adapt`].
@@ -574,13 +451,10 @@ fn row<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
 ) -> ([T; 2], [T; 2]) {
     let (sp, cp) = phi.sin_cos();
     work.rows += 1;
-    let (pieces, n, edges) = lit(map, f, (cp, sp), work);
+    let (pieces, n) = lit(map, f, (cp, sp), work);
     let (mut v, mut e) = ([T::ZERO; 2], [T::ZERO; 2]);
-    let tmax = map.theta_max();
     for &(a, b) in &pieces[..n] {
-        // A cut inside (0, θ_max) of an integrand with row forms is a square-root edge.
-        let sqrt_ends = (edges && a > T::ZERO, edges && b < tmax);
-        let (pv, pe) = piece(map, f, (cp, sp), (a, b), sqrt_ends, tol, work);
+        let (pv, pe) = piece(map, f, (cp, sp), (a, b), tol, work);
         for c in 0..2 {
             v[c] += pv[c];
             e[c] += pe[c];
@@ -592,14 +466,11 @@ fn row<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
 /// One lit piece [a, b] of a row, on panels graded toward the cap edge (module docs):
 /// breaks at θ_max − θ_max/4ᵏ. Panel j gets tol · (length share + 1/K)/2 of the K panels
 /// (the shares sum to tol; the tiny panels at the edge are not held to a tiny tolerance).
-/// The end a (b) is taken through the substitution of [`Ends`] where `sqrt_ends.0` (`.1`).
-#[allow(clippy::too_many_arguments)]
 fn piece<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     map: &M,
     f: &F,
     cs: (T, T),
     (a, b): (T, T),
-    sqrt_ends: (bool, bool),
     tol: T,
     work: &mut Work,
 ) -> ([T; 2], [T; 2]) {
@@ -621,9 +492,7 @@ fn piece<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     let share = |len: T| tol * T::HALF * (len / (b - a) + even);
     let (mut v, mut e) = ([T::ZERO; 2], [T::ZERO; 2]);
     let mut panel = |lo: T, hi: T, work: &mut Work| {
-        let ends = Ends::of(sqrt_ends.0 && lo == a, sqrt_ends.1 && hi == b);
-        let (seg, (u0, u1)) = Seg::new(lo, hi, ends);
-        let (pv, pe) = row_adapt(map, f, cs, seg, u0, u1, share(hi - lo), 0, work);
+        let (pv, pe) = row_adapt(map, f, cs, lo, hi, share(hi - lo), 0, work);
         for c in 0..2 {
             v[c] += pv[c];
             e[c] += pe[c];
@@ -693,9 +562,9 @@ fn phi_adapt<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
 
 /// Azimuths sampled for changes of the number of lit pieces per row (`transitions`).
 pub const TRANSITION_SCAN: usize = 64;
-/// Transitions located per integral at most (with row forms; the array's size).
+/// Transitions located per integral at most (uncut integrands; the array's size).
 pub const MAX_TRANSITIONS: usize = 24;
-/// Transitions located per integral at most without row forms.
+/// Transitions located per integral at most otherwise.
 pub const SCAN_TRANSITIONS: usize = 8;
 
 /// The lit pieces of the row at azimuth φ: (cos φ, sin φ) and how many.
@@ -713,24 +582,17 @@ fn pieces_at<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
 /// of a row changes (a piece is born or two merge: I(φ) is not smooth there, e.g. grows as
 /// (φ − φ₀)^{3/2}), and π, in order; returns their count. The count is sampled at
 /// [`TRANSITION_SCAN`] + 1 azimuths and each change bisected to the last bit (two changes
-/// between neighbouring samples go unseen). For an integrand with row forms
-/// ([`CapIntegrand::row_forms`], whose counts are cheap and change more often) the scan is
-/// [`FORMS_TRANSITION_SCAN`] and every change between two samples whose counts differ is
-/// found: after each bisection the search goes on from the count just past the change
-/// until it reaches the later sample's (a piece born and one lost in the same step, 2 → 3
-/// → 1, is two breaks: missing one leaves a narrow bump of I(φ) inside a wide φ panel,
-/// where its 15 nodes may all miss it).
+/// between neighbouring samples go unseen). For an uncut integrand
+/// ([`CapIntegrand::uncut`]: a count is 0 or 1 and costs one support evaluation) the scan
+/// is the denser [`UNCUT_TRANSITION_SCAN`], with up to [`MAX_TRANSITIONS`] breaks.
 fn transitions<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     map: &M,
     f: &F,
     out: &mut [T; MAX_TRANSITIONS + 2],
     work: &mut Work,
 ) -> usize {
-    let chain = f
-        .row_forms(T::ONE, T::ZERO, &mut [[T::ZERO; 6]; MAX_FORMS])
-        .is_some();
-    let (scan, most) = if chain {
-        (FORMS_TRANSITION_SCAN, MAX_TRANSITIONS)
+    let (scan, most) = if f.uncut() {
+        (UNCUT_TRANSITION_SCAN, MAX_TRANSITIONS)
     } else {
         (TRANSITION_SCAN, SCAN_TRANSITIONS)
     };
@@ -740,27 +602,21 @@ fn transitions<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     for k in 1..=scan {
         let phi = step * T::from_f64(k as f64);
         let cur = pieces_at(map, f, phi, work);
-        let (mut lo, mut lo_n) = (phi - step, prev);
-        while lo_n != cur && n <= most {
-            let (mut a, mut b, mut b_n) = (lo, phi, cur);
+        if prev != cur && n <= most {
+            let (mut a, mut b) = (phi - step, phi);
             for _ in 0..MAX_ROOT_STEPS {
                 let m = (a + b) * T::HALF;
                 if !(m > a && m < b) {
                     break;
                 }
-                let c = pieces_at(map, f, m, work);
-                if c == lo_n {
+                if pieces_at(map, f, m, work) == prev {
                     a = m;
                 } else {
-                    (b, b_n) = (m, c);
+                    b = m;
                 }
             }
             out[n] = (a + b) * T::HALF;
             n += 1;
-            if !chain {
-                break;
-            }
-            (lo, lo_n) = (b, b_n);
         }
         prev = cur;
     }
@@ -768,8 +624,8 @@ fn transitions<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     n + 1
 }
 
-/// Azimuths sampled for transitions where the integrand has row forms (`transitions`).
-pub const FORMS_TRANSITION_SCAN: usize = 256;
+/// Azimuths sampled for transitions of an uncut integrand (`transitions`).
+pub const UNCUT_TRANSITION_SCAN: usize = 256;
 
 /// ∫ f dω_h = measure · ∫₀^π ∫₀^θc (f/p) sin θ dθ dφ for an f even in φ, to the absolute
 /// tolerance `tol` per channel (module docs: K15/G7 rows, K15/G7 panels in φ, both

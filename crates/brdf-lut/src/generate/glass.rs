@@ -30,16 +30,15 @@
 //! the horizon of the refracted ray and the total-internal-reflection edge, past which
 //! 1 − F = 0 (F → 1 as a square root there, in R and T). For η ≥ 1 no refracted ray is cut
 //! (c − √(η² − 1 + c²) ≤ 0: it always leaves below the surface): T's rows are whole
-//! (`CapIntegrand::row_forms` = 0 forms) and the graded breaks toward the cap edge stop at a
+//! (`CapIntegrand::uncut`) and the graded breaks toward the cap edge stop at a
 //! gap ~α for both channels (`cap_edge_grades`). For η < 1 (inside) both channels take the
 //! same path as before that speed-up: R's rows are cut at its horizon (the split sum's row
 //! form), T's lit intervals are found by scanning its support, both graded to the last bit;
 //! the TIR edge then lies inside R's pieces and ends T's, resolved by the adaptive panels
 //! (less surely for R: tests/glass_tables.rs keeps a failing point). Exact TIR and
-//! refracted-horizon cuts for T with square-root end substitutions (`converged::Ends`) were
-//! tried and left out: faster per node, but at one measured point 7.1e-7 off, past their
-//! estimate and 5× the scan's error.
-//! adaptive panels. E_avg integrates E in μ by adaptive K15/G7 panels,
+//! refracted-horizon cuts for T with square-root end substitutions were tried and left
+//! out: faster per node, but at one measured point 7.1e-7 off, past their estimate and 5×
+//! the scan's error (`Refracted::uncut`). E_avg integrates E in μ by adaptive K15/G7 panels,
 //! broken at μ_c = √(1 − η²) for η < 1 (where TIR sets in at normal incidence on the mean
 //! surface and E(μ) bends sharply for small α).
 //!
@@ -60,7 +59,7 @@ use brdf_core::microfacet::visible_cap::GgxVisibleCap;
 use brdf_core::microfacet::{Distribution as _, TrowbridgeReitz};
 use brdf_core::models::rough_dielectric::{refract, ALPHA_FLOOR};
 use brdf_core::quadrature::kronrod::{gk15_combine, gk15_nodes};
-use brdf_core::split_sum::converged::{integrate_cap, CapIntegrand, GgxSplitSum, MAX_FORMS};
+use brdf_core::split_sum::converged::{integrate_cap, CapIntegrand, GgxSplitSum};
 use std::format;
 
 /// Tolerance of `lut verify`'s E_avg reference: 10× below the generator's [`TOL`].
@@ -102,7 +101,7 @@ impl CapIntegrand<f64> for Reflected {
     fn row_form(&self, cp: f64, sp: f64) -> Option<[f64; 6]> {
         self.form.row_form(cp, sp)
     }
-    // No row forms: the single row form (the horizon). Passing the TIR cone as a second
+    // Only the horizon is cut. Cutting the TIR cone too, as a second quadratic
     // form (a square-root kink of F for η < 1) was tried and left out: at (μ, α, η) =
     // (0.2, 1, 0.34) the φ integral of the unmerged pieces did not converge (open).
     /// η ≥ 1: `cap_edge_grades`; η < 1 the default (to the last bit): with the TIR kink
@@ -163,15 +162,15 @@ impl CapIntegrand<f64> for Refracted {
             None => -1.0,
         }
     }
-    /// η ≥ 1: no cut (the support is positive on the whole visible cap): `Some(0)`, one
-    /// unmerged piece per row and chained φ transitions. η < 1: `None`, the scan of the
-    /// support (`converged::lit_intervals`) with the full edge grading, as before the row
-    /// forms: the TIR edge and the refracted horizon as exact cuts with square-root ends
-    /// (`Forms` in commit 051fef9) were measured 7.1e-7 off at (μ, r, η) =
-    /// (0.661, 0.659, 0.690) with an estimate of 4.2e-7, where the scan is 1.4e-7 off
-    /// (brute-force midpoint rule, 8000²).
-    fn row_forms(&self, _cp: f64, _sp: f64, _out: &mut [[f64; 6]; MAX_FORMS]) -> Option<usize> {
-        (!(self.eta < 1.0)).then_some(0)
+    /// η ≥ 1: uncut (the support is positive on the whole visible cap): one piece per row
+    /// and a denser φ transition scan. η < 1: the scan of the support
+    /// (`converged::lit_intervals`) with the full edge grading. The TIR edge and the
+    /// refracted horizon as exact cuts with square-root end substitutions (tried, not
+    /// kept) were measured 7.1e-7 off at (μ, r, η) = (0.661, 0.659, 0.690) with an
+    /// estimate of 4.2e-7, where the scan is 1.4e-7 off (brute-force midpoint rule, 8000²;
+    /// tests/glass_measure.rs).
+    fn uncut(&self) -> bool {
+        !(self.eta < 1.0)
     }
     /// η ≥ 1: `cap_edge_grades`; η < 1 the default (to the last bit).
     fn edge_grades(&self) -> u32 {
