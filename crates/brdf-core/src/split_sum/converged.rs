@@ -20,7 +20,10 @@
 //! t = tan(θ/2) (or tan((π − θ)/2) past π/2), whose sign changes are isolated by the
 //! derivative sequence and bisected (`row_cuts`); a generic integrand falls back to a
 //! scan of s graded toward the cap edge refined by the Illinois method (`lit_intervals`;
-//! it can miss a lit piece narrower than the scan spacing). On each lit piece the row
+//! it can miss a lit piece narrower than the scan spacing). An integrand whose support is
+//! positive on the whole visible cap says so ([`CapIntegrand::uncut`]): each row is then
+//! one piece [0, θ_max], and every change of the piece count between the φ scan's samples
+//! becomes a φ break (`transitions`). On each lit piece the row
 //! integral ∫ g sin θ dθ is taken on panels graded toward the cap edge (breaks at
 //! θ_max − θ_max/4ᵏ: for small α the lobe's tail lies in a ring of width ~α there) by the
 //! 15-point Gauss–Kronrod rule with its embedded 7-point Gauss–Legendre rule
@@ -61,6 +64,20 @@ pub trait CapIntegrand<T: Real> {
     /// scanning s (`lit_intervals`).
     fn row_form(&self, _cp: T, _sp: T) -> Option<[T; 6]> {
         None
+    }
+    /// Whether the support is positive wherever the map is defined (no cuts): each row is
+    /// then the one piece [0, θ_max] (if lit at its middle), and the φ transitions are
+    /// searched on a denser scan (`transitions`). `false` (the default): the rows are cut
+    /// by [`CapIntegrand::row_form`] or the scan.
+    fn uncut(&self) -> bool {
+        false
+    }
+    /// How many graded breaks θ_max − θ_max/4ᵏ a row gets toward the cap edge (`piece`):
+    /// [`MAX_GRADE`] by default (to the last bit). An integrand that knows the scale of its
+    /// edge ring (~α for the GGX map: deeper than that it is smooth on the panel's scale and
+    /// the last panel's own halvings resolve it) may stop sooner.
+    fn edge_grades(&self) -> u32 {
+        MAX_GRADE
     }
 }
 
@@ -318,21 +335,25 @@ fn row_cuts<T: Real>(k: [T; 6], tmax: T, out: &mut [T; 8]) -> usize {
     n
 }
 
-/// The lit intervals of the row (cos φ, sin φ) from the exact cuts of the row form k
-/// ([`row_cuts`]): the breakpoints 0, the cuts and θ_max, sorted; a gap between two is lit
-/// where s > 0 at its midpoint; adjacent lit gaps are merged.
+/// The lit intervals of the row (cos φ, sin φ) from the exact cuts of its row form `k`
+/// ([`row_cuts`]; `None`: no cuts): the breakpoints 0, the cuts and θ_max, sorted; a gap
+/// between two is lit where s > 0 at its midpoint, and adjacent lit gaps are merged (at
+/// most [`MAX_PIECES`]).
 fn lit_from_form<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     map: &M,
     f: &F,
     cs: (T, T),
-    k: [T; 6],
+    k: Option<[T; 6]>,
     work: &mut Work,
 ) -> ([(T, T); MAX_PIECES], usize) {
     let tmax = map.theta_max();
-    let mut cuts = [T::ZERO; 8];
-    let nc = row_cuts(k, tmax, &mut cuts);
     let mut br = [T::ZERO; 10];
-    br[1..=nc].copy_from_slice(&cuts[..nc]);
+    let mut nc = 0;
+    if let Some(k) = k {
+        let mut cuts = [T::ZERO; 8];
+        nc = row_cuts(k, tmax, &mut cuts);
+        br[1..1 + nc].copy_from_slice(&cuts[..nc]);
+    }
     br[nc + 1] = tmax;
     let br = &mut br[..nc + 2];
     br.sort_unstable_by(|a, b| a.partial_cmp(b).unwrap_or(core::cmp::Ordering::Equal));
@@ -357,11 +378,11 @@ fn lit_from_form<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     (out, n)
 }
 
-/// Lit intervals per row at most.
+/// Lit intervals per row at most (adjacent ones merged).
 pub const MAX_PIECES: usize = 4;
 
-/// ∫ₐᵇ g sin θ dθ on one row by K15, halving where |K15 − G7| > `tol` (per channel):
-/// (value, estimate).
+/// ∫ₐᵇ g sin θ dθ on one row panel by K15, halving where |K15 − G7| > `tol` (per
+/// channel): (value, estimate).
 #[allow(clippy::too_many_arguments)]
 fn row_adapt<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     map: &M,
@@ -397,19 +418,22 @@ fn row_adapt<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     )
 }
 
-/// The lit intervals of the row (cos φ, sin φ): from the exact cuts of the integrand's row
-/// form ([`lit_from_form`]) where it has one, else by scanning ([`lit_intervals`]). A form
-/// that finds nothing lit is checked by the scan: where the form degenerates (at μ = 1,
-/// α = 1 its quartic in tan(θ/2) loses its leading term and the only cut falls on the cap
-/// edge) the scan still finds the lit cap.
+/// The lit intervals of the row (cos φ, sin φ): the whole row for an uncut integrand
+/// ([`CapIntegrand::uncut`]), else from the exact cuts of its row form ([`lit_from_form`]),
+/// else by scanning ([`lit_intervals`]). A form that finds nothing lit is checked by the
+/// scan: where the form degenerates (at μ = 1, α = 1 its quartic in tan(θ/2) loses its
+/// leading term and the only cut falls on the cap edge) the scan still finds the lit cap.
 fn lit<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     map: &M,
     f: &F,
     cs: (T, T),
     work: &mut Work,
 ) -> ([(T, T); MAX_PIECES], usize) {
+    if f.uncut() {
+        return lit_from_form(map, f, cs, None, work);
+    }
     match f.row_form(cs.0, cs.1) {
-        Some(k) => match lit_from_form(map, f, cs, k, work) {
+        Some(k) => match lit_from_form(map, f, cs, Some(k), work) {
             (_, 0) => lit_intervals(map, f, cs, work),
             found => found,
         },
@@ -429,49 +453,66 @@ fn row<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     work.rows += 1;
     let (pieces, n) = lit(map, f, (cp, sp), work);
     let (mut v, mut e) = ([T::ZERO; 2], [T::ZERO; 2]);
-    let tmax = map.theta_max();
     for &(a, b) in &pieces[..n] {
-        // Panels graded toward the cap edge (module docs): breaks at θ_max − θ_max/4ᵏ.
-        // Panel j gets tol · (length share + 1/K)/2 of the K panels (the shares sum to tol;
-        // the tiny panels at the edge are not held to a tiny tolerance).
-        let mut panels = 1u32;
-        let mut gap = tmax;
-        for _ in 0..MAX_GRADE {
-            gap *= T::from_f64(1.0 / EDGE_GRADE);
-            let x = tmax - gap;
-            if x >= b {
-                break;
-            }
-            if x > a {
-                panels += 1;
-            }
+        let (pv, pe) = piece(map, f, (cp, sp), (a, b), tol, work);
+        for c in 0..2 {
+            v[c] += pv[c];
+            e[c] += pe[c];
         }
-        let even = T::ONE / T::from_f64(panels as f64);
-        let share = |len: T| tol * T::HALF * (len / (b - a) + even);
-        let mut lo = a;
-        let mut gap = tmax;
-        for _ in 0..MAX_GRADE {
-            gap *= T::from_f64(1.0 / EDGE_GRADE);
-            let hi = (tmax - gap).min(b);
-            if hi > lo {
-                let (pv, pe) = row_adapt(map, f, (cp, sp), lo, hi, share(hi - lo), 0, work);
-                for c in 0..2 {
-                    v[c] += pv[c];
-                    e[c] += pe[c];
-                }
-                lo = hi;
-            }
-            if lo >= b {
-                break;
-            }
+    }
+    (v, e)
+}
+
+/// One lit piece [a, b] of a row, on panels graded toward the cap edge (module docs):
+/// breaks at θ_max − θ_max/4ᵏ. Panel j gets tol · (length share + 1/K)/2 of the K panels
+/// (the shares sum to tol; the tiny panels at the edge are not held to a tiny tolerance).
+fn piece<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
+    map: &M,
+    f: &F,
+    cs: (T, T),
+    (a, b): (T, T),
+    tol: T,
+    work: &mut Work,
+) -> ([T; 2], [T; 2]) {
+    let tmax = map.theta_max();
+    let grades = f.edge_grades().min(MAX_GRADE);
+    let mut panels = 1u32;
+    let mut gap = tmax;
+    for _ in 0..grades {
+        gap *= T::from_f64(1.0 / EDGE_GRADE);
+        let x = tmax - gap;
+        if x >= b {
+            break;
         }
-        if b > lo {
-            let (pv, pe) = row_adapt(map, f, (cp, sp), lo, b, share(b - lo), 0, work);
-            for c in 0..2 {
-                v[c] += pv[c];
-                e[c] += pe[c];
-            }
+        if x > a {
+            panels += 1;
         }
+    }
+    let even = T::ONE / T::from_f64(panels as f64);
+    let share = |len: T| tol * T::HALF * (len / (b - a) + even);
+    let (mut v, mut e) = ([T::ZERO; 2], [T::ZERO; 2]);
+    let mut panel = |lo: T, hi: T, work: &mut Work| {
+        let (pv, pe) = row_adapt(map, f, cs, lo, hi, share(hi - lo), 0, work);
+        for c in 0..2 {
+            v[c] += pv[c];
+            e[c] += pe[c];
+        }
+    };
+    let mut lo = a;
+    let mut gap = tmax;
+    for _ in 0..grades {
+        gap *= T::from_f64(1.0 / EDGE_GRADE);
+        let hi = (tmax - gap).min(b);
+        if hi > lo {
+            panel(lo, hi, work);
+            lo = hi;
+        }
+        if lo >= b {
+            break;
+        }
+    }
+    if b > lo {
+        panel(lo, b, work);
     }
     (v, e)
 }
@@ -521,8 +562,10 @@ fn phi_adapt<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
 
 /// Azimuths sampled for changes of the number of lit pieces per row (`transitions`).
 pub const TRANSITION_SCAN: usize = 64;
-/// Transitions located per integral at most.
-pub const MAX_TRANSITIONS: usize = 8;
+/// Transitions located per integral at most (uncut integrands; the array's size).
+pub const MAX_TRANSITIONS: usize = 24;
+/// Transitions located per integral at most otherwise.
+pub const SCAN_TRANSITIONS: usize = 8;
 
 /// The lit pieces of the row at azimuth φ: (cos φ, sin φ) and how many.
 fn pieces_at<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
@@ -539,20 +582,27 @@ fn pieces_at<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
 /// of a row changes (a piece is born or two merge: I(φ) is not smooth there, e.g. grows as
 /// (φ − φ₀)^{3/2}), and π, in order; returns their count. The count is sampled at
 /// [`TRANSITION_SCAN`] + 1 azimuths and each change bisected to the last bit (two changes
-/// between neighbouring samples go unseen).
+/// between neighbouring samples go unseen). For an uncut integrand
+/// ([`CapIntegrand::uncut`]: a count is 0 or 1 and costs one support evaluation) the scan
+/// is the denser [`UNCUT_TRANSITION_SCAN`], with up to [`MAX_TRANSITIONS`] breaks.
 fn transitions<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     map: &M,
     f: &F,
     out: &mut [T; MAX_TRANSITIONS + 2],
     work: &mut Work,
 ) -> usize {
-    let step = T::PI / T::from_f64(TRANSITION_SCAN as f64);
+    let (scan, most) = if f.uncut() {
+        (UNCUT_TRANSITION_SCAN, MAX_TRANSITIONS)
+    } else {
+        (TRANSITION_SCAN, SCAN_TRANSITIONS)
+    };
+    let step = T::PI / T::from_f64(scan as f64);
     let mut n = 1;
     let mut prev = pieces_at(map, f, T::ZERO, work);
-    for k in 1..=TRANSITION_SCAN {
+    for k in 1..=scan {
         let phi = step * T::from_f64(k as f64);
         let cur = pieces_at(map, f, phi, work);
-        if cur != prev && n <= MAX_TRANSITIONS {
+        if prev != cur && n <= most {
             let (mut a, mut b) = (phi - step, phi);
             for _ in 0..MAX_ROOT_STEPS {
                 let m = (a + b) * T::HALF;
@@ -573,6 +623,9 @@ fn transitions<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     out[n] = T::PI;
     n + 1
 }
+
+/// Azimuths sampled for transitions of an uncut integrand (`transitions`).
+pub const UNCUT_TRANSITION_SCAN: usize = 256;
 
 /// ∫ f dω_h = measure · ∫₀^π ∫₀^θc (f/p) sin θ dθ dφ for an f even in φ, to the absolute
 /// tolerance `tol` per channel (module docs: K15/G7 rows, K15/G7 panels in φ, both

@@ -1,0 +1,127 @@
+//! Measurements (ignored, run with `--release --ignored --nocapture`): the rough-glass
+//! albedo `glass_e` at the generator's tolerance and at a 100× tighter one at seeded random
+//! points (`measure`: GLASS_N points per side, μ log-uniform in [cos 89°, 1], r uniform,
+//! α = r², η uniform in [1/3, 1] and [1, 3]; or the one point GLASS_P = "μ,r,η"), printed
+//! for comparison across branches; and an independent brute-force value (`brute`, P = "μ,r,η").
+#![cfg(feature = "generate")]
+
+use brdf_lut::generate::glass::glass_e;
+use brdf_lut::generate::INTEGRATION_TOL;
+
+struct Lcg(u64);
+impl Lcg {
+    fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+#[test]
+#[ignore = "a measurement"]
+fn measure_random_points() {
+    let n: usize = std::env::var("GLASS_N")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(100);
+    let mut g = Lcg(0x5eed_61a5);
+    let mu_lo = 89f64.to_radians().cos();
+    let mut pts = vec![
+        (0.0314, 0.684, 0.349),
+        (0.0314, 0.684f64.sqrt(), 0.349),
+        (
+            0.718_750_701_722_704_4,
+            0.390_912_995_894_539_43,
+            0.629_576_074_131_773,
+        ),
+        (
+            0.605_288_935_154_154_2,
+            0.948_475_569_600_138_7,
+            0.464_067_523_485_068,
+        ),
+    ];
+    for side in 0..2 {
+        for _ in 0..n {
+            let mu = mu_lo * (1.0 / mu_lo).powf(g.next());
+            let r = g.next();
+            let eta = if side == 0 {
+                1.0 / 3.0 + g.next() * (2.0 / 3.0)
+            } else {
+                1.0 + 2.0 * g.next()
+            };
+            pts.push((mu, r, eta));
+        }
+    }
+    if let Ok(p) = std::env::var("GLASS_P") {
+        let v: Vec<f64> = p.split(',').map(|x| x.parse().unwrap()).collect();
+        pts = vec![(v[0], v[1], v[2])];
+    }
+    for (mu, r, eta) in pts {
+        let t0 = std::time::Instant::now();
+        let (v, w) = glass_e(mu, r * r, eta, INTEGRATION_TOL);
+        let dt = t0.elapsed().as_secs_f64();
+        let (rf, wr) = glass_e(mu, r * r, eta, INTEGRATION_TOL / 100.0);
+        println!(
+            "P {mu:.17e} {r:.17e} {eta:.17e} {:.17e} {:.17e} {:.3e} {} {:.4e} {:.17e} {:.17e} {:.3e}",
+            v[0], v[1], w.error, w.evals, dt, rf[0], rf[1], wr.error
+        );
+    }
+}
+/// The midpoint rule on n × n grids (n = 1000 … 8000) in the cap's (θ, φ), the integrands
+/// written directly from F, G1 and the refraction: no cuts, no adaptivity. Its error falls
+/// as O(1/n²) away from the integrands' edges and O(n^-1.5) across them; the spread of the
+/// last values shows it.
+#[test]
+#[ignore = "a measurement"]
+fn brute() {
+    use brdf_core::fresnel::f_dielectric;
+    use brdf_core::geometry::Vec3;
+    use brdf_core::microfacet::visible_cap::{GgxVisibleCap, VisibleNormalMap};
+    use brdf_core::microfacet::{Distribution as _, TrowbridgeReitz};
+    use brdf_core::models::rough_dielectric::refract;
+    let v: Vec<f64> = std::env::var("P")
+        .unwrap()
+        .split(',')
+        .map(|x| x.parse().unwrap())
+        .collect();
+    let (mu, r, eta) = (v[0], v[1], v[2]);
+    let alpha = r * r;
+    let dist = TrowbridgeReitz::isotropic(alpha).unwrap();
+    let map = GgxVisibleCap::new(alpha, mu);
+    let sv = ((1.0 - mu) * (1.0 + mu)).sqrt();
+    let wo = Vec3::new(sv, 0.0, mu);
+    for n in [1000usize, 2000, 4000, 8000] {
+        let tm = map.theta_max();
+        let (dt, dp) = (tm / n as f64, std::f64::consts::PI / n as f64);
+        let mut sum = [0f64; 2];
+        for j in 0..n {
+            let p = (j as f64 + 0.5) * dp;
+            let (sp, cp) = p.sin_cos();
+            for i in 0..n {
+                let t = (i as f64 + 0.5) * dt;
+                let (st, ct) = t.sin_cos();
+                let Some(h) = map.normal(ct, st, cp, sp) else {
+                    continue;
+                };
+                let c = wo.dot(h);
+                if c.is_nan() || c <= 0.0 {
+                    continue;
+                }
+                let wi = wo.reflect(h);
+                if wi.z > 0.0 {
+                    sum[0] += f_dielectric(eta, c) * dist.g1(wi) * st;
+                }
+                if let Some(tt) = refract(wo, h, c, eta) {
+                    if tt.z < 0.0 {
+                        let up = Vec3::new(tt.x, tt.y, -tt.z);
+                        sum[1] += (1.0 - f_dielectric(eta, c)) * dist.g1(up) * st;
+                    }
+                }
+            }
+        }
+        let m = map.measure() * dt * dp;
+        println!("n {n}: R {:.10} T {:.10}", sum[0] * m, sum[1] * m);
+    }
+}
