@@ -39,6 +39,7 @@ mod kinds;
 mod measure;
 mod sheen;
 mod verify;
+mod work;
 
 pub use defaults::{default_set, Asset, DEFAULT_SET_TOOL};
 pub use describe::{check_limits, DescribeError, Description, Value};

@@ -14,9 +14,6 @@ use brdf_core::microfacet::{from_cos, Beckmann, Distribution};
 use brdf_core::models::{GeometricTerm, TorranceSparrow};
 use brdf_core::Dots;
 
-/// Largest array length the batch exports accept.
-pub const MAX_BATCH: u32 = 1 << 24;
-
 /// A G prepared for one (kind, σ): the modified G's normaliser is computed once.
 #[derive(Clone, Copy, Debug)]
 pub enum PreparedG {

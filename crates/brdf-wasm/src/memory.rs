@@ -67,10 +67,13 @@ pub(crate) fn usable<T>(p: *const T) -> bool {
     !p.is_null() && (p as usize).is_multiple_of(core::mem::align_of::<T>())
 }
 
-/// The buffer check of every batch export: `n` at most [`crate::g::MAX_BATCH`] and every
+/// Largest array length the batch exports accept.
+pub const MAX_BATCH: u32 = 1 << 24;
+
+/// The buffer check of every batch export: `n` at most [`MAX_BATCH`] and every
 /// array [`usable`]. A `false` is the export's `BAD_BUFFER`, checked before anything else.
 pub(crate) fn batch_ok(n: u32, arrays: &[*const f32]) -> bool {
-    n <= crate::g::MAX_BATCH && arrays.iter().all(|&p| usable(p))
+    n <= MAX_BATCH && arrays.iter().all(|&p| usable(p))
 }
 
 /// `out[k] = f(a[k], b[k])` for k < n, each element read before it is written (so `out`

@@ -51,7 +51,7 @@
 //!
 //! GGX only: Beckmann has no spherical-cap map in brdf-core yet (a typed error says so).
 
-use super::integrate::{Work, REFERENCE_TOL, TOL};
+use super::work::{Work, REFERENCE_TOL, TOL};
 use super::{Distribution, GenError, Kind, Spec};
 use brdf_core::fresnel::f_dielectric;
 use brdf_core::geometry::Vec3;

@@ -31,6 +31,7 @@
 //!   fixed-rule family at 4 × 32 outer and 2 × 32 inner nodes (G 32 points), whose estimate
 //!   is its difference from 3 × 32 outer, 3 × 16 inner nodes (G 24 points).
 
+pub use super::work::{Work, REFERENCE_TOL, TOL};
 use super::{passing_with, Distribution, Kind, Masking, Roughness, Spec};
 use brdf_core::geometry::Dots;
 use brdf_core::masking::{
@@ -46,23 +47,9 @@ use std::sync::OnceLock;
 use std::vec;
 use std::vec::Vec;
 
-/// Absolute tolerance per channel asked of the converged GGX rule.
-pub const TOL: f64 = 2e-6;
-/// Absolute tolerance per channel of `lut verify`'s GGX reference.
-pub const REFERENCE_TOL: f64 = 2e-8;
 /// The largest Beckmann width m the polar rule is used for (σ ≤ 1.41 for Torrance–Sparrow;
 /// the rule is tested to m = 2, tests/tests/split_sum_polar_beckmann.rs).
 pub const POLAR_MAX_WIDTH: f64 = 2.0;
-
-/// A node's integration: the largest error estimate over its channels and the integrand
-/// evaluations it took (0 where the rule does not count them: the polar E_avg).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Work {
-    /// Estimated |value − exact integral|, largest over the channels.
-    pub error: f64,
-    /// Integrand evaluations.
-    pub evals: u64,
-}
 
 /// What a node asks of the converged polar rule (GGX or Beckmann).
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -53,7 +53,7 @@
 //! s sin θh cos φh > μ/(2 cos θh) − μ cos θh), both levels adaptive Gauss–Kronrod. Other
 //! variables, another rule: it shares only the kernel (D and V) with the generator.
 
-use super::integrate::Work;
+use super::work::Work;
 use brdf_core::geometry::min_cos;
 use brdf_core::microfacet::charlie::{v_ashikhmin, Charlie};
 use brdf_core::models::SheenVisibility;
