@@ -90,6 +90,11 @@ fn errors_are_typed_and_name_the_field() {
     d.set_axis("sigma", "count", Value::Int(8)).unwrap();
     let e = d.spec().unwrap_err();
     assert!(e.to_string().starts_with("no axis `sigma`"), "{e}");
+    // An unknown axis named without fields (`[axes.theta]`, Python's `{"theta": {}}`).
+    let mut d = describe(&split_sum()).unwrap();
+    d.name_axis("theta");
+    let e = d.spec().unwrap_err();
+    assert!(e.to_string().starts_with("no axis `theta`"), "{e}");
 }
 
 /// A split-sum table described with texel-centre nodes on a linear μ axis: its nodes sit at

@@ -72,6 +72,7 @@ fn description(d: &Bound<'_, PyDict>) -> PyResult<Description> {
                     let fields = fields.cast_into::<PyDict>().map_err(|_| {
                         PyValueError::new_err(format!("spec axis `{name}` must be a dict"))
                     })?;
+                    desc.name_axis(&name);
                     for (f, x) in fields.iter() {
                         let f: String = f.extract()?;
                         desc.set_axis(&name, &f, value(&x)).map_err(spec_err)?;

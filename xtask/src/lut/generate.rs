@@ -186,6 +186,7 @@ fn read_config(path: Option<&Path>) -> Result<(Description, PathBuf)> {
                     let toml::Value::Table(fields) = axis else {
                         bail!("{}: `axes.{name}` must be a table", p.display());
                     };
+                    d.name_axis(&name);
                     for (f, v) in fields {
                         d.set_axis(&name, &f, value(v)).map_err(at)?;
                     }

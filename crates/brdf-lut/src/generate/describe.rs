@@ -456,6 +456,13 @@ impl Description {
         Ok(())
     }
 
+    /// Names axis `axis` (`[axes.AXIS]`), with or without fields: [`Description::spec`]
+    /// refuses a name the table does not have, so an empty table of an unknown axis is an
+    /// error too.
+    pub fn name_axis(&mut self, axis: &str) {
+        self.axes.entry(axis.to_string()).or_default();
+    }
+
     /// Sets field `key` of axis `axis` (`[axes.AXIS] KEY = v`); the axis name is checked
     /// against the table's by [`Description::spec`].
     pub fn set_axis(&mut self, axis: &str, key: &str, v: Value) -> Result<(), DescribeError> {
