@@ -308,7 +308,7 @@ pub fn g_smith_ggx_correlated<T: BatchReal>(
     out: &mut [T],
 ) -> Result<(), BatchError> {
     same_len(&[cos_i.len(), cos_o.len(), out.len()])?;
-    let a2 = |c: T| masking::smith::v_a2(c, c, alpha).0;
+    let a2 = |c: T| crate::microfacet::ggx::v_a2(c, c, alpha).0;
     map2_sqrt(
         cos_i,
         cos_o,
@@ -344,7 +344,7 @@ pub fn v_smith_ggx_correlated<T: BatchReal>(
         cos_o,
         out,
         |ci, co| {
-            let (ai, ao) = masking::smith::v_a2(ci, co, alpha);
+            let (ai, ao) = crate::microfacet::ggx::v_a2(ci, co, alpha);
             (lambda_radicand(ci, ai), lambda_radicand(co, ao))
         },
         |ci, co, r_i, r_o| v_finish(ci, co, r_i, r_o, alpha),

@@ -12,7 +12,7 @@
 //! * Visible normals: [`super::beckmann_visible`] (no closed-form inverse; a bracketed
 //!   Newton inversion of the visible-slope CDF).
 
-use super::{projected, stretched, Distribution, FRAC_1_SQRT_PI};
+use super::{from_cos, projected, stretched, Distribution, Isotropic, FRAC_1_SQRT_PI};
 use crate::geometry::{min_cos, Vec3};
 use crate::{ParamError, Real};
 
@@ -25,6 +25,36 @@ impl<T: Real> Beckmann<T> {
     /// From the paper's RMS slope σ: α = √2 σ (isotropic, checked).
     pub fn from_sigma(sigma: T) -> Result<Self, ParamError> {
         Self::isotropic(crate::roughness::beckmann_m_from_sigma(sigma))
+    }
+}
+
+/// Dot-product forms (paper eq 3 and Smith's Λ for Beckmann): D = exp(−tan²θh/m²)/(π m²
+/// cos⁴θh); with a = 1/(m tan θ), Λ = (erf(a) − 1)/2 + exp(−a²)/(2a√π), written with erfc
+/// to avoid the cancellation; G1 = 1/(1 + Λ).
+impl<T: Real> Isotropic<T> for Beckmann<T> {
+    #[inline]
+    fn d_cos(cos_h: T, m: T) -> T {
+        if cos_h.is_nan() || m.is_nan() {
+            return T::NAN;
+        }
+        if !(cos_h > T::ZERO) || !(m > T::ZERO) {
+            return T::ZERO;
+        }
+        Self::clamped(m, m).d(from_cos(cos_h))
+    }
+    #[inline]
+    fn lambda_cos(cos_t: T, m: T) -> T {
+        if cos_t.is_nan() || m.is_nan() {
+            return T::NAN;
+        }
+        if !(m > T::ZERO) {
+            return if cos_t > T::ZERO {
+                T::ZERO
+            } else {
+                T::INFINITY
+            };
+        }
+        Self::clamped(m, m).lambda(from_cos(cos_t))
     }
 }
 

@@ -13,7 +13,7 @@
 //!   the projected visible hemisphere (a disc point whose second coordinate is compressed
 //!   onto the visible half), lift it to the hemisphere and unstretch.
 
-use super::{clamp_alpha, projected, stretched, Distribution};
+use super::{clamp_alpha, from_cos, projected, stretched, Distribution, Isotropic};
 use crate::geometry::{min_cos, Vec3};
 use crate::Real;
 
@@ -37,6 +37,73 @@ impl<T: Real> TrowbridgeReitz<T> {
             lambda_radicand(wo.z, ao).sqrt(),
             ai + ao,
         )
+    }
+}
+
+impl<T: Real> TrowbridgeReitz<T> {
+    /// The height-correlated visibility in the dot products, V = G/(4 n·l n·v), closed
+    /// form finite at grazing: V = ½/(n·l √((n·v)² + α² sin²θv) + n·v √((n·l)² + α² sin²θl))
+    /// (Heitz 2014, eq 99, divided by 4 n·l n·v); 0 when either cosine is below
+    /// [`min_cos`]; α as in [`Isotropic`].
+    #[inline]
+    pub fn v_correlated_cos(cos_i: T, cos_o: T, alpha: T) -> T {
+        let (ai, ao) = v_a2(cos_i, cos_o, alpha);
+        v_finish(
+            cos_i,
+            cos_o,
+            lambda_radicand(cos_i, ai).sqrt(),
+            lambda_radicand(cos_o, ao).sqrt(),
+            alpha,
+        )
+    }
+}
+
+/// The a² of both directions for [`TrowbridgeReitz::v_correlated_cos`] (shared with the
+/// batch form): 0 for α ≤ 0 (and NaN α, which `v_finish` catches through α itself).
+#[inline]
+pub(crate) fn v_a2<T: Real>(cos_i: T, cos_o: T, alpha: T) -> (T, T) {
+    if alpha > T::ZERO {
+        (iso_a2(cos_i, alpha), iso_a2(cos_o, alpha))
+    } else {
+        (T::ZERO, T::ZERO)
+    }
+}
+
+/// Dot-product forms: D = α²/(π((n·h)²(α² − 1) + 1)²); Λ = (√(1 + α² tan²θ) − 1)/2
+/// evaluated as a²/(2c(c + √(c² + a²))), a² = α² sin²θ (no cancellation, no overflow at
+/// grazing); G1 = 2c/(c + √(c² + α² sin²θ)).
+impl<T: Real> Isotropic<T> for TrowbridgeReitz<T> {
+    #[inline]
+    fn d_cos(cos_h: T, alpha: T) -> T {
+        if cos_h.is_nan() || alpha.is_nan() {
+            return T::NAN;
+        }
+        if !(cos_h > T::ZERO) || !(alpha > T::ZERO) {
+            return T::ZERO;
+        }
+        Self::clamped(alpha, alpha).d(from_cos(cos_h))
+    }
+    #[inline]
+    fn lambda_cos(cos_t: T, alpha: T) -> T {
+        if alpha.is_nan() {
+            return T::NAN;
+        }
+        let a2 = if alpha > T::ZERO {
+            iso_a2(cos_t, alpha)
+        } else {
+            T::ZERO
+        };
+        lambda_finish(cos_t, a2, lambda_radicand(cos_t, a2).sqrt())
+    }
+    #[inline]
+    fn g1_cos(cos_t: T, alpha: T) -> T {
+        if cos_t.is_nan() || alpha.is_nan() {
+            return T::NAN;
+        }
+        if !(alpha > T::ZERO) {
+            return if cos_t >= min_cos() { T::ONE } else { T::ZERO };
+        }
+        Self::clamped(alpha, alpha).g1(from_cos(cos_t))
     }
 }
 

@@ -152,6 +152,36 @@ pub trait Distribution<T: Real>: Copy + core::fmt::Debug {
     }
 }
 
+/// The isotropic forms in the dot products a shader has: n·h, n·w and one width α (for
+/// Beckmann α = m = √2σ). They accept any α: NaN in, NaN out; α ≤ 0 is the smooth limit
+/// (D = 0, Λ = 0, G1 = 1 above the horizon); any other α is clamped into [ε², 1/ε²] as by
+/// `clamped`. A cosine below [`crate::geometry::min_cos`] is at or below the horizon
+/// (Λ = ∞, G1 = 0, G = 0).
+///
+/// Call as `TrowbridgeReitz::g_correlated_cos(n_l, n_v, alpha)` (the trait in scope).
+pub trait Isotropic<T: Real>: Distribution<T> {
+    /// D(h) in 1/sr at n·h = `cos_h` (the isotropic D of the type's module docs); 0 for
+    /// n·h ≤ 0 and for α ≤ 0.
+    fn d_cos(cos_h: T, alpha: T) -> T;
+    /// Smith's Λ at polar cosine `cos_t`.
+    fn lambda_cos(cos_t: T, alpha: T) -> T;
+    /// One-sided Smith masking G1 = 1/(1 + Λ).
+    #[inline]
+    fn g1_cos(cos_t: T, alpha: T) -> T {
+        T::ONE / (T::ONE + Self::lambda_cos(cos_t, alpha))
+    }
+    /// Separable Smith G = G1(θi) G1(θo).
+    #[inline]
+    fn g_separable_cos(cos_i: T, cos_o: T, alpha: T) -> T {
+        Self::g1_cos(cos_i, alpha) * Self::g1_cos(cos_o, alpha)
+    }
+    /// Height-correlated Smith G = 1/(1 + Λ(θi) + Λ(θo)).
+    #[inline]
+    fn g_correlated_cos(cos_i: T, cos_o: T, alpha: T) -> T {
+        T::ONE / (T::ONE + Self::lambda_cos(cos_i, alpha) + Self::lambda_cos(cos_o, alpha))
+    }
+}
+
 /// Clamps a width into [ε², 1/ε²] (module docs); NaN stays NaN.
 #[inline]
 pub(crate) fn clamp_alpha<T: Real>(a: T) -> T {
