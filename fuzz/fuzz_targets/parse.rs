@@ -352,6 +352,16 @@ fn check(data: &[u8]) {
         }
         assert!(v.sample1(f32::NAN)[0].is_nan());
     }
+    g_table(data, v);
+    g_table3(data, v);
+    dfg_table(v);
+    albedo_table(v);
+    average_albedo_table(v);
+}
+
+/// The 2-D passing-factor table: G ∈ [0, 1] or NaN, batch == scalar bits, `g_dots` in
+/// range, and its own layout re-reads it.
+fn g_table(data: &[u8], v: LutView<'_>) {
     if let Ok(t) = GTable::from_view(v) {
         for &a in &PTS {
             for &b in &PTS {
@@ -374,6 +384,10 @@ fn check(data: &[u8]) {
         let r = GTable::with_layout(data, t.layout()).expect("own layout");
         same_bits(&[r.g(0.3, -0.2)], |_| t.g(0.3, -0.2), "GTable::with_layout");
     }
+}
+
+/// The passing-factor table over σ: as for [`g_table`], with σ NaN and out of range.
+fn g_table3(data: &[u8], v: LutView<'_>) {
     if let Ok(t) = GTable3::from_view(v) {
         for &a in &PTS {
             for &b in &PTS {
@@ -397,6 +411,10 @@ fn check(data: &[u8]) {
             "GTable3::with_layout",
         );
     }
+}
+
+/// The split-sum table: finite (A, B), NaN in NaN out, batch == scalar bits.
+fn dfg_table(v: LutView<'_>) {
     if let Ok(t) = DfgTable::from_view(v) {
         for &a in &PTS {
             let (x, y) = t.ab(a, a);
@@ -409,6 +427,10 @@ fn check(data: &[u8]) {
         same_bits(&a, |k| t.ab(m[k], r[k]).0, "DfgTable::ab_batch A");
         same_bits(&b, |k| t.ab(m[k], r[k]).1, "DfgTable::ab_batch B");
     }
+}
+
+/// The directional-albedo table: finite E, batch == scalar bits.
+fn albedo_table(v: LutView<'_>) {
     if let Ok(t) = AlbedoTable::from_view(v) {
         for &a in &PTS {
             assert!(t.e(a, 1.0 - a).is_finite());
@@ -418,6 +440,10 @@ fn check(data: &[u8]) {
         assert_eq!(t.e_batch(&m, &r, &mut out), B);
         same_bits(&out, |k| t.e(m[k], r[k]), "AlbedoTable::e_batch");
     }
+}
+
+/// The average-albedo table: finite E_avg, batch == scalar bits.
+fn average_albedo_table(v: LutView<'_>) {
     if let Ok(t) = AverageAlbedoTable::from_view(v) {
         for &a in &PTS {
             assert!(t.e_avg(a).is_finite());
