@@ -7,6 +7,9 @@
 //! Built and checked against the host by `cargo xtask firmware [--micromath]`.
 #![no_std]
 #![no_main]
+#![deny(unsafe_op_in_unsafe_fn)]
+#![deny(clippy::undocumented_unsafe_blocks)]
+#![deny(clippy::missing_safety_doc)]
 
 mod report;
 mod stack;
@@ -298,6 +301,13 @@ fn main() -> ! {
     loop {}
 }
 
+/// Reports the faulting program counter on the semihosting console and exits with failure.
+///
+/// # Safety
+///
+/// Called only by the Cortex-M runtime as the HardFault handler, with `ef` the stacked
+/// exception frame (`cortex-m-rt` requires the `unsafe` signature); it reads `ef` and never
+/// returns.
 #[exception]
 unsafe fn HardFault(ef: &ExceptionFrame) -> ! {
     hprintln!("HARDFAULT pc={:#010x}", ef.pc());
