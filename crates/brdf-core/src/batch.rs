@@ -25,6 +25,7 @@
 use crate::geometry::{Dots, Vec3};
 use crate::masking::{self, ModifiedG};
 use crate::microfacet::ggx::{lambda_finish, lambda_radicand, v_finish};
+use crate::microfacet::{Beckmann, Isotropic, TrowbridgeReitz};
 use crate::models::{Brdf, TorranceSparrow};
 use crate::quadrature::Rule;
 use crate::Real;
@@ -293,14 +294,14 @@ pub fn g_smith_beckmann_correlated<T: Real>(
     out: &mut [T],
 ) -> Result<(), BatchError> {
     map2(cos_i, cos_o, out, |ci, co| {
-        masking::g_smith_beckmann_correlated(ci, co, m)
+        Beckmann::g_correlated_cos(ci, co, m)
     })
 }
 
 /// Height-correlated Smith–GGX G = 1/(1 + Λ(θi) + Λ(θo)), Λ = (√(1 + α² tan²θ) − 1)/2,
 /// from the cosines n·wi and n·wo: the scalar kernel's own pieces
 /// ([`crate::microfacet::TrowbridgeReitz`]'s Λ split around its square root), so every value
-/// equals [`masking::g_smith_ggx_correlated`] bit for bit.
+/// equals [`TrowbridgeReitz::g_correlated_cos`] bit for bit.
 pub fn g_smith_ggx_correlated<T: BatchReal>(
     cos_i: &[T],
     cos_o: &[T],
@@ -324,13 +325,13 @@ pub fn g_smith_ggx_correlated<T: BatchReal>(
                 g
             }
         },
-        |ci, co| masking::g_smith_ggx_correlated(ci, co, alpha),
+        |ci, co| TrowbridgeReitz::g_correlated_cos(ci, co, alpha),
     );
     Ok(())
 }
 
 /// Height-correlated Smith–GGX visibility V = G/(4 cos θi cos θo) in its grazing-safe
-/// closed form ([`masking::v_smith_ggx_correlated`], docs/conventions.md §8), in 1 (unitless),
+/// closed form ([`TrowbridgeReitz::v_correlated_cos`], docs/conventions.md §8), in 1 (unitless),
 /// from the scalar kernel's own pieces.
 pub fn v_smith_ggx_correlated<T: BatchReal>(
     cos_i: &[T],
@@ -348,7 +349,7 @@ pub fn v_smith_ggx_correlated<T: BatchReal>(
             (lambda_radicand(ci, ai), lambda_radicand(co, ao))
         },
         |ci, co, r_i, r_o| v_finish(ci, co, r_i, r_o, alpha),
-        |ci, co| masking::v_smith_ggx_correlated(ci, co, alpha),
+        |ci, co| TrowbridgeReitz::v_correlated_cos(ci, co, alpha),
     );
     Ok(())
 }

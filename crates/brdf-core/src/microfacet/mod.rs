@@ -22,10 +22,10 @@
 //!
 //! Parameter ranges: the checked constructors accept α ∈ [[`ALPHA_MIN`], [`ALPHA_MAX`]]
 //! (per axis). [`Beckmann::clamped`] / [`TrowbridgeReitz::clamped`] (and the dot-product
-//! functions of [`crate::distribution`] and [`crate::masking`] built on them) accept any α
-//! and clamp it into [ε², 1/ε²] (ε the type's machine epsilon: 1.4e-14 … 7.0e13 in `f32`,
-//! 4.9e-32 … 2.0e31 in `f64`), where every quantity is finite; α → 0 and α → ∞ are limits
-//! the type cannot represent (D tends to a Dirac delta, or G1 to 0).
+//! forms of [`Isotropic`] built on them) accept any α and clamp it into [ε², 1/ε²] (ε the
+//! type's machine epsilon: 1.4e-14 … 7.0e13 in `f32`, 4.9e-32 … 2.0e31 in `f64`), where
+//! every quantity is finite; α → 0 and α → ∞ are limits the type cannot represent (D tends
+//! to a Dirac delta, or G1 to 0).
 
 /// Defines an anisotropic distribution with widths (αx, αy) and its constructors: checked
 /// (αx, αy ∈ [1e-4, 1e4], [`ALPHA_MIN`], [`ALPHA_MAX`]), isotropic, and clamped.
