@@ -19,12 +19,10 @@
 
 use super::rgb::check_rgb;
 use super::{above, half_vector, lobe_prob, Brdf, BrdfFlags, BrdfSample, LobeHint, Rgb};
-use super::{mixture_pdf, mixture_sample};
 use crate::error::check_range;
 use crate::fresnel::f_schlick;
 use crate::geometry::Vec3;
 use crate::sampling::half_vector::as_exponent;
-use crate::sampling::{ashikhmin_shirley_pdf_h, sample_ashikhmin_shirley_h};
 use crate::{ParamError, Real};
 
 /// Ashikhmin–Shirley model (see the module docs).
@@ -88,16 +86,7 @@ impl<T: Real> Brdf<T> for AshikhminShirley<T> {
     fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
         self.specular(wi, wo).add(self.diffuse(wi, wo))
     }
-    fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
-        mixture_pdf(self.p_lobe(), wo, wi, |h| {
-            ashikhmin_shirley_pdf_h(self.nu, self.nv, h)
-        })
-    }
-    fn sample(&self, wo: Vec3<T>, u: [T; 2]) -> Option<BrdfSample<T>> {
-        mixture_sample(self, self.p_lobe(), wo, u, |v| {
-            sample_ashikhmin_shirley_h(self.nu, self.nv, v)
-        })
-    }
+    ashikhmin_shirley_sampling!(nu, nv);
     fn lobe_hint(&self) -> LobeHint<T> {
         LobeHint::aniso(
             (T::TWO / (self.nu + T::TWO)).sqrt(),
