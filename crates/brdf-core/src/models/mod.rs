@@ -233,6 +233,21 @@ pub(crate) fn above<T: Real>(wi: Vec3<T>, wo: Vec3<T>) -> bool {
     wi.z >= m && wo.z >= m
 }
 
+/// f(wi, wo) under [`Brdf::eval`]'s horizon rule: `f()` when both directions are above the
+/// horizon ([`above`]), else 0 (every channel).
+#[inline]
+pub(crate) fn above_or_zero<T: Real>(
+    wi: Vec3<T>,
+    wo: Vec3<T>,
+    f: impl FnOnce() -> Rgb<T>,
+) -> Rgb<T> {
+    if above(wi, wo) {
+        f()
+    } else {
+        Rgb::zero()
+    }
+}
+
 /// `true` when `w` is finite and above the horizon (cosine at least
 /// [`crate::geometry::min_cos`]).
 #[inline]

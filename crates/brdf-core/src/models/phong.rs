@@ -18,7 +18,7 @@
 
 use super::rgb::check_rgb;
 use super::{
-    above, finish, half_vector, lobe_prob, mirror, pick, u_ok, valid_wo, Brdf, BrdfFlags,
+    above_or_zero, finish, half_vector, lobe_prob, mirror, pick, u_ok, valid_wo, Brdf, BrdfFlags,
     BrdfSample, LobeHint, Rgb,
 };
 use crate::error::check_range;
@@ -52,10 +52,7 @@ fn kd_plus_lobe<T: Real>(
     wo: Vec3<T>,
     lobe: impl FnOnce() -> T,
 ) -> Rgb<T> {
-    if !above(wi, wo) {
-        return Rgb::zero();
-    }
-    kd.scale(T::ONE / T::PI).add(ks.scale(lobe()))
+    above_or_zero(wi, wo, || kd.scale(T::ONE / T::PI).add(ks.scale(lobe())))
 }
 
 /// Energy-normalised Phong BRDF (see the module docs).

@@ -13,7 +13,7 @@
 //! mean ρ_s/(mean ρ_s + mean ρ_d), else the cosine-weighted hemisphere.
 
 use super::rgb::check_rgb;
-use super::{above, half_vector, lobe_prob, Brdf, BrdfFlags, BrdfSample, LobeHint, Rgb};
+use super::{above_or_zero, half_vector, lobe_prob, Brdf, BrdfFlags, BrdfSample, LobeHint, Rgb};
 use super::{mixture_pdf, mixture_sample};
 use crate::error::check_range;
 use crate::geometry::Vec3;
@@ -50,25 +50,30 @@ impl<T: Real> Brdf<T> for Ward<T> {
         BrdfFlags::new(true, false, false)
     }
     fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
-        if !above(wi, wo) {
-            return Rgb::zero();
-        }
-        let spec = match half_vector(wi, wo) {
-            Some(h) if h.z > T::ZERO => {
-                let c2 = (h.z * h.z).min(T::ONE);
-                let e = (h.x * h.x / (self.ax * self.ax) + h.y * h.y / (self.ay * self.ay)) / c2;
-                let g = (-e).exp();
-                if g > T::ZERO {
-                    // √cos θi √cos θo: both cosines are ≥ min_cos, whose square root is a
-                    // normal number; the product of the roots cannot underflow to 0.
-                    g / (T::from_f64(4.0) * T::PI * self.ax * self.ay * wi.z.sqrt() * wo.z.sqrt())
-                } else {
-                    T::ZERO
+        above_or_zero(wi, wo, || {
+            let spec = match half_vector(wi, wo) {
+                Some(h) if h.z > T::ZERO => {
+                    let c2 = (h.z * h.z).min(T::ONE);
+                    let e =
+                        (h.x * h.x / (self.ax * self.ax) + h.y * h.y / (self.ay * self.ay)) / c2;
+                    let g = (-e).exp();
+                    if g > T::ZERO {
+                        // √cos θi √cos θo: both cosines are ≥ min_cos, whose square root is a
+                        // normal number; the product of the roots cannot underflow to 0.
+                        g / (T::from_f64(4.0)
+                            * T::PI
+                            * self.ax
+                            * self.ay
+                            * wi.z.sqrt()
+                            * wo.z.sqrt())
+                    } else {
+                        T::ZERO
+                    }
                 }
-            }
-            _ => T::ZERO,
-        };
-        self.rd.scale(T::ONE / T::PI).add(self.rs.scale(spec))
+                _ => T::ZERO,
+            };
+            self.rd.scale(T::ONE / T::PI).add(self.rs.scale(spec))
+        })
     }
     fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
         let dist = Beckmann::clamped(self.ax, self.ay);
