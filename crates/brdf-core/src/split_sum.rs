@@ -90,7 +90,7 @@ impl<T: Real> Ndf<T> {
             }
         }
     }
-    /// D(h) in 1/sr (for checks).
+    /// D(h) in 1/sr at n·h = `cos_h`: the distribution's [`Isotropic::d_cos`].
     pub fn d(self, cos_h: T) -> T {
         match self {
             Ndf::Ggx(a) => TrowbridgeReitz::d_cos(cos_h, a),
