@@ -43,6 +43,26 @@ impl<T: Real> Ward<T> {
     fn p_lobe(&self) -> T {
         lobe_prob(self.rs.mean(), self.rd.mean())
     }
+    /// The specular lobe of the module docs for directions above the horizon,
+    /// exp(−((h_x/αx)² + (h_y/αy)²)/h_z²)/(4π αx αy √(cos θi cos θo)); 0 for a half vector
+    /// at or below the horizon.
+    fn spec(&self, wi: Vec3<T>, wo: Vec3<T>) -> T {
+        match half_vector(wi, wo) {
+            Some(h) if h.z > T::ZERO => {
+                let c2 = (h.z * h.z).min(T::ONE);
+                let e = (h.x * h.x / (self.ax * self.ax) + h.y * h.y / (self.ay * self.ay)) / c2;
+                let g = (-e).exp();
+                if g > T::ZERO {
+                    // √cos θi √cos θo: both cosines are ≥ min_cos, whose square root is a
+                    // normal number; the product of the roots cannot underflow to 0.
+                    g / (T::from_f64(4.0) * T::PI * self.ax * self.ay * wi.z.sqrt() * wo.z.sqrt())
+                } else {
+                    T::ZERO
+                }
+            }
+            _ => T::ZERO,
+        }
+    }
 }
 
 impl<T: Real> Brdf<T> for Ward<T> {
@@ -51,28 +71,9 @@ impl<T: Real> Brdf<T> for Ward<T> {
     }
     fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
         above_or_zero(wi, wo, || {
-            let spec = match half_vector(wi, wo) {
-                Some(h) if h.z > T::ZERO => {
-                    let c2 = (h.z * h.z).min(T::ONE);
-                    let e =
-                        (h.x * h.x / (self.ax * self.ax) + h.y * h.y / (self.ay * self.ay)) / c2;
-                    let g = (-e).exp();
-                    if g > T::ZERO {
-                        // √cos θi √cos θo: both cosines are ≥ min_cos, whose square root is a
-                        // normal number; the product of the roots cannot underflow to 0.
-                        g / (T::from_f64(4.0)
-                            * T::PI
-                            * self.ax
-                            * self.ay
-                            * wi.z.sqrt()
-                            * wo.z.sqrt())
-                    } else {
-                        T::ZERO
-                    }
-                }
-                _ => T::ZERO,
-            };
-            self.rd.scale(T::ONE / T::PI).add(self.rs.scale(spec))
+            self.rd
+                .scale(T::ONE / T::PI)
+                .add(self.rs.scale(self.spec(wi, wo)))
         })
     }
     fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
