@@ -24,7 +24,8 @@
 
 use crate::geometry::{Dots, Vec3};
 use crate::masking::{self, ModifiedG};
-use crate::microfacet::ggx::{lambda_finish, lambda_radicand, v_finish};
+use crate::microfacet::ggx::{lambda_finish, lambda_radicand, v_a2, v_finish};
+use crate::microfacet::{Beckmann, Isotropic, TrowbridgeReitz};
 use crate::models::{Brdf, TorranceSparrow};
 use crate::quadrature::Rule;
 use crate::Real;
@@ -123,6 +124,28 @@ fn map2_sqrt<T: BatchReal>(
     {
         *o = scalar(x, y);
     }
+}
+
+/// The Smith–GGX closed forms over cosine pairs, after the length check: [`map2_sqrt`] of
+/// the two Λ radicands R² = c² + a², a² = α²(1 − c)(1 + c) (0 for α ≤ 0; the scalar
+/// kernel's `v_a2` and `lambda_radicand`), then `post(cos_i, cos_o, R_i, R_o)`; the tail
+/// uses `scalar`.
+#[inline]
+fn map_ggx_roots<T: BatchReal>(
+    cos_i: &[T],
+    cos_o: &[T],
+    alpha: T,
+    out: &mut [T],
+    post: impl Fn(T, T, T, T) -> T,
+    scalar: impl Fn(T, T) -> T,
+) -> Result<(), BatchError> {
+    same_len(&[cos_i.len(), cos_o.len(), out.len()])?;
+    let pre = |ci, co| {
+        let (ai, ao) = v_a2(ci, co, alpha);
+        (lambda_radicand(ci, ai), lambda_radicand(co, ao))
+    };
+    map2_sqrt(cos_i, cos_o, out, pre, post, scalar);
+    Ok(())
 }
 
 /// `out[k] = f(d[k])` over dot-product pairs, after the length check.
@@ -293,27 +316,26 @@ pub fn g_smith_beckmann_correlated<T: Real>(
     out: &mut [T],
 ) -> Result<(), BatchError> {
     map2(cos_i, cos_o, out, |ci, co| {
-        masking::g_smith_beckmann_correlated(ci, co, m)
+        Beckmann::g_correlated_cos(ci, co, m)
     })
 }
 
 /// Height-correlated Smith–GGX G = 1/(1 + Λ(θi) + Λ(θo)), Λ = (√(1 + α² tan²θ) − 1)/2,
 /// from the cosines n·wi and n·wo: the scalar kernel's own pieces
 /// ([`crate::microfacet::TrowbridgeReitz`]'s Λ split around its square root), so every value
-/// equals [`masking::g_smith_ggx_correlated`] bit for bit.
+/// equals [`TrowbridgeReitz::g_correlated_cos`] bit for bit.
 pub fn g_smith_ggx_correlated<T: BatchReal>(
     cos_i: &[T],
     cos_o: &[T],
     alpha: T,
     out: &mut [T],
 ) -> Result<(), BatchError> {
-    same_len(&[cos_i.len(), cos_o.len(), out.len()])?;
-    let a2 = |c: T| crate::microfacet::ggx::v_a2(c, c, alpha).0;
-    map2_sqrt(
+    let a2 = |c: T| v_a2(c, c, alpha).0;
+    map_ggx_roots(
         cos_i,
         cos_o,
+        alpha,
         out,
-        |ci, co| (lambda_radicand(ci, a2(ci)), lambda_radicand(co, a2(co))),
         |ci, co, si, so| {
             let li = lambda_finish(ci, a2(ci), si);
             let lo = lambda_finish(co, a2(co), so);
@@ -324,13 +346,12 @@ pub fn g_smith_ggx_correlated<T: BatchReal>(
                 g
             }
         },
-        |ci, co| masking::g_smith_ggx_correlated(ci, co, alpha),
-    );
-    Ok(())
+        |ci, co| TrowbridgeReitz::g_correlated_cos(ci, co, alpha),
+    )
 }
 
 /// Height-correlated Smith–GGX visibility V = G/(4 cos θi cos θo) in its grazing-safe
-/// closed form ([`masking::v_smith_ggx_correlated`], docs/conventions.md §8), in 1 (unitless),
+/// closed form ([`TrowbridgeReitz::v_correlated_cos`], docs/conventions.md §8), in 1 (unitless),
 /// from the scalar kernel's own pieces.
 pub fn v_smith_ggx_correlated<T: BatchReal>(
     cos_i: &[T],
@@ -338,19 +359,14 @@ pub fn v_smith_ggx_correlated<T: BatchReal>(
     alpha: T,
     out: &mut [T],
 ) -> Result<(), BatchError> {
-    same_len(&[cos_i.len(), cos_o.len(), out.len()])?;
-    map2_sqrt(
+    map_ggx_roots(
         cos_i,
         cos_o,
+        alpha,
         out,
-        |ci, co| {
-            let (ai, ao) = crate::microfacet::ggx::v_a2(ci, co, alpha);
-            (lambda_radicand(ci, ai), lambda_radicand(co, ao))
-        },
         |ci, co, r_i, r_o| v_finish(ci, co, r_i, r_o, alpha),
-        |ci, co| masking::v_smith_ggx_correlated(ci, co, alpha),
-    );
-    Ok(())
+        |ci, co| TrowbridgeReitz::v_correlated_cos(ci, co, alpha),
+    )
 }
 
 /// The Torrance–Sparrow BRDF (paper eq 3, docs/conventions.md §5) from dot products, in 1/sr:

@@ -2,9 +2,10 @@
 //!
 //! * The paper's slope-angle density p(γ; σ) (Acta Phys. Sin. 64 184213, eqs 2 and 5) with
 //!   its 1-D normalisation C(σ) (docs/conventions.md §2).
-//! * The Beckmann normal distribution D used in the Torrance–Sparrow BRDF (eq 3,
-//!   docs/conventions.md §5), Beckmann roughness m = √2 σ.
-//! * The Trowbridge–Reitz (GGX) normal distribution.
+//!
+//! The normal distributions D themselves (Beckmann, the D of the Torrance–Sparrow BRDF, eq 3,
+//! docs/conventions.md §5, with m = √2 σ; Trowbridge–Reitz/GGX) are in
+//! [`crate::microfacet`]; in the dot products, [`crate::microfacet::Isotropic::d_cos`].
 //!
 //! Working variable. With u = tan γ and v = u/(√2 σ), p(γ) dγ ∝ √(1 + u²) e^{−v²} dv. The
 //! width of the integrand in v does not depend on σ, which is what lets a 10-point rule reach
@@ -12,7 +13,6 @@
 //! total; the same cut is used for the normaliser, so "everything passes" gives exactly 1.
 
 use crate::error::{check_range, ParamError};
-use crate::microfacet::{from_cos, Beckmann, Distribution, TrowbridgeReitz};
 use crate::quadrature::{DefaultRule, GaussLegendre, Rule};
 use crate::Real;
 use core::marker::PhantomData;
@@ -138,34 +138,4 @@ impl<T: Real, R: Rule> SlopeDistribution<T, R> {
             s / (c * self.sqrt2_sigma)
         }
     }
-}
-
-/// Beckmann normal distribution (paper eq 3): D(h) = exp(−tan²θh/m²) / (π m² cos⁴θh), with
-/// `cos_h` = n·h and m = α = √2σ, in 1/sr; the isotropic case of
-/// [`crate::microfacet::Beckmann`] (m clamped into its [ε², 1/ε²]). Returns 0 for n·h ≤ 0
-/// and for m ≤ 0; NaN for NaN.
-#[inline]
-pub fn d_beckmann<T: Real>(cos_h: T, m: T) -> T {
-    if cos_h.is_nan() || m.is_nan() {
-        return T::NAN;
-    }
-    if !(cos_h > T::ZERO) || !(m > T::ZERO) {
-        return T::ZERO;
-    }
-    Beckmann::clamped(m, m).d(from_cos(cos_h))
-}
-
-/// Trowbridge–Reitz (GGX) normal distribution D(h) = α² / (π ((n·h)²(α² − 1) + 1)²), in
-/// 1/sr; the isotropic case of [`crate::microfacet::TrowbridgeReitz`] (α clamped into its
-/// [ε², 1/ε²], so the result is finite for every α > 0). Returns 0 for n·h ≤ 0 and α ≤ 0;
-/// NaN for NaN.
-#[inline]
-pub fn d_ggx<T: Real>(cos_h: T, alpha: T) -> T {
-    if cos_h.is_nan() || alpha.is_nan() {
-        return T::NAN;
-    }
-    if !(cos_h > T::ZERO) || !(alpha > T::ZERO) {
-        return T::ZERO;
-    }
-    TrowbridgeReitz::clamped(alpha, alpha).d(from_cos(cos_h))
 }

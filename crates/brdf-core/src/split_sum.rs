@@ -27,9 +27,9 @@ pub mod converged;
 pub mod polar;
 pub mod rows;
 
-use crate::distribution::{d_beckmann, d_ggx};
 use crate::geometry::Dots;
-use crate::masking::{g_smith_beckmann_correlated, g_smith_ggx_correlated, ModifiedG};
+use crate::masking::ModifiedG;
+use crate::microfacet::{Beckmann, Isotropic, TrowbridgeReitz};
 use crate::quadrature::{GaussLegendre, Rule};
 use crate::roughness::{alpha_from_perceptual, beckmann_m_from_sigma};
 use crate::Real;
@@ -90,11 +90,11 @@ impl<T: Real> Ndf<T> {
             }
         }
     }
-    /// D(h) in 1/sr (for checks).
+    /// D(h) in 1/sr at n·h = `cos_h`: the distribution's [`Isotropic::d_cos`].
     pub fn d(self, cos_h: T) -> T {
         match self {
-            Ndf::Ggx(a) => d_ggx(cos_h, a),
-            Ndf::Beckmann(m) => d_beckmann(cos_h, m),
+            Ndf::Ggx(a) => TrowbridgeReitz::d_cos(cos_h, a),
+            Ndf::Beckmann(m) => Beckmann::d_cos(cos_h, m),
         }
     }
 }
@@ -270,7 +270,7 @@ pub fn dfg_ggx<T: Real, RO: Rule, RI: Rule>(mu: T, r: T) -> (T, T) {
         return mirror(mu);
     }
     split_sum::<T, RO, RI>(mu, Ndf::Ggx(alpha), |d| {
-        g_smith_ggx_correlated(d.n_i, d.n_o, alpha)
+        TrowbridgeReitz::g_correlated_cos(d.n_i, d.n_o, alpha)
     })
 }
 
@@ -285,7 +285,7 @@ pub fn dfg_beckmann<T: Real, RO: Rule, RI: Rule>(mu: T, m: T) -> (T, T) {
         return mirror(mu);
     }
     split_sum::<T, RO, RI>(mu, Ndf::Beckmann(m), |d| {
-        g_smith_beckmann_correlated(d.n_i, d.n_o, m)
+        Beckmann::g_correlated_cos(d.n_i, d.n_o, m)
     })
 }
 

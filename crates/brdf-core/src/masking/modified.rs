@@ -160,15 +160,9 @@ impl<T: Real, R: Rule> ModifiedG<T, R> {
         if T::EPSILON < T::from_f64(1e-10) {
             return self.passing_cs_f64(cos_t, sin_t, cos_a, sin_a);
         }
-        if sin_t == T::ZERO {
+        let Some((cos_t, s2, vc, vlo)) = self.passing_bounds(cos_t, sin_t) else {
             return T::ONE;
-        }
-        // θ ≤ π/2: a rounded cos θ < 0 (f32 π/2 exceeds π/2) would put v_lo below 0.
-        let cos_t = if cos_t < T::ZERO { T::ZERO } else { cos_t };
-        let s2 = self.dist.sqrt2_sigma();
-        let vc = T::from_f64(V_CUT);
-        // Fully passing bound (eqs 6–7): tan lo = cot θ.
-        let vlo = self.dist.v_of_tan(cos_t, sin_t);
+        };
         let (vhi, corr) = self.semi_correction(cos_t, sin_t, cos_a, sin_a, vlo, vc, s2);
         // √(1 + u²)·e^{−v²}, one pass.
         let q = R::integrate(T::ZERO, vhi, |v| {
@@ -184,13 +178,9 @@ impl<T: Real, R: Rule> ModifiedG<T, R> {
     /// ([`Rule::integrate_slope_weight`]).
     #[inline]
     fn passing_cs_f64(&self, cos_t: T, sin_t: T, cos_a: T, sin_a: T) -> T {
-        if sin_t == T::ZERO {
+        let Some((cos_t, s2, vc, vlo)) = self.passing_bounds(cos_t, sin_t) else {
             return T::ONE;
-        }
-        let cos_t = if cos_t < T::ZERO { T::ZERO } else { cos_t };
-        let s2 = self.dist.sqrt2_sigma();
-        let vc = T::from_f64(V_CUT);
-        let vlo = self.dist.v_of_tan(cos_t, sin_t);
+        };
         // lo beyond the cut: every neighbour passes, M = 1 exactly (NaN goes on).
         if vlo >= vc {
             return T::ONE;
@@ -204,6 +194,20 @@ impl<T: Real, R: Rule> ModifiedG<T, R> {
         }
         let q = R::integrate_slope_weight(vhi, s2 * s2);
         (T::HALF + (q - corr) * inv_2z).clamp(T::HALF, T::ONE)
+    }
+
+    /// The start shared by both precisions of [`ModifiedG::passing_cs`]: `None` for
+    /// sin θ = 0 (M = 1), else (cos θ clamped to ≥ 0, √2σ, [`V_CUT`], v_lo), with the fully
+    /// passing bound v_lo of eqs 6–7 (tan lo = cot θ).
+    #[inline]
+    fn passing_bounds(&self, cos_t: T, sin_t: T) -> Option<(T, T, T, T)> {
+        if sin_t == T::ZERO {
+            return None;
+        }
+        // θ ≤ π/2: a rounded cos θ < 0 (f32 π/2 exceeds π/2) would put v_lo below 0.
+        let cos_t = if cos_t < T::ZERO { T::ZERO } else { cos_t };
+        let vlo = self.dist.v_of_tan(cos_t, sin_t);
+        Some((cos_t, self.dist.sqrt2_sigma(), T::from_f64(V_CUT), vlo))
     }
 
     /// The semi-passing range's end v_hi (v_lo when the range is empty) and the correction K

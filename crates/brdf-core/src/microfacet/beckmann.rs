@@ -34,13 +34,7 @@ impl<T: Real> Beckmann<T> {
 impl<T: Real> Isotropic<T> for Beckmann<T> {
     #[inline]
     fn d_cos(cos_h: T, m: T) -> T {
-        if cos_h.is_nan() || m.is_nan() {
-            return T::NAN;
-        }
-        if !(cos_h > T::ZERO) || !(m > T::ZERO) {
-            return T::ZERO;
-        }
-        Self::clamped(m, m).d(from_cos(cos_h))
+        Self::d_iso(cos_h, m)
     }
     #[inline]
     fn lambda_cos(cos_t: T, m: T) -> T {

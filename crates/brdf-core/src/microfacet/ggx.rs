@@ -75,13 +75,7 @@ pub(crate) fn v_a2<T: Real>(cos_i: T, cos_o: T, alpha: T) -> (T, T) {
 impl<T: Real> Isotropic<T> for TrowbridgeReitz<T> {
     #[inline]
     fn d_cos(cos_h: T, alpha: T) -> T {
-        if cos_h.is_nan() || alpha.is_nan() {
-            return T::NAN;
-        }
-        if !(cos_h > T::ZERO) || !(alpha > T::ZERO) {
-            return T::ZERO;
-        }
-        Self::clamped(alpha, alpha).d(from_cos(cos_h))
+        Self::d_iso(cos_h, alpha)
     }
     #[inline]
     fn lambda_cos(cos_t: T, alpha: T) -> T {

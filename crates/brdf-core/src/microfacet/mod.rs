@@ -22,13 +22,14 @@
 //!
 //! Parameter ranges: the checked constructors accept α ∈ [[`ALPHA_MIN`], [`ALPHA_MAX`]]
 //! (per axis). [`Beckmann::clamped`] / [`TrowbridgeReitz::clamped`] (and the dot-product
-//! functions of [`crate::distribution`] and [`crate::masking`] built on them) accept any α
-//! and clamp it into [ε², 1/ε²] (ε the type's machine epsilon: 1.4e-14 … 7.0e13 in `f32`,
-//! 4.9e-32 … 2.0e31 in `f64`), where every quantity is finite; α → 0 and α → ∞ are limits
-//! the type cannot represent (D tends to a Dirac delta, or G1 to 0).
+//! forms of [`Isotropic`] built on them) accept any α and clamp it into [ε², 1/ε²] (ε the
+//! type's machine epsilon: 1.4e-14 … 7.0e13 in `f32`, 4.9e-32 … 2.0e31 in `f64`), where
+//! every quantity is finite; α → 0 and α → ∞ are limits the type cannot represent (D tends
+//! to a Dirac delta, or G1 to 0).
 
 /// Defines an anisotropic distribution with widths (αx, αy) and its constructors: checked
-/// (αx, αy ∈ [1e-4, 1e4], [`ALPHA_MIN`], [`ALPHA_MAX`]), isotropic, and clamped.
+/// (αx, αy ∈ [1e-4, 1e4], [`ALPHA_MIN`], [`ALPHA_MAX`]), isotropic, and clamped; with
+/// D's guards, and the isotropic D in the dot products its [`Isotropic`] impl returns.
 macro_rules! widths_distribution {
     ($(#[$m:meta])* $name:ident) => {
         $(#[$m])*
@@ -69,6 +70,19 @@ macro_rules! widths_distribution {
                     ax: super::clamp_alpha(ax),
                     ay: super::clamp_alpha(ay),
                 }
+            }
+            /// [`super::Isotropic::d_cos`]: NaN for a NaN cosine or width, 0 for n·h ≤ 0
+            /// or α ≤ 0, else D of the clamped isotropic distribution at
+            /// [`super::from_cos`]`(cos_h)`.
+            #[inline]
+            fn d_iso(cos_h: T, alpha: T) -> T {
+                if cos_h.is_nan() || alpha.is_nan() {
+                    return T::NAN;
+                }
+                if !(cos_h > T::ZERO) || !(alpha > T::ZERO) {
+                    return T::ZERO;
+                }
+                super::Distribution::d(&Self::clamped(alpha, alpha), super::from_cos(cos_h))
             }
         }
     };

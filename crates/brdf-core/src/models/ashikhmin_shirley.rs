@@ -18,13 +18,11 @@
 //! cosine-weighted hemisphere.
 
 use super::rgb::check_rgb;
-use super::{above, half_vector, lobe_prob, Brdf, BrdfFlags, BrdfSample, LobeHint, Rgb};
-use super::{mixture_pdf, mixture_sample};
+use super::{above_or_zero, half_vector, lobe_prob, Brdf, BrdfFlags, BrdfSample, LobeHint, Rgb};
 use crate::error::check_range;
 use crate::fresnel::f_schlick;
 use crate::geometry::Vec3;
 use crate::sampling::half_vector::as_exponent;
-use crate::sampling::{ashikhmin_shirley_pdf_h, sample_ashikhmin_shirley_h};
 use crate::{ParamError, Real};
 
 /// Ashikhmin–Shirley model (see the module docs).
@@ -50,30 +48,29 @@ impl<T: Real> AshikhminShirley<T> {
     }
     /// The specular lobe ρ_s (eq 24.9 with the denominator outside the exponent).
     pub fn specular(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
-        if !above(wi, wo) {
-            return Rgb::zero();
-        }
-        let h = match half_vector(wi, wo) {
-            Some(h) => h,
-            None => return Rgb::zero(),
-        };
-        let kh = wi.dot(h);
-        if !(kh > T::ZERO) || !(h.z > T::ZERO) {
-            return Rgb::zero();
-        }
-        let e = as_exponent(self.nu, self.nv, h);
-        let norm = ((self.nu + T::ONE) * (self.nv + T::ONE)).sqrt() / (T::from_f64(8.0) * T::PI);
-        let s = norm * h.z.min(T::ONE).powf(e) / (kh * wi.z.max(wo.z));
-        self.rs.map(|r| s * f_schlick(r, kh))
+        above_or_zero(wi, wo, || {
+            let h = match half_vector(wi, wo) {
+                Some(h) => h,
+                None => return Rgb::zero(),
+            };
+            let kh = wi.dot(h);
+            if !(kh > T::ZERO) || !(h.z > T::ZERO) {
+                return Rgb::zero();
+            }
+            let e = as_exponent(self.nu, self.nv, h);
+            let norm =
+                ((self.nu + T::ONE) * (self.nv + T::ONE)).sqrt() / (T::from_f64(8.0) * T::PI);
+            let s = norm * h.z.min(T::ONE).powf(e) / (kh * wi.z.max(wo.z));
+            self.rs.map(|r| s * f_schlick(r, kh))
+        })
     }
     /// The coupled diffuse term ρ_d (eq 24.7).
     pub fn diffuse(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
-        if !above(wi, wo) {
-            return Rgb::zero();
-        }
-        let g = |c: T| T::ONE - (T::ONE - c.min(T::ONE) * T::HALF).powi(5);
-        let s = T::from_f64(28.0) / (T::from_f64(23.0) * T::PI) * g(wi.z) * g(wo.z);
-        self.rd.mul(self.rs.map(|r| T::ONE - r)).scale(s)
+        above_or_zero(wi, wo, || {
+            let g = |c: T| T::ONE - (T::ONE - c.min(T::ONE) * T::HALF).powi(5);
+            let s = T::from_f64(28.0) / (T::from_f64(23.0) * T::PI) * g(wi.z) * g(wo.z);
+            self.rd.mul(self.rs.map(|r| T::ONE - r)).scale(s)
+        })
     }
     fn p_lobe(&self) -> T {
         let s = self.rs.mean();
@@ -88,16 +85,7 @@ impl<T: Real> Brdf<T> for AshikhminShirley<T> {
     fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
         self.specular(wi, wo).add(self.diffuse(wi, wo))
     }
-    fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
-        mixture_pdf(self.p_lobe(), wo, wi, |h| {
-            ashikhmin_shirley_pdf_h(self.nu, self.nv, h)
-        })
-    }
-    fn sample(&self, wo: Vec3<T>, u: [T; 2]) -> Option<BrdfSample<T>> {
-        mixture_sample(self, self.p_lobe(), wo, u, |v| {
-            sample_ashikhmin_shirley_h(self.nu, self.nv, v)
-        })
-    }
+    ashikhmin_shirley_sampling!(nu, nv);
     fn lobe_hint(&self) -> LobeHint<T> {
         LobeHint::aniso(
             (T::TWO / (self.nu + T::TWO)).sqrt(),

@@ -14,7 +14,7 @@
 //! energy conserving. Sampled with the cosine-weighted hemisphere.
 
 use super::rgb::check_rgb;
-use super::{above, Brdf, BrdfFlags, BrdfSample, Rgb};
+use super::{above_or_zero, Brdf, BrdfFlags, BrdfSample, Rgb};
 use super::{cosine_only_pdf, sample_delta_or_cosine};
 use crate::error::check_range;
 use crate::geometry::Vec3;
@@ -83,19 +83,18 @@ impl<T: Real> Brdf<T> for Bank<T> {
         )
     }
     fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
-        if !above(wi, wo) {
-            return Rgb::zero();
-        }
-        let t = self.tangent(wo);
-        let a = wi.dot(t).clamp(-T::ONE, T::ONE);
-        let b = wo.dot(t).clamp(-T::ONE, T::ONE);
-        let base = (T::ONE - a * a).sqrt() * (T::ONE - b * b).sqrt() - a * b;
-        let s = if base > T::ZERO {
-            base.min(T::ONE).powf(self.ns)
-        } else {
-            T::ZERO
-        };
-        self.kd.scale(T::ONE / T::PI).add(self.ks.scale(s))
+        above_or_zero(wi, wo, || {
+            let t = self.tangent(wo);
+            let a = wi.dot(t).clamp(-T::ONE, T::ONE);
+            let b = wo.dot(t).clamp(-T::ONE, T::ONE);
+            let base = (T::ONE - a * a).sqrt() * (T::ONE - b * b).sqrt() - a * b;
+            let s = if base > T::ZERO {
+                base.min(T::ONE).powf(self.ns)
+            } else {
+                T::ZERO
+            };
+            self.kd.scale(T::ONE / T::PI).add(self.ks.scale(s))
+        })
     }
     fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
         cosine_only_pdf(wo, wi)

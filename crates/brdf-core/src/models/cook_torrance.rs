@@ -19,7 +19,8 @@
 use super::rgb::check_rgb;
 use super::MicrofacetSampling;
 use super::{
-    above, lobe_prob, Brdf, BrdfFlags, BrdfSample, GeometricTerm, LobeHint, Rgb, TorranceSparrow,
+    above_or_zero, lobe_prob, Brdf, BrdfFlags, BrdfSample, GeometricTerm, LobeHint, Rgb,
+    TorranceSparrow,
 };
 use super::{mixture_pdf, mixture_sample};
 use crate::error::check_range;
@@ -94,11 +95,10 @@ impl<T: Real> Brdf<T> for CookTorrance<T> {
         }
     }
     fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
-        if !above(wi, wo) {
-            return Rgb::zero();
-        }
-        let rs = self.r_s(wi, wo);
-        self.kd.scale(T::ONE / T::PI).add(self.ks.scale(rs))
+        above_or_zero(wi, wo, || {
+            let rs = self.r_s(wi, wo);
+            self.kd.scale(T::ONE / T::PI).add(self.ks.scale(rs))
+        })
     }
     fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
         let dist = self.ts.distribution();

@@ -12,7 +12,7 @@
 //! flagged as not energy conserving. Both are reciprocal.
 
 use super::rgb::check_rgb;
-use super::{above, Brdf, BrdfFlags, BrdfSample, DeltaLobe, Rgb};
+use super::{above_or_zero, Brdf, BrdfFlags, BrdfSample, DeltaLobe, Rgb};
 use crate::error::check_range;
 use crate::geometry::Vec3;
 use crate::{ParamError, Real};
@@ -73,11 +73,10 @@ impl<T: Real> Brdf<T> for CoupledSmooth<T> {
     }
     /// k R_m f(θi) f(θo) (the matte term of eq 24.3).
     fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
-        if !above(wi, wo) {
-            return Rgb::zero();
-        }
-        self.rm
-            .scale(self.k * matte_shape(wi.z) * matte_shape(wo.z))
+        above_or_zero(wi, wo, || {
+            self.rm
+                .scale(self.k * matte_shape(wi.z) * matte_shape(wo.z))
+        })
     }
     smooth_layered_sampling!(rm);
 }

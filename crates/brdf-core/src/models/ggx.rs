@@ -15,7 +15,7 @@
 
 use super::rgb::check_rgb;
 use super::{
-    above, finish, half_vector, u_ok, valid_wo, Brdf, BrdfFlags, BrdfSample, LobeHint, Rgb,
+    above_or_zero, finish, half_vector, u_ok, valid_wo, Brdf, BrdfFlags, BrdfSample, LobeHint, Rgb,
 };
 use crate::fresnel::f_schlick;
 use crate::geometry::{half_vector_and_cos, Vec3};
@@ -95,21 +95,20 @@ impl<T: Real> Brdf<T> for Ggx<T> {
         BrdfFlags::new(true, true, false)
     }
     fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
-        if !above(wi, wo) {
-            return Rgb::zero();
-        }
-        let (h, ih) = match half_vector_and_cos(wi, wo) {
-            Some((h, ih)) if h.z > T::ZERO => (h, ih),
-            _ => return Rgb::zero(),
-        };
-        let d = self.dist.d(h);
-        let v = match self.smith {
-            SmithForm::Correlated => self.dist.v_correlated(wi, wo),
-            SmithForm::Separable => {
-                self.dist.g_separable(wi, wo) / (T::from_f64(4.0) * wi.z * wo.z)
-            }
-        };
-        self.f0.map(|f| d * v * f_schlick(f, ih))
+        above_or_zero(wi, wo, || {
+            let (h, ih) = match half_vector_and_cos(wi, wo) {
+                Some((h, ih)) if h.z > T::ZERO => (h, ih),
+                _ => return Rgb::zero(),
+            };
+            let d = self.dist.d(h);
+            let v = match self.smith {
+                SmithForm::Correlated => self.dist.v_correlated(wi, wo),
+                SmithForm::Separable => {
+                    self.dist.g_separable(wi, wo) / (T::from_f64(4.0) * wi.z * wo.z)
+                }
+            };
+            self.f0.map(|f| d * v * f_schlick(f, ih))
+        })
     }
     fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
         if !valid_wo(wo) {

@@ -2,7 +2,7 @@
 //! BRDF; FCG §24.2), sampled with the cosine-weighted hemisphere.
 
 use super::rgb::check_rgb;
-use super::{above, Brdf, BrdfFlags, BrdfSample, Rgb};
+use super::{above_or_zero, Brdf, BrdfFlags, BrdfSample, Rgb};
 use super::{cosine_only_pdf, sample_delta_or_cosine};
 use crate::geometry::Vec3;
 use crate::{ParamError, Real};
@@ -11,7 +11,9 @@ use crate::{ParamError, Real};
 /// its directional albedo is exactly ρ.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Lambert<T> {
-    albedo: Rgb<T>,
+    /// ρ, checked by [`Lambert::new`] (a sibling model holding a checked ρ may build the
+    /// Lambertian term of its own BRDF from it).
+    pub(super) albedo: Rgb<T>,
 }
 
 impl<T: Real> Lambert<T> {
@@ -33,11 +35,7 @@ impl<T: Real> Brdf<T> for Lambert<T> {
     }
     /// f = ρ/π.
     fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
-        if above(wi, wo) {
-            self.albedo.scale(T::ONE / T::PI)
-        } else {
-            Rgb::zero()
-        }
+        above_or_zero(wi, wo, || self.albedo.scale(T::ONE / T::PI))
     }
     /// cos θi/π.
     fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {

@@ -6,12 +6,11 @@
 
 use super::rgb::check_rgb;
 use super::{
-    above, lobe_prob, mirror, sample_delta_or_cosine, valid_wo, Brdf, BrdfFlags, BrdfSample,
-    DeltaLobe, Rgb,
+    cosine_only_pdf, lobe_prob, mirror, sample_delta_or_cosine, valid_wo, Brdf, BrdfFlags,
+    BrdfSample, DeltaLobe, Lambert, Rgb,
 };
 use crate::error::check_range;
 use crate::geometry::Vec3;
-use crate::sampling::cosine_hemisphere_pdf;
 use crate::{ParamError, Real};
 
 /// Lambertian-plus-mirror mix (FCG §24.4).
@@ -43,19 +42,12 @@ impl<T: Real> Brdf<T> for LambertSpecularMix<T> {
     fn flags(&self) -> BrdfFlags {
         BrdfFlags::new(true, true, true)
     }
-    /// R_d/π (the Dirac part is in [`Brdf::delta`]).
+    /// R_d/π, the [`Lambert`] BRDF of albedo R_d (the Dirac part is in [`Brdf::delta`]).
     fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
-        if above(wi, wo) {
-            self.rd.scale(T::ONE / T::PI)
-        } else {
-            Rgb::zero()
-        }
+        Lambert { albedo: self.rd }.eval(wi, wo)
     }
     fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
-        if !valid_wo(wo) {
-            return T::ZERO;
-        }
-        (T::ONE - self.prob()) * cosine_hemisphere_pdf(wi)
+        (T::ONE - self.prob()) * cosine_only_pdf(wo, wi)
     }
     fn sample(&self, wo: Vec3<T>, u: [T; 2]) -> Option<BrdfSample<T>> {
         sample_delta_or_cosine(self, wo, u)

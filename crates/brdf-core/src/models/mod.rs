@@ -51,6 +51,27 @@ macro_rules! smooth_layered_sampling {
     };
 }
 
+/// The sampling half of a [`Brdf`] impl whose glossy lobe is sampled by the
+/// Ashikhmin–Shirley half vector (FCG eqs 24.10, 24.13, 24.14) of exponents
+/// (`self.$nu`, `self.$nv`), chosen with probability `self.p_lobe()`, else the
+/// cosine-weighted hemisphere: `pdf` is [`mixture_pdf`] with
+/// [`crate::sampling::ashikhmin_shirley_pdf_h`], `sample` is [`mixture_sample`] with
+/// [`crate::sampling::sample_ashikhmin_shirley_h`].
+macro_rules! ashikhmin_shirley_sampling {
+    ($nu:ident, $nv:ident) => {
+        fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
+            $crate::models::mixture_pdf(self.p_lobe(), wo, wi, |h| {
+                $crate::sampling::ashikhmin_shirley_pdf_h(self.$nu, self.$nv, h)
+            })
+        }
+        fn sample(&self, wo: Vec3<T>, u: [T; 2]) -> Option<BrdfSample<T>> {
+            $crate::models::mixture_sample(self, self.p_lobe(), wo, u, |v| {
+                $crate::sampling::sample_ashikhmin_shirley_h(self.$nu, self.$nv, v)
+            })
+        }
+    };
+}
+
 pub mod ashikhmin_shirley;
 pub mod bank;
 pub mod cook_torrance;
@@ -210,6 +231,21 @@ pub trait Brdf<T: Real> {
 pub(crate) fn above<T: Real>(wi: Vec3<T>, wo: Vec3<T>) -> bool {
     let m = crate::geometry::min_cos();
     wi.z >= m && wo.z >= m
+}
+
+/// f(wi, wo) under [`Brdf::eval`]'s horizon rule: `f()` when both directions are above the
+/// horizon ([`above`]), else 0 (every channel).
+#[inline]
+pub(crate) fn above_or_zero<T: Real>(
+    wi: Vec3<T>,
+    wo: Vec3<T>,
+    f: impl FnOnce() -> Rgb<T>,
+) -> Rgb<T> {
+    if above(wi, wo) {
+        f()
+    } else {
+        Rgb::zero()
+    }
 }
 
 /// `true` when `w` is finite and above the horizon (cosine at least

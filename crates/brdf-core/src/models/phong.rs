@@ -18,15 +18,13 @@
 
 use super::rgb::check_rgb;
 use super::{
-    above, finish, half_vector, lobe_prob, mirror, pick, u_ok, valid_wo, Brdf, BrdfFlags,
+    above_or_zero, finish, half_vector, lobe_prob, mirror, pick, u_ok, valid_wo, Brdf, BrdfFlags,
     BrdfSample, LobeHint, Rgb,
 };
-use super::{mixture_pdf, mixture_sample};
 use crate::error::check_range;
 use crate::geometry::Vec3;
 use crate::sampling::{
-    ashikhmin_shirley_pdf_h, cosine_hemisphere_pdf, cosine_lobe_pdf, sample_ashikhmin_shirley_h,
-    sample_cosine_hemisphere, sample_cosine_lobe,
+    cosine_hemisphere_pdf, cosine_lobe_pdf, sample_cosine_hemisphere, sample_cosine_lobe,
 };
 use crate::{ParamError, Real};
 
@@ -54,10 +52,7 @@ fn kd_plus_lobe<T: Real>(
     wo: Vec3<T>,
     lobe: impl FnOnce() -> T,
 ) -> Rgb<T> {
-    if !above(wi, wo) {
-        return Rgb::zero();
-    }
-    kd.scale(T::ONE / T::PI).add(ks.scale(lobe()))
+    above_or_zero(wi, wo, || kd.scale(T::ONE / T::PI).add(ks.scale(lobe())))
 }
 
 /// Energy-normalised Phong BRDF (see the module docs).
@@ -157,16 +152,7 @@ impl<T: Real> Brdf<T> for BlinnPhongNormalized<T> {
     fn flags(&self) -> BrdfFlags {
         kd_ks_flags(self.kd, self.ks)
     }
-    fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
-        mixture_pdf(self.p_lobe(), wo, wi, |h| {
-            ashikhmin_shirley_pdf_h(self.n, self.n, h)
-        })
-    }
-    fn sample(&self, wo: Vec3<T>, u: [T; 2]) -> Option<BrdfSample<T>> {
-        mixture_sample(self, self.p_lobe(), wo, u, |v| {
-            sample_ashikhmin_shirley_h(self.n, self.n, v)
-        })
-    }
+    ashikhmin_shirley_sampling!(n, n);
     fn lobe_hint(&self) -> LobeHint<T> {
         LobeHint::iso((T::TWO / (self.n + T::TWO)).sqrt())
     }

@@ -25,7 +25,7 @@
 //! cosine lobe covers those.) Half vectors facing away from wo are failed samples (`None`).
 
 use super::rgb::check_rgb;
-use super::{above, mixture_pdf, mixture_sample, Brdf, BrdfFlags, BrdfSample, Rgb};
+use super::{above_or_zero, mixture_pdf, mixture_sample, Brdf, BrdfFlags, BrdfSample, Rgb};
 use crate::geometry::{half_vector_and_cos, min_cos, Dots, Vec3};
 use crate::microfacet::charlie::{v_ashikhmin, Charlie};
 use crate::{ParamError, Real};
@@ -137,14 +137,13 @@ impl<T: Real> Brdf<T> for Sheen<T> {
         if nan(wi) || nan(wo) {
             return Rgb::splat(T::NAN);
         }
-        if !above(wi, wo) {
-            return Rgb::zero();
-        }
-        let Some((h, _)) = half_vector_and_cos(wi, wo) else {
-            return Rgb::zero();
-        };
-        let s = self.dv(wi.z, wo.z, h.z, h.x * h.x + h.y * h.y);
-        self.color.scale(s)
+        above_or_zero(wi, wo, || {
+            let Some((h, _)) = half_vector_and_cos(wi, wo) else {
+                return Rgb::zero();
+            };
+            let s = self.dv(wi.z, wo.z, h.z, h.x * h.x + h.y * h.y);
+            self.color.scale(s)
+        })
     }
     fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
         mixture_pdf(T::HALF, wo, wi, |h| self.dist.normal_pdf(h))

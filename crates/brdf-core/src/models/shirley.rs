@@ -10,7 +10,7 @@
 //! so the model is energy conserving.
 
 use super::rgb::check_rgb;
-use super::{above, Brdf, BrdfFlags, BrdfSample, DeltaLobe, Rgb};
+use super::{above_or_zero, Brdf, BrdfFlags, BrdfSample, DeltaLobe, Rgb};
 use crate::error::check_range;
 use crate::fresnel::f_schlick;
 use crate::geometry::Vec3;
@@ -39,11 +39,10 @@ impl<T: Real> Brdf<T> for ShirleyDamped<T> {
     }
     /// R_d (1 − R_f(θo))/π.
     fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
-        if !above(wi, wo) {
-            return Rgb::zero();
-        }
-        let rf = f_schlick(self.r0, wo.z);
-        self.rd.scale((T::ONE - rf) / T::PI)
+        above_or_zero(wi, wo, || {
+            let rf = f_schlick(self.r0, wo.z);
+            self.rd.scale((T::ONE - rf) / T::PI)
+        })
     }
     smooth_layered_sampling!(rd);
 }

@@ -7,7 +7,7 @@
 //! The paper's diffuse term "a/dωi" is garbled in the source; it is modelled here as a
 //! Lambertian term with its own albedo ρ_d (default 0).
 
-use super::{above, lobe_prob, mixture_pdf, mixture_sample, Brdf, BrdfFlags, BrdfSample};
+use super::{above_or_zero, lobe_prob, mixture_pdf, mixture_sample, Brdf, BrdfFlags, BrdfSample};
 use super::{LobeHint, Rgb};
 use crate::error::{check_range, ParamError};
 use crate::fresnel::Fresnel;
@@ -274,10 +274,7 @@ impl<T: Real, R: Rule> Brdf<T> for TorranceSparrow<T, R> {
         }
     }
     fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
-        if !above(wi, wo) {
-            return Rgb::zero();
-        }
-        Rgb::splat(TorranceSparrow::eval(self, wi, wo))
+        above_or_zero(wi, wo, || Rgb::splat(TorranceSparrow::eval(self, wi, wo)))
     }
     fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
         mixture_pdf(lobe_prob(self.ks, self.albedo), wo, wi, |h| {

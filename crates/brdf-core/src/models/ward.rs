@@ -13,7 +13,7 @@
 //! mean ρ_s/(mean ρ_s + mean ρ_d), else the cosine-weighted hemisphere.
 
 use super::rgb::check_rgb;
-use super::{above, half_vector, lobe_prob, Brdf, BrdfFlags, BrdfSample, LobeHint, Rgb};
+use super::{above_or_zero, half_vector, lobe_prob, Brdf, BrdfFlags, BrdfSample, LobeHint, Rgb};
 use super::{mixture_pdf, mixture_sample};
 use crate::error::check_range;
 use crate::geometry::Vec3;
@@ -43,17 +43,11 @@ impl<T: Real> Ward<T> {
     fn p_lobe(&self) -> T {
         lobe_prob(self.rs.mean(), self.rd.mean())
     }
-}
-
-impl<T: Real> Brdf<T> for Ward<T> {
-    fn flags(&self) -> BrdfFlags {
-        BrdfFlags::new(true, false, false)
-    }
-    fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
-        if !above(wi, wo) {
-            return Rgb::zero();
-        }
-        let spec = match half_vector(wi, wo) {
+    /// The specular lobe of the module docs for directions above the horizon,
+    /// exp(−((h_x/αx)² + (h_y/αy)²)/h_z²)/(4π αx αy √(cos θi cos θo)); 0 for a half vector
+    /// at or below the horizon.
+    fn spec(&self, wi: Vec3<T>, wo: Vec3<T>) -> T {
+        match half_vector(wi, wo) {
             Some(h) if h.z > T::ZERO => {
                 let c2 = (h.z * h.z).min(T::ONE);
                 let e = (h.x * h.x / (self.ax * self.ax) + h.y * h.y / (self.ay * self.ay)) / c2;
@@ -67,8 +61,20 @@ impl<T: Real> Brdf<T> for Ward<T> {
                 }
             }
             _ => T::ZERO,
-        };
-        self.rd.scale(T::ONE / T::PI).add(self.rs.scale(spec))
+        }
+    }
+}
+
+impl<T: Real> Brdf<T> for Ward<T> {
+    fn flags(&self) -> BrdfFlags {
+        BrdfFlags::new(true, false, false)
+    }
+    fn eval(&self, wi: Vec3<T>, wo: Vec3<T>) -> Rgb<T> {
+        above_or_zero(wi, wo, || {
+            self.rd
+                .scale(T::ONE / T::PI)
+                .add(self.rs.scale(self.spec(wi, wo)))
+        })
     }
     fn pdf(&self, wo: Vec3<T>, wi: Vec3<T>) -> T {
         let dist = Beckmann::clamped(self.ax, self.ay);

@@ -170,6 +170,21 @@ pub type DefaultRule = GaussLegendre<DEFAULT_NODES>;
 mod tests {
     extern crate std;
     use super::*;
+
+    /// Calls `$f::<GaussLegendre<N>>()` for every tabulated N (the `rule!` list above).
+    macro_rules! for_every_rule {
+        ($f:ident) => {
+            $f::<GaussLegendre<4>>();
+            $f::<GaussLegendre<6>>();
+            $f::<GaussLegendre<8>>();
+            $f::<GaussLegendre<10>>();
+            $f::<GaussLegendre<12>>();
+            $f::<GaussLegendre<16>>();
+            $f::<GaussLegendre<20>>();
+            $f::<GaussLegendre<24>>();
+            $f::<GaussLegendre<32>>();
+        };
+    }
     use std::vec::Vec;
 
     /// Legendre P_n and P_n' by the three-term recurrence.
@@ -243,15 +258,7 @@ mod tests {
 
     #[test]
     fn tables_match_recomputation() {
-        check::<GaussLegendre<4>>();
-        check::<GaussLegendre<6>>();
-        check::<GaussLegendre<8>>();
-        check::<GaussLegendre<10>>();
-        check::<GaussLegendre<12>>();
-        check::<GaussLegendre<16>>();
-        check::<GaussLegendre<20>>();
-        check::<GaussLegendre<24>>();
-        check::<GaussLegendre<32>>();
+        for_every_rule!(check);
     }
 
     /// The split-pass product rule: against the closed form ∫₀¹ x eˣ dx = 1, and bit for bit
@@ -315,15 +322,7 @@ mod tests {
                 R::N
             );
         }
-        one::<GaussLegendre<4>>();
-        one::<GaussLegendre<6>>();
-        one::<GaussLegendre<8>>();
-        one::<GaussLegendre<10>>();
-        one::<GaussLegendre<12>>();
-        one::<GaussLegendre<16>>();
-        one::<GaussLegendre<20>>();
-        one::<GaussLegendre<24>>();
-        one::<GaussLegendre<32>>();
+        for_every_rule!(one);
         for i in 0..=46 {
             let b = i as f64 * 0.1;
             let got = GaussLegendre::<32>::integrate_slope_weight(b, 0.0);

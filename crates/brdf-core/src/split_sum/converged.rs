@@ -382,36 +382,51 @@ fn lit_from_form<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
 pub const MAX_PIECES: usize = 4;
 
 /// ∫ₐᵇ g sin θ dθ on one row panel by K15, halving where |K15 − G7| > `tol` (per
-/// channel): (value, estimate).
-#[allow(clippy::too_many_arguments)]
+/// channel; [`bisect`] to [`MAX_ROW_DEPTH`]): (value, estimate).
 fn row_adapt<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     map: &M,
     f: &F,
     (cp, sp): (T, T),
-    a: T,
-    b: T,
+    ab: (T, T),
     tol: T,
-    depth: u32,
     work: &mut Work,
 ) -> ([T; 2], [T; 2]) {
-    let t = gk15_nodes(a, b);
-    let mut y = [[T::ZERO; 2]; 15];
-    for (y, t) in y.iter_mut().zip(&t) {
-        *y = node(map, f, *t, cp, sp);
-    }
-    work.evals = work.evals.saturating_add(15);
-    let (v, e) = gk15_combine(&y, (b - a) * T::HALF);
-    // The tolerance halves with each split, so it is floored at the rounding level of the
-    // panel's value: below it the estimate cannot fall, and every branch would split to
-    // MAX_ROW_DEPTH (2^30 panels).
-    let tol = tol.max(T::from_f64(64.0) * T::EPSILON * (v[0].abs() + v[1].abs()));
+    bisect(ab, tol, 0, MAX_ROW_DEPTH, &mut |a, b, tol| {
+        let t = gk15_nodes(a, b);
+        let mut y = [[T::ZERO; 2]; 15];
+        for (y, t) in y.iter_mut().zip(&t) {
+            *y = node(map, f, *t, cp, sp);
+        }
+        work.evals = work.evals.saturating_add(15);
+        let (v, e) = gk15_combine(&y, (b - a) * T::HALF);
+        // The tolerance halves with each split, so it is floored at the rounding level of
+        // the panel's value: below it the estimate cannot fall, and every branch would split
+        // to MAX_ROW_DEPTH (2^30 panels).
+        let tol = tol.max(T::from_f64(64.0) * T::EPSILON * (v[0].abs() + v[1].abs()));
+        (v, e, tol)
+    })
+}
+
+/// Adaptive bisection shared by the row panels ([`row_adapt`]) and the φ panels
+/// ([`phi_adapt`]): `panel(a, b, tol)` integrates [a, b] and gives (value, estimate, the
+/// tolerance the panel is judged by). The panel is kept when both estimates are within
+/// that tolerance, at `max_depth`, or when its midpoint no longer splits it (a panel a few
+/// ulps wide); otherwise each half gets half the tolerance and the halves are summed.
+fn bisect<T: Real>(
+    (a, b): (T, T),
+    tol: T,
+    depth: u32,
+    max_depth: u32,
+    panel: &mut impl FnMut(T, T, T) -> ([T; 2], [T; 2], T),
+) -> ([T; 2], [T; 2]) {
+    let (v, e, tol) = panel(a, b, tol);
     let m = (a + b) * T::HALF;
-    if (e[0] <= tol && e[1] <= tol) || depth >= MAX_ROW_DEPTH || !(a < m && m < b) {
+    if (e[0] <= tol && e[1] <= tol) || depth >= max_depth || !(a < m && m < b) {
         return (v, e);
     }
     let h = tol * T::HALF;
-    let (v0, e0) = row_adapt(map, f, (cp, sp), a, m, h, depth + 1, work);
-    let (v1, e1) = row_adapt(map, f, (cp, sp), m, b, h, depth + 1, work);
+    let (v0, e0) = bisect((a, m), h, depth + 1, max_depth, panel);
+    let (v1, e1) = bisect((m, b), h, depth + 1, max_depth, panel);
     (
         [v0[0] + v1[0], v0[1] + v1[1]],
         [e0[0] + e1[0], e0[1] + e1[1]],
@@ -492,7 +507,7 @@ fn piece<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     let share = |len: T| tol * T::HALF * (len / (b - a) + even);
     let (mut v, mut e) = ([T::ZERO; 2], [T::ZERO; 2]);
     let mut panel = |lo: T, hi: T, work: &mut Work| {
-        let (pv, pe) = row_adapt(map, f, cs, lo, hi, share(hi - lo), 0, work);
+        let (pv, pe) = row_adapt(map, f, cs, (lo, hi), share(hi - lo), work);
         for c in 0..2 {
             v[c] += pv[c];
             e[c] += pe[c];
@@ -523,41 +538,31 @@ pub const EDGE_GRADE: f64 = 4.0;
 pub const MAX_GRADE: u32 = 30;
 
 /// ∫ₐᵇ I(φ) dφ of the row integrals I by K15 in φ, halving where the panel's estimate
-/// (|K15 − G7| plus (b − a) × the largest row estimate) exceeds `tol` in either channel.
-#[allow(clippy::too_many_arguments)]
+/// (|K15 − G7| plus (b − a) × the largest row estimate) exceeds `tol` in either channel
+/// ([`bisect`] to [`MAX_PHI_DEPTH`]).
 fn phi_adapt<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     map: &M,
     f: &F,
-    a: T,
-    b: T,
+    ab: (T, T),
     tol: T,
     row_tol: T,
-    depth: u32,
     work: &mut Work,
 ) -> ([T; 2], [T; 2]) {
-    let t = gk15_nodes(a, b);
-    let mut y = [[T::ZERO; 2]; 15];
-    let mut worst = [T::ZERO; 2];
-    for (y, t) in y.iter_mut().zip(&t) {
-        let (v, e) = row(map, f, *t, row_tol, work);
-        *y = v;
-        worst = [worst[0].max(e[0]), worst[1].max(e[1])];
-    }
-    let (v, mut e) = gk15_combine(&y, (b - a) * T::HALF);
-    for c in 0..2 {
-        e[c] += (b - a) * worst[c];
-    }
-    if (e[0] <= tol && e[1] <= tol) || depth >= MAX_PHI_DEPTH {
-        return (v, e);
-    }
-    let m = (a + b) * T::HALF;
-    let h = tol * T::HALF;
-    let (v0, e0) = phi_adapt(map, f, a, m, h, row_tol, depth + 1, work);
-    let (v1, e1) = phi_adapt(map, f, m, b, h, row_tol, depth + 1, work);
-    (
-        [v0[0] + v1[0], v0[1] + v1[1]],
-        [e0[0] + e1[0], e0[1] + e1[1]],
-    )
+    bisect(ab, tol, 0, MAX_PHI_DEPTH, &mut |a, b, tol| {
+        let t = gk15_nodes(a, b);
+        let mut y = [[T::ZERO; 2]; 15];
+        let mut worst = [T::ZERO; 2];
+        for (y, t) in y.iter_mut().zip(&t) {
+            let (v, e) = row(map, f, *t, row_tol, work);
+            *y = v;
+            worst = [worst[0].max(e[0]), worst[1].max(e[1])];
+        }
+        let (v, mut e) = gk15_combine(&y, (b - a) * T::HALF);
+        for c in 0..2 {
+            e[c] += (b - a) * worst[c];
+        }
+        (v, e, tol)
+    })
 }
 
 /// Azimuths sampled for changes of the number of lit pieces per row (`transitions`).
@@ -646,7 +651,7 @@ pub fn integrate_cap<T: Real, M: VisibleNormalMap<T>, F: CapIntegrand<T>>(
     let (mut v, mut e) = ([T::ZERO; 2], [T::ZERO; 2]);
     for w in brk[..nb].windows(2) {
         let t = inner * T::from_f64(0.75) * (w[1] - w[0]) / T::PI;
-        let (pv, pe) = phi_adapt(map, f, w[0], w[1], t, row_tol, 0, &mut work);
+        let (pv, pe) = phi_adapt(map, f, (w[0], w[1]), t, row_tol, &mut work);
         for c in 0..2 {
             v[c] += pv[c];
             e[c] += pe[c];

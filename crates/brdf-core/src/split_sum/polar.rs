@@ -34,8 +34,8 @@
 //!
 //! **Beckmann.** The same rule integrates Beckmann lobes (D = e^{−τ²/m²}/(π m² cos⁴θ),
 //! Walter et al. 2007, "Microfacet models for refraction", eq 25) with height-correlated
-//! Smith G2 = 1/(1 + Λ(v) + Λ(l)) or separable G1(v) G1(l) (Λ from
-//! [`crate::masking::lambda_beckmann`]; Heitz 2014 eqs 72, 98–99). Their radial map is
+//! Smith G2 = 1/(1 + Λ(v) + Λ(l)) or separable G1(v) G1(l) (Λ from [`Beckmann`]'s
+//! [`Isotropic::lambda_cos`]; Heitz 2014 eqs 72, 98–99). Their radial map is
 //! linear: with τ = m s, D sin θ (v·h) dθ = D cos⁴θ τ (sv τ c + μ) dτ = s e^{−s²}(sv τ c + μ)/π ds,
 //! an entire function of s with the same shape for every m, so
 //!
@@ -68,7 +68,7 @@
 //! result is returned with its (then larger than `tol`) estimate.
 
 use super::converged::{row_alpha, texel_edges};
-use crate::masking::lambda_beckmann;
+use crate::microfacet::{Beckmann, Isotropic};
 use crate::quadrature::kronrod::{gk15_combine, gk15_nodes};
 use crate::Real;
 
@@ -272,11 +272,11 @@ impl<T: Real> Texel<T> {
             }
             PolarModel::GgxCorrelated(_) => (T::ZERO, T::INFINITY),
             PolarModel::BeckmannCorrelated(_) => {
-                let lv = lambda_beckmann(mu, alpha);
+                let lv = Beckmann::lambda_cos(mu, alpha);
                 (lv, alpha * inv_sqrt_pi / ((T::ONE + lv + lv) * mu))
             }
             PolarModel::BeckmannSeparable(_) => {
-                (lambda_beckmann(mu, alpha), alpha * inv_sqrt_pi / mu)
+                (Beckmann::lambda_cos(mu, alpha), alpha * inv_sqrt_pi / mu)
             }
         };
         Self {
@@ -346,7 +346,7 @@ impl<T: Real> Texel<T> {
         if !(nl > T::ZERO) {
             return [T::ZERO; 2];
         }
-        let ll = lambda_beckmann(nl.min(T::ONE), self.alpha);
+        let ll = Beckmann::lambda_cos(nl.min(T::ONE), self.alpha);
         let g2 = match self.model {
             PolarModel::BeckmannSeparable(_) => T::ONE / ((T::ONE + self.lv) * (T::ONE + ll)),
             _ => T::ONE / (T::ONE + self.lv + ll),
