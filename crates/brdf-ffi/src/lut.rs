@@ -9,10 +9,10 @@
 
 use crate::kernels::BrdfGTermsF32;
 use crate::{
-    handle, rd, wr, BrdfStatus, BRDF_STATUS_BAD_LENGTH, BRDF_STATUS_INVALID_ARGUMENT,
-    BRDF_STATUS_NOT_INITIALISED, BRDF_STATUS_NULL_POINTER, BRDF_STATUS_OK,
-    BRDF_STATUS_TABLE_BAD_MAGIC, BRDF_STATUS_TABLE_BAD_VALUE, BRDF_STATUS_TABLE_CHECKSUM,
-    BRDF_STATUS_TABLE_INCONSISTENT, BRDF_STATUS_TABLE_MALFORMED_HEADER,
+    batch_export, handle, init_export, tag, BrdfStatus, BRDF_STATUS_BAD_LENGTH,
+    BRDF_STATUS_INVALID_ARGUMENT, BRDF_STATUS_NOT_INITIALISED, BRDF_STATUS_NULL_POINTER,
+    BRDF_STATUS_OK, BRDF_STATUS_TABLE_BAD_MAGIC, BRDF_STATUS_TABLE_BAD_VALUE,
+    BRDF_STATUS_TABLE_CHECKSUM, BRDF_STATUS_TABLE_INCONSISTENT, BRDF_STATUS_TABLE_MALFORMED_HEADER,
     BRDF_STATUS_TABLE_PAYLOAD_LENGTH, BRDF_STATUS_TABLE_TRUNCATED,
     BRDF_STATUS_TABLE_UNSUPPORTED_VERSION, BRDF_STATUS_TABLE_WRONG_KIND,
 };
@@ -21,40 +21,34 @@ use brdf_lut::{AlbedoTable, AverageAlbedoTable, DfgTable, GTable, GTable3, LutEr
 /// Storage words (8 bytes each) of every table handle.
 pub const BRDF_TABLE_WORDS: usize = 56;
 
-const TAG_G: u64 = 0x4252_4446_4c47_3032;
-const TAG_G3: u64 = 0x4252_4446_4c47_3033;
-const TAG_DFG: u64 = 0x4252_4446_4c44_4647;
-const TAG_E: u64 = 0x4252_4446_4c45_3032;
-const TAG_EAVG: u64 = 0x4252_4446_4c45_4156;
-
 handle! {
     /// A parsed per-σ modified-G table (2-D passing-factor table, reciprocal convention). Fill
     /// it with `brdf_g_table_parse`; the fields are private to the library.
-    BrdfGTable[BRDF_TABLE_WORDS] = GTable<&'static [u8]>, TAG_G
+    BrdfGTable[BRDF_TABLE_WORDS] = GTable<&'static [u8]>, tag(*b"LG02")
 }
 
 handle! {
     /// A parsed modified-G table over σ (3-D passing-factor table). Fill it with
     /// `brdf_g_table3_parse`; the fields are private to the library.
-    BrdfGTable3[BRDF_TABLE_WORDS] = GTable3<&'static [u8]>, TAG_G3
+    BrdfGTable3[BRDF_TABLE_WORDS] = GTable3<&'static [u8]>, tag(*b"LG03")
 }
 
 handle! {
     /// A parsed split-sum table (A, B) over (μ, roughness). Fill it with `brdf_dfg_table_parse`;
     /// the fields are private to the library.
-    BrdfDfgTable[BRDF_TABLE_WORDS] = DfgTable<&'static [u8]>, TAG_DFG
+    BrdfDfgTable[BRDF_TABLE_WORDS] = DfgTable<&'static [u8]>, tag(*b"LDFG")
 }
 
 handle! {
     /// A parsed directional-albedo table E(μ, roughness). Fill it with
     /// `brdf_albedo_table_parse`; the fields are private to the library.
-    BrdfAlbedoTable[BRDF_TABLE_WORDS] = AlbedoTable<&'static [u8]>, TAG_E
+    BrdfAlbedoTable[BRDF_TABLE_WORDS] = AlbedoTable<&'static [u8]>, tag(*b"LE02")
 }
 
 handle! {
     /// A parsed average-albedo table E_avg(roughness). Fill it with
     /// `brdf_average_albedo_table_parse`; the fields are private to the library.
-    BrdfAverageAlbedoTable[BRDF_TABLE_WORDS] = AverageAlbedoTable<&'static [u8]>, TAG_EAVG
+    BrdfAverageAlbedoTable[BRDF_TABLE_WORDS] = AverageAlbedoTable<&'static [u8]>, tag(*b"LEAV")
 }
 
 /// The split-sum pair: specular E = F0·A + F90·B.
@@ -89,11 +83,17 @@ fn status(e: LutError) -> BrdfStatus {
     }
 }
 
-/// The caller's buffer as a slice with the handle's (caller-guaranteed) lifetime.
+/// `parse` (a brdf-lut reader's constructor) over the caller's buffer of `len` bytes at `p`,
+/// with the C status codes: `BRDF_STATUS_NULL_POINTER` (`p` null), `BRDF_STATUS_BAD_LENGTH`
+/// (`len` over `isize::MAX`), [`status`] of the reader's error.
 ///
 /// # Safety
-/// `p` valid for `len` reads for as long as the handle is used.
-unsafe fn bytes<'a>(p: *const u8, len: usize) -> Result<&'a [u8], BrdfStatus> {
+/// `p` null or valid for `len` reads for as long as the handle is used.
+unsafe fn parse_table<V>(
+    p: *const u8,
+    len: usize,
+    parse: fn(&'static [u8]) -> Result<V, LutError>,
+) -> Result<V, BrdfStatus> {
     if p.is_null() {
         return Err(BRDF_STATUS_NULL_POINTER);
     }
@@ -102,48 +102,29 @@ unsafe fn bytes<'a>(p: *const u8, len: usize) -> Result<&'a [u8], BrdfStatus> {
     }
     // SAFETY: `p` is non-null, `len` fits `isize` (both checked) and `p` is valid for `len`
     // reads for as long as the handle is used (the contract).
-    Ok(unsafe { core::slice::from_raw_parts(p, len) })
+    parse(unsafe { core::slice::from_raw_parts(p, len) }).map_err(status)
 }
 
-/// Shared body of the `*_parse` functions.
-macro_rules! parse_into {
-    ($h:ty, $inner:ident, $out:expr, $p:expr, $len:expr) => {{
-        let out = $out;
-        if out.is_null() {
-            return BRDF_STATUS_NULL_POINTER;
+/// Emits a `*_parse` export: `$name(out, bytes, len)` parses a `$table` into the handle `$h`.
+macro_rules! parse_export {
+    ($(#[$doc:meta])* $name:ident($h:ident) = $table:ident) => {
+        init_export! {
+            $(#[$doc])*
+            parse $name($h; bytes: *const u8, len: usize) =
+                // SAFETY: the buffer's contract is the export's.
+                unsafe { parse_table(bytes, len, $table::parse) }
         }
-        // SAFETY: `out` is non-null and valid for writes (the export's contract).
-        unsafe { <$h>::clear(out) };
-        // SAFETY: the buffer's contract is the export's.
-        let b = match unsafe { bytes($p, $len) } {
-            Ok(b) => b,
-            Err(s) => return s,
-        };
-        match $inner::parse(b) {
-            Ok(t) => {
-                // SAFETY: as for `clear` above.
-                unsafe { <$h>::put(out, t) };
-                BRDF_STATUS_OK
-            }
-            Err(e) => status(e),
-        }
-    }};
+    };
 }
 
-/// Parses a per-σ modified-G table from `len` bytes at `bytes` into `*out`. The bytes are
-/// borrowed, not copied: keep them alive and unchanged while `*out` is used. Returns
-/// `BRDF_STATUS_OK`, `BRDF_STATUS_NULL_POINTER` (`out` or `bytes` null),
-/// `BRDF_STATUS_BAD_LENGTH`, a `BRDF_STATUS_TABLE_*` code for a corrupt table, or
-/// `BRDF_STATUS_TABLE_WRONG_KIND` for a valid table of another kind; on error `*out` is left
-/// not initialised.
-#[cfg_attr(not(brdf_header), doc = crate::safety!(parse))]
-#[no_mangle]
-pub unsafe extern "C" fn brdf_g_table_parse(
-    out: *mut BrdfGTable,
-    bytes: *const u8,
-    len: usize,
-) -> BrdfStatus {
-    parse_into!(BrdfGTable, GTable, out, bytes, len)
+parse_export! {
+    /// Parses a per-σ modified-G table from `len` bytes at `bytes` into `*out`. The bytes are
+    /// borrowed, not copied: keep them alive and unchanged while `*out` is used. Returns
+    /// `BRDF_STATUS_OK`, `BRDF_STATUS_NULL_POINTER` (`out` or `bytes` null),
+    /// `BRDF_STATUS_BAD_LENGTH`, a `BRDF_STATUS_TABLE_*` code for a corrupt table, or
+    /// `BRDF_STATUS_TABLE_WRONG_KIND` for a valid table of another kind; on error `*out` is left
+    /// not initialised.
+    brdf_g_table_parse(BrdfGTable) = GTable
 }
 
 /// The table's σ; NaN when the header does not record it or the handle is bad.
@@ -198,45 +179,17 @@ pub unsafe extern "C" fn brdf_g_table_g_dots(
     }
 }
 
-/// `out[k] = brdf_g_table_g(t, theta_i[k], theta_r[k])` for k < n. Returns
-/// `BRDF_STATUS_NOT_INITIALISED` (bad handle), `BRDF_STATUS_NULL_POINTER` (an array null with
-/// n > 0), `BRDF_STATUS_BAD_LENGTH` (n too large) — writing nothing — or `BRDF_STATUS_OK`.
-/// `out` may alias an input.
-#[cfg_attr(not(brdf_header), doc = crate::safety!(batch))]
-#[no_mangle]
-pub unsafe extern "C" fn brdf_g_table_g_batch(
-    t: *const BrdfGTable,
-    theta_i: *const f32,
-    theta_r: *const f32,
-    out: *mut f32,
-    n: usize,
-) -> BrdfStatus {
-    // SAFETY: `t` is null or a readable handle (the caller's contract).
-    let Some(t) = (unsafe { BrdfGTable::get(t) }) else {
-        return BRDF_STATUS_NOT_INITIALISED;
-    };
-    let s = crate::check_arrays(&[theta_i.is_null(), theta_r.is_null(), out.is_null()], n, 4);
-    if s != BRDF_STATUS_OK {
-        return s;
-    }
-    // SAFETY: the arrays are non-null (checked) and hold `n` elements (the contract).
-    unsafe {
-        for k in 0..n {
-            wr(out, k, t.g(rd(theta_i, k), rd(theta_r, k)));
-        }
-    }
-    BRDF_STATUS_OK
+batch_export! {
+    /// `out[k] = brdf_g_table_g(t, theta_i[k], theta_r[k])` for k < n. Returns
+    /// `BRDF_STATUS_NOT_INITIALISED` (bad handle), `BRDF_STATUS_NULL_POINTER` (an array null with
+    /// n > 0), `BRDF_STATUS_BAD_LENGTH` (n too large) — writing nothing — or `BRDF_STATUS_OK`.
+    /// `out` may alias an input.
+    brdf_g_table_g_batch(t: BrdfGTable; theta_i, theta_r => out: f32) = |t, [ti, tr]| [t.g(ti, tr)]
 }
 
-/// Parses a modified-G table over σ (3-D); contract as for `brdf_g_table_parse`.
-#[cfg_attr(not(brdf_header), doc = crate::safety!(parse))]
-#[no_mangle]
-pub unsafe extern "C" fn brdf_g_table3_parse(
-    out: *mut BrdfGTable3,
-    bytes: *const u8,
-    len: usize,
-) -> BrdfStatus {
-    parse_into!(BrdfGTable3, GTable3, out, bytes, len)
+parse_export! {
+    /// Parses a modified-G table over σ (3-D); contract as for `brdf_g_table_parse`.
+    brdf_g_table3_parse(BrdfGTable3) = GTable3
 }
 
 /// Writes the table's σ range to `*lo` and `*hi` (queries outside it are clamped). Returns
@@ -315,53 +268,15 @@ pub unsafe extern "C" fn brdf_g_table3_g_dots(
     }
 }
 
-/// `out[k] = brdf_g_table3_g(t, theta_i[k], theta_r[k], sigma[k])` for k < n; status codes
-/// as for `brdf_g_table_g_batch`.
-#[cfg_attr(not(brdf_header), doc = crate::safety!(batch))]
-#[no_mangle]
-pub unsafe extern "C" fn brdf_g_table3_g_batch(
-    t: *const BrdfGTable3,
-    theta_i: *const f32,
-    theta_r: *const f32,
-    sigma: *const f32,
-    out: *mut f32,
-    n: usize,
-) -> BrdfStatus {
-    // SAFETY: `t` is null or a readable handle (the caller's contract).
-    let Some(t) = (unsafe { BrdfGTable3::get(t) }) else {
-        return BRDF_STATUS_NOT_INITIALISED;
-    };
-    let s = crate::check_arrays(
-        &[
-            theta_i.is_null(),
-            theta_r.is_null(),
-            sigma.is_null(),
-            out.is_null(),
-        ],
-        n,
-        4,
-    );
-    if s != BRDF_STATUS_OK {
-        return s;
-    }
-    // SAFETY: the arrays are non-null (checked) and hold `n` elements (the contract).
-    unsafe {
-        for k in 0..n {
-            wr(out, k, t.g(rd(theta_i, k), rd(theta_r, k), rd(sigma, k)));
-        }
-    }
-    BRDF_STATUS_OK
+batch_export! {
+    /// `out[k] = brdf_g_table3_g(t, theta_i[k], theta_r[k], sigma[k])` for k < n; status codes
+    /// as for `brdf_g_table_g_batch`.
+    brdf_g_table3_g_batch(t: BrdfGTable3; theta_i, theta_r, sigma => out: f32) = |t, [ti, tr, s]| [t.g(ti, tr, s)]
 }
 
-/// Parses a split-sum table; contract as for `brdf_g_table_parse`.
-#[cfg_attr(not(brdf_header), doc = crate::safety!(parse))]
-#[no_mangle]
-pub unsafe extern "C" fn brdf_dfg_table_parse(
-    out: *mut BrdfDfgTable,
-    bytes: *const u8,
-    len: usize,
-) -> BrdfStatus {
-    parse_into!(BrdfDfgTable, DfgTable, out, bytes, len)
+parse_export! {
+    /// Parses a split-sum table; contract as for `brdf_g_table_parse`.
+    brdf_dfg_table_parse(BrdfDfgTable) = DfgTable
 }
 
 /// (A, B) at μ = n·v ∈ [0, 1] and roughness (perceptual r for GGX tables, σ for
@@ -380,55 +295,18 @@ pub unsafe extern "C" fn brdf_dfg_table_ab(
     BrdfDfgF32 { a, b }
 }
 
-/// `a_out[k], b_out[k] = brdf_dfg_table_ab(t, mu[k], roughness[k])` for k < n; status codes
-/// as for `brdf_g_table_g_batch`. Outputs may alias inputs (not each other).
-#[cfg_attr(not(brdf_header), doc = crate::safety!(batch))]
-#[no_mangle]
-pub unsafe extern "C" fn brdf_dfg_table_ab_batch(
-    t: *const BrdfDfgTable,
-    mu: *const f32,
-    roughness: *const f32,
-    a_out: *mut f32,
-    b_out: *mut f32,
-    n: usize,
-) -> BrdfStatus {
-    // SAFETY: `t` is null or a readable handle (the caller's contract).
-    let Some(t) = (unsafe { BrdfDfgTable::get(t) }) else {
-        return BRDF_STATUS_NOT_INITIALISED;
-    };
-    let s = crate::check_arrays(
-        &[
-            mu.is_null(),
-            roughness.is_null(),
-            a_out.is_null(),
-            b_out.is_null(),
-        ],
-        n,
-        4,
-    );
-    if s != BRDF_STATUS_OK {
-        return s;
+batch_export! {
+    /// `a_out[k], b_out[k] = brdf_dfg_table_ab(t, mu[k], roughness[k])` for k < n; status codes
+    /// as for `brdf_g_table_g_batch`. Outputs may alias inputs (not each other).
+    brdf_dfg_table_ab_batch(t: BrdfDfgTable; mu, roughness => a_out, b_out: f32) = |t, [mu, r]| {
+        let (a, b) = t.ab(mu, r);
+        [a, b]
     }
-    // SAFETY: the arrays are non-null (checked) and hold `n` elements (the contract).
-    unsafe {
-        for k in 0..n {
-            let (a, b) = t.ab(rd(mu, k), rd(roughness, k));
-            wr(a_out, k, a);
-            wr(b_out, k, b);
-        }
-    }
-    BRDF_STATUS_OK
 }
 
-/// Parses a directional-albedo table E(μ, r); contract as for `brdf_g_table_parse`.
-#[cfg_attr(not(brdf_header), doc = crate::safety!(parse))]
-#[no_mangle]
-pub unsafe extern "C" fn brdf_albedo_table_parse(
-    out: *mut BrdfAlbedoTable,
-    bytes: *const u8,
-    len: usize,
-) -> BrdfStatus {
-    parse_into!(BrdfAlbedoTable, AlbedoTable, out, bytes, len)
+parse_export! {
+    /// Parses a directional-albedo table E(μ, r); contract as for `brdf_g_table_parse`.
+    brdf_albedo_table_parse(BrdfAlbedoTable) = AlbedoTable
 }
 
 /// E(μ, r) ∈ [0, 1] (F = 1) at μ = n·v and roughness, clamped to the table's axes; NaN for
@@ -444,43 +322,15 @@ pub unsafe extern "C" fn brdf_albedo_table_e(
     unsafe { BrdfAlbedoTable::get(t) }.map_or(f32::NAN, |t| t.e(mu, roughness))
 }
 
-/// `out[k] = brdf_albedo_table_e(t, mu[k], roughness[k])` for k < n; status codes as for
-/// `brdf_g_table_g_batch`.
-#[cfg_attr(not(brdf_header), doc = crate::safety!(batch))]
-#[no_mangle]
-pub unsafe extern "C" fn brdf_albedo_table_e_batch(
-    t: *const BrdfAlbedoTable,
-    mu: *const f32,
-    roughness: *const f32,
-    out: *mut f32,
-    n: usize,
-) -> BrdfStatus {
-    // SAFETY: `t` is null or a readable handle (the caller's contract).
-    let Some(t) = (unsafe { BrdfAlbedoTable::get(t) }) else {
-        return BRDF_STATUS_NOT_INITIALISED;
-    };
-    let s = crate::check_arrays(&[mu.is_null(), roughness.is_null(), out.is_null()], n, 4);
-    if s != BRDF_STATUS_OK {
-        return s;
-    }
-    // SAFETY: the arrays are non-null (checked) and hold `n` elements (the contract).
-    unsafe {
-        for k in 0..n {
-            wr(out, k, t.e(rd(mu, k), rd(roughness, k)));
-        }
-    }
-    BRDF_STATUS_OK
+batch_export! {
+    /// `out[k] = brdf_albedo_table_e(t, mu[k], roughness[k])` for k < n; status codes as for
+    /// `brdf_g_table_g_batch`.
+    brdf_albedo_table_e_batch(t: BrdfAlbedoTable; mu, roughness => out: f32) = |t, [mu, r]| [t.e(mu, r)]
 }
 
-/// Parses an average-albedo table E_avg(r); contract as for `brdf_g_table_parse`.
-#[cfg_attr(not(brdf_header), doc = crate::safety!(parse))]
-#[no_mangle]
-pub unsafe extern "C" fn brdf_average_albedo_table_parse(
-    out: *mut BrdfAverageAlbedoTable,
-    bytes: *const u8,
-    len: usize,
-) -> BrdfStatus {
-    parse_into!(BrdfAverageAlbedoTable, AverageAlbedoTable, out, bytes, len)
+parse_export! {
+    /// Parses an average-albedo table E_avg(r); contract as for `brdf_g_table_parse`.
+    brdf_average_albedo_table_parse(BrdfAverageAlbedoTable) = AverageAlbedoTable
 }
 
 /// E_avg(r) = 2∫₀¹ E(μ, r) μ dμ at roughness r, clamped to the table's axis; NaN for NaN
@@ -495,29 +345,8 @@ pub unsafe extern "C" fn brdf_average_albedo_table_e_avg(
     unsafe { BrdfAverageAlbedoTable::get(t) }.map_or(f32::NAN, |t| t.e_avg(roughness))
 }
 
-/// `out[k] = brdf_average_albedo_table_e_avg(t, roughness[k])` for k < n; status codes as
-/// for `brdf_g_table_g_batch`.
-#[cfg_attr(not(brdf_header), doc = crate::safety!(batch))]
-#[no_mangle]
-pub unsafe extern "C" fn brdf_average_albedo_table_e_avg_batch(
-    t: *const BrdfAverageAlbedoTable,
-    roughness: *const f32,
-    out: *mut f32,
-    n: usize,
-) -> BrdfStatus {
-    // SAFETY: `t` is null or a readable handle (the caller's contract).
-    let Some(t) = (unsafe { BrdfAverageAlbedoTable::get(t) }) else {
-        return BRDF_STATUS_NOT_INITIALISED;
-    };
-    let s = crate::check_arrays(&[roughness.is_null(), out.is_null()], n, 4);
-    if s != BRDF_STATUS_OK {
-        return s;
-    }
-    // SAFETY: the arrays are non-null (checked) and hold `n` elements (the contract).
-    unsafe {
-        for k in 0..n {
-            wr(out, k, t.e_avg(rd(roughness, k)));
-        }
-    }
-    BRDF_STATUS_OK
+batch_export! {
+    /// `out[k] = brdf_average_albedo_table_e_avg(t, roughness[k])` for k < n; status codes as
+    /// for `brdf_g_table_g_batch`.
+    brdf_average_albedo_table_e_avg_batch(t: BrdfAverageAlbedoTable; roughness => out: f32) = |t, [r]| [t.e_avg(r)]
 }

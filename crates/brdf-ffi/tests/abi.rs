@@ -5,11 +5,17 @@
 use brdf_ffi::*;
 use std::mem::MaybeUninit;
 
+/// A handle filled by `f`, which must report success.
+fn init<H>(f: impl FnOnce(*mut H) -> BrdfStatus) -> H {
+    let mut h = MaybeUninit::<H>::uninit();
+    assert_eq!(f(h.as_mut_ptr()), BRDF_STATUS_OK);
+    unsafe { h.assume_init() }
+}
+
 fn modified(sigma: f32, conv: BrdfConvention) -> Box<BrdfModifiedGF32> {
-    let mut h = Box::new(MaybeUninit::<BrdfModifiedGF32>::uninit());
-    let st = unsafe { brdf_modified_g_init_f32(h.as_mut_ptr(), sigma, conv) };
-    assert_eq!(st, BRDF_STATUS_OK);
-    unsafe { Box::from_raw(Box::into_raw(h).cast()) }
+    Box::new(init(|h| unsafe {
+        brdf_modified_g_init_f32(h, sigma, conv)
+    }))
 }
 
 #[test]
@@ -135,6 +141,12 @@ fn asset(name: &str) -> &'static [u8] {
     Box::leak(std::fs::read(p).unwrap().into_boxed_slice())
 }
 
+/// The table handle `parse` fills from the committed asset `name` (which must parse).
+fn table<H>(parse: unsafe extern "C" fn(*mut H, *const u8, usize) -> BrdfStatus, name: &str) -> H {
+    let bytes = asset(name);
+    init(|h| unsafe { parse(h, bytes.as_ptr(), bytes.len()) })
+}
+
 #[test]
 fn table_status_codes_follow_the_format() {
     let bytes = asset("kc_eavg_ggx.blut");
@@ -176,16 +188,11 @@ fn table_status_codes_follow_the_format() {
 fn g_table_agrees_with_the_direct_g_within_its_stated_error() {
     // The table's header states its interpolation error (max |ΔG| over random points,
     // 9.8e-4 or less for the committed G tables); allow twice that.
-    let bytes = asset("g_modified_sigma0.3.blut");
-    let mut t = MaybeUninit::<BrdfGTable>::uninit();
-    assert_eq!(
-        unsafe { brdf_g_table_parse(t.as_mut_ptr(), bytes.as_ptr(), bytes.len()) },
-        BRDF_STATUS_OK
-    );
+    let t = table(brdf_g_table_parse, "g_modified_sigma0.3.blut");
     let g = modified(0.3, BRDF_CONVENTION_RECIPROCAL);
-    assert_eq!(unsafe { brdf_g_table_sigma(t.as_ptr()) }, 0.3);
+    assert_eq!(unsafe { brdf_g_table_sigma(&t) }, 0.3);
     for &(ti, tr) in &[(0.2f32, 0.4f32), (1.0, -0.7), (0.6, 1.3), (1.4, 1.4)] {
-        let a = unsafe { brdf_g_table_g(t.as_ptr(), ti, tr) };
+        let a = unsafe { brdf_g_table_g(&t, ti, tr) };
         let b = unsafe { brdf_modified_g_f32(&*g, ti, tr) };
         assert!((a - b).abs() < 2e-3, "{ti} {tr}: table {a}, direct {b}");
     }
@@ -206,22 +213,17 @@ fn every_status_has_a_name() {
 fn g_table_over_sigma_agrees_with_the_direct_g_within_its_stated_error() {
     // The 3-D table states max |ΔG| = 4.0e-4 over random points (README table); the direct
     // f32 G adds ~1e-5. Allowed: 2e-3.
-    let bytes = asset("g_modified.blut");
-    let mut t = MaybeUninit::<BrdfGTable3>::uninit();
-    assert_eq!(
-        unsafe { brdf_g_table3_parse(t.as_mut_ptr(), bytes.as_ptr(), bytes.len()) },
-        BRDF_STATUS_OK
-    );
+    let t = table(brdf_g_table3_parse, "g_modified.blut");
     let (mut lo, mut hi) = (0f32, 0f32);
     assert_eq!(
-        unsafe { brdf_g_table3_sigma_range(t.as_ptr(), &mut lo, &mut hi) },
+        unsafe { brdf_g_table3_sigma_range(&t, &mut lo, &mut hi) },
         BRDF_STATUS_OK
     );
     assert!(lo < 0.3 && 0.6 < hi);
     for &s in &[0.3f32, 0.6] {
         let g = modified(s, BRDF_CONVENTION_RECIPROCAL);
         for &(ti, tr) in &[(0.2f32, 0.4f32), (1.0, -0.7), (0.6, 1.3)] {
-            let a = unsafe { brdf_g_table3_g(t.as_ptr(), ti, tr, s) };
+            let a = unsafe { brdf_g_table3_g(&t, ti, tr, s) };
             let b = unsafe { brdf_modified_g_f32(&*g, ti, tr) };
             assert!(
                 (a - b).abs() < 2e-3,
@@ -229,18 +231,58 @@ fn g_table_over_sigma_agrees_with_the_direct_g_within_its_stated_error() {
             );
         }
         let (ni, no, io) = (0.8f32, 0.6f32, 0.3f32);
-        let a = unsafe { brdf_g_table3_g_dots(t.as_ptr(), ni, no, io, s) };
+        let a = unsafe { brdf_g_table3_g_dots(&t, ni, no, io, s) };
         let b = unsafe { brdf_modified_g_dots_f32(&*g, ni, no, io) };
         assert!((a - b).abs() < 2e-3, "σ {s} dots: table {a}, direct {b}");
     }
-    assert!(unsafe { brdf_g_table3_g(t.as_ptr(), f32::NAN, 0.1, 0.3) }.is_nan());
+    assert!(unsafe { brdf_g_table3_g(&t, f32::NAN, 0.1, 0.3) }.is_nan());
 }
 
-/// A handle filled by `f`, which must report success.
-fn init<H>(f: impl FnOnce(*mut H) -> BrdfStatus) -> H {
-    let mut h = MaybeUninit::<H>::uninit();
-    assert_eq!(f(h.as_mut_ptr()), BRDF_STATUS_OK);
-    unsafe { h.assume_init() }
+#[test]
+fn table_batches_equal_their_single_queries_bit_for_bit() {
+    let g = table(brdf_g_table_parse, "g_modified_sigma0.3.blut");
+    let (ti, tr) = ([0.2f32, 1.0, 0.6, f32::NAN], [0.4f32, -0.7, 1.3, 0.1]);
+    let mut out = [0f32; 4];
+    let st = unsafe { brdf_g_table_g_batch(&g, ti.as_ptr(), tr.as_ptr(), out.as_mut_ptr(), 4) };
+    assert_eq!(st, BRDF_STATUS_OK);
+    for k in 0..4 {
+        let single = unsafe { brdf_g_table_g(&g, ti[k], tr[k]) };
+        assert_eq!(out[k].to_bits(), single.to_bits(), "{k}");
+    }
+    // Two outputs, both in place over the inputs: each element is read before it is written.
+    let dfg = table(brdf_dfg_table_parse, "dfg_ggx.blut");
+    let (mu, r) = ([0.1f32, 0.5, 0.9], [0.2f32, 0.5, 0.8]);
+    let (mut a, mut b) = (mu, r);
+    let st = unsafe {
+        brdf_dfg_table_ab_batch(
+            &dfg,
+            a.as_ptr(),
+            b.as_ptr(),
+            a.as_mut_ptr(),
+            b.as_mut_ptr(),
+            3,
+        )
+    };
+    assert_eq!(st, BRDF_STATUS_OK);
+    for k in 0..3 {
+        let single = unsafe { brdf_dfg_table_ab(&dfg, mu[k], r[k]) };
+        assert_eq!(
+            (a[k].to_bits(), b[k].to_bits()),
+            (single.a.to_bits(), single.b.to_bits())
+        );
+    }
+    // Bad handle before bad arrays; nothing is written on an error.
+    let zero = MaybeUninit::<BrdfDfgTable>::zeroed();
+    let p = std::ptr::null_mut();
+    let st = unsafe { brdf_dfg_table_ab_batch(zero.as_ptr(), mu.as_ptr(), r.as_ptr(), p, p, 3) };
+    assert_eq!(st, BRDF_STATUS_NOT_INITIALISED);
+    let mut untouched = [7f32; 3];
+    let o = untouched.as_mut_ptr();
+    let st = unsafe { brdf_dfg_table_ab_batch(&dfg, mu.as_ptr(), r.as_ptr(), o, p, 3) };
+    assert_eq!(st, BRDF_STATUS_NULL_POINTER);
+    assert_eq!(untouched, [7.0; 3]);
+    let st = unsafe { brdf_dfg_table_ab_batch(&dfg, p, p, p, p, 0) };
+    assert_eq!(st, BRDF_STATUS_OK);
 }
 
 #[test]
