@@ -15,7 +15,7 @@
 //! of such pairs should evaluate in higher precision or avoid the dot-product form there.
 
 use crate::{
-    batch_export, handle, init_export, BrdfStatus, BRDF_STATUS_INVALID_ARGUMENT,
+    batch_export, handle, init_export, query_export, BrdfStatus, BRDF_STATUS_INVALID_ARGUMENT,
     BRDF_STATUS_NOT_INITIALISED, BRDF_STATUS_NO_SAMPLE, BRDF_STATUS_NULL_POINTER, BRDF_STATUS_OK,
 };
 use brdf_core::albedo::directional_albedo;
@@ -707,22 +707,16 @@ macro_rules! rgb_brdf_abi {
             init $init($h; $($arg: $ty),+) = $new
         }
 
-        $(#[$edoc])*
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $eval($hv: *const $h, wi: $Vec3, wo: $Vec3) -> $Rgb {
-            // SAFETY: the handle is null or readable (the caller's contract).
-            eval_at(unsafe { $h::get($hv) }, wi.into(), wo.into()).into()
+        query_export! {
+            $(#[$edoc])*
+            $eval($hv: $h, wi: $Vec3, wo: $Vec3) -> $Rgb = eval_at($hv, wi.into(), wo.into()).into();
         }
 
         $($($extra)*)?
 
-        $(#[$adoc])*
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $albedo($hv: *const $h, mu: $t) -> $Rgb {
-            // SAFETY: the handle is null or readable (the caller's contract).
-            albedo_of(unsafe { $h::get($hv) }, mu).into()
+        query_export! {
+            $(#[$adoc])*
+            $albedo($hv: $h, mu: $t) -> $Rgb = albedo_of($hv, mu).into();
         }
     };
 }
@@ -754,16 +748,13 @@ macro_rules! sheen_abi {
             /// uninitialised handle.
             $eval(s);
             {
-            /// The sheen BRDF from the dot products n·wi, n·wo and wi·wo of unit vectors (the module
-            /// docs say what the three-dot form loses for nearly opposite pairs at the horizon);
-            /// 0 at or below the horizon; all NaN for a non-finite input or a bad handle.
-            #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-            #[no_mangle]
-            pub unsafe extern "C" fn $eval_dots(s: *const $Sheen, n_i: $t, n_o: $t, i_o: $t) -> $Rgb {
-                // SAFETY: `s` is null or a readable handle (the caller's contract).
-                let m = unsafe { $Sheen::get(s) };
-                at_dots(m, [n_i, n_o, i_o], Rgb::splat(<$t>::NAN), Sheen::eval_dots).into()
-            }
+                query_export! {
+                    /// The sheen BRDF from the dot products n·wi, n·wo and wi·wo of unit vectors (the module
+                    /// docs say what the three-dot form loses for nearly opposite pairs at the horizon);
+                    /// 0 at or below the horizon; all NaN for a non-finite input or a bad handle.
+                    $eval_dots(s: $Sheen, n_i: $t, n_o: $t, i_o: $t) -> $Rgb =
+                        at_dots(s, [n_i, n_o, i_o], Rgb::splat(<$t>::NAN), Sheen::eval_dots).into();
+                }
             }
 
             /// Directional albedo per channel of the sheen BRDF for a viewer at μ = n·wo ∈ (0, 1]
@@ -847,40 +838,27 @@ macro_rules! rough_dielectric_abi {
                 dielectric_new(distribution, alpha, eta)
         }
 
-        /// The BSDF f(wi, wo) in 1/sr over the whole sphere, `wi` toward the light and `wo`
-        /// toward the viewer (unit, local frame): f_r for a pair on one side, f_t for a pair
-        /// across the surface (wo below the surface gives the part transmitted from outside).
-        /// 0 at the horizon (|n·w| below 2^−63 in f32, 2^−511 in f64), for η = 1 (see the
-        /// delta export)
-        /// and for a pair no facet connects; NaN for a non-finite component or a bad handle.
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $eval(m: *const $RD, wi: $Vec3, wo: $Vec3) -> $t {
-            // SAFETY: `m` is null or a readable handle (the caller's contract).
-            let m = unsafe { $RD::get(m) };
-            dielectric_at(m, wi.into(), wo.into(), RoughDielectric::eval_bsdf)
-        }
+        query_export! {
+            /// The BSDF f(wi, wo) in 1/sr over the whole sphere, `wi` toward the light and `wo`
+            /// toward the viewer (unit, local frame): f_r for a pair on one side, f_t for a pair
+            /// across the surface (wo below the surface gives the part transmitted from outside).
+            /// 0 at the horizon (|n·w| below 2^−63 in f32, 2^−511 in f64), for η = 1 (see the
+            /// delta export)
+            /// and for a pair no facet connects; NaN for a non-finite component or a bad handle.
+            $eval(m: $RD, wi: $Vec3, wo: $Vec3) -> $t =
+                dielectric_at(m, wi.into(), wo.into(), RoughDielectric::eval_bsdf);
 
-        /// The adjoint BSDF f*(wi, wo) = f(wo, wi) (importance transport): f_r unchanged,
-        /// f_t* = (η_i/η_o)² f_t; arguments and bad input as for
-        #[doc = concat!(" `", stringify!($eval), "`.")]
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $eval_adjoint(m: *const $RD, wi: $Vec3, wo: $Vec3) -> $t {
-            // SAFETY: `m` is null or a readable handle (the caller's contract).
-            let m = unsafe { $RD::get(m) };
-            dielectric_at(m, wi.into(), wo.into(), RoughDielectric::eval_adjoint)
-        }
+            /// The adjoint BSDF f*(wi, wo) = f(wo, wi) (importance transport): f_r unchanged,
+            /// f_t* = (η_i/η_o)² f_t; arguments and bad input as for
+            #[doc = concat!(" `", stringify!($eval), "`.")]
+            $eval_adjoint(m: $RD, wi: $Vec3, wo: $Vec3) -> $t =
+                dielectric_at(m, wi.into(), wo.into(), RoughDielectric::eval_adjoint);
 
-        #[doc = concat!(" The density of `", stringify!($sample), "` per unit solid angle of `wi` (either")]
-        /// hemisphere) for a viewer at `wo` (note the order: wo first); 0 for wo not above the
-        /// surface and for η = 1; NaN for a non-finite component or a bad handle.
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $pdf(m: *const $RD, wo: $Vec3, wi: $Vec3) -> $t {
-            // SAFETY: `m` is null or a readable handle (the caller's contract).
-            let m = unsafe { $RD::get(m) };
-            dielectric_at(m, wo.into(), wi.into(), |m, wo, wi| m.pdf(wo, wi))
+            #[doc = concat!(" The density of `", stringify!($sample), "` per unit solid angle of `wi` (either")]
+            /// hemisphere) for a viewer at `wo` (note the order: wo first); 0 for wo not above the
+            /// surface and for η = 1; NaN for a non-finite component or a bad handle.
+            $pdf(m: $RD, wo: $Vec3, wi: $Vec3) -> $t =
+                dielectric_at(m, wo.into(), wi.into(), |m, wo, wi| m.pdf(wo, wi));
         }
 
         /// Samples wi for a viewer at `wo` (above the surface): a visible normal h from

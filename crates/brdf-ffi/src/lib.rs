@@ -440,6 +440,26 @@ macro_rules! init_export {
 }
 pub(crate) use init_export;
 
+/// Emits query exports: each `$name($hv: *const $h, $arg: $ty, …) -> $ret` evaluates `$body`
+/// with `$hv` rebound to the handle's value, an `Option<&_>` ([`handle!`]'s `get`: `None` for a
+/// null, uninitialised or foreign handle).
+macro_rules! query_export {
+    ($(
+        $(#[$doc:meta])*
+        $name:ident($hv:ident: $h:ty $(, $arg:ident: $ty:ty)*) -> $ret:ty = $body:expr;
+    )+) => {$(
+        $(#[$doc])*
+        #[cfg_attr(not(brdf_header), doc = $crate::safety!(query))]
+        #[no_mangle]
+        pub unsafe extern "C" fn $name($hv: *const $h $(, $arg: $ty)*) -> $ret {
+            // SAFETY: the handle is null or readable (the caller's contract).
+            let $hv = unsafe { <$h>::get($hv) };
+            $body
+        }
+    )+};
+}
+pub(crate) use query_export;
+
 /// Emits a batch export `$name($handle: *const $h, $in: *const $t, …, $out: *mut $t, …,
 /// n: usize)` whose body is [`Arrays::map`] with `$f`, a closure `|&model, [inputs]| [outputs]`.
 macro_rules! batch_export {

@@ -9,7 +9,7 @@
 
 use crate::kernels::BrdfGTermsF32;
 use crate::{
-    batch_export, handle, init_export, tag, BrdfStatus, BRDF_STATUS_BAD_LENGTH,
+    batch_export, handle, init_export, query_export, tag, BrdfStatus, BRDF_STATUS_BAD_LENGTH,
     BRDF_STATUS_INVALID_ARGUMENT, BRDF_STATUS_NOT_INITIALISED, BRDF_STATUS_NULL_POINTER,
     BRDF_STATUS_OK, BRDF_STATUS_TABLE_BAD_MAGIC, BRDF_STATUS_TABLE_BAD_VALUE,
     BRDF_STATUS_TABLE_CHECKSUM, BRDF_STATUS_TABLE_INCONSISTENT, BRDF_STATUS_TABLE_MALFORMED_HEADER,
@@ -105,6 +105,12 @@ unsafe fn parse_table<V>(
     parse(unsafe { core::slice::from_raw_parts(p, len) }).map_err(status)
 }
 
+/// GM, GS and G of a table's `terms`; all NaN for `None` (a bad handle).
+fn terms(t: Option<(f32, f32, f32)>) -> BrdfGTermsF32 {
+    let (gm, gs, g) = t.unwrap_or((f32::NAN, f32::NAN, f32::NAN));
+    BrdfGTermsF32 { gm, gs, g }
+}
+
 /// Emits a `*_parse` export: `$name(out, bytes, len)` parses a `$table` into the handle `$h`.
 macro_rules! parse_export {
     ($(#[$doc:meta])* $name:ident($h:ident) = $table:ident) => {
@@ -127,56 +133,30 @@ parse_export! {
     brdf_g_table_parse(BrdfGTable) = GTable
 }
 
-/// The table's σ; NaN when the header does not record it or the handle is bad.
-#[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-#[no_mangle]
-pub unsafe extern "C" fn brdf_g_table_sigma(t: *const BrdfGTable) -> f32 {
-    // SAFETY: `t` is null or a readable handle (the caller's contract).
-    unsafe { BrdfGTable::get(t) }.map_or(f32::NAN, |t| t.sigma())
-}
+query_export! {
+    /// The table's σ; NaN when the header does not record it or the handle is bad.
+    brdf_g_table_sigma(t: BrdfGTable) -> f32 =
+        t.map_or(f32::NAN, |t| t.sigma());
 
-/// GM, GS and G = min(GM, GS) ∈ [0, 1] at in-plane angles in radians (θi ∈ [0, π/2],
-/// θr ∈ [−π/2, π/2] signed; clamped), interpolated in the table. All NaN for a NaN angle or a
-/// null or uninitialised handle.
-#[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-#[no_mangle]
-pub unsafe extern "C" fn brdf_g_table_terms(
-    t: *const BrdfGTable,
-    theta_i: f32,
-    theta_r: f32,
-) -> BrdfGTermsF32 {
-    // SAFETY: `t` is null or a readable handle (the caller's contract).
-    let (gm, gs, g) = unsafe { BrdfGTable::get(t) }.map_or((f32::NAN, f32::NAN, f32::NAN), |t| {
-        t.terms(theta_i, theta_r)
-    });
-    BrdfGTermsF32 { gm, gs, g }
-}
+    /// GM, GS and G = min(GM, GS) ∈ [0, 1] at in-plane angles in radians (θi ∈ [0, π/2],
+    /// θr ∈ [−π/2, π/2] signed; clamped), interpolated in the table. All NaN for a NaN angle or a
+    /// null or uninitialised handle.
+    brdf_g_table_terms(t: BrdfGTable, theta_i: f32, theta_r: f32) -> BrdfGTermsF32 =
+        terms(t.map(|t| t.terms(theta_i, theta_r)));
 
-/// G ∈ [0, 1] from the table; see `brdf_g_table_terms`.
-#[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-#[no_mangle]
-pub unsafe extern "C" fn brdf_g_table_g(t: *const BrdfGTable, theta_i: f32, theta_r: f32) -> f32 {
-    // SAFETY: `t` is null or a readable handle (the caller's contract).
-    unsafe { BrdfGTable::get(t) }.map_or(f32::NAN, |t| t.g(theta_i, theta_r))
-}
+    /// G ∈ [0, 1] from the table; see `brdf_g_table_terms`.
+    brdf_g_table_g(t: BrdfGTable, theta_i: f32, theta_r: f32) -> f32 =
+        t.map_or(f32::NAN, |t| t.g(theta_i, theta_r));
 
-/// G ∈ [0, 1] from the dot products n·wi, n·wo, wi·wo of unit vectors (the reciprocal 3-D
-/// extension of the modified G, as `brdf_modified_g_dots_f32`), interpolated in the table.
-/// A direction at or below the horizon gives 0; NaN for a non-finite dot product or a bad
-/// handle.
-#[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-#[no_mangle]
-pub unsafe extern "C" fn brdf_g_table_g_dots(
-    t: *const BrdfGTable,
-    n_i: f32,
-    n_o: f32,
-    i_o: f32,
-) -> f32 {
-    // SAFETY: `t` is null or a readable handle (the caller's contract).
-    match unsafe { BrdfGTable::get(t) } {
-        Some(t) if n_i.is_finite() && n_o.is_finite() && i_o.is_finite() => t.g_dots(n_i, n_o, i_o),
-        _ => f32::NAN,
-    }
+    /// G ∈ [0, 1] from the dot products n·wi, n·wo, wi·wo of unit vectors (the reciprocal 3-D
+    /// extension of the modified G, as `brdf_modified_g_dots_f32`), interpolated in the table.
+    /// A direction at or below the horizon gives 0; NaN for a non-finite dot product or a bad
+    /// handle.
+    brdf_g_table_g_dots(t: BrdfGTable, n_i: f32, n_o: f32, i_o: f32) -> f32 =
+        match t {
+            Some(t) if n_i.is_finite() && n_o.is_finite() && i_o.is_finite() => t.g_dots(n_i, n_o, i_o),
+            _ => f32::NAN,
+        };
 }
 
 batch_export! {
@@ -218,54 +198,25 @@ pub unsafe extern "C" fn brdf_g_table3_sigma_range(
     BRDF_STATUS_OK
 }
 
-/// GM, GS and G ∈ [0, 1] at in-plane angles (radians, clamped) and RMS slope σ (clamped to
-/// the table's range). All NaN for NaN input or a bad handle.
-#[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-#[no_mangle]
-pub unsafe extern "C" fn brdf_g_table3_terms(
-    t: *const BrdfGTable3,
-    theta_i: f32,
-    theta_r: f32,
-    sigma: f32,
-) -> BrdfGTermsF32 {
-    // SAFETY: `t` is null or a readable handle (the caller's contract).
-    let (gm, gs, g) = unsafe { BrdfGTable3::get(t) }.map_or((f32::NAN, f32::NAN, f32::NAN), |t| {
-        t.terms(theta_i, theta_r, sigma)
-    });
-    BrdfGTermsF32 { gm, gs, g }
-}
+query_export! {
+    /// GM, GS and G ∈ [0, 1] at in-plane angles (radians, clamped) and RMS slope σ (clamped to
+    /// the table's range). All NaN for NaN input or a bad handle.
+    brdf_g_table3_terms(t: BrdfGTable3, theta_i: f32, theta_r: f32, sigma: f32) -> BrdfGTermsF32 =
+        terms(t.map(|t| t.terms(theta_i, theta_r, sigma)));
 
-/// G ∈ [0, 1] from the 3-D table; see `brdf_g_table3_terms`.
-#[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-#[no_mangle]
-pub unsafe extern "C" fn brdf_g_table3_g(
-    t: *const BrdfGTable3,
-    theta_i: f32,
-    theta_r: f32,
-    sigma: f32,
-) -> f32 {
-    // SAFETY: `t` is null or a readable handle (the caller's contract).
-    unsafe { BrdfGTable3::get(t) }.map_or(f32::NAN, |t| t.g(theta_i, theta_r, sigma))
-}
+    /// G ∈ [0, 1] from the 3-D table; see `brdf_g_table3_terms`.
+    brdf_g_table3_g(t: BrdfGTable3, theta_i: f32, theta_r: f32, sigma: f32) -> f32 =
+        t.map_or(f32::NAN, |t| t.g(theta_i, theta_r, sigma));
 
-/// G ∈ [0, 1] from dot products (see `brdf_g_table_g_dots`) at RMS slope σ (clamped to the
-/// table's range); NaN for non-finite input or a bad handle.
-#[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-#[no_mangle]
-pub unsafe extern "C" fn brdf_g_table3_g_dots(
-    t: *const BrdfGTable3,
-    n_i: f32,
-    n_o: f32,
-    i_o: f32,
-    sigma: f32,
-) -> f32 {
-    // SAFETY: `t` is null or a readable handle (the caller's contract).
-    match unsafe { BrdfGTable3::get(t) } {
-        Some(t) if n_i.is_finite() && n_o.is_finite() && i_o.is_finite() && !sigma.is_nan() => {
-            t.g_dots(n_i, n_o, i_o, sigma)
-        }
-        _ => f32::NAN,
-    }
+    /// G ∈ [0, 1] from dot products (see `brdf_g_table_g_dots`) at RMS slope σ (clamped to the
+    /// table's range); NaN for non-finite input or a bad handle.
+    brdf_g_table3_g_dots(t: BrdfGTable3, n_i: f32, n_o: f32, i_o: f32, sigma: f32) -> f32 =
+        match t {
+            Some(t) if n_i.is_finite() && n_o.is_finite() && i_o.is_finite() && !sigma.is_nan() => {
+                t.g_dots(n_i, n_o, i_o, sigma)
+            }
+            _ => f32::NAN,
+        };
 }
 
 batch_export! {
@@ -279,20 +230,15 @@ parse_export! {
     brdf_dfg_table_parse(BrdfDfgTable) = DfgTable
 }
 
-/// (A, B) at μ = n·v ∈ [0, 1] and roughness (perceptual r for GGX tables, σ for
-/// Torrance–Sparrow tables; the table's header says which), both clamped to the table's
-/// axes. Both NaN for NaN input or a bad handle.
-#[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-#[no_mangle]
-pub unsafe extern "C" fn brdf_dfg_table_ab(
-    t: *const BrdfDfgTable,
-    mu: f32,
-    roughness: f32,
-) -> BrdfDfgF32 {
-    // SAFETY: `t` is null or a readable handle (the caller's contract).
-    let (a, b) =
-        unsafe { BrdfDfgTable::get(t) }.map_or((f32::NAN, f32::NAN), |t| t.ab(mu, roughness));
-    BrdfDfgF32 { a, b }
+query_export! {
+    /// (A, B) at μ = n·v ∈ [0, 1] and roughness (perceptual r for GGX tables, σ for
+    /// Torrance–Sparrow tables; the table's header says which), both clamped to the table's
+    /// axes. Both NaN for NaN input or a bad handle.
+    brdf_dfg_table_ab(t: BrdfDfgTable, mu: f32, roughness: f32) -> BrdfDfgF32 =
+        {
+            let (a, b) = t.map_or((f32::NAN, f32::NAN), |t| t.ab(mu, roughness));
+            BrdfDfgF32 { a, b }
+        };
 }
 
 batch_export! {
@@ -309,17 +255,11 @@ parse_export! {
     brdf_albedo_table_parse(BrdfAlbedoTable) = AlbedoTable
 }
 
-/// E(μ, r) ∈ [0, 1] (F = 1) at μ = n·v and roughness, clamped to the table's axes; NaN for
-/// NaN input or a bad handle.
-#[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-#[no_mangle]
-pub unsafe extern "C" fn brdf_albedo_table_e(
-    t: *const BrdfAlbedoTable,
-    mu: f32,
-    roughness: f32,
-) -> f32 {
-    // SAFETY: `t` is null or a readable handle (the caller's contract).
-    unsafe { BrdfAlbedoTable::get(t) }.map_or(f32::NAN, |t| t.e(mu, roughness))
+query_export! {
+    /// E(μ, r) ∈ [0, 1] (F = 1) at μ = n·v and roughness, clamped to the table's axes; NaN for
+    /// NaN input or a bad handle.
+    brdf_albedo_table_e(t: BrdfAlbedoTable, mu: f32, roughness: f32) -> f32 =
+        t.map_or(f32::NAN, |t| t.e(mu, roughness));
 }
 
 batch_export! {
@@ -333,16 +273,11 @@ parse_export! {
     brdf_average_albedo_table_parse(BrdfAverageAlbedoTable) = AverageAlbedoTable
 }
 
-/// E_avg(r) = 2∫₀¹ E(μ, r) μ dμ at roughness r, clamped to the table's axis; NaN for NaN
-/// input or a bad handle.
-#[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-#[no_mangle]
-pub unsafe extern "C" fn brdf_average_albedo_table_e_avg(
-    t: *const BrdfAverageAlbedoTable,
-    roughness: f32,
-) -> f32 {
-    // SAFETY: `t` is null or a readable handle (the caller's contract).
-    unsafe { BrdfAverageAlbedoTable::get(t) }.map_or(f32::NAN, |t| t.e_avg(roughness))
+query_export! {
+    /// E_avg(r) = 2∫₀¹ E(μ, r) μ dμ at roughness r, clamped to the table's axis; NaN for NaN
+    /// input or a bad handle.
+    brdf_average_albedo_table_e_avg(t: BrdfAverageAlbedoTable, roughness: f32) -> f32 =
+        t.map_or(f32::NAN, |t| t.e_avg(roughness));
 }
 
 batch_export! {

@@ -12,6 +12,26 @@ fn init<H>(f: impl FnOnce(*mut H) -> BrdfStatus) -> H {
     unsafe { h.assume_init() }
 }
 
+/// The colour with every channel `v`.
+fn grey32(v: f32) -> BrdfRgbF32 {
+    BrdfRgbF32 { r: v, g: v, b: v }
+}
+
+/// The colour with every channel `v`.
+fn grey64(v: f64) -> BrdfRgbF64 {
+    BrdfRgbF64 { r: v, g: v, b: v }
+}
+
+/// The vector (x, y, z).
+fn vec32(x: f32, y: f32, z: f32) -> BrdfVec3F32 {
+    BrdfVec3F32 { x, y, z }
+}
+
+/// The vector (x, y, z).
+fn vec64(x: f64, y: f64, z: f64) -> BrdfVec3F64 {
+    BrdfVec3F64 { x, y, z }
+}
+
 fn modified(sigma: f32, conv: BrdfConvention) -> Box<BrdfModifiedGF32> {
     Box::new(init(|h| unsafe {
         brdf_modified_g_init_f32(h, sigma, conv)
@@ -74,17 +94,9 @@ fn handles_refuse_null_zeroed_failed_and_foreign_handles() {
     );
     assert!(unsafe { brdf_modified_g_f32(&g, 0.1, 0.1) }.is_nan());
     // The handle of a GGX surface is not a modified-G handle.
-    let mut gx = MaybeUninit::<BrdfGgxF32>::uninit();
-    let f0 = BrdfRgbF32 {
-        r: 0.04,
-        g: 0.04,
-        b: 0.04,
-    };
-    assert_eq!(
-        unsafe { brdf_ggx_init_f32(gx.as_mut_ptr(), f0, 0.3, BRDF_SMITH_FORM_CORRELATED) },
-        BRDF_STATUS_OK
-    );
-    let foreign = gx.as_ptr().cast::<BrdfModifiedGF32>();
+    let gx: BrdfGgxF32 =
+        init(|h| unsafe { brdf_ggx_init_f32(h, grey32(0.04), 0.3, BRDF_SMITH_FORM_CORRELATED) });
+    let foreign = std::ptr::from_ref(&gx).cast::<BrdfModifiedGF32>();
     assert!(unsafe { brdf_modified_g_f32(foreign, 0.1, 0.1) }.is_nan());
 }
 
@@ -380,20 +392,12 @@ fn sheen_through_the_abi() {
         SheenVisibility::ALL[BRDF_SHEEN_VISIBILITY_ASHIKHMIN as usize],
         SheenVisibility::Ashikhmin
     );
-    let white = BrdfRgbF64 {
-        r: 1.0,
-        g: 1.0,
-        b: 1.0,
-    };
+    let white = grey64(1.0);
     let s: BrdfSheenF64 =
         init(|p| unsafe { brdf_sheen_init_f64(p, white, 1.0, BRDF_SHEEN_VISIBILITY_ASHIKHMIN) });
     // r = 1 (α = 1): D = 3 sin θh/(2π); wi = wo = (0.6, 0, 0.8): h = wo, sin θh = 0.6,
     // V = 1/(4(0.8 + 0.8 − 0.64)) = 1/3.84.
-    let w = BrdfVec3F64 {
-        x: 0.6,
-        y: 0.0,
-        z: 0.8,
-    };
+    let w = vec64(0.6, 0.0, 0.8);
     let want = 3.0 * 0.6 / (2.0 * std::f64::consts::PI) / 3.84;
     let got = unsafe { brdf_sheen_eval_f64(&s, w, w) };
     assert!(
@@ -404,11 +408,7 @@ fn sheen_through_the_abi() {
     assert!((dots.r - want).abs() < 1e-14, "{dots:?}");
     // Bad input: status codes and NaN.
     let mut h = MaybeUninit::<BrdfSheenF32>::uninit();
-    let one = BrdfRgbF32 {
-        r: 1.0,
-        g: 1.0,
-        b: 1.0,
-    };
+    let one = grey32(1.0);
     assert_eq!(
         unsafe { brdf_sheen_init_f32(h.as_mut_ptr(), one, 0.5, 2) },
         BRDF_STATUS_INVALID_ARGUMENT
@@ -466,11 +466,7 @@ fn rough_dielectric_smooth_limit_matches_fresnel_and_snell() {
     // radiance convention η² ∫ f_t |cos| = 1 − R0. Each estimate is a count over N (the
     // weights are G1 = 1 at the α floor) within 1/(2N) of its fraction: tolerance 1/N.
     let n = 4096;
-    let up = BrdfVec3F64 {
-        x: 0.0,
-        y: 0.0,
-        z: 1.0,
-    };
+    let up = vec64(0.0, 0.0, 1.0);
     let (er, et) = dielectric_energy(1.5, up, n);
     assert!((er - 0.04).abs() <= 1.0 / n as f64, "{er}");
     assert!((er + 2.25 * et - 1.0).abs() < 1e-9, "{er} {et}");
@@ -478,11 +474,7 @@ fn rough_dielectric_smooth_limit_matches_fresnel_and_snell() {
     // asin(1/1.5) = 41.8°: total internal reflection, everything comes back, each weight
     // the mirror direction's Smith G1 = 2/(1 + √(1 + α² tan²60°)) = 1 − 7.5e-9 at α = 1e-4:
     // tolerance 1e-7.
-    let wo = BrdfVec3F64 {
-        x: 0.75f64.sqrt(),
-        y: 0.0,
-        z: 0.5,
-    };
+    let wo = vec64(0.75f64.sqrt(), 0.0, 0.5);
     let (er, et) = dielectric_energy(1.0 / 1.5, wo, 256);
     assert!((er - 1.0).abs() < 1e-7 && et == 0.0, "{er} {et}");
 }
@@ -494,16 +486,8 @@ fn rough_dielectric_adjoint_is_the_swapped_eval_and_bad_input_is_refused() {
     let m: BrdfRoughDielectricF64 = init(|p| unsafe {
         brdf_rough_dielectric_init_f64(p, BRDF_DIELECTRIC_DISTRIBUTION_BECKMANN, 0.3, 1.5)
     });
-    let wi = BrdfVec3F64 {
-        x: 0.3,
-        y: 0.1,
-        z: -0.9f64.sqrt(),
-    };
-    let wo = BrdfVec3F64 {
-        x: -0.5,
-        y: 0.0,
-        z: 0.75f64.sqrt(),
-    };
+    let wi = vec64(0.3, 0.1, -0.9f64.sqrt());
+    let wo = vec64(-0.5, 0.0, 0.75f64.sqrt());
     let fa = unsafe { brdf_rough_dielectric_eval_adjoint_f64(&m, wi, wo) };
     let fs = unsafe { brdf_rough_dielectric_eval_f64(&m, wo, wi) };
     let f = unsafe { brdf_rough_dielectric_eval_f64(&m, wi, wo) };
@@ -511,11 +495,7 @@ fn rough_dielectric_adjoint_is_the_swapped_eval_and_bad_input_is_refused() {
     // wi is inside (η_i = 1.5), wo outside: f* = (η_i/η_o)² f = 2.25 f.
     assert!(((fa / f) - 2.25).abs() < 1e-12, "{fa} {f}");
     // A viewer at the horizon has no sample; the output is left as it was.
-    let grazing = BrdfVec3F64 {
-        x: 1.0,
-        y: 0.0,
-        z: 1e-300,
-    };
+    let grazing = vec64(1.0, 0.0, 1e-300);
     let mut s = MaybeUninit::<BrdfBsdfSampleF64>::zeroed();
     let st =
         unsafe { brdf_rough_dielectric_sample_f64(&m, grazing, 0.5, 0.5, 0.5, s.as_mut_ptr()) };
@@ -524,10 +504,6 @@ fn rough_dielectric_adjoint_is_the_swapped_eval_and_bad_input_is_refused() {
     let mut h = MaybeUninit::<BrdfRoughDielectricF32>::uninit();
     let st = unsafe { brdf_rough_dielectric_init_f32(h.as_mut_ptr(), 2, 0.3, 1.5) };
     assert_eq!(st, BRDF_STATUS_INVALID_ARGUMENT);
-    let w = BrdfVec3F32 {
-        x: 0.0,
-        y: 0.0,
-        z: 1.0,
-    };
+    let w = vec32(0.0, 0.0, 1.0);
     assert!(unsafe { brdf_rough_dielectric_eval_f32(h.as_ptr(), w, w) }.is_nan());
 }
