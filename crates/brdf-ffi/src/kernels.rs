@@ -481,17 +481,12 @@ macro_rules! typed_abi {
             init $mg_init($MG; sigma: $t, convention: BrdfConvention) = modified_new(sigma, convention)
         }
 
-        /// GM, GS and G from the paper's in-plane angles in radians: θi ∈ [0, π/2], θr ∈ [−π/2, π/2]
-        /// signed (out-of-range and infinite angles are clamped to those ranges). NaN angles, a null
-        /// or uninitialised handle give all NaN.
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $mg_terms(g: *const $MG, theta_i: $t, theta_r: $t) -> $Terms {
-            // SAFETY: `g` is null or a readable handle (the caller's contract).
-            match unsafe { $MG::get(g) } {
-                Some(m) => m.terms(theta_i, theta_r).into(),
-                None => $Terms::NAN,
-            }
+        query_export! {
+            /// GM, GS and G from the paper's in-plane angles in radians: θi ∈ [0, π/2], θr ∈ [−π/2, π/2]
+            /// signed (out-of-range and infinite angles are clamped to those ranges). NaN angles, a null
+            /// or uninitialised handle give all NaN.
+            $mg_terms(g: $MG, theta_i: $t, theta_r: $t) -> $Terms =
+                g.map_or($Terms::NAN, |m| m.terms(theta_i, theta_r).into());
         }
 
         #[doc = concat!(" G = min(GM, GS) ∈ [0, 1] from in-plane angles; see `", stringify!($mg_terms), "` (NaN for")]
@@ -503,20 +498,13 @@ macro_rules! typed_abi {
             unsafe { $mg_terms(g, theta_i, theta_r) }.g
         }
 
-        /// GM, GS and G from the dot products n·wi, n·wo, wi·wo of unit vectors (the reciprocal
-        /// 3-D extension; with the printed convention the pair is folded into its plane). A direction
-        /// at or below the horizon (n·w ≤ 0) gives 0; a non-finite dot product, a null or
-        /// uninitialised handle give all NaN.
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $mg_terms_dots(
-            g: *const $MG,
-            n_i: $t,
-            n_o: $t,
-            i_o: $t,
-        ) -> $Terms {
-            // SAFETY: `g` is null or a readable handle (the caller's contract).
-            at_dots(unsafe { $MG::get(g) }, [n_i, n_o, i_o], $Terms::NAN, |m, d| m.terms_dots(d).into())
+        query_export! {
+            /// GM, GS and G from the dot products n·wi, n·wo, wi·wo of unit vectors (the reciprocal
+            /// 3-D extension; with the printed convention the pair is folded into its plane). A direction
+            /// at or below the horizon (n·w ≤ 0) gives 0; a non-finite dot product, a null or
+            /// uninitialised handle give all NaN.
+            $mg_terms_dots(g: $MG, n_i: $t, n_o: $t, i_o: $t) -> $Terms =
+                at_dots(g, [n_i, n_o, i_o], $Terms::NAN, |m, d| m.terms_dots(d).into());
         }
 
         #[doc = concat!(" G ∈ [0, 1] from dot products; see `", stringify!($mg_terms_dots), "`.")]
@@ -598,46 +586,30 @@ macro_rules! typed_abi {
             ) = ts_new(sigma, g_term, fresnel, fresnel_param, ks, albedo)
         }
 
-        /// The Torrance–Sparrow BRDF in 1/sr (specular + ρ_d/π) from n·wi, n·wo, wi·wo of unit
-        /// vectors; 0 when a direction is at or below the horizon; NaN for a non-finite dot product
-        /// or a null or uninitialised handle.
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $ts_eval(ts: *const $TS, n_i: $t, n_o: $t, i_o: $t) -> $t {
-            // SAFETY: `ts` is null or a readable handle (the caller's contract).
-            at_dots(unsafe { $TS::get(ts) }, [n_i, n_o, i_o], <$t>::NAN, TorranceSparrow::eval_dots)
-        }
+        query_export! {
+            /// The Torrance–Sparrow BRDF in 1/sr (specular + ρ_d/π) from n·wi, n·wo, wi·wo of unit
+            /// vectors; 0 when a direction is at or below the horizon; NaN for a non-finite dot product
+            /// or a null or uninitialised handle.
+            $ts_eval(ts: $TS, n_i: $t, n_o: $t, i_o: $t) -> $t =
+                at_dots(ts, [n_i, n_o, i_o], <$t>::NAN, TorranceSparrow::eval_dots);
 
-        #[doc = concat!(" `", stringify!($ts_eval), "` with n·h as well, h = normalize(wi + wo) as a shader")]
-        /// has it. Exact where the three dot products alone are not: for a near-mirror pair near
-        /// the horizon 2 + 2 wi·wo cancels, and |wi + wo| (hence h, D and the BRDF) is then
-        /// recovered from n·h instead (`Dots::with_n_h`). Bad input as for
-        #[doc = concat!(" `", stringify!($ts_eval), "`; a non-finite n·h gives NaN.")]
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $ts_eval_nh(
-            ts: *const $TS,
-            n_i: $t,
-            n_o: $t,
-            i_o: $t,
-            n_h: $t,
-        ) -> $t {
-            // SAFETY: `ts` is null or a readable handle (the caller's contract).
-            match unsafe { $TS::get(ts) } {
-                Some(t) if finite3(n_i, n_o, i_o) && n_h.is_finite() => {
-                    t.eval_dots(Dots::with_n_h(n_i, n_o, i_o, n_h))
-                }
-                _ => <$t>::NAN,
-            }
-        }
+            #[doc = concat!(" `", stringify!($ts_eval), "` with n·h as well, h = normalize(wi + wo) as a shader")]
+            /// has it. Exact where the three dot products alone are not: for a near-mirror pair near
+            /// the horizon 2 + 2 wi·wo cancels, and |wi + wo| (hence h, D and the BRDF) is then
+            /// recovered from n·h instead (`Dots::with_n_h`). Bad input as for
+            #[doc = concat!(" `", stringify!($ts_eval), "`; a non-finite n·h gives NaN.")]
+            $ts_eval_nh(ts: $TS, n_i: $t, n_o: $t, i_o: $t, n_h: $t) -> $t =
+                match ts {
+                    Some(t) if finite3(n_i, n_o, i_o) && n_h.is_finite() => {
+                        t.eval_dots(Dots::with_n_h(n_i, n_o, i_o, n_h))
+                    }
+                    _ => <$t>::NAN,
+                };
 
-        /// The specular lobe k_s D F G / (4 (n·wi)(n·wo)) alone, in 1/sr; bad input as for
-        #[doc = concat!(" `", stringify!($ts_eval), "`.")]
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $ts_specular(ts: *const $TS, n_i: $t, n_o: $t, i_o: $t) -> $t {
-            // SAFETY: `ts` is null or a readable handle (the caller's contract).
-            at_dots(unsafe { $TS::get(ts) }, [n_i, n_o, i_o], <$t>::NAN, TorranceSparrow::eval_specular)
+            /// The specular lobe k_s D F G / (4 (n·wi)(n·wo)) alone, in 1/sr; bad input as for
+            #[doc = concat!(" `", stringify!($ts_eval), "`.")]
+            $ts_specular(ts: $TS, n_i: $t, n_o: $t, i_o: $t) -> $t =
+                at_dots(ts, [n_i, n_o, i_o], <$t>::NAN, TorranceSparrow::eval_specular);
         }
 
         batch_export! {
@@ -646,15 +618,13 @@ macro_rules! typed_abi {
             $ts_batch(ts: $TS; n_i, n_o, i_o => out: $t) = |t, d| [at_dots(Some(t), d, <$t>::NAN, TorranceSparrow::eval_dots)]
         }
 
-        /// Directional albedo R(μ) = ∫ f cos θi dωi over the upper hemisphere (including ρ_d), for
-        /// a viewer at μ = n·wo ∈ (0, 1] (values above 1 count as 1), by brdf-core's fixed
-        /// quadrature (about 4·10⁵ BRDF evaluations: slow on a microcontroller). μ ≤ 0 gives 0; NaN
-        /// μ, a null or uninitialised handle give NaN.
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $ts_albedo(ts: *const $TS, mu: $t) -> $t {
-            // SAFETY: `ts` is null or a readable handle (the caller's contract).
-            albedo_of(unsafe { $TS::get(ts) }.map(TsLobe).as_ref(), mu).r
+        query_export! {
+            /// Directional albedo R(μ) = ∫ f cos θi dωi over the upper hemisphere (including ρ_d), for
+            /// a viewer at μ = n·wo ∈ (0, 1] (values above 1 count as 1), by brdf-core's fixed
+            /// quadrature (about 4·10⁵ BRDF evaluations: slow on a microcontroller). μ ≤ 0 gives 0; NaN
+            /// μ, a null or uninitialised handle give NaN.
+            $ts_albedo(ts: $TS, mu: $t) -> $t =
+                albedo_of(ts.map(TsLobe).as_ref(), mu).r;
         }
 
         rgb_brdf_abi! {
