@@ -346,6 +346,7 @@ pub(crate) unsafe fn wr<T>(p: *mut T, i: usize, v: T) {
 /// # Safety
 /// `out` is null or valid for writes of one `H`, 8-byte aligned; `clear` and `put` are the
 /// handle's own functions, which need exactly that.
+#[inline]
 pub(crate) unsafe fn init<H, V>(
     out: *mut H,
     clear: unsafe fn(*mut H),
