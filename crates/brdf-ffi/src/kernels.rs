@@ -1,8 +1,9 @@
 //! Kernel exports: the modified G, Blinn's and Smith's G, the Torrance–Sparrow, GGX and
 //! sheen BRDFs and their directional albedo, and the rough dielectric BSDF (eval, adjoint,
 //! pdf, sampling), each in `f32` and `f64`: one definition (the `typed_abi!`, `sheen_abi!`
-//! and `rough_dielectric_abi!` macros below, over generic helpers) instantiated for each
-//! scalar type.
+//! and `rough_dielectric_abi!` macros below, GGX and sheen sharing `rgb_brdf_abi!`, every
+//! init, query and batch export written by the crate's `init_export!`, `query_export!` and
+//! `batch_export!`, over generic helpers) instantiated for each scalar type.
 //!
 //! Conventions (docs/conventions.md): local frame with z the normal, both directions
 //! pointing away from the surface, `wi` toward the light and `wo` toward the viewer; the
