@@ -1,8 +1,9 @@
 //! Kernel exports: the modified G, Blinn's and Smith's G, the Torrance–Sparrow, GGX and
 //! sheen BRDFs and their directional albedo, and the rough dielectric BSDF (eval, adjoint,
 //! pdf, sampling), each in `f32` and `f64`: one definition (the `typed_abi!`, `sheen_abi!`
-//! and `rough_dielectric_abi!` macros below, over generic helpers) instantiated for each
-//! scalar type.
+//! and `rough_dielectric_abi!` macros below, GGX and sheen sharing `rgb_brdf_abi!`, every
+//! init, query and batch export written by the crate's `init_export!`, `query_export!` and
+//! `batch_export!`, over generic helpers) instantiated for each scalar type.
 //!
 //! Conventions (docs/conventions.md): local frame with z the normal, both directions
 //! pointing away from the surface, `wi` toward the light and `wo` toward the viewer; the
@@ -15,8 +16,8 @@
 //! of such pairs should evaluate in higher precision or avoid the dot-product form there.
 
 use crate::{
-    handle, rd, wr, BrdfStatus, BRDF_STATUS_INVALID_ARGUMENT, BRDF_STATUS_NOT_INITIALISED,
-    BRDF_STATUS_NO_SAMPLE, BRDF_STATUS_NULL_POINTER, BRDF_STATUS_OK,
+    batch_export, handle, init_export, query_export, BrdfStatus, BRDF_STATUS_INVALID_ARGUMENT,
+    BRDF_STATUS_NOT_INITIALISED, BRDF_STATUS_NO_SAMPLE, BRDF_STATUS_NULL_POINTER, BRDF_STATUS_OK,
 };
 use brdf_core::albedo::directional_albedo;
 use brdf_core::fresnel::Fresnel;
@@ -113,17 +114,6 @@ pub const BRDF_GGX_WORDS: usize = 8;
 pub const BRDF_SHEEN_WORDS: usize = 16;
 /// Storage words (8 bytes each) of the rough dielectric handles.
 pub const BRDF_ROUGH_DIELECTRIC_WORDS: usize = 8;
-
-const TAG_MODIFIED_G_F32: u64 = 0x4252_4446_4d47_3332;
-const TAG_MODIFIED_G_F64: u64 = 0x4252_4446_4d47_3634;
-const TAG_TS_F32: u64 = 0x4252_4446_5453_3332;
-const TAG_TS_F64: u64 = 0x4252_4446_5453_3634;
-const TAG_GGX_F32: u64 = 0x4252_4446_4758_3332;
-const TAG_GGX_F64: u64 = 0x4252_4446_4758_3634;
-const TAG_SHEEN_F32: u64 = 0x4252_4446_5348_3332;
-const TAG_SHEEN_F64: u64 = 0x4252_4446_5348_3634;
-const TAG_RD_F32: u64 = 0x4252_4446_5244_3332;
-const TAG_RD_F64: u64 = 0x4252_4446_5244_3634;
 
 fn convention(c: BrdfConvention) -> Option<Convention> {
     match c {
@@ -381,70 +371,13 @@ unsafe fn put_result<V, C: From<V>>(
     }
 }
 
-/// `f` of a prepared Torrance–Sparrow BRDF at the dot products `d`; NaN for a missing handle
-/// or a non-finite dot product.
-fn ts_dots<T: Real>(
-    ts: Option<&TorranceSparrow<T>>,
-    d: [T; 3],
-    f: impl Fn(&TorranceSparrow<T>, Dots<T>) -> T,
-) -> T {
-    match ts {
-        Some(t) if finite3(d[0], d[1], d[2]) => f(t, Dots::new(d[0], d[1], d[2])),
-        _ => T::NAN,
+/// `f` of a prepared model at the dot products `d` = [n·wi, n·wo, wi·wo] ([`Dots::new`]);
+/// `nan` for a missing handle or a non-finite dot product.
+fn at_dots<T: Real, M, R>(m: Option<&M>, d: [T; 3], nan: R, f: impl Fn(&M, Dots<T>) -> R) -> R {
+    match m {
+        Some(m) if finite3(d[0], d[1], d[2]) => f(m, Dots::new(d[0], d[1], d[2])),
+        _ => nan,
     }
-}
-
-/// The body of every `*_init` export: refuses a null `out`, clears its tag, builds the value
-/// and stores it (the tag is written last, so a failed init leaves the handle refused).
-///
-/// # Safety
-/// `out` is null or valid for writes of one `H`, 8-byte aligned; `clear` and `put` are the
-/// handle's own functions, which need exactly that.
-unsafe fn init<H, V>(
-    out: *mut H,
-    clear: unsafe fn(*mut H),
-    put: unsafe fn(*mut H, V),
-    new: impl FnOnce() -> Result<V, BrdfStatus>,
-) -> BrdfStatus {
-    if out.is_null() {
-        return BRDF_STATUS_NULL_POINTER;
-    }
-    // SAFETY: `out` is non-null and valid for writes (this function's contract).
-    unsafe { clear(out) };
-    match new() {
-        Ok(v) => {
-            // SAFETY: as above.
-            unsafe { put(out, v) };
-            BRDF_STATUS_OK
-        }
-        Err(s) => s,
-    }
-}
-
-/// The body of the three-input batch exports: checks the arrays (nothing is written on an
-/// error), then `out[k] = f(a[k], b[k], c[k])`, each element read before it is written.
-///
-/// # Safety
-/// Each pointer is null or valid for `n` reads (`a`, `b`, `c`) or writes (`out`) of `T`;
-/// `out` may alias an input.
-unsafe fn map3<T: Copy>(
-    a: *const T,
-    b: *const T,
-    c: *const T,
-    out: *mut T,
-    n: usize,
-    f: impl Fn(T, T, T) -> T,
-) -> BrdfStatus {
-    let nulls = [a.is_null(), b.is_null(), c.is_null(), out.is_null()];
-    let s = crate::check_arrays(&nulls, n, core::mem::size_of::<T>());
-    if s != BRDF_STATUS_OK {
-        return s;
-    }
-    for k in 0..n {
-        // SAFETY: the arrays are non-null (checked) and hold `n` elements (the contract).
-        unsafe { wr(out, k, f(rd(a, k), rd(b, k), rd(c, k))) };
-    }
-    BRDF_STATUS_OK
 }
 
 // ---------------------------------------------------------------------------------------
@@ -457,7 +390,7 @@ macro_rules! typed_abi {
     (
         $t:ident;
         $Terms:ident, $Vec3:ident, $Rgb:ident;
-        $MG:ident = $tag_mg:ident, $TS:ident = $tag_ts:ident, $Ggx:ident = $tag_ggx:ident;
+        $MG:ident, $TS:ident, $Ggx:ident;
         $mg_init:ident, $mg_terms:ident, $mg_g:ident, $mg_terms_dots:ident, $mg_dots:ident,
         $mg_batch:ident, $blinn:ident, $blinn_dots:ident, $g1_smith:ident, $g_smith:ident,
         $ts_init:ident, $ts_eval:ident, $ts_eval_nh:ident, $ts_specular:ident, $ts_batch:ident,
@@ -503,19 +436,13 @@ macro_rules! typed_abi {
         handle! {
             /// A prepared modified G for one surface (σ, convention). Fill it with
             #[doc = concat!(" `", stringify!($mg_init), "`; the fields are private to the library.")]
-            $MG[BRDF_MODIFIED_G_WORDS] = ModifiedG<$t>, $tag_mg
+            $MG[BRDF_MODIFIED_G_WORDS] = ModifiedG<$t>, crate::scalar_tag::<$t>(*b"MG")
         }
 
         handle! {
             #[doc = concat!(" A prepared Torrance–Sparrow BRDF. Fill it with `", stringify!($ts_init), "`; the")]
             /// fields are private to the library.
-            $TS[BRDF_TORRANCE_SPARROW_WORDS] = TorranceSparrow<$t>, $tag_ts
-        }
-
-        handle! {
-            #[doc = concat!(" A prepared GGX BRDF. Fill it with `", stringify!($ggx_init), "`; the fields are private to the")]
-            /// library.
-            $Ggx[BRDF_GGX_WORDS] = Ggx<$t>, $tag_ggx
+            $TS[BRDF_TORRANCE_SPARROW_WORDS] = TorranceSparrow<$t>, crate::scalar_tag::<$t>(*b"TS")
         }
 
         impl From<masking::GTerms<$t>> for $Terms {
@@ -546,33 +473,21 @@ macro_rules! typed_abi {
             }
         }
 
-        /// Prepares the modified G of the 2015 Acta Physica Sinica paper (eqs 6–13) for RMS slope
-        /// `sigma` (finite, > 0; accuracy specified for σ ∈ [0.05, 1]) and `convention`
-        /// (`BRDF_CONVENTION_*`). Returns `BRDF_STATUS_OK`, `BRDF_STATUS_NULL_POINTER` (`out` null)
-        /// or `BRDF_STATUS_INVALID_ARGUMENT` (σ NaN, infinite or ≤ 0, unknown convention); on error
-        /// `*out` is left not initialised.
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(init))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $mg_init(
-            out: *mut $MG,
-            sigma: $t,
-            convention: BrdfConvention,
-        ) -> BrdfStatus {
-            // SAFETY: the caller's contract for `out` is the one `init` needs.
-            unsafe { init(out, $MG::clear, $MG::put, || modified_new(sigma, convention)) }
+        init_export! {
+            /// Prepares the modified G of the 2015 Acta Physica Sinica paper (eqs 6–13) for RMS slope
+            /// `sigma` (finite, > 0; accuracy specified for σ ∈ [0.05, 1]) and `convention`
+            /// (`BRDF_CONVENTION_*`). Returns `BRDF_STATUS_OK`, `BRDF_STATUS_NULL_POINTER` (`out` null)
+            /// or `BRDF_STATUS_INVALID_ARGUMENT` (σ NaN, infinite or ≤ 0, unknown convention); on error
+            /// `*out` is left not initialised.
+            init $mg_init($MG; sigma: $t, convention: BrdfConvention) = modified_new(sigma, convention)
         }
 
-        /// GM, GS and G from the paper's in-plane angles in radians: θi ∈ [0, π/2], θr ∈ [−π/2, π/2]
-        /// signed (out-of-range and infinite angles are clamped to those ranges). NaN angles, a null
-        /// or uninitialised handle give all NaN.
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $mg_terms(g: *const $MG, theta_i: $t, theta_r: $t) -> $Terms {
-            // SAFETY: `g` is null or a readable handle (the caller's contract).
-            match unsafe { $MG::get(g) } {
-                Some(m) => m.terms(theta_i, theta_r).into(),
-                None => $Terms::NAN,
-            }
+        query_export! {
+            /// GM, GS and G from the paper's in-plane angles in radians: θi ∈ [0, π/2], θr ∈ [−π/2, π/2]
+            /// signed (out-of-range and infinite angles are clamped to those ranges). NaN angles, a null
+            /// or uninitialised handle give all NaN.
+            $mg_terms(g: $MG, theta_i: $t, theta_r: $t) -> $Terms =
+                g.map_or($Terms::NAN, |m| m.terms(theta_i, theta_r).into());
         }
 
         #[doc = concat!(" G = min(GM, GS) ∈ [0, 1] from in-plane angles; see `", stringify!($mg_terms), "` (NaN for")]
@@ -584,23 +499,13 @@ macro_rules! typed_abi {
             unsafe { $mg_terms(g, theta_i, theta_r) }.g
         }
 
-        /// GM, GS and G from the dot products n·wi, n·wo, wi·wo of unit vectors (the reciprocal
-        /// 3-D extension; with the printed convention the pair is folded into its plane). A direction
-        /// at or below the horizon (n·w ≤ 0) gives 0; a non-finite dot product, a null or
-        /// uninitialised handle give all NaN.
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $mg_terms_dots(
-            g: *const $MG,
-            n_i: $t,
-            n_o: $t,
-            i_o: $t,
-        ) -> $Terms {
-            // SAFETY: `g` is null or a readable handle (the caller's contract).
-            match unsafe { $MG::get(g) } {
-                Some(m) if finite3(n_i, n_o, i_o) => m.terms_dots(Dots::new(n_i, n_o, i_o)).into(),
-                _ => $Terms::NAN,
-            }
+        query_export! {
+            /// GM, GS and G from the dot products n·wi, n·wo, wi·wo of unit vectors (the reciprocal
+            /// 3-D extension; with the printed convention the pair is folded into its plane). A direction
+            /// at or below the horizon (n·w ≤ 0) gives 0; a non-finite dot product, a null or
+            /// uninitialised handle give all NaN.
+            $mg_terms_dots(g: $MG, n_i: $t, n_o: $t, i_o: $t) -> $Terms =
+                at_dots(g, [n_i, n_o, i_o], $Terms::NAN, |m, d| m.terms_dots(d).into());
         }
 
         #[doc = concat!(" G ∈ [0, 1] from dot products; see `", stringify!($mg_terms_dots), "`.")]
@@ -611,27 +516,12 @@ macro_rules! typed_abi {
             unsafe { $mg_terms_dots(g, n_i, n_o, i_o) }.g
         }
 
-        #[doc = concat!(" `out[k] = ", stringify!($mg_dots), "(g, n_i[k], n_o[k], i_o[k])` for k < n. Returns")]
-        /// `BRDF_STATUS_NOT_INITIALISED` (bad handle; nothing written), `BRDF_STATUS_NULL_POINTER`
-        /// (an array null with n > 0; nothing written), `BRDF_STATUS_BAD_LENGTH` (n too large) or
-        /// `BRDF_STATUS_OK`. `out` may alias an input.
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(batch))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $mg_batch(
-            g: *const $MG,
-            n_i: *const $t,
-            n_o: *const $t,
-            i_o: *const $t,
-            out: *mut $t,
-            n: usize,
-        ) -> BrdfStatus {
-            // SAFETY: `g` is null or a readable handle (the caller's contract).
-            let Some(m) = (unsafe { $MG::get(g) }) else {
-                return BRDF_STATUS_NOT_INITIALISED;
-            };
-            let eval = |a, b, c| if finite3(a, b, c) { m.g_dots(Dots::new(a, b, c)) } else { <$t>::NAN };
-            // SAFETY: each array is null or holds `n` elements (the caller's contract).
-            unsafe { map3(n_i, n_o, i_o, out, n, eval) }
+        batch_export! {
+            #[doc = concat!(" `out[k] = ", stringify!($mg_dots), "(g, n_i[k], n_o[k], i_o[k])` for k < n. Returns")]
+            /// `BRDF_STATUS_NOT_INITIALISED` (bad handle; nothing written), `BRDF_STATUS_NULL_POINTER`
+            /// (an array null with n > 0; nothing written), `BRDF_STATUS_BAD_LENGTH` (n too large) or
+            /// `BRDF_STATUS_OK`. `out` may alias an input.
+            $mg_batch(g: $MG; n_i, n_o, i_o => out: $t) = |m, d| [at_dots(Some(m), d, <$t>::NAN, ModifiedG::g_dots)]
         }
 
         /// Blinn's V-groove G (paper eq 4) ∈ [0, 1] from in-plane angles in radians (clamped like
@@ -678,138 +568,126 @@ macro_rules! typed_abi {
             g_smith(distribution, form, cos_i, cos_o, roughness)
         }
 
-        /// Prepares the Torrance–Sparrow BRDF of the paper (eq 3):
-        /// f = k_s D F G / (4 (n·wi)(n·wo)) + ρ_d/π, D Beckmann with m = √2σ, F chosen by `fresnel`
-        /// (`BRDF_FRESNEL_*`) with parameter `fresnel_param` (R0 ∈ [0, 1] or η > 0; ignored for
-        /// `BRDF_FRESNEL_ONE`), G by `g_term` (`BRDF_GEOMETRIC_*`). σ finite > 0, k_s ∈ [0, ∞)
-        /// finite, ρ_d = `albedo` ∈ [0, 1]. Returns `BRDF_STATUS_OK`, `BRDF_STATUS_NULL_POINTER` or
-        /// `BRDF_STATUS_INVALID_ARGUMENT` (any parameter out of range, NaN, infinite, or an unknown
-        /// choice); on error `*out` is left not initialised.
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(init))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $ts_init(
-            out: *mut $TS,
-            sigma: $t,
-            g_term: BrdfGeometricTerm,
-            fresnel: BrdfFresnel,
-            fresnel_param: $t,
-            ks: $t,
-            albedo: $t,
-        ) -> BrdfStatus {
-            let new = || ts_new(sigma, g_term, fresnel, fresnel_param, ks, albedo);
-            // SAFETY: the caller's contract for `out` is the one `init` needs.
-            unsafe { init(out, $TS::clear, $TS::put, new) }
+        init_export! {
+            /// Prepares the Torrance–Sparrow BRDF of the paper (eq 3):
+            /// f = k_s D F G / (4 (n·wi)(n·wo)) + ρ_d/π, D Beckmann with m = √2σ, F chosen by `fresnel`
+            /// (`BRDF_FRESNEL_*`) with parameter `fresnel_param` (R0 ∈ [0, 1] or η > 0; ignored for
+            /// `BRDF_FRESNEL_ONE`), G by `g_term` (`BRDF_GEOMETRIC_*`). σ finite > 0, k_s ∈ [0, ∞)
+            /// finite, ρ_d = `albedo` ∈ [0, 1]. Returns `BRDF_STATUS_OK`, `BRDF_STATUS_NULL_POINTER` or
+            /// `BRDF_STATUS_INVALID_ARGUMENT` (any parameter out of range, NaN, infinite, or an unknown
+            /// choice); on error `*out` is left not initialised.
+            init $ts_init(
+                $TS;
+                sigma: $t,
+                g_term: BrdfGeometricTerm,
+                fresnel: BrdfFresnel,
+                fresnel_param: $t,
+                ks: $t,
+                albedo: $t,
+            ) = ts_new(sigma, g_term, fresnel, fresnel_param, ks, albedo)
         }
 
-        /// The Torrance–Sparrow BRDF in 1/sr (specular + ρ_d/π) from n·wi, n·wo, wi·wo of unit
-        /// vectors; 0 when a direction is at or below the horizon; NaN for a non-finite dot product
-        /// or a null or uninitialised handle.
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $ts_eval(ts: *const $TS, n_i: $t, n_o: $t, i_o: $t) -> $t {
-            // SAFETY: `ts` is null or a readable handle (the caller's contract).
-            ts_dots(unsafe { $TS::get(ts) }, [n_i, n_o, i_o], TorranceSparrow::eval_dots)
+        query_export! {
+            /// The Torrance–Sparrow BRDF in 1/sr (specular + ρ_d/π) from n·wi, n·wo, wi·wo of unit
+            /// vectors; 0 when a direction is at or below the horizon; NaN for a non-finite dot product
+            /// or a null or uninitialised handle.
+            $ts_eval(ts: $TS, n_i: $t, n_o: $t, i_o: $t) -> $t =
+                at_dots(ts, [n_i, n_o, i_o], <$t>::NAN, TorranceSparrow::eval_dots);
+
+            #[doc = concat!(" `", stringify!($ts_eval), "` with n·h as well, h = normalize(wi + wo) as a shader")]
+            /// has it. Exact where the three dot products alone are not: for a near-mirror pair near
+            /// the horizon 2 + 2 wi·wo cancels, and |wi + wo| (hence h, D and the BRDF) is then
+            /// recovered from n·h instead (`Dots::with_n_h`). Bad input as for
+            #[doc = concat!(" `", stringify!($ts_eval), "`; a non-finite n·h gives NaN.")]
+            $ts_eval_nh(ts: $TS, n_i: $t, n_o: $t, i_o: $t, n_h: $t) -> $t =
+                match ts {
+                    Some(t) if finite3(n_i, n_o, i_o) && n_h.is_finite() => {
+                        t.eval_dots(Dots::with_n_h(n_i, n_o, i_o, n_h))
+                    }
+                    _ => <$t>::NAN,
+                };
+
+            /// The specular lobe k_s D F G / (4 (n·wi)(n·wo)) alone, in 1/sr; bad input as for
+            #[doc = concat!(" `", stringify!($ts_eval), "`.")]
+            $ts_specular(ts: $TS, n_i: $t, n_o: $t, i_o: $t) -> $t =
+                at_dots(ts, [n_i, n_o, i_o], <$t>::NAN, TorranceSparrow::eval_specular);
         }
 
-        #[doc = concat!(" `", stringify!($ts_eval), "` with n·h as well, h = normalize(wi + wo) as a shader")]
-        /// has it. Exact where the three dot products alone are not: for a near-mirror pair near
-        /// the horizon 2 + 2 wi·wo cancels, and |wi + wo| (hence h, D and the BRDF) is then
-        /// recovered from n·h instead (`Dots::with_n_h`). Bad input as for
-        #[doc = concat!(" `", stringify!($ts_eval), "`; a non-finite n·h gives NaN.")]
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $ts_eval_nh(
-            ts: *const $TS,
-            n_i: $t,
-            n_o: $t,
-            i_o: $t,
-            n_h: $t,
-        ) -> $t {
-            // SAFETY: `ts` is null or a readable handle (the caller's contract).
-            match unsafe { $TS::get(ts) } {
-                Some(t) if finite3(n_i, n_o, i_o) && n_h.is_finite() => {
-                    t.eval_dots(Dots::with_n_h(n_i, n_o, i_o, n_h))
-                }
-                _ => <$t>::NAN,
-            }
+        batch_export! {
+            #[doc = concat!(" `out[k] = ", stringify!($ts_eval), "(ts, n_i[k], n_o[k], i_o[k])` for k < n; status")]
+            #[doc = concat!(" codes as for `", stringify!($mg_batch), "`.")]
+            $ts_batch(ts: $TS; n_i, n_o, i_o => out: $t) = |t, d| [at_dots(Some(t), d, <$t>::NAN, TorranceSparrow::eval_dots)]
         }
 
-        /// The specular lobe k_s D F G / (4 (n·wi)(n·wo)) alone, in 1/sr; bad input as for
-        #[doc = concat!(" `", stringify!($ts_eval), "`.")]
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $ts_specular(ts: *const $TS, n_i: $t, n_o: $t, i_o: $t) -> $t {
-            // SAFETY: `ts` is null or a readable handle (the caller's contract).
-            ts_dots(unsafe { $TS::get(ts) }, [n_i, n_o, i_o], TorranceSparrow::eval_specular)
+        query_export! {
+            /// Directional albedo R(μ) = ∫ f cos θi dωi over the upper hemisphere (including ρ_d), for
+            /// a viewer at μ = n·wo ∈ (0, 1] (values above 1 count as 1), by brdf-core's fixed
+            /// quadrature (about 4·10⁵ BRDF evaluations: slow on a microcontroller). μ ≤ 0 gives 0; NaN
+            /// μ, a null or uninitialised handle give NaN.
+            $ts_albedo(ts: $TS, mu: $t) -> $t =
+                albedo_of(ts.map(TsLobe).as_ref(), mu).r;
         }
 
-        #[doc = concat!(" `out[k] = ", stringify!($ts_eval), "(ts, n_i[k], n_o[k], i_o[k])` for k < n; status")]
-        #[doc = concat!(" codes as for `", stringify!($mg_batch), "`.")]
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(batch))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $ts_batch(
-            ts: *const $TS,
-            n_i: *const $t,
-            n_o: *const $t,
-            i_o: *const $t,
-            out: *mut $t,
-            n: usize,
-        ) -> BrdfStatus {
-            // SAFETY: `ts` is null or a readable handle (the caller's contract).
-            let Some(t) = (unsafe { $TS::get(ts) }) else {
-                return BRDF_STATUS_NOT_INITIALISED;
-            };
-            let eval = |a, b, c| if finite3(a, b, c) { t.eval_dots(Dots::new(a, b, c)) } else { <$t>::NAN };
-            // SAFETY: each array is null or holds `n` elements (the caller's contract).
-            unsafe { map3(n_i, n_o, i_o, out, n, eval) }
+        rgb_brdf_abi! {
+            $t; $Vec3, $Rgb;
+            #[doc = concat!(" A prepared GGX BRDF. Fill it with `", stringify!($ggx_init), "`; the fields are private to the")]
+            /// library.
+            $Ggx[BRDF_GGX_WORDS] = Ggx, *b"GX";
+
+            /// Prepares the GGX (Trowbridge–Reitz) BRDF f = D F G / (4 (n·wi)(n·wo)) with per-channel
+            /// Schlick F (F0 = `f0`, each in [0, 1]) and Smith masking in `smith_form`
+            /// (`BRDF_SMITH_FORM_*`); α ∈ [1e-4, 1e4]. Returns `BRDF_STATUS_OK`,
+            /// `BRDF_STATUS_NULL_POINTER` or `BRDF_STATUS_INVALID_ARGUMENT`; on error `*out` is left not
+            /// initialised.
+            $ggx_init(f0: $Rgb, alpha: $t, smith_form: BrdfSmithForm) = ggx_new(f0.into(), alpha, smith_form);
+
+            /// The GGX BRDF in 1/sr per channel for unit local-frame directions `wi` (toward the light)
+            /// and `wo` (toward the viewer); not normalised here. 0 when either is at or below the
+            /// horizon; all NaN for a non-finite component or a null or uninitialised handle.
+            $ggx_eval(g);
+
+            /// Directional albedo per channel of the GGX BRDF for a viewer at μ = n·wo; arguments and
+            #[doc = concat!(" bad input as for `", stringify!($ts_albedo), "`.")]
+            $ggx_albedo;
+        }
+    };
+}
+
+/// Emits the handle `$h` of a model `$m<$t>` (a [`Brdf`] with per-channel values, tag
+/// `scalar_tag::<$t>($kind)`) and its exports for one scalar type `$t`: `$init(out, $arg, …)`
+/// fills the handle with `$new` (a `Result<$m<$t>, BrdfStatus>` of the arguments),
+/// `$eval($hv, wi, wo)` is [`eval_at`], `$albedo($hv, mu)` is [`albedo_of`], and the items in
+/// the optional `{ … }` between the two (a model's further exports) are emitted there. Each
+/// export's docs are passed in.
+macro_rules! rgb_brdf_abi {
+    (
+        $t:ident; $Vec3:ident, $Rgb:ident;
+        $(#[$hdoc:meta])* $h:ident[$words:ident] = $m:ident, $kind:expr;
+        $(#[$idoc:meta])* $init:ident($($arg:ident: $ty:ty),+) = $new:expr;
+        $(#[$edoc:meta])* $eval:ident($hv:ident);
+        $({ $($extra:item)* })?
+        $(#[$adoc:meta])* $albedo:ident;
+    ) => {
+        handle! {
+            $(#[$hdoc])*
+            $h[$words] = $m<$t>, crate::scalar_tag::<$t>($kind)
         }
 
-        /// Directional albedo R(μ) = ∫ f cos θi dωi over the upper hemisphere (including ρ_d), for
-        /// a viewer at μ = n·wo ∈ (0, 1] (values above 1 count as 1), by brdf-core's fixed
-        /// quadrature (about 4·10⁵ BRDF evaluations: slow on a microcontroller). μ ≤ 0 gives 0; NaN
-        /// μ, a null or uninitialised handle give NaN.
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $ts_albedo(ts: *const $TS, mu: $t) -> $t {
-            // SAFETY: `ts` is null or a readable handle (the caller's contract).
-            albedo_of(unsafe { $TS::get(ts) }.map(TsLobe).as_ref(), mu).r
+        init_export! {
+            $(#[$idoc])*
+            init $init($h; $($arg: $ty),+) = $new
         }
 
-        /// Prepares the GGX (Trowbridge–Reitz) BRDF f = D F G / (4 (n·wi)(n·wo)) with per-channel
-        /// Schlick F (F0 = `f0`, each in [0, 1]) and Smith masking in `smith_form`
-        /// (`BRDF_SMITH_FORM_*`); α ∈ [1e-4, 1e4]. Returns `BRDF_STATUS_OK`,
-        /// `BRDF_STATUS_NULL_POINTER` or `BRDF_STATUS_INVALID_ARGUMENT`; on error `*out` is left not
-        /// initialised.
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(init))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $ggx_init(
-            out: *mut $Ggx,
-            f0: $Rgb,
-            alpha: $t,
-            smith_form: BrdfSmithForm,
-        ) -> BrdfStatus {
-            let new = || ggx_new(f0.into(), alpha, smith_form);
-            // SAFETY: the caller's contract for `out` is the one `init` needs.
-            unsafe { init(out, $Ggx::clear, $Ggx::put, new) }
+        query_export! {
+            $(#[$edoc])*
+            $eval($hv: $h, wi: $Vec3, wo: $Vec3) -> $Rgb = eval_at($hv, wi.into(), wo.into()).into();
         }
 
-        /// The GGX BRDF in 1/sr per channel for unit local-frame directions `wi` (toward the light)
-        /// and `wo` (toward the viewer); not normalised here. 0 when either is at or below the
-        /// horizon; all NaN for a non-finite component or a null or uninitialised handle.
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $ggx_eval(g: *const $Ggx, wi: $Vec3, wo: $Vec3) -> $Rgb {
-            // SAFETY: `g` is null or a readable handle (the caller's contract).
-            eval_at(unsafe { $Ggx::get(g) }, wi.into(), wo.into()).into()
-        }
+        $($($extra)*)?
 
-        /// Directional albedo per channel of the GGX BRDF for a viewer at μ = n·wo; arguments and
-        #[doc = concat!(" bad input as for `", stringify!($ts_albedo), "`.")]
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $ggx_albedo(g: *const $Ggx, mu: $t) -> $Rgb {
-            // SAFETY: `g` is null or a readable handle (the caller's contract).
-            albedo_of(unsafe { $Ggx::get(g) }, mu).into()
+        query_export! {
+            $(#[$adoc])*
+            $albedo($hv: $h, mu: $t) -> $Rgb = albedo_of($hv, mu).into();
         }
     };
 }
@@ -818,65 +696,41 @@ macro_rules! typed_abi {
 /// structs come from `typed_abi!`).
 macro_rules! sheen_abi {
     (
-        $t:ident; $Vec3:ident, $Rgb:ident; $Sheen:ident = $tag:ident;
+        $t:ident; $Vec3:ident, $Rgb:ident; $Sheen:ident;
         $init:ident, $eval:ident, $eval_dots:ident, $albedo:ident $(,)?
     ) => {
-        handle! {
+        rgb_brdf_abi! {
+            $t; $Vec3, $Rgb;
             #[doc = concat!(" A prepared sheen BRDF. Fill it with `", stringify!($init), "`; the fields are private to the")]
             /// library.
-            $Sheen[BRDF_SHEEN_WORDS] = Sheen<$t>, $tag
-        }
+            $Sheen[BRDF_SHEEN_WORDS] = Sheen, *b"SH";
 
-        /// Prepares the Charlie sheen BRDF of Estevez and Kulla (2017), f = color · D · V, with
-        /// D = (2 + 1/α) sin^(1/α)θh / (2π), α = r² (perceptual roughness `roughness` ∈ [0, 1];
-        /// α is clamped to at least 1e-4), `color` ∈ [0, 1] per channel and `visibility` a
-        /// `BRDF_SHEEN_VISIBILITY_*` value. Returns `BRDF_STATUS_OK`, `BRDF_STATUS_NULL_POINTER`
-        /// or `BRDF_STATUS_INVALID_ARGUMENT`; on error `*out` is left not initialised.
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(init))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $init(
-            out: *mut $Sheen,
-            color: $Rgb,
-            roughness: $t,
-            visibility: BrdfSheenVisibility,
-        ) -> BrdfStatus {
-            let new = || sheen_new(color.into(), roughness, visibility);
-            // SAFETY: the caller's contract for `out` is the one `init` needs.
-            unsafe { init(out, $Sheen::clear, $Sheen::put, new) }
-        }
+            /// Prepares the Charlie sheen BRDF of Estevez and Kulla (2017), f = color · D · V, with
+            /// D = (2 + 1/α) sin^(1/α)θh / (2π), α = r² (perceptual roughness `roughness` ∈ [0, 1];
+            /// α is clamped to at least 1e-4), `color` ∈ [0, 1] per channel and `visibility` a
+            /// `BRDF_SHEEN_VISIBILITY_*` value. Returns `BRDF_STATUS_OK`, `BRDF_STATUS_NULL_POINTER`
+            /// or `BRDF_STATUS_INVALID_ARGUMENT`; on error `*out` is left not initialised.
+            $init(color: $Rgb, roughness: $t, visibility: BrdfSheenVisibility) =
+                sheen_new(color.into(), roughness, visibility);
 
-        /// The sheen BRDF in 1/sr per channel for unit local-frame directions `wi` (toward the
-        /// light) and `wo` (toward the viewer), half vector from the vectors. 0 when either is
-        /// at or below the horizon; all NaN for a non-finite component or a null or
-        /// uninitialised handle.
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $eval(s: *const $Sheen, wi: $Vec3, wo: $Vec3) -> $Rgb {
-            // SAFETY: `s` is null or a readable handle (the caller's contract).
-            eval_at(unsafe { $Sheen::get(s) }, wi.into(), wo.into()).into()
-        }
+            /// The sheen BRDF in 1/sr per channel for unit local-frame directions `wi` (toward the
+            /// light) and `wo` (toward the viewer), half vector from the vectors. 0 when either is
+            /// at or below the horizon; all NaN for a non-finite component or a null or
+            /// uninitialised handle.
+            $eval(s);
+            {
+                query_export! {
+                    /// The sheen BRDF from the dot products n·wi, n·wo and wi·wo of unit vectors (the module
+                    /// docs say what the three-dot form loses for nearly opposite pairs at the horizon);
+                    /// 0 at or below the horizon; all NaN for a non-finite input or a bad handle.
+                    $eval_dots(s: $Sheen, n_i: $t, n_o: $t, i_o: $t) -> $Rgb =
+                        at_dots(s, [n_i, n_o, i_o], Rgb::splat(<$t>::NAN), Sheen::eval_dots).into();
+                }
+            }
 
-        /// The sheen BRDF from the dot products n·wi, n·wo and wi·wo of unit vectors (the module
-        /// docs say what the three-dot form loses for nearly opposite pairs at the horizon);
-        /// 0 at or below the horizon; all NaN for a non-finite input or a bad handle.
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $eval_dots(s: *const $Sheen, n_i: $t, n_o: $t, i_o: $t) -> $Rgb {
-            // SAFETY: `s` is null or a readable handle (the caller's contract).
-            let c = match unsafe { $Sheen::get(s) } {
-                Some(m) if finite3(n_i, n_o, i_o) => m.eval_dots(Dots::new(n_i, n_o, i_o)),
-                _ => Rgb::splat(<$t>::NAN),
-            };
-            c.into()
-        }
-
-        /// Directional albedo per channel of the sheen BRDF for a viewer at μ = n·wo ∈ (0, 1]
-        /// (clamped above); 0 for μ ≤ 0; all NaN for NaN or a bad handle.
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $albedo(s: *const $Sheen, mu: $t) -> $Rgb {
-            // SAFETY: `s` is null or a readable handle (the caller's contract).
-            albedo_of(unsafe { $Sheen::get(s) }, mu).into()
+            /// Directional albedo per channel of the sheen BRDF for a viewer at μ = n·wo ∈ (0, 1]
+            /// (clamped above); 0 for μ ≤ 0; all NaN for NaN or a bad handle.
+            $albedo;
         }
     };
 }
@@ -885,14 +739,14 @@ macro_rules! sheen_abi {
 /// scalar type `$t` (the vector and colour structs come from `typed_abi!`).
 macro_rules! rough_dielectric_abi {
     (
-        $t:ident; $Vec3:ident, $Rgb:ident; $RD:ident = $tag:ident, $Sample:ident, $Delta:ident;
+        $t:ident; $Vec3:ident, $Rgb:ident; $RD:ident, $Sample:ident, $Delta:ident;
         $init:ident, $eval:ident, $eval_adjoint:ident, $pdf:ident, $sample:ident,
         $delta:ident $(,)?
     ) => {
         handle! {
             #[doc = concat!(" A prepared rough dielectric BSDF. Fill it with `", stringify!($init), "`; the fields are")]
             /// private to the library.
-            $RD[BRDF_ROUGH_DIELECTRIC_WORDS] = RoughDielectric<$t>, $tag
+            $RD[BRDF_ROUGH_DIELECTRIC_WORDS] = RoughDielectric<$t>, crate::scalar_tag::<$t>(*b"RD")
         }
 
         /// A sampled direction of a BSDF for a given wo.
@@ -943,60 +797,39 @@ macro_rules! rough_dielectric_abi {
             }
         }
 
-        /// Prepares the rough dielectric BSDF of Walter, Marschner, Li and Torrance (EGSR 2007):
-        /// reflection (eq 20) and refraction (eq 21) at a rough interface, exact dielectric
-        /// Fresnel, separable Smith G (eq 23), radiance convention (f_t carries η_o²;
-        /// docs/conventions.md §12). `distribution` is a `BRDF_DIELECTRIC_DISTRIBUTION_*`
-        /// value, α ∈ [0, 1e4] (floored to 1e-4), η = η_inside/η_outside ∈ [0.1, 10] (the +z side
-        /// is outside). Returns `BRDF_STATUS_OK`, `BRDF_STATUS_NULL_POINTER` or
-        /// `BRDF_STATUS_INVALID_ARGUMENT`; on error `*out` is left not initialised.
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(init))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $init(
-            out: *mut $RD,
-            distribution: BrdfDielectricDistribution,
-            alpha: $t,
-            eta: $t,
-        ) -> BrdfStatus {
-            let new = || dielectric_new(distribution, alpha, eta);
-            // SAFETY: the caller's contract for `out` is the one `init` needs.
-            unsafe { init(out, $RD::clear, $RD::put, new) }
+        init_export! {
+            /// Prepares the rough dielectric BSDF of Walter, Marschner, Li and Torrance (EGSR 2007):
+            /// reflection (eq 20) and refraction (eq 21) at a rough interface, exact dielectric
+            /// Fresnel, separable Smith G (eq 23), radiance convention (f_t carries η_o²;
+            /// docs/conventions.md §12). `distribution` is a `BRDF_DIELECTRIC_DISTRIBUTION_*`
+            /// value, α ∈ [0, 1e4] (floored to 1e-4), η = η_inside/η_outside ∈ [0.1, 10] (the +z side
+            /// is outside). Returns `BRDF_STATUS_OK`, `BRDF_STATUS_NULL_POINTER` or
+            /// `BRDF_STATUS_INVALID_ARGUMENT`; on error `*out` is left not initialised.
+            init $init($RD; distribution: BrdfDielectricDistribution, alpha: $t, eta: $t) =
+                dielectric_new(distribution, alpha, eta)
         }
 
-        /// The BSDF f(wi, wo) in 1/sr over the whole sphere, `wi` toward the light and `wo`
-        /// toward the viewer (unit, local frame): f_r for a pair on one side, f_t for a pair
-        /// across the surface (wo below the surface gives the part transmitted from outside).
-        /// 0 at the horizon (|n·w| below 2^−63 in f32, 2^−511 in f64), for η = 1 (see the
-        /// delta export)
-        /// and for a pair no facet connects; NaN for a non-finite component or a bad handle.
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $eval(m: *const $RD, wi: $Vec3, wo: $Vec3) -> $t {
-            // SAFETY: `m` is null or a readable handle (the caller's contract).
-            let m = unsafe { $RD::get(m) };
-            dielectric_at(m, wi.into(), wo.into(), RoughDielectric::eval_bsdf)
-        }
+        query_export! {
+            /// The BSDF f(wi, wo) in 1/sr over the whole sphere, `wi` toward the light and `wo`
+            /// toward the viewer (unit, local frame): f_r for a pair on one side, f_t for a pair
+            /// across the surface (wo below the surface gives the part transmitted from outside).
+            /// 0 at the horizon (|n·w| below 2^−63 in f32, 2^−511 in f64), for η = 1 (see the
+            /// delta export)
+            /// and for a pair no facet connects; NaN for a non-finite component or a bad handle.
+            $eval(m: $RD, wi: $Vec3, wo: $Vec3) -> $t =
+                dielectric_at(m, wi.into(), wo.into(), RoughDielectric::eval_bsdf);
 
-        /// The adjoint BSDF f*(wi, wo) = f(wo, wi) (importance transport): f_r unchanged,
-        /// f_t* = (η_i/η_o)² f_t; arguments and bad input as for
-        #[doc = concat!(" `", stringify!($eval), "`.")]
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $eval_adjoint(m: *const $RD, wi: $Vec3, wo: $Vec3) -> $t {
-            // SAFETY: `m` is null or a readable handle (the caller's contract).
-            let m = unsafe { $RD::get(m) };
-            dielectric_at(m, wi.into(), wo.into(), RoughDielectric::eval_adjoint)
-        }
+            /// The adjoint BSDF f*(wi, wo) = f(wo, wi) (importance transport): f_r unchanged,
+            /// f_t* = (η_i/η_o)² f_t; arguments and bad input as for
+            #[doc = concat!(" `", stringify!($eval), "`.")]
+            $eval_adjoint(m: $RD, wi: $Vec3, wo: $Vec3) -> $t =
+                dielectric_at(m, wi.into(), wo.into(), RoughDielectric::eval_adjoint);
 
-        #[doc = concat!(" The density of `", stringify!($sample), "` per unit solid angle of `wi` (either")]
-        /// hemisphere) for a viewer at `wo` (note the order: wo first); 0 for wo not above the
-        /// surface and for η = 1; NaN for a non-finite component or a bad handle.
-        #[cfg_attr(not(brdf_header), doc = crate::safety!(query))]
-        #[no_mangle]
-        pub unsafe extern "C" fn $pdf(m: *const $RD, wo: $Vec3, wi: $Vec3) -> $t {
-            // SAFETY: `m` is null or a readable handle (the caller's contract).
-            let m = unsafe { $RD::get(m) };
-            dielectric_at(m, wo.into(), wi.into(), |m, wo, wi| m.pdf(wo, wi))
+            #[doc = concat!(" The density of `", stringify!($sample), "` per unit solid angle of `wi` (either")]
+            /// hemisphere) for a viewer at `wo` (note the order: wo first); 0 for wo not above the
+            /// surface and for η = 1; NaN for a non-finite component or a bad handle.
+            $pdf(m: $RD, wo: $Vec3, wi: $Vec3) -> $t =
+                dielectric_at(m, wo.into(), wi.into(), |m, wo, wi| m.pdf(wo, wi));
         }
 
         /// Samples wi for a viewer at `wo` (above the surface): a visible normal h from
@@ -1048,9 +881,7 @@ macro_rules! scalar_abi {
         paste::paste! {
             typed_abi! {
                 $t; [<BrdfGTerms $t:upper>], [<BrdfVec3 $t:upper>], [<BrdfRgb $t:upper>];
-                [<BrdfModifiedG $t:upper>] = [<TAG_MODIFIED_G_ $t:upper>],
-                [<BrdfTorranceSparrow $t:upper>] = [<TAG_TS_ $t:upper>],
-                [<BrdfGgx $t:upper>] = [<TAG_GGX_ $t:upper>];
+                [<BrdfModifiedG $t:upper>], [<BrdfTorranceSparrow $t:upper>], [<BrdfGgx $t:upper>];
                 [<brdf_modified_g_init_ $t>], [<brdf_modified_g_terms_ $t>],
                 [<brdf_modified_g_ $t>], [<brdf_modified_g_terms_dots_ $t>],
                 [<brdf_modified_g_dots_ $t>], [<brdf_modified_g_dots_batch_ $t>],
@@ -1067,7 +898,7 @@ macro_rules! scalar_abi {
         paste::paste! {
             sheen_abi! {
                 $t; [<BrdfVec3 $t:upper>], [<BrdfRgb $t:upper>];
-                [<BrdfSheen $t:upper>] = [<TAG_SHEEN_ $t:upper>];
+                [<BrdfSheen $t:upper>];
                 [<brdf_sheen_init_ $t>], [<brdf_sheen_eval_ $t>], [<brdf_sheen_eval_dots_ $t>],
                 [<brdf_sheen_albedo_ $t>],
             }
@@ -1077,7 +908,7 @@ macro_rules! scalar_abi {
         paste::paste! {
             rough_dielectric_abi! {
                 $t; [<BrdfVec3 $t:upper>], [<BrdfRgb $t:upper>];
-                [<BrdfRoughDielectric $t:upper>] = [<TAG_RD_ $t:upper>],
+                [<BrdfRoughDielectric $t:upper>],
                 [<BrdfBsdfSample $t:upper>], [<BrdfDeltaLobe $t:upper>];
                 [<brdf_rough_dielectric_init_ $t>], [<brdf_rough_dielectric_eval_ $t>],
                 [<brdf_rough_dielectric_eval_adjoint_ $t>], [<brdf_rough_dielectric_pdf_ $t>],

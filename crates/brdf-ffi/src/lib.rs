@@ -226,8 +226,27 @@ pub(crate) unsafe fn load<'a, T, const W: usize>(
     Some(unsafe { &*storage.cast::<T>() })
 }
 
+/// The tag of a handle type: the eight ASCII bytes `BRDF` and `name` read as a big-endian
+/// integer (`tag(*b"MG32")` is 0x4252_4446_4d47_3332), so distinct names give distinct tags.
+pub(crate) const fn tag(name: [u8; 4]) -> u64 {
+    let [a, b, c, d] = name;
+    u64::from_be_bytes([b'B', b'R', b'D', b'F', a, b, c, d])
+}
+
+/// The tag of a handle holding `T` values (`f32` or `f64`): `kind` followed by the width of
+/// `T` in bits, `32` or `64` (`scalar_tag::<f64>(*b"TS")` is `tag(*b"TS64")`).
+pub(crate) const fn scalar_tag<T>(kind: [u8; 2]) -> u64 {
+    let [a, b] = kind;
+    match core::mem::size_of::<T>() {
+        4 => tag([a, b, b'3', b'2']),
+        8 => tag([a, b, b'6', b'4']),
+        _ => panic!("a handle's scalar is f32 or f64"),
+    }
+}
+
 /// Defines a handle struct `$h` (its docs, `#[repr(C)]`, a tag word and `$words` storage
-/// words) holding a `$inner` under tag `$tag`, with `put`/`get`/`clear`.
+/// words) holding a `$inner` under tag `$tag` (a constant: [`tag`] or [`scalar_tag`]), with
+/// `put`/`get`/`clear`.
 macro_rules! handle {
     ($(#[$doc:meta])* $h:ident[$words:ident] = $inner:ty, $tag:expr) => {
         $(#[$doc])*
@@ -238,6 +257,9 @@ macro_rules! handle {
         }
 
         impl $h {
+            /// The tag `put` writes last and `get` requires.
+            pub(crate) const TAG: u64 = $tag;
+
             /// The handle's tag and storage fields as raw pointers (nothing is read).
             ///
             /// # Safety
@@ -261,7 +283,7 @@ macro_rules! handle {
                 // SAFETY: `h` is valid for writes (the contract), so are its two fields.
                 unsafe {
                     let (tag, storage) = Self::fields(h);
-                    $crate::store(tag, storage, v, $tag)
+                    $crate::store(tag, storage, v, Self::TAG)
                 }
             }
             /// The stored value, `None` for a null handle or a tag other than this type's.
@@ -278,7 +300,7 @@ macro_rules! handle {
                 // complete store of `$inner`.
                 unsafe {
                     let (tag, storage) = Self::fields(h.cast_mut());
-                    $crate::load(tag, storage, $tag)
+                    $crate::load(tag, storage, Self::TAG)
                 }
             }
             /// Clears the tag: the handle is refused until the next `put`.
@@ -317,21 +339,153 @@ pub(crate) unsafe fn wr<T>(p: *mut T, i: usize, v: T) {
     unsafe { p.add(i).write_unaligned(v) }
 }
 
-/// Checks the arrays of a batch call: each pointer non-null unless `n == 0`, and `n`
-/// elements of `elem` bytes addressable.
+/// The body of every `*_init` and `*_parse` export: refuses a null `out`, clears its tag,
+/// builds the value and stores it (the tag is written last, so a failed init leaves the
+/// handle refused).
+///
+/// # Safety
+/// `out` is null or valid for writes of one `H`, 8-byte aligned; `clear` and `put` are the
+/// handle's own functions, which need exactly that.
 #[inline]
-pub(crate) fn check_arrays(ptrs: &[bool], n: usize, elem: usize) -> BrdfStatus {
-    if n == 0 {
-        return BRDF_STATUS_OK;
-    }
-    if ptrs.iter().any(|&null| null) {
+pub(crate) unsafe fn init<H, V>(
+    out: *mut H,
+    clear: unsafe fn(*mut H),
+    put: unsafe fn(*mut H, V),
+    new: impl FnOnce() -> Result<V, BrdfStatus>,
+) -> BrdfStatus {
+    if out.is_null() {
         return BRDF_STATUS_NULL_POINTER;
     }
-    if !matches!(n.checked_mul(elem), Some(b) if b <= isize::MAX as usize) {
-        return BRDF_STATUS_BAD_LENGTH;
+    // SAFETY: `out` is non-null and valid for writes (this function's contract).
+    unsafe { clear(out) };
+    match new() {
+        Ok(v) => {
+            // SAFETY: as above.
+            unsafe { put(out, v) };
+            BRDF_STATUS_OK
+        }
+        Err(s) => s,
     }
-    BRDF_STATUS_OK
 }
+
+/// The caller's arrays of a batch export: `I` inputs and `O` outputs of `n` elements of `T`.
+pub(crate) struct Arrays<T, const I: usize, const O: usize> {
+    ins: [*const T; I],
+    outs: [*mut T; O],
+    n: usize,
+}
+
+impl<T: Copy, const I: usize, const O: usize> Arrays<T, I, O> {
+    /// The arrays of one call (nothing is checked or read here).
+    ///
+    /// # Safety
+    /// Each pointer is null or valid for `n` reads (`ins`) or writes (`outs`) of `T` until
+    /// [`Arrays::map`] returns.
+    pub(crate) unsafe fn new(ins: [*const T; I], outs: [*mut T; O], n: usize) -> Self {
+        Self { ins, outs, n }
+    }
+
+    /// The body of every batch export: `BRDF_STATUS_NOT_INITIALISED` for a missing handle,
+    /// `BRDF_STATUS_NULL_POINTER` for a null array when `n > 0`, `BRDF_STATUS_BAD_LENGTH`
+    /// when `n` elements of `T` are not addressable (writing nothing in each case);
+    /// otherwise, for each k < n, element k of the outputs is `f(h, [element k of each
+    /// input])`, whose inputs are all read before any output is written (outputs may alias
+    /// inputs).
+    #[inline]
+    pub(crate) fn map<H>(self, h: Option<&H>, f: impl Fn(&H, [T; I]) -> [T; O]) -> BrdfStatus {
+        let Some(h) = h else {
+            return BRDF_STATUS_NOT_INITIALISED;
+        };
+        let n = self.n;
+        if n == 0 {
+            return BRDF_STATUS_OK;
+        }
+        if self.ins.iter().any(|p| p.is_null()) || self.outs.iter().any(|p| p.is_null()) {
+            return BRDF_STATUS_NULL_POINTER;
+        }
+        if !matches!(n.checked_mul(core::mem::size_of::<T>()), Some(b) if b <= isize::MAX as usize)
+        {
+            return BRDF_STATUS_BAD_LENGTH;
+        }
+        for k in 0..n {
+            // SAFETY: the arrays are non-null (checked) and hold `n` elements (`new`'s
+            // contract).
+            let x = self.ins.map(|p| unsafe { rd(p, k) });
+            for (&p, y) in self.outs.iter().zip(f(h, x)) {
+                // SAFETY: as above.
+                unsafe { wr(p, k, y) };
+            }
+        }
+        BRDF_STATUS_OK
+    }
+}
+
+/// Emits an `*_init` or `*_parse` export (`$safety`: `init` or `parse`, the `# Safety`
+/// section [`safety!`] gives it): `$name(out: *mut $h, $arg: $ty, …)` fills `*out` with
+/// `$new`, a `Result<_, BrdfStatus>` built from the arguments, through [`init`].
+macro_rules! init_export {
+    (
+        $(#[$doc:meta])*
+        $safety:ident $name:ident($h:ty; $($arg:ident: $ty:ty),+ $(,)?) = $new:expr
+    ) => {
+        $(#[$doc])*
+        #[cfg_attr(not(brdf_header), doc = $crate::safety!($safety))]
+        #[no_mangle]
+        pub unsafe extern "C" fn $name(out: *mut $h, $($arg: $ty),+) -> BrdfStatus {
+            // Outside the `unsafe` block below: `$new` is checked as safe code.
+            let new = || $new;
+            // SAFETY: the caller's contract for `out` is the one `init` needs.
+            unsafe { $crate::init(out, <$h>::clear, <$h>::put, new) }
+        }
+    };
+}
+pub(crate) use init_export;
+
+/// Emits query exports: each `$name($hv: *const $h, $arg: $ty, …) -> $ret` evaluates `$body`
+/// with `$hv` rebound to the handle's value, an `Option<&_>` ([`handle!`]'s `get`: `None` for a
+/// null, uninitialised or foreign handle).
+macro_rules! query_export {
+    ($(
+        $(#[$doc:meta])*
+        $name:ident($hv:ident: $h:ty $(, $arg:ident: $ty:ty)*) -> $ret:ty = $body:expr;
+    )+) => {$(
+        $(#[$doc])*
+        #[cfg_attr(not(brdf_header), doc = $crate::safety!(query))]
+        #[no_mangle]
+        pub unsafe extern "C" fn $name($hv: *const $h $(, $arg: $ty)*) -> $ret {
+            // SAFETY: the handle is null or readable (the caller's contract).
+            let $hv = unsafe { <$h>::get($hv) };
+            $body
+        }
+    )+};
+}
+pub(crate) use query_export;
+
+/// Emits a batch export `$name($handle: *const $h, $in: *const $t, …, $out: *mut $t, …,
+/// n: usize)` whose body is [`Arrays::map`] with `$f`, a closure `|&model, [inputs]| [outputs]`.
+macro_rules! batch_export {
+    (
+        $(#[$doc:meta])*
+        $name:ident($handle:ident: $h:ty; $($in:ident),+ => $($out:ident),+: $t:ty) = $f:expr
+    ) => {
+        $(#[$doc])*
+        #[cfg_attr(not(brdf_header), doc = $crate::safety!(batch))]
+        #[no_mangle]
+        pub unsafe extern "C" fn $name(
+            $handle: *const $h,
+            $($in: *const $t,)+
+            $($out: *mut $t,)+
+            n: usize,
+        ) -> BrdfStatus {
+            // SAFETY: the handle is null or readable (the caller's contract).
+            let h = unsafe { <$h>::get($handle) };
+            // SAFETY: each array is null or valid for `n` elements (the caller's contract).
+            let arrays = unsafe { $crate::Arrays::new([$($in),+], [$($out),+], n) };
+            arrays.map(h, $f)
+        }
+    };
+}
+pub(crate) use batch_export;
 
 /// Device builds (`target_os = "none"`): the exports never panic by design (every pointer,
 /// length and index is checked, every error is a value), and `cargo xtask cffi` checks that
@@ -350,5 +504,41 @@ fn panic(_: &core::panic::PanicInfo<'_>) -> ! {
     #[cfg(not(target_arch = "arm"))]
     loop {
         core::hint::spin_loop();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn handle_tags_spell_brdf_and_their_name_and_all_differ() {
+        // ASCII: B 0x42, R 0x52, D 0x44, F 0x46, M 0x4d, G 0x47, 3 0x33, 2 0x32, 6 0x36,
+        // 4 0x34, L 0x4c, E 0x45, A 0x41, V 0x56.
+        assert_eq!(BrdfModifiedGF32::TAG, 0x4252_4446_4d47_3332);
+        assert_eq!(BrdfRoughDielectricF64::TAG, 0x4252_4446_5244_3634);
+        assert_eq!(BrdfAverageAlbedoTable::TAG, 0x4252_4446_4c45_4156);
+        let tags = [
+            BrdfModifiedGF32::TAG,
+            BrdfModifiedGF64::TAG,
+            BrdfTorranceSparrowF32::TAG,
+            BrdfTorranceSparrowF64::TAG,
+            BrdfGgxF32::TAG,
+            BrdfGgxF64::TAG,
+            BrdfSheenF32::TAG,
+            BrdfSheenF64::TAG,
+            BrdfRoughDielectricF32::TAG,
+            BrdfRoughDielectricF64::TAG,
+            BrdfGTable::TAG,
+            BrdfGTable3::TAG,
+            BrdfDfgTable::TAG,
+            BrdfAlbedoTable::TAG,
+            BrdfAverageAlbedoTable::TAG,
+        ];
+        for (k, a) in tags.iter().enumerate() {
+            assert!(tags[k + 1..].iter().all(|b| b != a), "tag {a:#x} repeats");
+            // A zeroed handle must not pass for an initialised one.
+            assert_ne!(*a, 0);
+        }
     }
 }

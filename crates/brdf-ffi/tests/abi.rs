@@ -5,11 +5,37 @@
 use brdf_ffi::*;
 use std::mem::MaybeUninit;
 
+/// A handle filled by `f`, which must report success.
+fn init<H>(f: impl FnOnce(*mut H) -> BrdfStatus) -> H {
+    let mut h = MaybeUninit::<H>::uninit();
+    assert_eq!(f(h.as_mut_ptr()), BRDF_STATUS_OK);
+    unsafe { h.assume_init() }
+}
+
+/// The colour with every channel `v`.
+fn grey32(v: f32) -> BrdfRgbF32 {
+    BrdfRgbF32 { r: v, g: v, b: v }
+}
+
+/// The colour with every channel `v`.
+fn grey64(v: f64) -> BrdfRgbF64 {
+    BrdfRgbF64 { r: v, g: v, b: v }
+}
+
+/// The vector (x, y, z).
+fn vec32(x: f32, y: f32, z: f32) -> BrdfVec3F32 {
+    BrdfVec3F32 { x, y, z }
+}
+
+/// The vector (x, y, z).
+fn vec64(x: f64, y: f64, z: f64) -> BrdfVec3F64 {
+    BrdfVec3F64 { x, y, z }
+}
+
 fn modified(sigma: f32, conv: BrdfConvention) -> Box<BrdfModifiedGF32> {
-    let mut h = Box::new(MaybeUninit::<BrdfModifiedGF32>::uninit());
-    let st = unsafe { brdf_modified_g_init_f32(h.as_mut_ptr(), sigma, conv) };
-    assert_eq!(st, BRDF_STATUS_OK);
-    unsafe { Box::from_raw(Box::into_raw(h).cast()) }
+    Box::new(init(|h| unsafe {
+        brdf_modified_g_init_f32(h, sigma, conv)
+    }))
 }
 
 #[test]
@@ -68,17 +94,9 @@ fn handles_refuse_null_zeroed_failed_and_foreign_handles() {
     );
     assert!(unsafe { brdf_modified_g_f32(&g, 0.1, 0.1) }.is_nan());
     // The handle of a GGX surface is not a modified-G handle.
-    let mut gx = MaybeUninit::<BrdfGgxF32>::uninit();
-    let f0 = BrdfRgbF32 {
-        r: 0.04,
-        g: 0.04,
-        b: 0.04,
-    };
-    assert_eq!(
-        unsafe { brdf_ggx_init_f32(gx.as_mut_ptr(), f0, 0.3, BRDF_SMITH_FORM_CORRELATED) },
-        BRDF_STATUS_OK
-    );
-    let foreign = gx.as_ptr().cast::<BrdfModifiedGF32>();
+    let gx: BrdfGgxF32 =
+        init(|h| unsafe { brdf_ggx_init_f32(h, grey32(0.04), 0.3, BRDF_SMITH_FORM_CORRELATED) });
+    let foreign = std::ptr::from_ref(&gx).cast::<BrdfModifiedGF32>();
     assert!(unsafe { brdf_modified_g_f32(foreign, 0.1, 0.1) }.is_nan());
 }
 
@@ -135,6 +153,12 @@ fn asset(name: &str) -> &'static [u8] {
     Box::leak(std::fs::read(p).unwrap().into_boxed_slice())
 }
 
+/// The table handle `parse` fills from the committed asset `name` (which must parse).
+fn table<H>(parse: unsafe extern "C" fn(*mut H, *const u8, usize) -> BrdfStatus, name: &str) -> H {
+    let bytes = asset(name);
+    init(|h| unsafe { parse(h, bytes.as_ptr(), bytes.len()) })
+}
+
 #[test]
 fn table_status_codes_follow_the_format() {
     let bytes = asset("kc_eavg_ggx.blut");
@@ -176,16 +200,11 @@ fn table_status_codes_follow_the_format() {
 fn g_table_agrees_with_the_direct_g_within_its_stated_error() {
     // The table's header states its interpolation error (max |ΔG| over random points,
     // 9.8e-4 or less for the committed G tables); allow twice that.
-    let bytes = asset("g_modified_sigma0.3.blut");
-    let mut t = MaybeUninit::<BrdfGTable>::uninit();
-    assert_eq!(
-        unsafe { brdf_g_table_parse(t.as_mut_ptr(), bytes.as_ptr(), bytes.len()) },
-        BRDF_STATUS_OK
-    );
+    let t = table(brdf_g_table_parse, "g_modified_sigma0.3.blut");
     let g = modified(0.3, BRDF_CONVENTION_RECIPROCAL);
-    assert_eq!(unsafe { brdf_g_table_sigma(t.as_ptr()) }, 0.3);
+    assert_eq!(unsafe { brdf_g_table_sigma(&t) }, 0.3);
     for &(ti, tr) in &[(0.2f32, 0.4f32), (1.0, -0.7), (0.6, 1.3), (1.4, 1.4)] {
-        let a = unsafe { brdf_g_table_g(t.as_ptr(), ti, tr) };
+        let a = unsafe { brdf_g_table_g(&t, ti, tr) };
         let b = unsafe { brdf_modified_g_f32(&*g, ti, tr) };
         assert!((a - b).abs() < 2e-3, "{ti} {tr}: table {a}, direct {b}");
     }
@@ -206,22 +225,17 @@ fn every_status_has_a_name() {
 fn g_table_over_sigma_agrees_with_the_direct_g_within_its_stated_error() {
     // The 3-D table states max |ΔG| = 4.0e-4 over random points (README table); the direct
     // f32 G adds ~1e-5. Allowed: 2e-3.
-    let bytes = asset("g_modified.blut");
-    let mut t = MaybeUninit::<BrdfGTable3>::uninit();
-    assert_eq!(
-        unsafe { brdf_g_table3_parse(t.as_mut_ptr(), bytes.as_ptr(), bytes.len()) },
-        BRDF_STATUS_OK
-    );
+    let t = table(brdf_g_table3_parse, "g_modified.blut");
     let (mut lo, mut hi) = (0f32, 0f32);
     assert_eq!(
-        unsafe { brdf_g_table3_sigma_range(t.as_ptr(), &mut lo, &mut hi) },
+        unsafe { brdf_g_table3_sigma_range(&t, &mut lo, &mut hi) },
         BRDF_STATUS_OK
     );
     assert!(lo < 0.3 && 0.6 < hi);
     for &s in &[0.3f32, 0.6] {
         let g = modified(s, BRDF_CONVENTION_RECIPROCAL);
         for &(ti, tr) in &[(0.2f32, 0.4f32), (1.0, -0.7), (0.6, 1.3)] {
-            let a = unsafe { brdf_g_table3_g(t.as_ptr(), ti, tr, s) };
+            let a = unsafe { brdf_g_table3_g(&t, ti, tr, s) };
             let b = unsafe { brdf_modified_g_f32(&*g, ti, tr) };
             assert!(
                 (a - b).abs() < 2e-3,
@@ -229,18 +243,58 @@ fn g_table_over_sigma_agrees_with_the_direct_g_within_its_stated_error() {
             );
         }
         let (ni, no, io) = (0.8f32, 0.6f32, 0.3f32);
-        let a = unsafe { brdf_g_table3_g_dots(t.as_ptr(), ni, no, io, s) };
+        let a = unsafe { brdf_g_table3_g_dots(&t, ni, no, io, s) };
         let b = unsafe { brdf_modified_g_dots_f32(&*g, ni, no, io) };
         assert!((a - b).abs() < 2e-3, "σ {s} dots: table {a}, direct {b}");
     }
-    assert!(unsafe { brdf_g_table3_g(t.as_ptr(), f32::NAN, 0.1, 0.3) }.is_nan());
+    assert!(unsafe { brdf_g_table3_g(&t, f32::NAN, 0.1, 0.3) }.is_nan());
 }
 
-/// A handle filled by `f`, which must report success.
-fn init<H>(f: impl FnOnce(*mut H) -> BrdfStatus) -> H {
-    let mut h = MaybeUninit::<H>::uninit();
-    assert_eq!(f(h.as_mut_ptr()), BRDF_STATUS_OK);
-    unsafe { h.assume_init() }
+#[test]
+fn table_batches_equal_their_single_queries_bit_for_bit() {
+    let g = table(brdf_g_table_parse, "g_modified_sigma0.3.blut");
+    let (ti, tr) = ([0.2f32, 1.0, 0.6, f32::NAN], [0.4f32, -0.7, 1.3, 0.1]);
+    let mut out = [0f32; 4];
+    let st = unsafe { brdf_g_table_g_batch(&g, ti.as_ptr(), tr.as_ptr(), out.as_mut_ptr(), 4) };
+    assert_eq!(st, BRDF_STATUS_OK);
+    for k in 0..4 {
+        let single = unsafe { brdf_g_table_g(&g, ti[k], tr[k]) };
+        assert_eq!(out[k].to_bits(), single.to_bits(), "{k}");
+    }
+    // Two outputs, both in place over the inputs: each element is read before it is written.
+    let dfg = table(brdf_dfg_table_parse, "dfg_ggx.blut");
+    let (mu, r) = ([0.1f32, 0.5, 0.9], [0.2f32, 0.5, 0.8]);
+    let (mut a, mut b) = (mu, r);
+    let st = unsafe {
+        brdf_dfg_table_ab_batch(
+            &dfg,
+            a.as_ptr(),
+            b.as_ptr(),
+            a.as_mut_ptr(),
+            b.as_mut_ptr(),
+            3,
+        )
+    };
+    assert_eq!(st, BRDF_STATUS_OK);
+    for k in 0..3 {
+        let single = unsafe { brdf_dfg_table_ab(&dfg, mu[k], r[k]) };
+        assert_eq!(
+            (a[k].to_bits(), b[k].to_bits()),
+            (single.a.to_bits(), single.b.to_bits())
+        );
+    }
+    // Bad handle before bad arrays; nothing is written on an error.
+    let zero = MaybeUninit::<BrdfDfgTable>::zeroed();
+    let p = std::ptr::null_mut();
+    let st = unsafe { brdf_dfg_table_ab_batch(zero.as_ptr(), mu.as_ptr(), r.as_ptr(), p, p, 3) };
+    assert_eq!(st, BRDF_STATUS_NOT_INITIALISED);
+    let mut untouched = [7f32; 3];
+    let o = untouched.as_mut_ptr();
+    let st = unsafe { brdf_dfg_table_ab_batch(&dfg, mu.as_ptr(), r.as_ptr(), o, p, 3) };
+    assert_eq!(st, BRDF_STATUS_NULL_POINTER);
+    assert_eq!(untouched, [7.0; 3]);
+    let st = unsafe { brdf_dfg_table_ab_batch(&dfg, p, p, p, p, 0) };
+    assert_eq!(st, BRDF_STATUS_OK);
 }
 
 #[test]
@@ -338,20 +392,12 @@ fn sheen_through_the_abi() {
         SheenVisibility::ALL[BRDF_SHEEN_VISIBILITY_ASHIKHMIN as usize],
         SheenVisibility::Ashikhmin
     );
-    let white = BrdfRgbF64 {
-        r: 1.0,
-        g: 1.0,
-        b: 1.0,
-    };
+    let white = grey64(1.0);
     let s: BrdfSheenF64 =
         init(|p| unsafe { brdf_sheen_init_f64(p, white, 1.0, BRDF_SHEEN_VISIBILITY_ASHIKHMIN) });
     // r = 1 (α = 1): D = 3 sin θh/(2π); wi = wo = (0.6, 0, 0.8): h = wo, sin θh = 0.6,
     // V = 1/(4(0.8 + 0.8 − 0.64)) = 1/3.84.
-    let w = BrdfVec3F64 {
-        x: 0.6,
-        y: 0.0,
-        z: 0.8,
-    };
+    let w = vec64(0.6, 0.0, 0.8);
     let want = 3.0 * 0.6 / (2.0 * std::f64::consts::PI) / 3.84;
     let got = unsafe { brdf_sheen_eval_f64(&s, w, w) };
     assert!(
@@ -362,11 +408,7 @@ fn sheen_through_the_abi() {
     assert!((dots.r - want).abs() < 1e-14, "{dots:?}");
     // Bad input: status codes and NaN.
     let mut h = MaybeUninit::<BrdfSheenF32>::uninit();
-    let one = BrdfRgbF32 {
-        r: 1.0,
-        g: 1.0,
-        b: 1.0,
-    };
+    let one = grey32(1.0);
     assert_eq!(
         unsafe { brdf_sheen_init_f32(h.as_mut_ptr(), one, 0.5, 2) },
         BRDF_STATUS_INVALID_ARGUMENT
@@ -424,11 +466,7 @@ fn rough_dielectric_smooth_limit_matches_fresnel_and_snell() {
     // radiance convention η² ∫ f_t |cos| = 1 − R0. Each estimate is a count over N (the
     // weights are G1 = 1 at the α floor) within 1/(2N) of its fraction: tolerance 1/N.
     let n = 4096;
-    let up = BrdfVec3F64 {
-        x: 0.0,
-        y: 0.0,
-        z: 1.0,
-    };
+    let up = vec64(0.0, 0.0, 1.0);
     let (er, et) = dielectric_energy(1.5, up, n);
     assert!((er - 0.04).abs() <= 1.0 / n as f64, "{er}");
     assert!((er + 2.25 * et - 1.0).abs() < 1e-9, "{er} {et}");
@@ -436,11 +474,7 @@ fn rough_dielectric_smooth_limit_matches_fresnel_and_snell() {
     // asin(1/1.5) = 41.8°: total internal reflection, everything comes back, each weight
     // the mirror direction's Smith G1 = 2/(1 + √(1 + α² tan²60°)) = 1 − 7.5e-9 at α = 1e-4:
     // tolerance 1e-7.
-    let wo = BrdfVec3F64 {
-        x: 0.75f64.sqrt(),
-        y: 0.0,
-        z: 0.5,
-    };
+    let wo = vec64(0.75f64.sqrt(), 0.0, 0.5);
     let (er, et) = dielectric_energy(1.0 / 1.5, wo, 256);
     assert!((er - 1.0).abs() < 1e-7 && et == 0.0, "{er} {et}");
 }
@@ -452,16 +486,8 @@ fn rough_dielectric_adjoint_is_the_swapped_eval_and_bad_input_is_refused() {
     let m: BrdfRoughDielectricF64 = init(|p| unsafe {
         brdf_rough_dielectric_init_f64(p, BRDF_DIELECTRIC_DISTRIBUTION_BECKMANN, 0.3, 1.5)
     });
-    let wi = BrdfVec3F64 {
-        x: 0.3,
-        y: 0.1,
-        z: -0.9f64.sqrt(),
-    };
-    let wo = BrdfVec3F64 {
-        x: -0.5,
-        y: 0.0,
-        z: 0.75f64.sqrt(),
-    };
+    let wi = vec64(0.3, 0.1, -0.9f64.sqrt());
+    let wo = vec64(-0.5, 0.0, 0.75f64.sqrt());
     let fa = unsafe { brdf_rough_dielectric_eval_adjoint_f64(&m, wi, wo) };
     let fs = unsafe { brdf_rough_dielectric_eval_f64(&m, wo, wi) };
     let f = unsafe { brdf_rough_dielectric_eval_f64(&m, wi, wo) };
@@ -469,11 +495,7 @@ fn rough_dielectric_adjoint_is_the_swapped_eval_and_bad_input_is_refused() {
     // wi is inside (η_i = 1.5), wo outside: f* = (η_i/η_o)² f = 2.25 f.
     assert!(((fa / f) - 2.25).abs() < 1e-12, "{fa} {f}");
     // A viewer at the horizon has no sample; the output is left as it was.
-    let grazing = BrdfVec3F64 {
-        x: 1.0,
-        y: 0.0,
-        z: 1e-300,
-    };
+    let grazing = vec64(1.0, 0.0, 1e-300);
     let mut s = MaybeUninit::<BrdfBsdfSampleF64>::zeroed();
     let st =
         unsafe { brdf_rough_dielectric_sample_f64(&m, grazing, 0.5, 0.5, 0.5, s.as_mut_ptr()) };
@@ -482,10 +504,6 @@ fn rough_dielectric_adjoint_is_the_swapped_eval_and_bad_input_is_refused() {
     let mut h = MaybeUninit::<BrdfRoughDielectricF32>::uninit();
     let st = unsafe { brdf_rough_dielectric_init_f32(h.as_mut_ptr(), 2, 0.3, 1.5) };
     assert_eq!(st, BRDF_STATUS_INVALID_ARGUMENT);
-    let w = BrdfVec3F32 {
-        x: 0.0,
-        y: 0.0,
-        z: 1.0,
-    };
+    let w = vec32(0.0, 0.0, 1.0);
     assert!(unsafe { brdf_rough_dielectric_eval_f32(h.as_ptr(), w, w) }.is_nan());
 }
