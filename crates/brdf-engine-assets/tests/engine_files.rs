@@ -30,6 +30,19 @@ use std::sync::{Arc, Mutex, OnceLock};
 /// Per-size caches shared by the tests of this binary (computed once, in parallel).
 type Cache<T> = OnceLock<Mutex<HashMap<usize, Arc<OnceLock<Arc<T>>>>>>;
 
+/// The value for size `n` in `cache`, made by `make` on first use (the map is locked only
+/// to find the size's cell, so different sizes are computed in parallel).
+fn cached<T>(cache: &'static Cache<T>, n: usize, make: impl FnOnce() -> Arc<T>) -> Arc<T> {
+    let cell = cache
+        .get_or_init(Default::default)
+        .lock()
+        .unwrap()
+        .entry(n)
+        .or_default()
+        .clone();
+    cell.get_or_init(make).clone()
+}
+
 /// Absolute tolerance per channel of the reference integrals.
 const REFERENCE_TOL: f64 = 1e-9;
 /// How far a texel's f64 value may be from the integral before encoding: the generator's
@@ -46,14 +59,7 @@ fn integral(mu: f64, r: f64) -> (f64, f64) {
 /// Exact values at texel centres, `[row_r * n + col_mu]`, shared between tests.
 fn exact(n: usize) -> Arc<(Vec<f64>, Vec<f64>)> {
     static CACHE: Cache<(Vec<f64>, Vec<f64>)> = OnceLock::new();
-    let cell = CACHE
-        .get_or_init(Default::default)
-        .lock()
-        .unwrap()
-        .entry(n)
-        .or_default()
-        .clone();
-    cell.get_or_init(|| {
+    cached(&CACHE, n, || {
         let v: Vec<(f64, f64)> = (0..n * n)
             .into_par_iter()
             .map(|i| {
@@ -68,20 +74,12 @@ fn exact(n: usize) -> Arc<(Vec<f64>, Vec<f64>)> {
             v.iter().map(|x| x.1).collect(),
         ))
     })
-    .clone()
 }
 
 /// 2,000 random points in the texel-centre range of an n-edge table with their integrals.
 fn points(n: usize) -> Arc<Vec<(f64, f64, f64, f64)>> {
     static CACHE: Cache<Vec<(f64, f64, f64, f64)>> = OnceLock::new();
-    let cell = CACHE
-        .get_or_init(Default::default)
-        .lock()
-        .unwrap()
-        .entry(n)
-        .or_default()
-        .clone();
-    cell.get_or_init(|| {
+    cached(&CACHE, n, || {
         let lo = 0.5 / n as f64;
         let mut rng = rand_pcg::Pcg64::seed_from_u64(0xD0E5_0011 + n as u64);
         let p: Vec<(f64, f64)> = (0..2000)
@@ -101,7 +99,6 @@ fn points(n: usize) -> Arc<Vec<(f64, f64, f64, f64)>> {
                 .collect(),
         )
     })
-    .clone()
 }
 
 /// A target's files by name, made by the library for an n-edge table.
