@@ -141,9 +141,21 @@ type SmithPair<T> = (
 /// The correlated Smith terms (Beckmann G2, GGX G2, GGX V) with their scalar kernels.
 fn smith_pairs<T: Real + BatchReal>() -> [SmithPair<T>; 3] {
     [
-        ("smith_beckmann", batch::g_smith_beckmann_correlated, Beckmann::g_correlated_cos),
-        ("smith_ggx", batch::g_smith_ggx_correlated, TrowbridgeReitz::g_correlated_cos),
-        ("v_smith_ggx", batch::v_smith_ggx_correlated, TrowbridgeReitz::v_correlated_cos),
+        (
+            "smith_beckmann",
+            batch::g_smith_beckmann_correlated,
+            Beckmann::g_correlated_cos,
+        ),
+        (
+            "smith_ggx",
+            batch::g_smith_ggx_correlated,
+            TrowbridgeReitz::g_correlated_cos,
+        ),
+        (
+            "v_smith_ggx",
+            batch::v_smith_ggx_correlated,
+            TrowbridgeReitz::v_correlated_cos,
+        ),
     ]
 }
 
@@ -178,7 +190,14 @@ fn check_closed_forms<T: Real + BatchReal>() {
     assert_same("g_blinn_dots", &out, |k| masking::g_blinn_dots(dk(k)));
 
     for rough in [0.05, 0.3, 1.0] {
-        check_smith(&smith_pairs(), &p.n_i, &p.n_o, T::from_f64(rough), &mut out, "");
+        check_smith(
+            &smith_pairs(),
+            &p.n_i,
+            &p.n_o,
+            T::from_f64(rough),
+            &mut out,
+            "",
+        );
     }
 
     for gt in GeometricTerm::ALL {

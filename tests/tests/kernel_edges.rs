@@ -651,7 +651,11 @@ type IsotropicKernels<T> = (&'static str, fn(T, T) -> T, fn(T, T) -> T);
 /// The [`Isotropic`] D and G1 of GGX and Beckmann.
 fn isotropic_kernels<T: Real>() -> [IsotropicKernels<T>; 2] {
     [
-        ("TrowbridgeReitz", TrowbridgeReitz::d_cos, TrowbridgeReitz::g1_cos),
+        (
+            "TrowbridgeReitz",
+            TrowbridgeReitz::d_cos,
+            TrowbridgeReitz::g1_cos,
+        ),
         ("Beckmann", Beckmann::d_cos, Beckmann::g1_cos),
     ]
 }

@@ -56,7 +56,9 @@ fn ggx_split_sum_matches_light_direction_quadrature() {
         for &r in &[0.3, 0.5, 0.8, 1.0] {
             let alpha = r * r;
             let (ra, rb) = reference(mu, &|nh, nl, _| {
-                TrowbridgeReitz::d_cos(nh, alpha) * TrowbridgeReitz::v_correlated_cos(nl, mu, alpha) * nl
+                TrowbridgeReitz::d_cos(nh, alpha)
+                    * TrowbridgeReitz::v_correlated_cos(nl, mu, alpha)
+                    * nl
             });
             let (a, b) = dfg_ggx::<f64, OuterRule, InnerRule>(mu, r);
             let e = (a - ra).abs().max((b - rb).abs());
@@ -80,7 +82,9 @@ fn torrance_sparrow_split_sums_match_light_direction_quadrature() {
         println!("TS-Smith mu {mu} s {s}: A {a:.6} ref {ra:.6}  B {b:.6} ref {rb:.6}");
         assert!((a - ra).abs() <= 1e-4 && (b - rb).abs() <= 1e-4);
         let g = ModifiedG::<f64>::new(s).unwrap();
-        let (ra, rb) = reference(mu, &|nh, _, d| Beckmann::d_cos(nh, m) * g.g_dots(d) / (4.0 * mu));
+        let (ra, rb) = reference(mu, &|nh, _, d| {
+            Beckmann::d_cos(nh, m) * g.g_dots(d) / (4.0 * mu)
+        });
         let (a, b) = dfg_ts_modified::<f64, OuterRule, InnerRule>(mu, s);
         println!("TS-modified mu {mu} s {s}: A {a:.6} ref {ra:.6}  B {b:.6} ref {rb:.6}");
         assert!((a - ra).abs() <= 1e-4 * ra.max(1.0) && (b - rb).abs() <= 1e-4 * rb.max(1.0));

@@ -47,6 +47,25 @@ fn same(a: f32, b: f32) -> bool {
     a.to_bits() == b.to_bits()
 }
 
+/// Runs `batch` on `out` (preset to −1, `n` or more slots), checks that it reports `n`
+/// results, that result k equals `scalar(k)` bit for bit, and that nothing past n is
+/// written.
+fn check_batch(
+    what: &str,
+    n: usize,
+    out: &mut [f32],
+    batch: impl FnOnce(&mut [f32]) -> usize,
+    scalar: impl Fn(usize) -> f32,
+) {
+    out.fill(-1.0);
+    assert_eq!(batch(out), n, "{what}");
+    for k in 0..n {
+        let v = scalar(k);
+        assert!(same(out[k], v), "{what} {k}: {} vs {v}", out[k]);
+    }
+    assert!(out[n..].iter().all(|&x| x == -1.0), "{what}: wrote past n");
+}
+
 #[test]
 fn g_batches_equal_scalar_lookups() {
     let h = std::f32::consts::FRAC_PI_2;
@@ -62,12 +81,13 @@ fn g_batches_equal_scalar_lookups() {
                 inputs(n, -h - 0.2, h + 0.2, 0.7),
             );
             let mut out = vec![-1.0; n + 3];
-            assert_eq!(t.g_batch(&ti, &tr, &mut out), n);
-            for k in 0..n {
-                let g = t.g(ti[k], tr[k]);
-                assert!(same(out[k], g), "{name} {k}: {} vs {g}", out[k]);
-            }
-            assert!(out[n..].iter().all(|&x| x == -1.0), "wrote past n");
+            check_batch(
+                name,
+                n,
+                &mut out,
+                |o| t.g_batch(&ti, &tr, o),
+                |k| t.g(ti[k], tr[k]),
+            );
         }
     }
     for name in ["g_modified_linear.blut", "g_modified.blut"] {
@@ -80,11 +100,13 @@ fn g_batches_equal_scalar_lookups() {
                     inputs(n, -h - 0.2, h + 0.2, 0.9),
                 );
                 let mut out = vec![-1.0; n];
-                assert_eq!(t.g_batch(&ti, &tr, sigma, &mut out), n);
-                for k in 0..n {
-                    let g = t.g(ti[k], tr[k], sigma);
-                    assert!(same(out[k], g), "{name} σ {sigma} {k}: {} vs {g}", out[k]);
-                }
+                check_batch(
+                    &format!("{name} σ {sigma}"),
+                    n,
+                    &mut out,
+                    |o| t.g_batch(&ti, &tr, sigma, o),
+                    |k| t.g(ti[k], tr[k], sigma),
+                );
             }
         }
     }
@@ -122,17 +144,20 @@ fn dfg_and_albedo_batches_equal_scalar_lookups() {
         for n in LENGTHS {
             let (mu, r) = (inputs(n, -0.1, 1.1, 0.4), inputs(n, -0.1, 1.1, 0.6));
             let mut out = vec![-1.0; n + 3];
-            assert_eq!(e.e_batch(&mu, &r, &mut out), n);
-            for k in 0..n {
-                let v = e.e(mu[k], r[k]);
-                assert!(same(out[k], v), "{e_name} {k}: {} vs {v}", out[k]);
-            }
-            assert!(out[n..].iter().all(|&x| x == -1.0), "wrote past n");
-            assert_eq!(ea.e_avg_batch(&r, &mut out[..n]), n);
-            for k in 0..n {
-                let v = ea.e_avg(r[k]);
-                assert!(same(out[k], v), "{eavg_name} {k}: {} vs {v}", out[k]);
-            }
+            check_batch(
+                e_name,
+                n,
+                &mut out,
+                |o| e.e_batch(&mu, &r, o),
+                |k| e.e(mu[k], r[k]),
+            );
+            check_batch(
+                eavg_name,
+                n,
+                &mut out[..n],
+                |o| ea.e_avg_batch(&r, o),
+                |k| ea.e_avg(r[k]),
+            );
         }
     }
     // A NaN coordinate gives NaN on every path (the typed tables' contract).

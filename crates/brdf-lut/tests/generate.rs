@@ -25,11 +25,19 @@ fn nodes(bytes: &[u8]) -> Vec<f32> {
 }
 
 /// A spec of `kind`, distribution `d`, masking `m` on a small `counts` grid (μ, r).
-fn small(kind: Kind, d: Distribution, m: Masking, counts: [u32; 2]) -> Spec {
+fn small(kind: Kind, d: Distribution, m: Masking, counts: [u32; 2], samples: u32) -> Spec {
     let mut s = Spec::new(kind, d, m);
     s.axes[0].count = counts[0];
     s.axes[1].count = counts[1];
+    s.samples = samples;
     s
+}
+
+/// `s` on the axes (count, range, warp, placement) of the committed table `lut`.
+fn on_grid_of(s: &mut Spec, lut: &Lut) {
+    for (a, b) in s.axes.iter_mut().zip(lut.header().axes.iter()) {
+        (a.count, a.lo, a.hi, a.warp, a.placement) = (b.count, b.lo, b.hi, b.warp, b.placement);
+    }
 }
 
 fn invalid(s: &Spec) -> String {
@@ -47,10 +55,7 @@ fn ggx_split_sum_matches_the_committed_asset() {
     let lut = asset("dfg_ggx.blut");
     let mut s = Spec::new(Kind::SplitSum, Distribution::Ggx, Masking::SmithCorrelated);
     s.samples = 200;
-    let h = lut.header();
-    for (a, b) in s.axes.iter_mut().zip(h.axes.iter()) {
-        (a.count, a.lo, a.hi, a.warp, a.placement) = (b.count, b.lo, b.hi, b.warp, b.placement);
-    }
+    on_grid_of(&mut s, &lut);
     let t = generate(&s, &|_| {}).unwrap();
     let (mine, theirs) = (nodes(&t.bytes), nodes(lut.bytes()));
     assert_eq!(mine.len(), theirs.len());
@@ -129,9 +134,7 @@ fn g_per_sigma_matches_the_committed_asset() {
     );
     s.samples = 500;
     assert_eq!(s.roughness, Roughness::Sigma);
-    for (a, b) in s.axes.iter_mut().zip(lut.header().axes.iter()) {
-        (a.count, a.lo, a.hi, a.warp, a.placement) = (b.count, b.lo, b.hi, b.warp, b.placement);
-    }
+    on_grid_of(&mut s, &lut);
     let t = generate(&s, &|_| {}).unwrap();
     for (a, b) in nodes(&t.bytes).iter().zip(&nodes(lut.bytes())) {
         assert!((a - b).abs() <= 1.6e-5, "{a} vs {b}");
@@ -147,9 +150,9 @@ fn mirror_column_is_the_closed_form() {
         Distribution::Beckmann,
         Masking::SmithSeparable,
         [5, 3],
+        10,
     );
     s.encoding = Encoding::F32;
-    s.samples = 10;
     let t = generate(&s, &|_| {}).unwrap();
     let v = LutView::parse(&t.bytes).unwrap();
     let mu_axis = v.header().axes[0];
@@ -168,9 +171,8 @@ fn mirror_column_is_the_closed_form() {
 fn separable_albedo_never_exceeds_correlated() {
     for d in [Distribution::Ggx, Distribution::Beckmann] {
         let mk = |m| {
-            let mut s = small(Kind::Albedo, d, m, [6, 6]);
+            let mut s = small(Kind::Albedo, d, m, [6, 6], 10);
             s.encoding = Encoding::F32;
-            s.samples = 10;
             nodes(&generate(&s, &|_| {}).unwrap().bytes)
         };
         let (sep, cor) = (mk(Masking::SmithSeparable), mk(Masking::SmithCorrelated));
@@ -214,22 +216,22 @@ fn coarse_table_reports_a_large_error() {
         Distribution::Ggx,
         Masking::SmithCorrelated,
         [2, 2],
+        500,
     );
     s.interpolation = Interpolation::Linear;
-    s.samples = 500;
     let t = generate(&s, &|_| {}).unwrap();
     assert!(t.error.max_abs > 0.1, "{:?}", t.error);
 }
 
 #[test]
 fn deterministic_and_progress_counts_every_node() {
-    let mut s = small(
+    let s = small(
         Kind::SplitSum,
         Distribution::TorranceSparrow,
         Masking::Blinn,
         [4, 3],
+        20,
     );
-    s.samples = 20;
     let n = std::sync::atomic::AtomicU64::new(0);
     let a = generate(&s, &|k| {
         n.fetch_add(k, std::sync::atomic::Ordering::Relaxed);
