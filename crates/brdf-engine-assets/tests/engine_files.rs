@@ -121,6 +121,13 @@ fn file<'a>(d: &'a Files, name: &str) -> &'a [u8] {
         .unwrap_or_else(|| panic!("the target makes no {name}"))
 }
 
+/// The texture `stem.ext` of a target's files `d`, its sidecar `stem.json` checked
+/// ([`sidecar`]).
+fn texture<'a>(d: &'a Files, stem: &str, ext: &str) -> &'a [u8] {
+    sidecar(d, stem);
+    file(d, &format!("{stem}.{ext}"))
+}
+
 /// A texture as the sampler sees it: texel (s, t) with s along u, t along v, row t at
 /// v = (t + ½)/h; each texel decodes to (A, B) and has a tolerance (ΔA, ΔB).
 struct Tex {
@@ -313,8 +320,7 @@ fn khronos_png_8_and_16_bit() {
 fn bevy_ktx2_rg16f_zstd() {
     let n = 64;
     let d = generate("bevy", n);
-    sidecar(&d, "dfg");
-    let bytes = file(&d, "dfg.ktx2");
+    let bytes = texture(&d, "dfg", "ktx2");
     let rd = ktx2::Reader::new(bytes).unwrap();
     let h = rd.header();
     assert_eq!(h.format, Some(ktx2::Format::R16G16_SFLOAT));
@@ -350,8 +356,7 @@ fn bevy_ktx2_rg16f_zstd() {
 fn filament_dds_rgba16f() {
     let n = 64;
     let d = generate("filament", n);
-    sidecar(&d, "dfg_multiscatter");
-    let bytes = file(&d, "dfg_multiscatter.dds");
+    let bytes = texture(&d, "dfg_multiscatter", "dds");
     // DDS layout: "DDS " magic, 124-byte header (height at 12, width at 16, pixel-format
     // fourCC at 84), DX10 extension (DXGI format at 128), data at 148.
     let u32at = |o: usize| u32::from_le_bytes(bytes[o..o + 4].try_into().unwrap());
@@ -399,8 +404,7 @@ fn filament_dds_rgba16f() {
 fn threejs_bin_rg16f() {
     for n in [16, 32] {
         let d = generate("threejs", n);
-        sidecar(&d, "dfg_lut");
-        let bytes = file(&d, "dfg_lut.bin");
+        let bytes = texture(&d, "dfg_lut", "bin");
         assert_eq!(bytes.len(), n * n * 4);
         let f = |o: usize| f16::from_bits(u16::from_le_bytes([bytes[o], bytes[o + 1]])).to_f64();
         // three.js: texture(DFG, vec2(roughness, dotNV)); memory row m at t = (m + ½)/n.

@@ -3,7 +3,7 @@
 //! between the two Smith forms) and the option errors.
 
 use brdf_lut::generate::{
-    default_set, generate, Distribution, GenError, Kind, Masking, Roughness, Spec,
+    default_set, generate, Distribution, GenError, Generated, Kind, Masking, Roughness, Spec,
 };
 use brdf_lut::Lut;
 use brdf_lut::{Encoding, Interpolation, LutView, Placement, Warp};
@@ -33,6 +33,11 @@ fn small(kind: Kind, d: Distribution, m: Masking, counts: [u32; 2], samples: u32
     s
 }
 
+/// The table `s` describes, without progress reports.
+fn build(s: &Spec) -> Generated {
+    generate(s, &|_| {}).unwrap()
+}
+
 /// `s` on the axes (count, range, warp, placement) of the committed table `lut`.
 fn on_grid_of(s: &mut Spec, lut: &Lut) {
     for (a, b) in s.axes.iter_mut().zip(lut.header().axes.iter()) {
@@ -56,7 +61,7 @@ fn ggx_split_sum_matches_the_committed_asset() {
     let mut s = Spec::new(Kind::SplitSum, Distribution::Ggx, Masking::SmithCorrelated);
     s.samples = 200;
     on_grid_of(&mut s, &lut);
-    let t = generate(&s, &|_| {}).unwrap();
+    let t = build(&s);
     let (mine, theirs) = (nodes(&t.bytes), nodes(lut.bytes()));
     assert_eq!(mine.len(), theirs.len());
     for (k, (a, b)) in mine.iter().zip(&theirs).enumerate() {
@@ -135,7 +140,7 @@ fn g_per_sigma_matches_the_committed_asset() {
     s.samples = 500;
     assert_eq!(s.roughness, Roughness::Sigma);
     on_grid_of(&mut s, &lut);
-    let t = generate(&s, &|_| {}).unwrap();
+    let t = build(&s);
     for (a, b) in nodes(&t.bytes).iter().zip(&nodes(lut.bytes())) {
         assert!((a - b).abs() <= 1.6e-5, "{a} vs {b}");
     }
@@ -153,7 +158,7 @@ fn mirror_column_is_the_closed_form() {
         10,
     );
     s.encoding = Encoding::F32;
-    let t = generate(&s, &|_| {}).unwrap();
+    let t = build(&s);
     let v = LutView::parse(&t.bytes).unwrap();
     let mu_axis = v.header().axes[0];
     for i in 0..5u32 {
@@ -173,7 +178,7 @@ fn separable_albedo_never_exceeds_correlated() {
         let mk = |m| {
             let mut s = small(Kind::Albedo, d, m, [6, 6], 10);
             s.encoding = Encoding::F32;
-            nodes(&generate(&s, &|_| {}).unwrap().bytes)
+            nodes(&build(&s).bytes)
         };
         let (sep, cor) = (mk(Masking::SmithSeparable), mk(Masking::SmithCorrelated));
         for (a, b) in sep.iter().zip(&cor) {
@@ -198,7 +203,7 @@ fn e_avg_nodes_match_the_core_kernel() {
     s.axes[0].placement = Placement::TexelCentre;
     s.encoding = Encoding::F32;
     s.samples = 20;
-    let t = generate(&s, &|_| {}).unwrap();
+    let t = build(&s);
     let v = LutView::parse(&t.bytes).unwrap();
     let a = v.header().axes[0];
     for i in 0..5 {
@@ -219,7 +224,7 @@ fn coarse_table_reports_a_large_error() {
         500,
     );
     s.interpolation = Interpolation::Linear;
-    let t = generate(&s, &|_| {}).unwrap();
+    let t = build(&s);
     assert!(t.error.max_abs > 0.1, "{:?}", t.error);
 }
 
@@ -238,7 +243,7 @@ fn deterministic_and_progress_counts_every_node() {
     })
     .unwrap();
     assert_eq!(n.into_inner(), 12);
-    let b = generate(&s, &|_| {}).unwrap();
+    let b = build(&s);
     assert_eq!(a.bytes, b.bytes);
 }
 
