@@ -20,7 +20,7 @@ fn option_errors_name_the_real_problem_and_write_nothing() {
     let d = tempfile::tempdir().unwrap();
     let with = |extra: &[&str]| {
         xtask(
-            &[&GGX_SPLIT_SUM, &["--out", "t.blut"], extra].concat(),
+            &[&GGX_SPLIT_SUM[..], &["--out", "t.blut"], extra].concat(),
             d.path(),
         )
     };

@@ -13,7 +13,7 @@ use common::{
     default_table, export, fails_with, ggx_e_avg, listing, run_within, stderr as err, succeeds,
     xtask, GGX_SPLIT_SUM,
 };
-use std::process::{Command, Stdio};
+use std::process::Command;
 
 fn asset(name: &str) -> PathBuf {
     common::assets().join(name)
