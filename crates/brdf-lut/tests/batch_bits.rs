@@ -59,9 +59,9 @@ fn check_batch(
 ) {
     let mut out = vec![-1.0; n + pad];
     assert_eq!(batch(&mut out), n, "{what}");
-    for k in 0..n {
+    for (k, &got) in out[..n].iter().enumerate() {
         let v = scalar(k);
-        assert!(same(out[k], v), "{what} {k}: {} vs {v}", out[k]);
+        assert!(same(got, v), "{what} {k}: {got} vs {v}");
     }
     assert!(out[n..].iter().all(|&x| x == -1.0), "{what}: wrote past n");
 }
