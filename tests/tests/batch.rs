@@ -7,23 +7,14 @@
 use brdf_core::batch::{self, BatchError, BatchReal, DotsSoa, Vec3Soa};
 use brdf_core::fresnel::Fresnel;
 use brdf_core::masking::{self, Convention, ModifiedG};
+use brdf_core::microfacet::{Beckmann, Isotropic, TrowbridgeReitz};
 use brdf_core::models::{
     Brdf, GeometricTerm, Ggx, Lambert, MicrofacetSampling, Rgb, SmithForm, TorranceSparrow,
 };
 use brdf_core::quadrature::{GaussLegendre, Rule};
 use brdf_core::{Dots, Real, Vec3};
-
-/// Deterministic uniform numbers in [0, 1) (64-bit LCG, top 53 bits).
-struct Lcg(u64);
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+use rand::{Rng, SeedableRng};
+use rand_pcg::Pcg64;
 
 /// Bitwise equality, NaN payloads included.
 fn same<T: Real>(a: T, b: T) -> bool {
@@ -39,13 +30,13 @@ fn assert_same<T: Real>(what: &str, batch: &[T], scalar: impl Fn(usize) -> T) {
 
 /// In-plane angle pairs: random ones plus edge cases.
 fn angles<T: Real>(n: usize, seed: u64) -> (Vec<T>, Vec<T>) {
-    let mut r = Lcg(seed);
+    let mut r = Pcg64::seed_from_u64(seed);
     let h = core::f64::consts::FRAC_PI_2;
     let mut ti: Vec<f64> = vec![0.0, h, 0.3, 1.2, 0.0, h, -0.1, 2.0, f64::NAN, 0.5];
     let mut tr: Vec<f64> = vec![0.0, h, -0.3, 1.2, -h, -h, 0.4, -2.0, 0.2, f64::NAN];
     while ti.len() < n {
-        ti.push(r.next() * h);
-        tr.push((2.0 * r.next() - 1.0) * h);
+        ti.push(r.random::<f64>() * h);
+        tr.push((2.0 * r.random::<f64>() - 1.0) * h);
     }
     (
         ti.into_iter().map(T::from_f64).collect(),
@@ -55,7 +46,7 @@ fn angles<T: Real>(n: usize, seed: u64) -> (Vec<T>, Vec<T>) {
 
 /// Local unit directions: random upper-hemisphere ones plus edge cases.
 fn dirs(n: usize, seed: u64) -> Vec<Vec3<f64>> {
-    let mut r = Lcg(seed);
+    let mut r = Pcg64::seed_from_u64(seed);
     let mut v = vec![
         Vec3::new(0.0, 0.0, 1.0),
         Vec3::new(1.0, 0.0, 0.0),
@@ -64,8 +55,8 @@ fn dirs(n: usize, seed: u64) -> Vec<Vec3<f64>> {
         Vec3::new(f64::NAN, 0.0, 1.0),
     ];
     while v.len() < n {
-        let z: f64 = r.next();
-        let phi = 2.0 * core::f64::consts::PI * r.next();
+        let z: f64 = r.random::<f64>();
+        let phi = 2.0 * core::f64::consts::PI * r.random::<f64>();
         let s = (1.0 - z * z).sqrt();
         v.push(Vec3::new(s * phi.cos(), s * phi.sin(), z));
     }
@@ -140,6 +131,50 @@ fn modified_g_batch_equals_scalar() {
     }
 }
 
+/// A batch Smith term and the scalar kernel it must equal bit for bit.
+type SmithPair<T> = (
+    &'static str,
+    fn(&[T], &[T], T, &mut [T]) -> Result<(), BatchError>,
+    fn(T, T, T) -> T,
+);
+
+/// The correlated Smith terms (Beckmann G2, GGX G2, GGX V) with their scalar kernels.
+fn smith_pairs<T: Real + BatchReal>() -> [SmithPair<T>; 3] {
+    [
+        (
+            "smith_beckmann",
+            batch::g_smith_beckmann_correlated,
+            Beckmann::g_correlated_cos,
+        ),
+        (
+            "smith_ggx",
+            batch::g_smith_ggx_correlated,
+            TrowbridgeReitz::g_correlated_cos,
+        ),
+        (
+            "v_smith_ggx",
+            batch::v_smith_ggx_correlated,
+            TrowbridgeReitz::v_correlated_cos,
+        ),
+    ]
+}
+
+/// Runs each pair's batch form on (`ci`, `co`) at width `a` and checks it against the
+/// scalar kernel element by element.
+fn check_smith<T: Real>(
+    pairs: &[SmithPair<T>],
+    ci: &[T],
+    co: &[T],
+    a: T,
+    out: &mut [T],
+    what: &str,
+) {
+    for (name, batch_form, scalar) in pairs {
+        batch_form(ci, co, a, out).unwrap();
+        assert_same(&format!("{name}{what}"), out, |k| scalar(ci[k], co[k], a));
+    }
+}
+
 fn check_closed_forms<T: Real + BatchReal>() {
     let p = pairs::<T>(500, 3);
     let n = p.n_i.len();
@@ -155,19 +190,14 @@ fn check_closed_forms<T: Real + BatchReal>() {
     assert_same("g_blinn_dots", &out, |k| masking::g_blinn_dots(dk(k)));
 
     for rough in [0.05, 0.3, 1.0] {
-        let a = T::from_f64(rough);
-        batch::g_smith_beckmann_correlated(&p.n_i, &p.n_o, a, &mut out).unwrap();
-        assert_same("smith_beckmann", &out, |k| {
-            masking::g_smith_beckmann_correlated(p.n_i[k], p.n_o[k], a)
-        });
-        batch::g_smith_ggx_correlated(&p.n_i, &p.n_o, a, &mut out).unwrap();
-        assert_same("smith_ggx", &out, |k| {
-            masking::g_smith_ggx_correlated(p.n_i[k], p.n_o[k], a)
-        });
-        batch::v_smith_ggx_correlated(&p.n_i, &p.n_o, a, &mut out).unwrap();
-        assert_same("v_smith_ggx", &out, |k| {
-            masking::v_smith_ggx_correlated(p.n_i[k], p.n_o[k], a)
-        });
+        check_smith(
+            &smith_pairs(),
+            &p.n_i,
+            &p.n_o,
+            T::from_f64(rough),
+            &mut out,
+            "",
+        );
     }
 
     for gt in GeometricTerm::ALL {
@@ -301,14 +331,7 @@ fn smith_ggx_batch_special_values_equal_scalar() {
         let mut out = vec![T::ZERO; ci.len()];
         for alpha in [f64::NAN, 0.0, 1e-4, 0.3, 1.0, 2.5] {
             let a = T::from_f64(alpha);
-            batch::v_smith_ggx_correlated(&ci, &co, a, &mut out).unwrap();
-            assert_same("v_smith_ggx special", &out, |k| {
-                masking::v_smith_ggx_correlated(ci[k], co[k], a)
-            });
-            batch::g_smith_ggx_correlated(&ci, &co, a, &mut out).unwrap();
-            assert_same("g_smith_ggx special", &out, |k| {
-                masking::g_smith_ggx_correlated(ci[k], co[k], a)
-            });
+            check_smith(&smith_pairs()[1..], &ci, &co, a, &mut out, " special");
         }
     }
     run::<f32>();

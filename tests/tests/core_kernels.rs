@@ -1,34 +1,26 @@
 //! Blinn, Smith, Fresnel, the distributions, the 3-D extension of the modified G, the
 //! Torrance–Sparrow BRDF, and bad input — each against an independent reference or law.
 
-use brdf_core::distribution::{d_beckmann, d_ggx};
 use brdf_core::fresnel::{f_dielectric, f_schlick, r0_from_ior, Fresnel};
 use brdf_core::geometry::{in_plane_directions, Dots, Vec3};
-use brdf_core::masking::*;
+use brdf_core::masking::{g_blinn, g_blinn_dots, Convention, ModifiedG};
+use brdf_core::microfacet::{Beckmann, Isotropic, TrowbridgeReitz};
 use brdf_core::models::{GeometricTerm, TorranceSparrow};
 use brdf_core::ParamError;
 use brdf_tests::reference::{integrate, lambda_beckmann_ref};
 use proptest::prelude::*;
+use rand::{Rng, SeedableRng};
+use rand_pcg::Pcg64;
 use std::f64::consts::{FRAC_PI_2, PI, SQRT_2};
 
 const DEG: f64 = PI / 180.0;
 
-/// Deterministic pseudo-random numbers in [0, 1) (SplitMix64), for sampling test inputs.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn dir_upper(&mut self) -> Vec3<f64> {
-        let z = self.next().max(1e-3);
-        let phi = 2.0 * PI * self.next();
-        let r = (1.0 - z * z).sqrt();
-        Vec3::new(r * phi.cos(), r * phi.sin(), z)
-    }
+/// A random upper-hemisphere direction: cos θ uniform in [1e-3, 1), φ uniform.
+fn dir_upper(rng: &mut Pcg64) -> Vec3<f64> {
+    let z = rng.random::<f64>().max(1e-3);
+    let phi = 2.0 * PI * rng.random::<f64>();
+    let r = (1.0 - z * z).sqrt();
+    Vec3::new(r * phi.cos(), r * phi.sin(), z)
 }
 
 #[test]
@@ -60,13 +52,13 @@ fn blinn_matches_eq4_geometry() {
 fn smith_beckmann_lambda_matches_slope_integral() {
     for m in [0.07, 0.3, 0.8, 1.4] {
         for t in [5.0, 30.0, 60.0, 80.0, 88.0] {
-            let got = lambda_beckmann(f64::cos(t * DEG), m);
+            let got = Beckmann::lambda_cos(f64::cos(t * DEG), m);
             let want = lambda_beckmann_ref(t * DEG, m);
             assert!(
                 (got - want).abs() < 1e-9 * (1.0 + want),
                 "m={m} θ={t}: {got} vs {want}"
             );
-            let g32 = lambda_beckmann(f32::cos((t * DEG) as f32), m as f32) as f64;
+            let g32 = Beckmann::lambda_cos(f32::cos((t * DEG) as f32), m as f32) as f64;
             // micromath's exp/sqrt are approximations (README accuracy table).
             let tol32 = if cfg!(feature = "micromath") {
                 1e-2
@@ -79,8 +71,8 @@ fn smith_beckmann_lambda_matches_slope_integral() {
             );
         }
     }
-    assert_eq!(g1_smith_beckmann(1.0, 0.3), 1.0);
-    assert_eq!(g1_smith_beckmann(0.0, 0.3), 0.0);
+    assert_eq!(Beckmann::g1_cos(1.0, 0.3), 1.0);
+    assert_eq!(Beckmann::g1_cos(0.0, 0.3), 0.0);
 }
 
 #[test]
@@ -90,14 +82,14 @@ fn smith_ggx_closed_forms_agree() {
         for (ci, co) in [(0.9, 0.2), (0.05, 0.5), (1.0, 1.0), (0.3, 0.3)] {
             let tan2 = |c: f64| (1.0 - c * c) / (c * c);
             let g1 = |c: f64| 2.0 / (1.0 + (1.0 + a * a * tan2(c)).sqrt());
-            assert!((g1_smith_ggx(ci, a) - g1(ci)).abs() < 1e-14);
-            let g2 = g_smith_ggx_correlated(ci, co, a);
-            let v = v_smith_ggx_correlated(ci, co, a);
+            assert!((TrowbridgeReitz::g1_cos(ci, a) - g1(ci)).abs() < 1e-14);
+            let g2 = TrowbridgeReitz::g_correlated_cos(ci, co, a);
+            let v = TrowbridgeReitz::v_correlated_cos(ci, co, a);
             assert!(
                 (v - g2 / (4.0 * ci * co)).abs() < 1e-12 * v,
                 "α={a} {ci} {co}"
             );
-            assert!((g_smith_ggx_separable(ci, co, a) - g1(ci) * g1(co)).abs() < 1e-14);
+            assert!((TrowbridgeReitz::g_separable_cos(ci, co, a) - g1(ci) * g1(co)).abs() < 1e-14);
         }
     }
 }
@@ -107,14 +99,14 @@ fn smith_ggx_closed_forms_agree() {
 fn normal_distributions_are_normalised() {
     for r in [0.05f64, 0.2, 0.6, 1.0] {
         let beck = integrate(
-            |t| 2.0 * PI * d_beckmann(t.cos(), r) * t.cos() * t.sin(),
+            |t| 2.0 * PI * Beckmann::d_cos(t.cos(), r) * t.cos() * t.sin(),
             0.0,
             FRAC_PI_2,
             &[r.atan(), (3.0 * r).atan()],
             1e-12,
         );
         let ggx = integrate(
-            |t| 2.0 * PI * d_ggx(t.cos(), r) * t.cos() * t.sin(),
+            |t| 2.0 * PI * TrowbridgeReitz::d_cos(t.cos(), r) * t.cos() * t.sin(),
             0.0,
             FRAC_PI_2,
             &[r.atan(), (3.0 * r).atan(), (30.0 * r).atan()],
@@ -159,13 +151,13 @@ fn fresnel_terms() {
 /// out-of-plane pairs are reciprocal and in [0, 1].
 #[test]
 fn modified_g_3d_extension() {
-    let mut rng = Rng(7);
+    let mut rng = Pcg64::seed_from_u64(7);
     for s in [0.1, 0.4, 1.0] {
         let k = ModifiedG::<f64>::new(s).unwrap();
         for _ in 0..300 {
-            let ti = 89.0 * rng.next() * DEG;
-            let tr = (-89.0 + 178.0 * rng.next()) * DEG;
-            let phi = 2.0 * PI * rng.next();
+            let ti = 89.0 * rng.random::<f64>() * DEG;
+            let tr = (-89.0 + 178.0 * rng.random::<f64>()) * DEG;
+            let phi = 2.0 * PI * rng.random::<f64>();
             let (wi, wo) = in_plane_directions(ti, tr);
             let rot = |v: Vec3<f64>| {
                 Vec3::new(
@@ -184,7 +176,7 @@ fn modified_g_3d_extension() {
             );
         }
         for _ in 0..300 {
-            let (wi, wo) = (rng.dir_upper(), rng.dir_upper());
+            let (wi, wo) = (dir_upper(&mut rng), dir_upper(&mut rng));
             let a = k.g_dots(Dots::from_local(wi, wo));
             let b = k.g_dots(Dots::from_local(wo, wi));
             assert!((a - b).abs() < 1e-12 && (0.0..=1.0).contains(&a));
@@ -210,10 +202,10 @@ fn torrance_sparrow_matches_eq3_and_is_reciprocal() {
                     GeometricTerm::None => 1.0,
                     GeometricTerm::Blinn => g_blinn(ti, tr),
                     GeometricTerm::SmithSeparable => {
-                        g_smith_beckmann_separable(ti.cos(), tr.cos(), m)
+                        Beckmann::g_separable_cos(ti.cos(), tr.cos(), m)
                     }
                     GeometricTerm::SmithCorrelated => {
-                        g_smith_beckmann_correlated(ti.cos(), tr.cos(), m)
+                        Beckmann::g_correlated_cos(ti.cos(), tr.cos(), m)
                     }
                     GeometricTerm::Modified => kg.g(ti, tr),
                     GeometricTerm::ModifiedPrinted => {

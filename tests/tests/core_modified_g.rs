@@ -97,35 +97,13 @@ fn default_rule_meets_accuracy_bounds_both_conventions() {
 #[test]
 fn node_count_table() {
     let pts = reference_points(Convention::Reciprocal);
-    let rows = [
-        (4, max_err::<GaussLegendre<4>>(&pts, Convention::Reciprocal)),
-        (6, max_err::<GaussLegendre<6>>(&pts, Convention::Reciprocal)),
-        (8, max_err::<GaussLegendre<8>>(&pts, Convention::Reciprocal)),
-        (
-            10,
-            max_err::<GaussLegendre<10>>(&pts, Convention::Reciprocal),
-        ),
-        (
-            12,
-            max_err::<GaussLegendre<12>>(&pts, Convention::Reciprocal),
-        ),
-        (
-            16,
-            max_err::<GaussLegendre<16>>(&pts, Convention::Reciprocal),
-        ),
-        (
-            20,
-            max_err::<GaussLegendre<20>>(&pts, Convention::Reciprocal),
-        ),
-        (
-            24,
-            max_err::<GaussLegendre<24>>(&pts, Convention::Reciprocal),
-        ),
-        (
-            32,
-            max_err::<GaussLegendre<32>>(&pts, Convention::Reciprocal),
-        ),
-    ];
+    // (nodes, max_err at that rule) for each node count.
+    macro_rules! rows {
+        ($($n:literal),*) => {
+            [$(($n, max_err::<GaussLegendre<$n>>(&pts, Convention::Reciprocal))),*]
+        };
+    }
+    let rows = rows!(4, 6, 8, 10, 12, 16, 20, 24, 32);
     println!("| nodes | max err f64 | max err f32 |");
     for (n, (a, b)) in rows {
         println!("| {n} | {a:.2e} | {b:.2e} |");

@@ -13,9 +13,8 @@
 //! when their [`Dots`] come from the vectors, and to their documented bounds when they come
 //! from the three dots alone or with a shader's n·h.
 
-use brdf_core::distribution::{d_ggx, SlopeDistribution};
-use brdf_core::masking::g1_smith_ggx;
-use brdf_core::microfacet::{Beckmann, Distribution, TrowbridgeReitz};
+use brdf_core::distribution::SlopeDistribution;
+use brdf_core::microfacet::{Beckmann, Distribution, Isotropic, TrowbridgeReitz};
 use brdf_core::models::*;
 use brdf_core::quadrature::DefaultRule;
 use brdf_core::sampling;
@@ -627,7 +626,7 @@ fn extreme_roughness_is_rejected_or_finite() {
         }
     }
     // The unchecked functions clamp α into [ε², 1/ε²]: finite, non-negative, G1 in [0, 1],
-    // unit samples, for any α > 0 (the old d_ggx was NaN at α ≤ 1e-170 and ≥ 1e155).
+    // unit samples, for any α > 0 (an earlier GGX D was NaN at α ≤ 1e-170 and ≥ 1e155).
     for a in [1e-300, 1e-171, 1e-30, 1e-4, 1.0, 1e4, 1e30, 1e155, 1e300] {
         check_unchecked::<f64>(a);
     }
@@ -646,27 +645,37 @@ fn extreme_roughness_is_rejected_or_finite() {
     }
 }
 
+/// An isotropic distribution's name with its dot-product D and G1 (n·h or cos θ, α).
+type IsotropicKernels<T> = (&'static str, fn(T, T) -> T, fn(T, T) -> T);
+
+/// The [`Isotropic`] D and G1 of GGX and Beckmann.
+fn isotropic_kernels<T: Real>() -> [IsotropicKernels<T>; 2] {
+    [
+        (
+            "TrowbridgeReitz",
+            TrowbridgeReitz::d_cos,
+            TrowbridgeReitz::g1_cos,
+        ),
+        ("Beckmann", Beckmann::d_cos, Beckmann::g1_cos),
+    ]
+}
+
 fn check_unchecked<T: Real>(a: f64) {
     let a = T::from_f64(a);
     for c in [1.0, 0.999999, 0.5, 1e-3, 1e-10] {
         let c = T::from_f64(c);
-        let d = d_ggx(c, a);
-        assert!(d.is_finite() && d >= T::ZERO, "d_ggx({c:?}, {a:?}) = {d:?}");
-        let d = brdf_core::distribution::d_beckmann(c, a);
-        assert!(
-            d.is_finite() && d >= T::ZERO,
-            "d_beckmann({c:?}, {a:?}) = {d:?}"
-        );
-        let g = g1_smith_ggx(c, a);
-        assert!(
-            g >= T::ZERO && g <= T::ONE,
-            "g1_smith_ggx({c:?}, {a:?}) = {g:?}"
-        );
-        let g = brdf_core::masking::g1_smith_beckmann(c, a);
-        assert!(
-            g >= T::ZERO && g <= T::ONE,
-            "g1_smith_beckmann({c:?}, {a:?}) = {g:?}"
-        );
+        for (name, d_cos, g1_cos) in isotropic_kernels::<T>() {
+            let d = d_cos(c, a);
+            assert!(
+                d.is_finite() && d >= T::ZERO,
+                "{name}::d_cos({c:?}, {a:?}) = {d:?}"
+            );
+            let g = g1_cos(c, a);
+            assert!(
+                g >= T::ZERO && g <= T::ONE,
+                "{name}::g1_cos({c:?}, {a:?}) = {g:?}"
+            );
+        }
     }
     let wo = Vec3::new(T::from_f64(0.6), T::ZERO, T::from_f64(0.8));
     for u in [[0.0, 0.0], [0.5, 0.5], [1.0, 1.0], [0.999999, 0.3]] {

@@ -3,8 +3,8 @@
 //! D · G · F / (4 μ) (the BRDF times cos θl), instead of the kernels' half-vector CDF
 //! parametrisation with fixed rules.
 
-use brdf_core::distribution::{d_beckmann, d_ggx};
-use brdf_core::masking::{g_smith_beckmann_correlated, v_smith_ggx_correlated, ModifiedG};
+use brdf_core::masking::ModifiedG;
+use brdf_core::microfacet::{Beckmann, Isotropic, TrowbridgeReitz};
 use brdf_core::split_sum::{
     dfg_ggx, dfg_ts_modified, dfg_ts_smith, e_avg, e_ggx, InnerRule, OuterRule,
 };
@@ -56,7 +56,9 @@ fn ggx_split_sum_matches_light_direction_quadrature() {
         for &r in &[0.3, 0.5, 0.8, 1.0] {
             let alpha = r * r;
             let (ra, rb) = reference(mu, &|nh, nl, _| {
-                d_ggx(nh, alpha) * v_smith_ggx_correlated(nl, mu, alpha) * nl
+                TrowbridgeReitz::d_cos(nh, alpha)
+                    * TrowbridgeReitz::v_correlated_cos(nl, mu, alpha)
+                    * nl
             });
             let (a, b) = dfg_ggx::<f64, OuterRule, InnerRule>(mu, r);
             let e = (a - ra).abs().max((b - rb).abs());
@@ -74,13 +76,15 @@ fn torrance_sparrow_split_sums_match_light_direction_quadrature() {
     for &(mu, s) in &[(0.05, 0.3), (0.5, 0.3), (0.3, 0.7), (0.9, 1.0)] {
         let m = std::f64::consts::SQRT_2 * s;
         let (ra, rb) = reference(mu, &|nh, nl, _| {
-            d_beckmann(nh, m) * g_smith_beckmann_correlated(nl, mu, m) / (4.0 * mu)
+            Beckmann::d_cos(nh, m) * Beckmann::g_correlated_cos(nl, mu, m) / (4.0 * mu)
         });
         let (a, b) = dfg_ts_smith::<f64, OuterRule, InnerRule>(mu, s);
         println!("TS-Smith mu {mu} s {s}: A {a:.6} ref {ra:.6}  B {b:.6} ref {rb:.6}");
         assert!((a - ra).abs() <= 1e-4 && (b - rb).abs() <= 1e-4);
         let g = ModifiedG::<f64>::new(s).unwrap();
-        let (ra, rb) = reference(mu, &|nh, _, d| d_beckmann(nh, m) * g.g_dots(d) / (4.0 * mu));
+        let (ra, rb) = reference(mu, &|nh, _, d| {
+            Beckmann::d_cos(nh, m) * g.g_dots(d) / (4.0 * mu)
+        });
         let (a, b) = dfg_ts_modified::<f64, OuterRule, InnerRule>(mu, s);
         println!("TS-modified mu {mu} s {s}: A {a:.6} ref {ra:.6}  B {b:.6} ref {rb:.6}");
         assert!((a - ra).abs() <= 1e-4 * ra.max(1.0) && (b - rb).abs() <= 1e-4 * rb.max(1.0));

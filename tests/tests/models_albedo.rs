@@ -4,7 +4,7 @@
 
 use brdf_core::albedo::directional_albedo;
 use brdf_core::models::*;
-use brdf_core::Vec3;
+use brdf_core::{Real, Vec3};
 use brdf_tests::reference::integrate;
 use std::f64::consts::PI;
 
@@ -186,20 +186,17 @@ fn white_furnace_and_coupled_closed_forms() {
 
 #[test]
 fn f32_albedo_agrees_with_f64() {
-    let m64 = Ggx::new(
-        Rgb::splat(1.0),
-        0.3,
-        SmithForm::Correlated,
-        MicrofacetSampling::Normals,
-    )
-    .unwrap();
-    let m32 = Ggx::new(
-        Rgb::splat(1.0f32),
-        0.3,
-        SmithForm::Correlated,
-        MicrofacetSampling::Normals,
-    )
-    .unwrap();
+    /// White GGX, α = 0.3, correlated Smith, sampling normals, at precision T.
+    fn ggx<T: Real>() -> Ggx<T> {
+        Ggx::new(
+            Rgb::splat(T::ONE),
+            T::from_f64(0.3),
+            SmithForm::Correlated,
+            MicrofacetSampling::Normals,
+        )
+        .unwrap()
+    }
+    let (m64, m32) = (ggx::<f64>(), ggx::<f32>());
     for th in [0.0f64, 45.0, 80.0] {
         let a = directional_albedo(&m64, wo_at(th, 0.5)).r;
         let w = Vec3::new(

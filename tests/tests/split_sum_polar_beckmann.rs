@@ -110,14 +110,14 @@ fn matches_reference() {
 /// 4 × 32 outer and 64 inner nodes (its own difference from 3 × 32 × 32 is ≤ 1e-8 there).
 #[test]
 fn matches_fixed_rule_at_wide_lobes() {
-    use brdf_core::masking::g_smith_beckmann_correlated;
+    use brdf_core::microfacet::{Beckmann, Isotropic};
     use brdf_core::quadrature::GaussLegendre;
     use brdf_core::split_sum::{split_sum, Ndf};
     for m in [1.0, 2.0] {
         for mu in [0.03, 0.5, 1.0] {
             let fixed = |mu: f64| {
                 split_sum::<f64, GaussLegendre<32>, GaussLegendre<32>>(mu, Ndf::Beckmann(m), |d| {
-                    g_smith_beckmann_correlated(d.n_i, d.n_o, m)
+                    Beckmann::g_correlated_cos(d.n_i, d.n_o, m)
                 })
             };
             let (a, b) = fixed(mu);

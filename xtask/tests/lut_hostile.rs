@@ -9,8 +9,11 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 mod common;
-use common::{fails_with, listing, stderr as err, xtask};
-use std::process::{Command, Stdio};
+use common::{
+    default_table, export, fails_with, ggx_e_avg, listing, run_within, stderr as err, succeeds,
+    xtask, GGX_SPLIT_SUM,
+};
+use std::process::Command;
 
 fn asset(name: &str) -> PathBuf {
     common::assets().join(name)
@@ -49,15 +52,11 @@ fn patch_and_resign(bytes: &[u8], from: &[u8], to: &[u8]) -> Vec<u8> {
 fn sizes_beyond_the_limits_are_refused_before_any_work() {
     let d = tempfile::tempdir().unwrap();
     let base = [
-        "lut",
-        "generate",
-        "--kind",
-        "split-sum",
-        "--model",
-        "ggx",
-        "--out",
-        "x.blut",
-    ];
+        &["lut", "generate"][..],
+        &GGX_SPLIT_SUM,
+        &["--out", "x.blut"],
+    ]
+    .concat();
     for (extra, text) in [
         (
             &["--res", "8x8", "--samples", "1000000000"][..],
@@ -94,10 +93,7 @@ fn sizes_beyond_the_limits_are_refused_before_any_work() {
     );
     fails_with(&o, "1..=200000");
     // And for the default set's override: --res beyond the format's axis limit.
-    let o = xtask(
-        &["lut", "--only", "dfg_ggx", "--res", "70000x8", "--out", "o"],
-        d.path(),
-    );
+    let o = xtask(&default_table("dfg_ggx", "70000x8", "o"), d.path());
     fails_with(&o, "nodes per axis");
     assert_eq!(listing(d.path()), ["big.toml"]);
 }
@@ -143,18 +139,12 @@ fn output_through_a_missing_folder_never_overwrites_the_config() {
 fn export_through_a_missing_folder_writes_where_the_path_leads() {
     let d = tempfile::tempdir().unwrap();
     std::fs::copy(asset("kc_eavg_ggx.blut"), d.path().join("in.blut")).unwrap();
-    let o = xtask(
-        &[
-            "lut",
-            "export",
-            "in.blut",
-            "--raw-f32",
-            "-o",
-            "nosuch/../out.bin",
-        ],
+    let o = export(
+        "in.blut",
+        &["--raw-f32", "-o", "nosuch/../out.bin"],
         d.path(),
     );
-    assert!(o.status.success(), "{}", err(&o));
+    succeeds(&o);
     assert_eq!(listing(d.path()), ["in.blut", "out.bin", "out.bin.json"]);
     // The values: the table's nodes as f32 (independently: the parsed view's node values).
     let bytes = std::fs::read(d.path().join("in.blut")).unwrap();
@@ -170,24 +160,7 @@ fn export_through_a_missing_folder_writes_where_the_path_leads() {
 
 /// An E_avg table built here (8 nodes), its header then claiming `samples` points.
 fn e_avg_table(dir: &Path, samples: u32) -> PathBuf {
-    let o = xtask(
-        &[
-            "lut",
-            "generate",
-            "--kind",
-            "e-avg",
-            "--model",
-            "ggx",
-            "--res",
-            "8",
-            "--samples",
-            "16",
-            "--out",
-            "e.blut",
-        ],
-        dir,
-    );
-    assert!(o.status.success(), "{}", err(&o));
+    succeeds(&xtask(&ggx_e_avg("8", "16", "e.blut"), dir));
     let bytes = std::fs::read(dir.join("e.blut")).unwrap();
     let p = dir.join(format!("e_{samples}.blut"));
     std::fs::write(&p, reencode(&bytes, |h| h.error.samples = samples)).unwrap();
@@ -287,23 +260,14 @@ fn non_regular_inputs_are_refused_without_blocking() {
         &["lut", "generate", "--config", "f", "--out", "x.blut"],
     ];
     for args in cases {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_xtask"))
-            .args(args)
-            .current_dir(d.path())
-            .stdin(Stdio::null())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .spawn()
-            .unwrap();
-        let t = Instant::now();
-        while child.try_wait().unwrap().is_none() {
-            if t.elapsed() > Duration::from_secs(20) {
-                let _ = child.kill();
-                panic!("{args:?} blocked");
-            }
-            std::thread::sleep(Duration::from_millis(20));
-        }
-        let o = child.wait_with_output().unwrap();
+        let limit = Duration::from_secs(20);
+        let (o, took) = run_within(
+            Command::new(env!("CARGO_BIN_EXE_xtask"))
+                .args(args)
+                .current_dir(d.path()),
+            limit,
+        );
+        assert!(took <= limit, "{args:?} blocked");
         let want = if args.contains(&"dir") {
             "a folder"
         } else {

@@ -41,32 +41,17 @@ const GGX: [&str; 12] = [
 /// (grids that do not split evenly between the workers).
 #[test]
 fn one_thread_and_two_write_the_same_bytes() {
-    let beckmann = [
-        "--kind",
-        "e",
-        "--model",
-        "beckmann",
-        "--res",
-        "5x3",
-        "--samples",
-        "50",
-        "--out",
-        "t.blut",
-    ];
-    let v_cavity = [
-        "--kind",
-        "e",
-        "--model",
-        "torrance-sparrow",
-        "--masking",
-        "v-cavity",
-        "--res",
-        "5x3",
-        "--samples",
-        "50",
-        "--out",
-        "t.blut",
-    ];
+    // An albedo table of the model given, on a 5 × 3 grid from 50 points.
+    let albedo = |model: &[&'static str]| {
+        [
+            &["--kind", "e"],
+            model,
+            &["--res", "5x3", "--samples", "50", "--out", "t.blut"],
+        ]
+        .concat()
+    };
+    let beckmann = albedo(&["--model", "beckmann"]);
+    let v_cavity = albedo(&["--model", "torrance-sparrow", "--masking", "v-cavity"]);
     for args in [&GGX[..], &beckmann[..], &v_cavity[..]] {
         let bytes: Vec<Vec<u8>> = ["1", "2", "3"]
             .iter()

@@ -24,8 +24,10 @@
 use proptest::prelude::*;
 use std::os::unix::process::ExitStatusExt;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
-use std::time::{Duration, Instant};
+use std::process::{Command, Output};
+use std::time::Duration;
+
+mod common;
 
 /// The class of a spelled number against a limit lo..=hi.
 #[derive(Clone, Debug, PartialEq)]
@@ -118,27 +120,16 @@ fn grid(parts: &[Spelt]) -> Spelt {
 
 /// `xtask args` in `dir` under a 2 GB address-space limit, killed after 60 s.
 fn xtask(args: &[String], dir: &Path) -> (Output, Duration) {
-    let t = Instant::now();
-    let mut child = Command::new("sh")
-        .arg("-c")
-        .arg("ulimit -v 2000000 && exec \"$@\"")
-        .arg("sh")
-        .arg(env!("CARGO_BIN_EXE_xtask"))
-        .args(args)
-        .current_dir(dir)
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("xtask starts");
-    while child.try_wait().expect("wait").is_none() {
-        if t.elapsed() > Duration::from_secs(60) {
-            let _ = child.kill();
-            break;
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    }
-    (child.wait_with_output().expect("output"), t.elapsed())
+    common::run_within(
+        Command::new("sh")
+            .arg("-c")
+            .arg("ulimit -v 2000000 && exec \"$@\"")
+            .arg("sh")
+            .arg(env!("CARGO_BIN_EXE_xtask"))
+            .args(args)
+            .current_dir(dir),
+        Duration::from_secs(60),
+    )
 }
 
 /// The outcome of one spelling: no panic, abort, signal or hang; the class's exit status;
@@ -187,20 +178,7 @@ fn s(v: &[&str]) -> Vec<String> {
 /// A scratch folder with a small E_avg table (4 nodes, built here) for `lut verify`.
 fn scratch() -> (tempfile::TempDir, PathBuf) {
     let d = tempfile::tempdir().unwrap();
-    let args = s(&[
-        "lut",
-        "generate",
-        "--kind",
-        "e-avg",
-        "--model",
-        "ggx",
-        "--res",
-        "4",
-        "--samples",
-        "4",
-        "--out",
-        "small.blut",
-    ]);
+    let args = s(&common::ggx_e_avg("4", "4", "small.blut"));
     let (o, _) = xtask(&args, d.path());
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let p = d.path().join("small.blut");

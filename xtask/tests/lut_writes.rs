@@ -5,7 +5,7 @@
 use std::path::{Path, PathBuf};
 
 mod common;
-use common::{assets, fails_with, listing, stderr as err, xtask};
+use common::{assets, default_table, export, fails_with, listing, stderr as err, succeeds, xtask};
 use std::process::{Command, Stdio};
 
 /// A small committed table copied into `dir` under `name`.
@@ -31,7 +31,7 @@ fn export_never_overwrites_its_input() {
     }
     // A table named table.png exported with --png16: the default output is the input.
     let png = input(d.path(), "table.png");
-    let o = xtask(&["lut", "export", "table.png", "--png16"], d.path());
+    let o = export("table.png", &["--png16"], d.path());
     fails_with(&o, "it is the input");
     assert_eq!(std::fs::read(&png).unwrap(), before);
     assert_eq!(listing(d.path()), ["mine.blut", "table.png"]);
@@ -42,11 +42,8 @@ fn export_defaults_to_the_current_folder_and_needs_force_to_replace() {
     let d = tempfile::tempdir().unwrap();
     let src = assets().join("kc_eavg_ggx.blut");
     let assets_before = listing(&assets());
-    let o = xtask(
-        &["lut", "export", src.to_str().unwrap(), "--png16"],
-        d.path(),
-    );
-    assert!(o.status.success(), "{}", err(&o));
+    let o = export(src.to_str().unwrap(), &["--png16"], d.path());
+    succeeds(&o);
     assert_eq!(
         listing(&assets()),
         assets_before,
@@ -66,20 +63,14 @@ fn export_defaults_to_the_current_folder_and_needs_force_to_replace() {
     r.finish().unwrap();
     // Existing output: refused without --force, nothing touched.
     std::fs::write(d.path().join("kc_eavg_ggx.png.json"), b"mine").unwrap();
-    let o = xtask(
-        &["lut", "export", src.to_str().unwrap(), "--png16"],
-        d.path(),
-    );
+    let o = export(src.to_str().unwrap(), &["--png16"], d.path());
     fails_with(&o, "--force");
     assert_eq!(
         std::fs::read(d.path().join("kc_eavg_ggx.png.json")).unwrap(),
         b"mine"
     );
-    let o = xtask(
-        &["lut", "export", src.to_str().unwrap(), "--png16", "--force"],
-        d.path(),
-    );
-    assert!(o.status.success(), "{}", err(&o));
+    let o = export(src.to_str().unwrap(), &["--png16", "--force"], d.path());
+    succeeds(&o);
     let side = std::fs::read_to_string(d.path().join("kc_eavg_ggx.png.json")).unwrap();
     assert!(side.contains("\"format\": \"png16\""), "{side}");
     assert_eq!(
@@ -93,16 +84,9 @@ fn export_refuses_assets_folder() {
     let d = tempfile::tempdir().unwrap();
     let inp = input(d.path(), "t.blut");
     let target = assets().join("t.f32.bin");
-    let o = xtask(
-        &[
-            "lut",
-            "export",
-            inp.to_str().unwrap(),
-            "--raw-f32",
-            "-o",
-            target.to_str().unwrap(),
-            "--force",
-        ],
+    let o = export(
+        inp.to_str().unwrap(),
+        &["--raw-f32", "-o", target.to_str().unwrap(), "--force"],
         d.path(),
     );
     fails_with(&o, "committed default tables");
@@ -112,7 +96,7 @@ fn export_refuses_assets_folder() {
 #[test]
 fn missing_input_named_once() {
     let d = tempfile::tempdir().unwrap();
-    let o = xtask(&["lut", "export", "gone.blut", "--raw-f32"], d.path());
+    let o = export("gone.blut", &["--raw-f32"], d.path());
     assert!(!o.status.success());
     let e = err(&o);
     assert_eq!(e.matches("gone.blut").count(), 1, "{e}");
@@ -129,15 +113,10 @@ fn modified_default_table_never_replaces_the_committed_asset() {
     let a = assets();
     let o = xtask(
         &[
-            "lut",
-            "--only",
-            "kc_eavg_ggx",
-            "--res",
-            "4",
-            "--out",
-            a.to_str().unwrap(),
-            "--force",
-        ],
+            &default_table("kc_eavg_ggx", "4", a.to_str().unwrap())[..],
+            &["--force"],
+        ]
+        .concat(),
         d.path(),
     );
     fails_with(&o, "committed default tables");
@@ -147,24 +126,16 @@ fn modified_default_table_never_replaces_the_committed_asset() {
     );
     // Elsewhere: written, then refused without --force, replaced with it.
     let out = d.path().join("out");
-    let args = [
-        "lut",
-        "--only",
-        "kc_eavg_ggx",
-        "--res",
-        "4",
-        "--out",
-        out.to_str().unwrap(),
-    ];
+    let args = default_table("kc_eavg_ggx", "4", out.to_str().unwrap());
     let o = xtask(&args, d.path());
-    assert!(o.status.success(), "{}", err(&o));
+    succeeds(&o);
     assert_eq!(listing(&out), ["kc_eavg_ggx.blut"]);
     let o = xtask(&args, d.path());
     fails_with(&o, "--force");
     let mut forced = args.to_vec();
     forced.push("--force");
     let o = xtask(&forced, d.path());
-    assert!(o.status.success(), "{}", err(&o));
+    succeeds(&o);
     assert_eq!(listing(&out), ["kc_eavg_ggx.blut"]);
 }
 
@@ -187,17 +158,7 @@ fn export_onto_full_disk_leaves_nothing() {
         return;
     }
     let src = assets().join("dfg_ggx.blut");
-    let o = xtask(
-        &[
-            "lut",
-            "export",
-            src.to_str().unwrap(),
-            "--raw-f32",
-            "-o",
-            "t.bin",
-        ],
-        &mnt,
-    );
+    let o = export(src.to_str().unwrap(), &["--raw-f32", "-o", "t.bin"], &mnt);
     let left = listing(&mnt);
     let _ = Command::new("umount").arg(&mnt).status();
     assert!(!o.status.success());
@@ -212,15 +173,7 @@ fn export_onto_full_disk_leaves_nothing() {
 fn max_error_fails_an_overridden_default_table() {
     let d = tempfile::tempdir().unwrap();
     let out = d.path().join("out");
-    let args = [
-        "lut",
-        "--only",
-        "dfg_ggx",
-        "--res",
-        "2x2",
-        "--out",
-        out.to_str().unwrap(),
-    ];
+    let args = default_table("dfg_ggx", "2x2", out.to_str().unwrap());
     let mut strict = args.to_vec();
     strict.extend_from_slice(&["--max-error", "0.01"]);
     let o = xtask(&strict, d.path());
@@ -228,7 +181,7 @@ fn max_error_fails_an_overridden_default_table() {
     assert!(err(&o).contains("exceeds --max-error"), "{}", err(&o));
     assert!(!out.exists() || listing(&out).is_empty());
     let o = xtask(&args, d.path());
-    assert!(o.status.success(), "{}", err(&o));
+    succeeds(&o);
     let lut = brdf_lut::Lut::from_path(out.join("dfg_ggx.blut")).unwrap();
     assert!(lut.header().error.max_abs > 0.01);
 }
@@ -237,21 +190,15 @@ fn max_error_fails_an_overridden_default_table() {
 /// the documented names: texture, sidecar, GLSL, WGSL and one PNG per channel.
 #[test]
 fn export_writes_the_librarys_files_under_their_names() {
-    use brdf_engine_assets::export::{export, Format};
+    use brdf_engine_assets::export::{export as library_export, Format};
     let d = tempfile::tempdir().unwrap();
     let src = assets().join("dfg_ts_smith.blut");
-    let o = xtask(
-        &[
-            "lut",
-            "export",
-            src.to_str().unwrap(),
-            "--png16",
-            "-o",
-            "dfg.png",
-        ],
+    let o = export(
+        src.to_str().unwrap(),
+        &["--png16", "-o", "dfg.png"],
         d.path(),
     );
-    assert!(o.status.success(), "{}", err(&o));
+    succeeds(&o);
     let names = [
         "dfg.png",
         "dfg.png.glsl",
@@ -262,7 +209,7 @@ fn export_writes_the_librarys_files_under_their_names() {
     ];
     assert_eq!(listing(d.path()), names);
     let lut = brdf_lut::Lut::from_path(&src).unwrap();
-    let e = export(
+    let e = library_export(
         &lut.view().unwrap(),
         Format::Png16,
         "dfg.png",

@@ -54,26 +54,38 @@ pub fn khronos(g: &SplitSumTexels) -> Result<Vec<File>> {
     }
     use png::{BitDepth::*, ColorType::*};
     let mut d = Described::new();
-    d.file(
-        "lut_ggx.png",
-        png(n, n, Rgb, Eight, &rgb8)?,
-        "RGB 8-bit: R = A, G = B, B = 0 (as the viewer ships it)",
-    );
-    d.file(
-        "lut_ggx_16bit.png",
-        png(n, n, Rgb, Sixteen, &rgb16)?,
-        "RGB 16-bit: R = A, G = B, B = 0",
-    );
-    d.file(
-        "lut_ggx_A_16bit.png",
-        png(n, n, Grayscale, Sixteen, &a16)?,
-        "grey 16-bit: A",
-    );
-    d.file(
-        "lut_ggx_B_16bit.png",
-        png(n, n, Grayscale, Sixteen, &b16)?,
-        "grey 16-bit: B",
-    );
+    for (name, color, depth, data, what) in [
+        (
+            "lut_ggx.png",
+            Rgb,
+            Eight,
+            &rgb8,
+            "RGB 8-bit: R = A, G = B, B = 0 (as the viewer ships it)",
+        ),
+        (
+            "lut_ggx_16bit.png",
+            Rgb,
+            Sixteen,
+            &rgb16,
+            "RGB 16-bit: R = A, G = B, B = 0",
+        ),
+        (
+            "lut_ggx_A_16bit.png",
+            Grayscale,
+            Sixteen,
+            &a16,
+            "grey 16-bit: A",
+        ),
+        (
+            "lut_ggx_B_16bit.png",
+            Grayscale,
+            Sixteen,
+            &b16,
+            "grey 16-bit: B",
+        ),
+    ] {
+        d.file(name, png(n, n, color, depth, data)?, what);
+    }
     d.key("encoding", "UNORM: code = round(v · 255) (8-bit) or round(v · 65535) (16-bit); value = code / (2^bits − 1)");
     d.key("loaders", "Pillow (PIL) opens 16-bit RGB PNGs as 8-bit RGB without a warning, dropping the low 8 bits: read lut_ggx_A_16bit.png and lut_ggx_B_16bit.png (single-channel 16-bit, mode I;16 in Pillow) instead, or use a loader that keeps 16 bits (png, imageio, OpenCV with IMREAD_UNCHANGED). Browsers decode 16-bit PNGs to 8 bits.");
     d.key("orientation", "column x: mu = (x + 0.5)/N; PNG row y (top row first): r = (y + 0.5)/N. Uploaded without a vertical flip (first stored row at t = 0), the shader samples uv = (mu, r).");

@@ -30,6 +30,19 @@ use std::sync::{Arc, Mutex, OnceLock};
 /// Per-size caches shared by the tests of this binary (computed once, in parallel).
 type Cache<T> = OnceLock<Mutex<HashMap<usize, Arc<OnceLock<Arc<T>>>>>>;
 
+/// The value for size `n` in `cache`, made by `make` on first use (the map is locked only
+/// to find the size's cell, so different sizes are computed in parallel).
+fn cached<T>(cache: &'static Cache<T>, n: usize, make: impl FnOnce() -> Arc<T>) -> Arc<T> {
+    let cell = cache
+        .get_or_init(Default::default)
+        .lock()
+        .unwrap()
+        .entry(n)
+        .or_default()
+        .clone();
+    cell.get_or_init(make).clone()
+}
+
 /// Absolute tolerance per channel of the reference integrals.
 const REFERENCE_TOL: f64 = 1e-9;
 /// How far a texel's f64 value may be from the integral before encoding: the generator's
@@ -46,14 +59,7 @@ fn integral(mu: f64, r: f64) -> (f64, f64) {
 /// Exact values at texel centres, `[row_r * n + col_mu]`, shared between tests.
 fn exact(n: usize) -> Arc<(Vec<f64>, Vec<f64>)> {
     static CACHE: Cache<(Vec<f64>, Vec<f64>)> = OnceLock::new();
-    let cell = CACHE
-        .get_or_init(Default::default)
-        .lock()
-        .unwrap()
-        .entry(n)
-        .or_default()
-        .clone();
-    cell.get_or_init(|| {
+    cached(&CACHE, n, || {
         let v: Vec<(f64, f64)> = (0..n * n)
             .into_par_iter()
             .map(|i| {
@@ -68,20 +74,12 @@ fn exact(n: usize) -> Arc<(Vec<f64>, Vec<f64>)> {
             v.iter().map(|x| x.1).collect(),
         ))
     })
-    .clone()
 }
 
 /// 2,000 random points in the texel-centre range of an n-edge table with their integrals.
 fn points(n: usize) -> Arc<Vec<(f64, f64, f64, f64)>> {
     static CACHE: Cache<Vec<(f64, f64, f64, f64)>> = OnceLock::new();
-    let cell = CACHE
-        .get_or_init(Default::default)
-        .lock()
-        .unwrap()
-        .entry(n)
-        .or_default()
-        .clone();
-    cell.get_or_init(|| {
+    cached(&CACHE, n, || {
         let lo = 0.5 / n as f64;
         let mut rng = rand_pcg::Pcg64::seed_from_u64(0xD0E5_0011 + n as u64);
         let p: Vec<(f64, f64)> = (0..2000)
@@ -101,7 +99,6 @@ fn points(n: usize) -> Arc<Vec<(f64, f64, f64, f64)>> {
                 .collect(),
         )
     })
-    .clone()
 }
 
 /// A target's files by name, made by the library for an n-edge table.
@@ -122,6 +119,13 @@ fn generate(target: &str, n: usize) -> Files {
 fn file<'a>(d: &'a Files, name: &str) -> &'a [u8] {
     d.get(name)
         .unwrap_or_else(|| panic!("the target makes no {name}"))
+}
+
+/// The texture `stem.ext` of a target's files `d`, its sidecar `stem.json` checked
+/// ([`sidecar`]).
+fn texture<'a>(d: &'a Files, stem: &str, ext: &str) -> &'a [u8] {
+    sidecar(d, stem);
+    file(d, &format!("{stem}.{ext}"))
 }
 
 /// A texture as the sampler sees it: texel (s, t) with s along u, t along v, row t at
@@ -316,8 +320,7 @@ fn khronos_png_8_and_16_bit() {
 fn bevy_ktx2_rg16f_zstd() {
     let n = 64;
     let d = generate("bevy", n);
-    sidecar(&d, "dfg");
-    let bytes = file(&d, "dfg.ktx2");
+    let bytes = texture(&d, "dfg", "ktx2");
     let rd = ktx2::Reader::new(bytes).unwrap();
     let h = rd.header();
     assert_eq!(h.format, Some(ktx2::Format::R16G16_SFLOAT));
@@ -353,8 +356,7 @@ fn bevy_ktx2_rg16f_zstd() {
 fn filament_dds_rgba16f() {
     let n = 64;
     let d = generate("filament", n);
-    sidecar(&d, "dfg_multiscatter");
-    let bytes = file(&d, "dfg_multiscatter.dds");
+    let bytes = texture(&d, "dfg_multiscatter", "dds");
     // DDS layout: "DDS " magic, 124-byte header (height at 12, width at 16, pixel-format
     // fourCC at 84), DX10 extension (DXGI format at 128), data at 148.
     let u32at = |o: usize| u32::from_le_bytes(bytes[o..o + 4].try_into().unwrap());
@@ -402,8 +404,7 @@ fn filament_dds_rgba16f() {
 fn threejs_bin_rg16f() {
     for n in [16, 32] {
         let d = generate("threejs", n);
-        sidecar(&d, "dfg_lut");
-        let bytes = file(&d, "dfg_lut.bin");
+        let bytes = texture(&d, "dfg_lut", "bin");
         assert_eq!(bytes.len(), n * n * 4);
         let f = |o: usize| f16::from_bits(u16::from_le_bytes([bytes[o], bytes[o + 1]])).to_f64();
         // three.js: texture(DFG, vec2(roughness, dotNV)); memory row m at t = (m + ½)/n.

@@ -87,29 +87,25 @@ fn snapshot(dir: &Path) -> Vec<(PathBuf, u64, std::time::SystemTime)> {
     v
 }
 
+/// One of `names`, as a `String`.
+fn one_of(names: &'static [&'static str]) -> impl Strategy<Value = String> {
+    prop::sample::select(names).prop_map(str::to_string)
+}
+
 /// A folder component of a spelling: the fixture's names, `.`, `..` and missing folders.
 fn component() -> impl Strategy<Value = String> {
-    prop_oneof![
-        Just(".".to_string()),
-        Just("..".to_string()),
-        Just("sub".to_string()),
-        Just("link".to_string()),
-        Just("up".to_string()),
-        Just("alink".to_string()),
-        Just("missing".to_string()),
-        Just("deeper".to_string()),
-    ]
+    one_of(&[".", "..", "sub", "link", "up", "alink", "missing", "deeper"])
 }
 
 /// The last component: an input, a new name or a file of the protected folder.
 fn file_name() -> impl Strategy<Value = String> {
-    prop_oneof![
-        Just("in.blut".to_string()),
-        Just("hard.blut".to_string()),
-        Just("cfg.toml".to_string()),
-        Just("new.bin".to_string()),
-        Just("kc_eavg_ggx.blut".to_string()),
-    ]
+    one_of(&[
+        "in.blut",
+        "hard.blut",
+        "cfg.toml",
+        "new.bin",
+        "kc_eavg_ggx.blut",
+    ])
 }
 
 /// A spelling: folders then a file name, sometimes starting at the protected folder.

@@ -47,6 +47,25 @@ fn same(a: f32, b: f32) -> bool {
     a.to_bits() == b.to_bits()
 }
 
+/// Runs `batch` on an output of `n + pad` slots preset to −1, checks that it reports `n`
+/// results, that result k equals `scalar(k)` bit for bit, and that nothing past n is
+/// written.
+fn check_batch(
+    what: &str,
+    n: usize,
+    pad: usize,
+    batch: impl FnOnce(&mut [f32]) -> usize,
+    scalar: impl Fn(usize) -> f32,
+) {
+    let mut out = vec![-1.0; n + pad];
+    assert_eq!(batch(&mut out), n, "{what}");
+    for (k, &got) in out[..n].iter().enumerate() {
+        let v = scalar(k);
+        assert!(same(got, v), "{what} {k}: {got} vs {v}");
+    }
+    assert!(out[n..].iter().all(|&x| x == -1.0), "{what}: wrote past n");
+}
+
 #[test]
 fn g_batches_equal_scalar_lookups() {
     let h = std::f32::consts::FRAC_PI_2;
@@ -61,13 +80,13 @@ fn g_batches_equal_scalar_lookups() {
                 inputs(n, -0.2, h + 0.2, 0.1),
                 inputs(n, -h - 0.2, h + 0.2, 0.7),
             );
-            let mut out = vec![-1.0; n + 3];
-            assert_eq!(t.g_batch(&ti, &tr, &mut out), n);
-            for k in 0..n {
-                let g = t.g(ti[k], tr[k]);
-                assert!(same(out[k], g), "{name} {k}: {} vs {g}", out[k]);
-            }
-            assert!(out[n..].iter().all(|&x| x == -1.0), "wrote past n");
+            check_batch(
+                name,
+                n,
+                3,
+                |o| t.g_batch(&ti, &tr, o),
+                |k| t.g(ti[k], tr[k]),
+            );
         }
     }
     for name in ["g_modified_linear.blut", "g_modified.blut"] {
@@ -79,12 +98,13 @@ fn g_batches_equal_scalar_lookups() {
                     inputs(n, -0.2, h + 0.2, 0.3),
                     inputs(n, -h - 0.2, h + 0.2, 0.9),
                 );
-                let mut out = vec![-1.0; n];
-                assert_eq!(t.g_batch(&ti, &tr, sigma, &mut out), n);
-                for k in 0..n {
-                    let g = t.g(ti[k], tr[k], sigma);
-                    assert!(same(out[k], g), "{name} σ {sigma} {k}: {} vs {g}", out[k]);
-                }
+                check_batch(
+                    &format!("{name} σ {sigma}"),
+                    n,
+                    0,
+                    |o| t.g_batch(&ti, &tr, sigma, o),
+                    |k| t.g(ti[k], tr[k], sigma),
+                );
             }
         }
     }
@@ -121,18 +141,20 @@ fn dfg_and_albedo_batches_equal_scalar_lookups() {
         let ea = AverageAlbedoTable::parse(&b[..]).unwrap();
         for n in LENGTHS {
             let (mu, r) = (inputs(n, -0.1, 1.1, 0.4), inputs(n, -0.1, 1.1, 0.6));
-            let mut out = vec![-1.0; n + 3];
-            assert_eq!(e.e_batch(&mu, &r, &mut out), n);
-            for k in 0..n {
-                let v = e.e(mu[k], r[k]);
-                assert!(same(out[k], v), "{e_name} {k}: {} vs {v}", out[k]);
-            }
-            assert!(out[n..].iter().all(|&x| x == -1.0), "wrote past n");
-            assert_eq!(ea.e_avg_batch(&r, &mut out[..n]), n);
-            for k in 0..n {
-                let v = ea.e_avg(r[k]);
-                assert!(same(out[k], v), "{eavg_name} {k}: {} vs {v}", out[k]);
-            }
+            check_batch(
+                e_name,
+                n,
+                3,
+                |o| e.e_batch(&mu, &r, o),
+                |k| e.e(mu[k], r[k]),
+            );
+            check_batch(
+                eavg_name,
+                n,
+                0,
+                |o| ea.e_avg_batch(&r, o),
+                |k| ea.e_avg(r[k]),
+            );
         }
     }
     // A NaN coordinate gives NaN on every path (the typed tables' contract).

@@ -3,7 +3,7 @@
 //! between the two Smith forms) and the option errors.
 
 use brdf_lut::generate::{
-    default_set, generate, Distribution, GenError, Kind, Masking, Roughness, Spec,
+    default_set, generate, Distribution, GenError, Generated, Kind, Masking, Roughness, Spec,
 };
 use brdf_lut::Lut;
 use brdf_lut::{Encoding, Interpolation, LutView, Placement, Warp};
@@ -25,11 +25,24 @@ fn nodes(bytes: &[u8]) -> Vec<f32> {
 }
 
 /// A spec of `kind`, distribution `d`, masking `m` on a small `counts` grid (μ, r).
-fn small(kind: Kind, d: Distribution, m: Masking, counts: [u32; 2]) -> Spec {
+fn small(kind: Kind, d: Distribution, m: Masking, counts: [u32; 2], samples: u32) -> Spec {
     let mut s = Spec::new(kind, d, m);
     s.axes[0].count = counts[0];
     s.axes[1].count = counts[1];
+    s.samples = samples;
     s
+}
+
+/// The table `s` describes, without progress reports.
+fn build(s: &Spec) -> Generated {
+    generate(s, &|_| {}).unwrap()
+}
+
+/// `s` on the axes (count, range, warp, placement) of the committed table `lut`.
+fn on_grid_of(s: &mut Spec, lut: &Lut) {
+    for (a, b) in s.axes.iter_mut().zip(lut.header().axes.iter()) {
+        (a.count, a.lo, a.hi, a.warp, a.placement) = (b.count, b.lo, b.hi, b.warp, b.placement);
+    }
 }
 
 fn invalid(s: &Spec) -> String {
@@ -47,11 +60,8 @@ fn ggx_split_sum_matches_the_committed_asset() {
     let lut = asset("dfg_ggx.blut");
     let mut s = Spec::new(Kind::SplitSum, Distribution::Ggx, Masking::SmithCorrelated);
     s.samples = 200;
-    let h = lut.header();
-    for (a, b) in s.axes.iter_mut().zip(h.axes.iter()) {
-        (a.count, a.lo, a.hi, a.warp, a.placement) = (b.count, b.lo, b.hi, b.warp, b.placement);
-    }
-    let t = generate(&s, &|_| {}).unwrap();
+    on_grid_of(&mut s, &lut);
+    let t = build(&s);
     let (mine, theirs) = (nodes(&t.bytes), nodes(lut.bytes()));
     assert_eq!(mine.len(), theirs.len());
     for (k, (a, b)) in mine.iter().zip(&theirs).enumerate() {
@@ -129,10 +139,8 @@ fn g_per_sigma_matches_the_committed_asset() {
     );
     s.samples = 500;
     assert_eq!(s.roughness, Roughness::Sigma);
-    for (a, b) in s.axes.iter_mut().zip(lut.header().axes.iter()) {
-        (a.count, a.lo, a.hi, a.warp, a.placement) = (b.count, b.lo, b.hi, b.warp, b.placement);
-    }
-    let t = generate(&s, &|_| {}).unwrap();
+    on_grid_of(&mut s, &lut);
+    let t = build(&s);
     for (a, b) in nodes(&t.bytes).iter().zip(&nodes(lut.bytes())) {
         assert!((a - b).abs() <= 1.6e-5, "{a} vs {b}");
     }
@@ -147,10 +155,10 @@ fn mirror_column_is_the_closed_form() {
         Distribution::Beckmann,
         Masking::SmithSeparable,
         [5, 3],
+        10,
     );
     s.encoding = Encoding::F32;
-    s.samples = 10;
-    let t = generate(&s, &|_| {}).unwrap();
+    let t = build(&s);
     let v = LutView::parse(&t.bytes).unwrap();
     let mu_axis = v.header().axes[0];
     for i in 0..5u32 {
@@ -168,10 +176,9 @@ fn mirror_column_is_the_closed_form() {
 fn separable_albedo_never_exceeds_correlated() {
     for d in [Distribution::Ggx, Distribution::Beckmann] {
         let mk = |m| {
-            let mut s = small(Kind::Albedo, d, m, [6, 6]);
+            let mut s = small(Kind::Albedo, d, m, [6, 6], 10);
             s.encoding = Encoding::F32;
-            s.samples = 10;
-            nodes(&generate(&s, &|_| {}).unwrap().bytes)
+            nodes(&build(&s).bytes)
         };
         let (sep, cor) = (mk(Masking::SmithSeparable), mk(Masking::SmithCorrelated));
         for (a, b) in sep.iter().zip(&cor) {
@@ -196,7 +203,7 @@ fn e_avg_nodes_match_the_core_kernel() {
     s.axes[0].placement = Placement::TexelCentre;
     s.encoding = Encoding::F32;
     s.samples = 20;
-    let t = generate(&s, &|_| {}).unwrap();
+    let t = build(&s);
     let v = LutView::parse(&t.bytes).unwrap();
     let a = v.header().axes[0];
     for i in 0..5 {
@@ -214,29 +221,29 @@ fn coarse_table_reports_a_large_error() {
         Distribution::Ggx,
         Masking::SmithCorrelated,
         [2, 2],
+        500,
     );
     s.interpolation = Interpolation::Linear;
-    s.samples = 500;
-    let t = generate(&s, &|_| {}).unwrap();
+    let t = build(&s);
     assert!(t.error.max_abs > 0.1, "{:?}", t.error);
 }
 
 #[test]
 fn deterministic_and_progress_counts_every_node() {
-    let mut s = small(
+    let s = small(
         Kind::SplitSum,
         Distribution::TorranceSparrow,
         Masking::Blinn,
         [4, 3],
+        20,
     );
-    s.samples = 20;
     let n = std::sync::atomic::AtomicU64::new(0);
     let a = generate(&s, &|k| {
         n.fetch_add(k, std::sync::atomic::Ordering::Relaxed);
     })
     .unwrap();
     assert_eq!(n.into_inner(), 12);
-    let b = generate(&s, &|_| {}).unwrap();
+    let b = build(&s);
     assert_eq!(a.bytes, b.bytes);
 }
 

@@ -7,17 +7,8 @@
 
 use brdf_lut::generate::glass::glass_e;
 use brdf_lut::generate::INTEGRATION_TOL;
-
-struct Lcg(u64);
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+use rand::{Rng, SeedableRng};
+use rand_pcg::Pcg64;
 
 #[test]
 #[ignore = "a measurement"]
@@ -26,7 +17,7 @@ fn measure_random_points() {
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(100);
-    let mut g = Lcg(0x5eed_61a5);
+    let mut g = Pcg64::seed_from_u64(0x5eed_61a5);
     let mu_lo = 89f64.to_radians().cos();
     let mut pts = vec![
         (0.0314, 0.684, 0.349),
@@ -44,12 +35,12 @@ fn measure_random_points() {
     ];
     for side in 0..2 {
         for _ in 0..n {
-            let mu = mu_lo * (1.0 / mu_lo).powf(g.next());
-            let r = g.next();
+            let mu = mu_lo * (1.0 / mu_lo).powf(g.random::<f64>());
+            let r = g.random::<f64>();
             let eta = if side == 0 {
-                1.0 / 3.0 + g.next() * (2.0 / 3.0)
+                1.0 / 3.0 + g.random::<f64>() * (2.0 / 3.0)
             } else {
-                1.0 + 2.0 * g.next()
+                1.0 + 2.0 * g.random::<f64>()
             };
             pts.push((mu, r, eta));
         }

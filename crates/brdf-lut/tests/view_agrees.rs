@@ -34,6 +34,15 @@ fn grid(v: &LutView<'_>, k: usize, n: usize) -> Vec<f32> {
         .collect()
 }
 
+/// Runs `check(name, bytes, view)` on each named committed table.
+fn each_table(names: &[&str], mut check: impl FnMut(&str, &[u8], &LutView<'_>)) {
+    for &name in names {
+        let b = asset(name);
+        let v = LutView::parse(&b).unwrap();
+        check(name, &b, &v);
+    }
+}
+
 fn bits(x: f32) -> u32 {
     x.to_bits()
 }
@@ -44,11 +53,9 @@ fn unit01(x: f32) -> f32 {
 
 #[test]
 fn albedo_e_equals_the_view_bit_for_bit() {
-    for name in ["kc_e_ggx.blut", "kc_e_beckmann.blut"] {
-        let b = asset(name);
-        let v = LutView::parse(&b).unwrap();
-        let t = AlbedoTable::parse(&b[..]).unwrap();
-        let (mus, rs) = (grid(&v, 0, 400), grid(&v, 1, 400));
+    each_table(&["kc_e_ggx.blut", "kc_e_beckmann.blut"], |name, b, v| {
+        let t = AlbedoTable::parse(b).unwrap();
+        let (mus, rs) = (grid(v, 0, 400), grid(v, 1, 400));
         let mut pts: Vec<(f32, f32)> = Vec::new();
         for &r in &rs {
             for &mu in &mus {
@@ -75,41 +82,43 @@ fn albedo_e_equals_the_view_bit_for_bit() {
                 "{name} ({mu}, {r})"
             );
         }
-    }
+    });
 }
 
 #[test]
 fn average_albedo_and_dfg_equal_the_view_bit_for_bit() {
-    for name in ["kc_eavg_ggx.blut", "kc_eavg_beckmann.blut"] {
-        let b = asset(name);
-        let v = LutView::parse(&b).unwrap();
-        let t = AverageAlbedoTable::parse(&b[..]).unwrap();
-        for r in grid(&v, 0, 20_000) {
-            assert_eq!(bits(t.e_avg(r)), bits(v.sample1(r)[0]), "{name} {r}");
-        }
-    }
-    for name in [
-        "dfg_ggx.blut",
-        "dfg_ggx_linear.blut",
-        "dfg_ts_modified.blut",
-        "dfg_ts_smith.blut",
-    ] {
-        let b = asset(name);
-        let v = LutView::parse(&b).unwrap();
-        let t = DfgTable::parse(&b[..]).unwrap();
-        let (mus, rs) = (grid(&v, 0, 300), grid(&v, 1, 300));
-        for &r in &rs {
-            for &mu in &mus {
-                let (a, bb) = t.ab(mu, r);
-                let s = v.sample2(mu, r);
-                assert_eq!(
-                    (bits(a), bits(bb)),
-                    (bits(s[0]), bits(s[1])),
-                    "{name} ({mu}, {r})"
-                );
+    each_table(
+        &["kc_eavg_ggx.blut", "kc_eavg_beckmann.blut"],
+        |name, b, v| {
+            let t = AverageAlbedoTable::parse(b).unwrap();
+            for r in grid(v, 0, 20_000) {
+                assert_eq!(bits(t.e_avg(r)), bits(v.sample1(r)[0]), "{name} {r}");
             }
-        }
-    }
+        },
+    );
+    each_table(
+        &[
+            "dfg_ggx.blut",
+            "dfg_ggx_linear.blut",
+            "dfg_ts_modified.blut",
+            "dfg_ts_smith.blut",
+        ],
+        |name, b, v| {
+            let t = DfgTable::parse(b).unwrap();
+            let (mus, rs) = (grid(v, 0, 300), grid(v, 1, 300));
+            for &r in &rs {
+                for &mu in &mus {
+                    let (a, bb) = t.ab(mu, r);
+                    let s = v.sample2(mu, r);
+                    assert_eq!(
+                        (bits(a), bits(bb)),
+                        (bits(s[0]), bits(s[1])),
+                        "{name} ({mu}, {r})"
+                    );
+                }
+            }
+        },
+    );
 }
 
 /// (GM, GS, G) from the view: the passing-factor table F(θ, φ) read at
@@ -137,56 +146,59 @@ fn angles(n: usize) -> (Vec<f32>, Vec<f32>) {
 #[test]
 fn g_tables_equal_the_view_bit_for_bit() {
     let (tis, trs) = angles(120);
-    for name in [
-        "g_modified_sigma0.1.blut",
-        "g_modified_sigma0.3.blut",
-        "g_modified_sigma0.3_linear.blut",
-        "g_modified_sigma0.5.blut",
-    ] {
-        let b = asset(name);
-        let v = LutView::parse(&b).unwrap();
-        let t = GTable::parse(&b[..]).unwrap();
-        for &ti in &tis {
-            for &tr in &trs {
-                let (gm, gs, g) = t.terms(ti, tr);
-                let w = g_from_view(&v, ti, tr, None);
-                assert_eq!(
-                    (bits(gm), bits(gs), bits(g)),
-                    (bits(w.0), bits(w.1), bits(w.2)),
-                    "{name} ({ti}, {tr})"
-                );
-            }
-        }
-    }
-    let (tis, trs) = angles(40);
-    for name in ["g_modified.blut", "g_modified_linear.blut"] {
-        let exact = name == "g_modified.blut";
-        let b = asset(name);
-        let v = LutView::parse(&b).unwrap();
-        let t = GTable3::parse(&b[..]).unwrap();
-        let (mut differ, mut worst, mut total) = (0usize, 0f32, 0usize);
-        for sigma in grid(&v, 2, 60) {
+    each_table(
+        &[
+            "g_modified_sigma0.1.blut",
+            "g_modified_sigma0.3.blut",
+            "g_modified_sigma0.3_linear.blut",
+            "g_modified_sigma0.5.blut",
+        ],
+        |name, b, v| {
+            let t = GTable::parse(b).unwrap();
             for &ti in &tis {
                 for &tr in &trs {
-                    let (gm, gs, g) = t.terms(ti, tr, sigma);
-                    let w = g_from_view(&v, ti, tr, Some(sigma));
-                    total += 1;
-                    if exact {
-                        assert_eq!(
-                            (bits(gm), bits(gs), bits(g)),
-                            (bits(w.0), bits(w.1), bits(w.2)),
-                            "{name} ({ti}, {tr}, {sigma})"
-                        );
-                    } else if (bits(gm), bits(gs), bits(g)) != (bits(w.0), bits(w.1), bits(w.2)) {
-                        differ += 1;
-                        for (a, b) in [(gm, w.0), (gs, w.1), (g, w.2)] {
-                            worst = worst.max((a - b).abs());
+                    let (gm, gs, g) = t.terms(ti, tr);
+                    let w = g_from_view(v, ti, tr, None);
+                    assert_eq!(
+                        (bits(gm), bits(gs), bits(g)),
+                        (bits(w.0), bits(w.1), bits(w.2)),
+                        "{name} ({ti}, {tr})"
+                    );
+                }
+            }
+        },
+    );
+    let (tis, trs) = angles(40);
+    each_table(
+        &["g_modified.blut", "g_modified_linear.blut"],
+        |name, b, v| {
+            let exact = name == "g_modified.blut";
+            let t = GTable3::parse(b).unwrap();
+            let (mut differ, mut worst, mut total) = (0usize, 0f32, 0usize);
+            for sigma in grid(v, 2, 60) {
+                for &ti in &tis {
+                    for &tr in &trs {
+                        let (gm, gs, g) = t.terms(ti, tr, sigma);
+                        let w = g_from_view(v, ti, tr, Some(sigma));
+                        total += 1;
+                        if exact {
+                            assert_eq!(
+                                (bits(gm), bits(gs), bits(g)),
+                                (bits(w.0), bits(w.1), bits(w.2)),
+                                "{name} ({ti}, {tr}, {sigma})"
+                            );
+                        } else if (bits(gm), bits(gs), bits(g)) != (bits(w.0), bits(w.1), bits(w.2))
+                        {
+                            differ += 1;
+                            for (a, b) in [(gm, w.0), (gs, w.1), (g, w.2)] {
+                                worst = worst.max((a - b).abs());
+                            }
                         }
                     }
                 }
             }
-        }
-        println!("{name}: {differ} of {total} points differ, by at most {worst:e}");
-        assert!(worst <= 1e-4, "{name}: {worst}");
-    }
+            println!("{name}: {differ} of {total} points differ, by at most {worst:e}");
+            assert!(worst <= 1e-4, "{name}: {worst}");
+        },
+    );
 }
