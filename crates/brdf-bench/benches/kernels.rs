@@ -10,6 +10,7 @@ use brdf_bench::*;
 use brdf_core::batch::{self, DotsSoa, Vec3Soa};
 use brdf_core::fresnel::Fresnel;
 use brdf_core::masking::{self, ModifiedG};
+use brdf_core::microfacet::{Beckmann, Isotropic};
 use brdf_core::models::*;
 use brdf_core::quadrature::{GaussLegendre, DEFAULT_NODES};
 use brdf_core::roughness::{alpha_from_perceptual, beckmann_m_from_sigma};
@@ -51,6 +52,11 @@ fn each<P: Copy, R>(b: &mut criterion::Bencher, pts: &[P], f: impl Fn(P) -> R) {
     })
 }
 
+/// The pairs `(a[k], b[k])`, for [`each`].
+fn zip<A: Copy, B: Copy>(a: &[A], b: &[B]) -> Vec<(A, B)> {
+    a.iter().copied().zip(b.iter().copied()).collect()
+}
+
 /// `grp.bench_function(name, |b| b.iter(|| body))` for one-call-per-iteration entries.
 macro_rules! once {
     ($grp:expr, $name:expr, $body:expr) => {
@@ -61,17 +67,14 @@ macro_rules! once {
 /// Direct G (modified, by quadrature) at every compiled node count.
 fn g_direct<T: Real>(c: &mut Criterion) {
     let (ti, tr) = angle_pairs::<T>(BATCH);
+    let pairs = zip(&ti, &tr);
     let mut grp = c.benchmark_group(format!("g_direct_{}", type_tag::<T>()));
     grp.throughput(Throughput::Elements(BATCH as u64));
     macro_rules! at {
         ($($n:literal),*) => {$(
             let g = ModifiedG::<T, GaussLegendre<$n>>::new(T::from_f64(SIGMA)).unwrap();
             grp.bench_function(BenchmarkId::from_parameter(format!("n{:02}", $n)), |b| {
-                b.iter(|| {
-                    for (&a, &r) in ti.iter().zip(&tr) {
-                        black_box(g.g(black_box(a), black_box(r)));
-                    }
-                })
+                each(b, &pairs, |(a, r)| g.g(a, r))
             });
         )*};
     }
@@ -86,41 +89,15 @@ fn g_closed<T: Real>(c: &mut Criterion) {
     let mut grp = c.benchmark_group(format!("g_closed_{}", type_tag::<T>()));
     grp.throughput(Throughput::Elements(BATCH as u64));
     grp.bench_function("smith_beckmann_correlated", |b| {
-        b.iter(|| {
-            for x in &d {
-                black_box(masking::g_smith_beckmann_correlated(
-                    black_box(x.n_i),
-                    black_box(x.n_o),
-                    m,
-                ));
-            }
-        })
+        each(b, &d, |x| Beckmann::g_correlated_cos(x.n_i, x.n_o, m))
     });
     grp.bench_function("smith_beckmann_separable", |b| {
-        b.iter(|| {
-            for x in &d {
-                black_box(masking::g_smith_beckmann_separable(
-                    black_box(x.n_i),
-                    black_box(x.n_o),
-                    m,
-                ));
-            }
-        })
+        each(b, &d, |x| Beckmann::g_separable_cos(x.n_i, x.n_o, m))
     });
-    grp.bench_function("blinn_dots", |b| {
-        b.iter(|| {
-            for x in &d {
-                black_box(masking::g_blinn_dots(black_box(*x)));
-            }
-        })
-    });
+    grp.bench_function("blinn_dots", |b| each(b, &d, masking::g_blinn_dots));
     let g = ModifiedG::<T>::new(T::from_f64(SIGMA)).unwrap();
     grp.bench_function(format!("modified_dots_n{DEFAULT_NODES}"), |b| {
-        b.iter(|| {
-            for x in &d {
-                black_box(g.g_dots(black_box(*x)));
-            }
-        })
+        each(b, &d, |x| g.g_dots(x))
     });
     grp.finish();
 }
@@ -129,19 +106,14 @@ fn g_closed<T: Real>(c: &mut Criterion) {
 /// in its accuracy tier (Catmull–Rom) and its speed tier (linear).
 fn g_lut(c: &mut Criterion) {
     let (ti, tr) = angle_pairs::<f32>(BATCH);
+    let pairs = zip(&ti, &tr);
     let mut grp = c.benchmark_group("g_lut");
     grp.throughput(Throughput::Elements(BATCH as u64));
     for (id, asset) in [("table3d", G3_ASSET), ("table3d_linear", G3_LINEAR_ASSET)] {
         if let Some(bytes) = read_asset(asset) {
             let t = GTable3::parse(&bytes).unwrap();
             let s = SIGMA as f32;
-            grp.bench_function(id, |b| {
-                b.iter(|| {
-                    for (&a, &r) in ti.iter().zip(&tr) {
-                        black_box(t.g(black_box(a), black_box(r), s));
-                    }
-                })
-            });
+            grp.bench_function(id, |b| each(b, &pairs, |(a, r)| t.g(a, r, s)));
         }
     }
     for (id, asset) in [
@@ -150,13 +122,7 @@ fn g_lut(c: &mut Criterion) {
     ] {
         if let Some(bytes) = read_asset(asset) {
             let t = GTable::parse(&bytes).unwrap();
-            grp.bench_function(id, |b| {
-                b.iter(|| {
-                    for (&a, &r) in ti.iter().zip(&tr) {
-                        black_box(t.g(black_box(a), black_box(r)));
-                    }
-                })
-            });
+            grp.bench_function(id, |b| each(b, &pairs, |(a, r)| t.g(a, r)));
         }
     }
     grp.finish();
@@ -174,6 +140,8 @@ fn models(c: &mut Criterion) {
             [a as T, b as T]
         })
         .collect();
+    let wio = zip(&wi, &wo);
+    let wou = zip(&wo, &us);
     let rgb = |r: f64, g: f64, b: f64| Rgb::new(r as T, g as T, b as T);
     let (kd, ks) = (rgb(0.5, 0.4, 0.3), rgb(0.04, 0.04, 0.04));
     // Every model of the catalogue at its defaults, then the G variants of Cook–Torrance.
@@ -206,37 +174,21 @@ fn models(c: &mut Criterion) {
     let mut ev = c.benchmark_group(format!("model_eval_{}", type_tag::<T>()));
     ev.throughput(Throughput::Elements(BATCH as u64));
     for (name, m) in &list {
-        ev.bench_function(*name, |b| {
-            b.iter(|| {
-                for (a, o) in wi.iter().zip(&wo) {
-                    black_box(m.eval(black_box(*a), black_box(*o)));
-                }
-            })
-        });
+        ev.bench_function(*name, |b| each(b, &wio, |(a, o)| m.eval(a, o)));
     }
     for gt in GeometricTerm::ALL {
         let ts =
             TorranceSparrow::<T>::new(SIGMA as T, gt, Fresnel::schlick(0.04).unwrap(), 1.0, 0.2)
                 .unwrap();
         ev.bench_function(format!("torrance_sparrow_{}", gt.name()), |b| {
-            b.iter(|| {
-                for (a, o) in wi.iter().zip(&wo) {
-                    black_box(ts.eval(black_box(*a), black_box(*o)));
-                }
-            })
+            each(b, &wio, |(a, o)| ts.eval(a, o))
         });
     }
     ev.finish();
     let mut sm = c.benchmark_group(format!("model_sample_{}", type_tag::<T>()));
     sm.throughput(Throughput::Elements(BATCH as u64));
     for (name, m) in &list {
-        sm.bench_function(*name, |b| {
-            b.iter(|| {
-                for (o, u) in wo.iter().zip(&us) {
-                    black_box(m.sample(black_box(*o), black_box(*u)));
-                }
-            })
-        });
+        sm.bench_function(*name, |b| each(b, &wou, |(o, u)| m.sample(o, u)));
     }
     sm.finish();
 }
@@ -424,7 +376,7 @@ fn lut_parse(c: &mut Criterion) {
 /// analytic DFG fit and the direct G, over the same inputs as the callgrind harness.
 fn lut_targets(c: &mut Criterion) {
     let (ti, tr) = angle_pairs::<f32>(BATCH);
-    let angles: Vec<(f32, f32)> = ti.iter().copied().zip(tr.iter().copied()).collect();
+    let angles = zip(&ti, &tr);
     let pts: Vec<(f32, f32)> = mu_roughness(BATCH)
         .iter()
         .map(|&(m, r)| (m as f32, r as f32))

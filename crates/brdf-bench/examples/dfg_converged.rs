@@ -17,38 +17,15 @@ use brdf_core::split_sum::converged::DfgGgxRow;
 use brdf_core::split_sum::{dfg_ggx, InnerRule, OuterRule};
 use std::time::Instant;
 
-struct Args {
-    size: usize,
-    tol: f64,
-    threads: usize,
-    stride: usize,
-    fixed: usize,
-    out: Option<String>,
-}
-
-fn args() -> Args {
-    let mut a = Args {
-        size: 1024,
-        tol: 1e-6,
-        threads: 1,
-        stride: 1,
-        fixed: 2000,
-        out: None,
-    };
-    let v: Vec<String> = std::env::args().skip(1).collect();
-    for p in v.chunks(2) {
-        let x = p.get(1).cloned().unwrap_or_default();
-        match p[0].as_str() {
-            "--size" => a.size = x.parse().expect("--size"),
-            "--tol" => a.tol = x.parse().expect("--tol"),
-            "--threads" => a.threads = x.parse().expect("--threads"),
-            "--stride" => a.stride = x.parse().expect("--stride"),
-            "--fixed" => a.fixed = x.parse().expect("--fixed"),
-            "--out" => a.out = Some(x),
-            o => panic!("unknown option {o}"),
-        }
+brdf_bench::example_options! {
+    struct Args {
+        size: usize = 1024, "--size";
+        tol: f64 = 1e-6, "--tol";
+        threads: usize = 1, "--threads";
+        stride: usize = 1, "--stride";
+        fixed: usize = 2000, "--fixed";
+        out: Option<String> = None, "--out";
     }
-    a
 }
 
 /// Per-thread result: (row j, [A, B] per μ), evaluations, max evaluations, max estimate.
@@ -75,7 +52,7 @@ fn rows(size: usize, tol: f64, js: Vec<usize>) -> Part {
 }
 
 fn main() {
-    let a = args();
+    let a = Args::from_args();
     let js: Vec<usize> = (0..a.size).step_by(a.stride).collect();
     let texels = js.len() * a.size;
     let t0 = Instant::now();

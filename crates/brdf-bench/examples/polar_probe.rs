@@ -36,47 +36,18 @@ use brdf_core::split_sum::polar::{DfgGgxPolarRow, Polar};
 use brdf_core::split_sum::rows::RowWork;
 use std::time::Instant;
 
-struct Args {
-    tol: f64,
-    grid: usize,
-    size: usize,
-    samples: usize,
-    converged: usize,
-    seed: u64,
-    rows: usize,
-    ref_tol: f64,
-    full: bool,
-}
-
-fn args() -> Args {
-    let mut a = Args {
-        tol: 2e-6,
-        grid: 64,
-        size: 1024,
-        samples: 4096,
-        converged: 512,
-        seed: 22,
-        rows: 0,
-        ref_tol: 1e-9,
-        full: false,
-    };
-    let v: Vec<String> = std::env::args().skip(1).collect();
-    for p in v.chunks(2) {
-        let x = p.get(1).cloned().unwrap_or_default();
-        match p[0].as_str() {
-            "--tol" => a.tol = x.parse().expect("--tol"),
-            "--grid" => a.grid = x.parse().expect("--grid"),
-            "--size" => a.size = x.parse().expect("--size"),
-            "--samples" => a.samples = x.parse().expect("--samples"),
-            "--converged" => a.converged = x.parse().expect("--converged"),
-            "--seed" => a.seed = x.parse().expect("--seed"),
-            "--rows" => a.rows = x.parse().expect("--rows"),
-            "--ref-tol" => a.ref_tol = x.parse().expect("--ref-tol"),
-            "--full" => a.full = x.parse::<u32>().expect("--full") != 0,
-            o => panic!("unknown option {o}"),
-        }
+brdf_bench::example_options! {
+    struct Args {
+        tol: f64 = 2e-6, "--tol";
+        grid: usize = 64, "--grid";
+        size: usize = 1024, "--size";
+        samples: usize = 4096, "--samples";
+        converged: usize = 512, "--converged";
+        seed: u64 = 22, "--seed";
+        rows: usize = 0, "--rows";
+        ref_tol: f64 = 1e-9, "--ref-tol";
+        full: bool = false, "--full";
     }
-    a
 }
 
 /// Texel indices (i, j).
@@ -153,7 +124,7 @@ fn polar_set(name: &str, pts: &[(f64, f64)], tol: f64) -> Vec<Polar<f64>> {
 }
 
 fn main() {
-    let a = args();
+    let a = Args::from_args();
     if a.rows > 0 {
         return rows_mode(&a);
     }

@@ -206,3 +206,64 @@ impl FloorBilinear2 {
         (lerp2(0), lerp2(1))
     }
 }
+
+/// A value of an example's `--name value` option ([`example_options!`]).
+pub trait OptionValue: Sized {
+    /// The value written `s`; None when `s` does not parse.
+    fn parse_option(s: &str) -> Option<Self>;
+}
+
+macro_rules! option_value_from_str {
+    ($($t:ty),*) => {$(
+        impl OptionValue for $t {
+            fn parse_option(s: &str) -> Option<Self> {
+                s.parse().ok()
+            }
+        }
+    )*};
+}
+option_value_from_str!(usize, u64, u32, f64);
+
+/// A path or name: the text itself.
+impl OptionValue for Option<String> {
+    fn parse_option(s: &str) -> Option<Self> {
+        Some(Some(s.to_string()))
+    }
+}
+
+/// A switch written as a number: 0 is off, any other integer on.
+impl OptionValue for bool {
+    fn parse_option(s: &str) -> Option<Self> {
+        s.parse::<u32>().ok().map(|v| v != 0)
+    }
+}
+
+/// An examples' options struct: `example_options! { struct Args { field: Type = default,
+/// "--flag"; … } }` declares the struct and `Args::from_args()`, which reads the command
+/// line as `--flag value` pairs over the defaults and panics on an unknown flag or a value
+/// that does not parse ([`OptionValue`]).
+#[macro_export]
+macro_rules! example_options {
+    (struct $name:ident { $($field:ident: $ty:ty = $default:expr, $flag:literal;)* }) => {
+        struct $name {
+            $($field: $ty,)*
+        }
+
+        impl $name {
+            fn from_args() -> Self {
+                let mut a = Self { $($field: $default,)* };
+                let v: Vec<String> = std::env::args().skip(1).collect();
+                for p in v.chunks(2) {
+                    let x = p.get(1).map_or("", String::as_str);
+                    match p[0].as_str() {
+                        $($flag => {
+                            a.$field = $crate::OptionValue::parse_option(x).expect($flag)
+                        })*
+                        o => panic!("unknown option {o}"),
+                    }
+                }
+                a
+            }
+        }
+    };
+}

@@ -42,9 +42,10 @@ pub fn run(root: &Path, s: &Settings) -> Result<Outcome> {
     let cells = grid(s.step_deg);
     let fine6 = fine_row(30.0, s.fine_step_deg);
     let fine7 = fine_row(10.0, s.fine_step_deg);
-    let total = (cells.len() * s.sigmas.len() + fine6.len() + fine7.len()) as u64;
+    let total = (cells.len() * s.run.sigmas.len() + fine6.len() + fine7.len()) as u64;
     let pb = crate::progress::bar(total, "simulating (θi, θr, σ)");
     let sweeps: Vec<Sweep> = s
+        .run
         .sigmas
         .iter()
         .map(|&sg| sweep(s, &profiles, sg, &cells, 1, &pb))
@@ -153,7 +154,7 @@ fn markdown(
     fig7: &Sweep,
     notes: &[&str],
 ) -> Result<String> {
-    let n_cell = s.samples_per_cell();
+    let n_cell = s.run.samples_per_cell();
     let bin_sweep = sweeps.iter().find(|w| (w.sigma - 0.3).abs() < 1e-9);
     let brdf_table: Vec<BrdfRow> = sweeps
         .iter()
@@ -166,13 +167,13 @@ fn markdown(
         context! {
             run_flag => if s.name == "quick" { " --quick" } else { "" },
             name => s.name,
-            profiles => s.profiles,
-            log2_nodes => s.log2_nodes,
+            profiles => s.run.surfaces,
+            log2_nodes => s.run.log2_nodes,
             n_cell => n_cell,
-            nb => s.profiles * s.batches_per_profile,
-            sigmas => format!("{:?}", s.sigmas),
+            nb => s.run.surfaces * s.run.batches_per_surface,
+            sigmas => format!("{:?}", s.run.sigmas),
             step => s.step_deg.to_string(),
-            seed => s.seed,
+            seed => s.run.seed,
             inv_dx => format!("{:.0}", 1.0 / DX),
             profile_rows => profile_rows(profiles),
             se_max => format!("{:.4}", 0.5 / (n_cell as f64).sqrt()),
@@ -240,16 +241,16 @@ fn normal_rows(sweeps: &[Sweep]) -> Vec<Value> {
 /// σ ∈ {0.1, 0.3, 1} and θ ∈ {30°, 60°, 80°, 88°} (extra simulations, four times the
 /// batch size).
 fn g1_rows(s: &Settings, profiles: &[Profile]) -> Vec<Value> {
-    let per_b = s.per_batch * 4;
+    let per_b = s.run.per_batch * 4;
     let mut rows = Vec::new();
-    for &sg in s.sigmas.iter().filter(|x| [0.1, 0.3, 1.0].contains(*x)) {
+    for &sg in s.run.sigmas.iter().filter(|x| [0.1, 0.3, 1.0].contains(*x)) {
         let surf = Surface {
             profiles,
             sigma: sg,
         };
         for th in [30.0f64, 60.0, 80.0, 88.0] {
             let seed = crate::surface::mix_seed(&[77, th as u64, (sg * 1000.0) as u64]);
-            let (g1, id) = surf.g1_area(th.to_radians(), per_b, s.batches_per_profile, seed);
+            let (g1, id) = surf.g1_area(th.to_radians(), per_b, s.run.batches_per_surface, seed);
             rows.push(context! {
                 theta => th.to_string(),
                 sigma => sg.to_string(),
@@ -346,8 +347,8 @@ fn slope_bin_rows(s: &Settings, profiles: &[Profile], sw: &Sweep) -> Vec<Value> 
                     ti.to_radians(),
                     tr.to_radians(),
                     b,
-                    s.per_batch,
-                    s.batches_per_profile,
+                    s.run.per_batch,
+                    s.run.batches_per_surface,
                     99,
                 );
                 context! { g => f4(e.mean), se => f4(e.se()), n => e.n }

@@ -73,9 +73,10 @@ pub fn run(root: &Path, s: &Settings2d) -> Result<Outcome2d> {
     let t0 = Instant::now();
     figures::register_font()?;
     let fields = make_fields(s);
-    let n_cells = (s.grid().len() * s.sigmas.len()) as u64;
+    let n_cells = (s.grid().len() * s.run.sigmas.len()) as u64;
     let pb = crate::progress::bar(n_cells, "simulating (θi, θo, φ, σ)");
     let sweeps: Vec<Sweep2d> = s
+        .run
         .sigmas
         .iter()
         .map(|&sg| sweep2d(s, &fields, sg, &pb))
@@ -154,16 +155,16 @@ fn fill(data: &Json) -> Result<String> {
 fn settings_json(s: &Settings2d) -> Json {
     json!({
         "name": s.name,
-        "nodes_per_side": 1u64 << s.log2_n,
+        "nodes_per_side": 1u64 << s.run.log2_nodes,
         "nodes_per_ell": NODES_PER_ELL,
-        "fields": s.fields,
-        "batches": s.fields * s.batches_per_field,
-        "samples_per_cell": s.samples_per_cell(),
-        "sigmas": s.sigmas,
+        "fields": s.run.surfaces,
+        "batches": s.run.surfaces * s.run.batches_per_surface,
+        "samples_per_cell": s.run.samples_per_cell(),
+        "sigmas": s.run.sigmas,
         "theta_i": s.theta_i,
         "theta_o": s.theta_o,
         "phi": s.phi,
-        "seed": s.seed,
+        "seed": s.run.seed,
     })
 }
 
@@ -213,9 +214,9 @@ fn surface_json(fields: &[Field]) -> Json {
 /// Projected-area identity and area-weighted G1 against Smith on isotropic surfaces (random
 /// azimuth) and on one anisotropic surface (σx, σy) = (0.2, 0.5) at fixed azimuths.
 fn identity_rows(s: &Settings2d, fields: &[Field]) -> Vec<Json> {
-    let per_b = s.per_batch * 4;
+    let per_b = s.run.per_batch * 4;
     let mut cases: Vec<((f64, f64), bool, f64, f64)> = Vec::new();
-    for &sg in s.sigmas.iter().filter(|x| [0.1, 0.3, 1.0].contains(*x)) {
+    for &sg in s.run.sigmas.iter().filter(|x| [0.1, 0.3, 1.0].contains(*x)) {
         for th in [30.0, 60.0, 80.0, 88.0] {
             cases.push(((sg, sg), true, th, 0.0));
         }
@@ -229,13 +230,13 @@ fn identity_rows(s: &Settings2d, fields: &[Field]) -> Vec<Json> {
         .iter()
         .map(|&(sig, random_azimuth, th, psi)| {
             let surf = Surface2d { fields, sigma: sig, random_azimuth };
-            let seed = mix_seed(&[s.seed, 77, th as u64, psi as u64, (sig.0 * 1e3) as u64, (sig.1 * 1e3) as u64]);
-            let run = |per: u64| surf.g1_area(th.to_radians(), psi.to_radians(), per, s.batches_per_field, seed);
+            let seed = mix_seed(&[s.run.seed, 77, th as u64, psi as u64, (sig.0 * 1e3) as u64, (sig.1 * 1e3) as u64]);
+            let run = |per: u64| surf.g1_area(th.to_radians(), psi.to_radians(), per, s.run.batches_per_surface, seed);
             // A pilot run sets the sample count that brings both SEs to ≤ SE_TARGET.
             let (g1p, idp) = run(per_b);
             let k = (idp.se().max(g1p.se()) / SE_TARGET).powi(2).ceil().max(1.0) as u64;
             let (g1, id) = if k > 1 { run(per_b * k) } else { (g1p, idp) };
-            let n = per_b * k.max(1) * s.batches_per_field * fields.len() as u64;
+            let n = per_b * k.max(1) * s.run.batches_per_surface * fields.len() as u64;
             let p = psi.to_radians();
             let s_eff = (sig.0 * sig.0 * p.cos().powi(2) + sig.1 * sig.1 * p.sin().powi(2)).sqrt();
             json!({

@@ -5,34 +5,48 @@ use crate::facet::g_single_neighbour;
 use crate::profile::Profile;
 use crate::stats::Estimate;
 use crate::surface::{mix_seed, GSample, Surface};
-use brdf_core::masking::{
-    g_blinn, g_smith_beckmann_correlated, g_smith_beckmann_separable, Convention, ModifiedG,
-};
+use brdf_core::masking::{g_blinn, Convention, ModifiedG};
+use brdf_core::microfacet::{Beckmann, Isotropic};
 use brdf_core::models::{GeometricTerm, TorranceSparrow};
 use brdf_core::roughness::beckmann_m_from_sigma;
 use rayon::prelude::*;
 
-/// Run size.
+/// The size of a simulation run, shared by the in-plane study ([`Settings`], surfaces
+/// are profiles) and the 3-D one ([`crate::study2d::Settings2d`], surfaces are fields).
 #[derive(Clone, Debug)]
-pub struct Settings {
-    /// Name printed in the report ("default" or "quick").
-    pub name: &'static str,
-    /// Each profile has 2^log2_nodes nodes (Δx = ℓ/8).
+pub struct RunSize {
+    /// Each surface has 2^log2_nodes nodes along each side (Δ = ℓ/8).
     pub log2_nodes: u32,
-    /// Number of independent profiles.
-    pub profiles: u64,
-    /// Batches per profile (batch means use profiles × batches batches).
-    pub batches_per_profile: u64,
+    /// Number of independent surfaces.
+    pub surfaces: u64,
+    /// Batches per surface (batch means use surfaces × batches batches).
+    pub batches_per_surface: u64,
     /// Samples per batch and cell.
     pub per_batch: u64,
     /// RMS slopes of the error tables.
     pub sigmas: Vec<f64>,
+    /// Base seed.
+    pub seed: u64,
+}
+
+impl RunSize {
+    /// Samples per cell: surfaces × batches per surface × samples per batch.
+    pub fn samples_per_cell(&self) -> u64 {
+        self.surfaces * self.batches_per_surface * self.per_batch
+    }
+}
+
+/// Run size and grids of the in-plane study.
+#[derive(Clone, Debug)]
+pub struct Settings {
+    /// Name printed in the report ("default" or "quick").
+    pub name: &'static str,
+    /// Profiles (2^log2_nodes nodes each), batches, samples, σ and seed.
+    pub run: RunSize,
     /// Grid step in degrees; θi ∈ [0, 85], θr ∈ [−85, 85].
     pub step_deg: f64,
     /// Step of the fine θr grids of Figs 6 and 7, degrees (θr ∈ [−88, 88]).
     pub fine_step_deg: f64,
-    /// Base seed.
-    pub seed: u64,
 }
 
 impl Settings {
@@ -40,33 +54,33 @@ impl Settings {
     pub fn default_run() -> Self {
         Self {
             name: "default",
-            log2_nodes: 20,
-            profiles: 4,
-            batches_per_profile: 4,
-            per_batch: 4000,
-            sigmas: vec![0.05, 0.1, 0.2, 0.3, 0.5, 0.75, 1.0],
+            run: RunSize {
+                log2_nodes: 20,
+                surfaces: 4,
+                batches_per_surface: 4,
+                per_batch: 4000,
+                sigmas: vec![0.05, 0.1, 0.2, 0.3, 0.5, 0.75, 1.0],
+                seed: 2015,
+            },
             step_deg: 5.0,
             fine_step_deg: 2.0,
-            seed: 2015,
         }
     }
     /// CI-sized settings: 2 profiles of 2^17 nodes, 2 000 samples per cell, 3 σ, 10° grid.
     pub fn quick() -> Self {
         Self {
             name: "quick",
-            log2_nodes: 17,
-            profiles: 2,
-            batches_per_profile: 4,
-            per_batch: 250,
-            sigmas: vec![0.1, 0.3, 1.0],
+            run: RunSize {
+                log2_nodes: 17,
+                surfaces: 2,
+                batches_per_surface: 4,
+                per_batch: 250,
+                sigmas: vec![0.1, 0.3, 1.0],
+                seed: 2015,
+            },
             step_deg: 10.0,
             fine_step_deg: 4.0,
-            seed: 2015,
         }
-    }
-    /// Samples per cell.
-    pub fn samples_per_cell(&self) -> u64 {
-        self.profiles * self.batches_per_profile * self.per_batch
     }
 }
 
@@ -121,15 +135,36 @@ impl Model {
     }
     /// G at (θi, θr) radians for RMS slope σ, from `brdf_core`.
     pub fn g(self, sigma: f64, ti: f64, tr: f64) -> f64 {
+        self.g_with(
+            sigma,
+            [ti.cos(), tr.cos()],
+            || g_blinn(ti, tr),
+            |g| g.g(ti, tr),
+        )
+    }
+
+    /// G for RMS slope σ, shared by the in-plane ([`Model::g`]) and the 3-D
+    /// ([`crate::study2d::model_g3`]) forms: Smith–Beckmann (m = √2σ) from the cosines
+    /// `[n·ωi, n·ωo]`, Blinn's G from `blinn`, the paper's G by `modified` applied to
+    /// [`ModifiedG`] in the reciprocal or (ModifiedPrinted) the printed convention; NaN where
+    /// σ is outside the modified G's range.
+    pub(crate) fn g_with(
+        self,
+        sigma: f64,
+        [ci, co]: [f64; 2],
+        blinn: impl FnOnce() -> f64,
+        modified: impl FnOnce(&ModifiedG<f64>) -> f64,
+    ) -> f64 {
         let m = beckmann_m_from_sigma(sigma);
+        let paper = |c: Convention| {
+            ModifiedG::<f64>::new(sigma).map_or(f64::NAN, |g| modified(&g.with_convention(c)))
+        };
         match self {
-            Model::Blinn => g_blinn(ti, tr),
-            Model::Modified => ModifiedG::<f64>::new(sigma).map_or(f64::NAN, |g| g.g(ti, tr)),
-            Model::ModifiedPrinted => ModifiedG::<f64>::new(sigma).map_or(f64::NAN, |g| {
-                g.with_convention(Convention::Printed).g(ti, tr)
-            }),
-            Model::SmithSeparable => g_smith_beckmann_separable(ti.cos(), tr.cos(), m),
-            Model::SmithCorrelated => g_smith_beckmann_correlated(ti.cos(), tr.cos(), m),
+            Model::Blinn => blinn(),
+            Model::Modified => paper(Convention::Reciprocal),
+            Model::ModifiedPrinted => paper(Convention::Printed),
+            Model::SmithSeparable => Beckmann::g_separable_cos(ci, co, m),
+            Model::SmithCorrelated => Beckmann::g_correlated_cos(ci, co, m),
         }
     }
 }
@@ -163,9 +198,9 @@ pub struct Sweep {
 
 /// The profiles of a run (generated in parallel, deterministic).
 pub fn make_profiles(s: &Settings) -> Vec<Profile> {
-    (0..s.profiles)
+    (0..s.run.surfaces)
         .into_par_iter()
-        .map(|i| Profile::generate(s.log2_nodes, mix_seed(&[s.seed, 1000 + i])))
+        .map(|i| Profile::generate(s.run.log2_nodes, mix_seed(&[s.run.seed, 1000 + i])))
         .collect()
 }
 
@@ -185,14 +220,14 @@ pub fn sweep(
         .enumerate()
         .map(|(k, &(ti, tr))| {
             let (a, b) = (ti.to_radians(), tr.to_radians());
-            let seed = mix_seed(&[s.seed, tag, (sigma * 1e6) as u64, k as u64]);
-            let sim = surf.g(a, b, s.per_batch, s.batches_per_profile, seed);
+            let seed = mix_seed(&[s.run.seed, tag, (sigma * 1e6) as u64, k as u64]);
+            let sim = surf.g(a, b, s.run.per_batch, s.run.batches_per_surface, seed);
             let sn = g_single_neighbour(
                 a,
                 b,
                 sigma,
-                s.per_batch,
-                s.batches_per_profile * s.profiles,
+                s.run.per_batch,
+                s.run.batches_per_surface * s.run.surfaces,
                 seed ^ 0x5555,
             );
             let models = Model::ALL.map(|m| m.g(sigma, a, b));

@@ -8,14 +8,11 @@
 //! out the grid's own directions (the triangles' slight anisotropy, §7.1 of the report).
 
 use crate::stats::{ratio_estimate, Estimate};
-use crate::study::Model;
+use crate::study::{Model, RunSize};
 use crate::surface::{mix_seed, GBatches, GSample};
 use crate::surface2d::{Conditioned, Field, Ray};
 use brdf_core::geometry::{Dots, Vec3};
-use brdf_core::masking::{
-    g_blinn_dots, g_smith_beckmann_correlated, g_smith_beckmann_separable, Convention, ModifiedG,
-};
-use brdf_core::roughness::beckmann_m_from_sigma;
+use brdf_core::masking::{g_blinn_dots, ModifiedG};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 use rayon::prelude::*;
@@ -26,24 +23,14 @@ use std::f64::consts::PI;
 pub struct Settings2d {
     /// "default" or "quick".
     pub name: &'static str,
-    /// Each field has 2^log2_n × 2^log2_n nodes (Δ = ℓ/8).
-    pub log2_n: u32,
-    /// Independent fields.
-    pub fields: u64,
-    /// Batches per field.
-    pub batches_per_field: u64,
-    /// Samples per batch and cell.
-    pub per_batch: u64,
-    /// RMS slopes.
-    pub sigmas: Vec<f64>,
+    /// Fields (2^log2_nodes × 2^log2_nodes nodes each), batches, samples, σ and seed.
+    pub run: RunSize,
     /// θi values, degrees.
     pub theta_i: Vec<f64>,
     /// θo values, degrees.
     pub theta_o: Vec<f64>,
     /// φ values, degrees (0 = backward in-plane, 180 = forward in-plane).
     pub phi: Vec<f64>,
-    /// Base seed.
-    pub seed: u64,
 }
 
 impl Settings2d {
@@ -51,35 +38,35 @@ impl Settings2d {
     pub fn default_run() -> Self {
         Self {
             name: "default",
-            log2_n: 10,
-            fields: 4,
-            batches_per_field: 8,
-            per_batch: 750,
-            sigmas: vec![0.1, 0.3, 0.5, 1.0],
+            run: RunSize {
+                log2_nodes: 10,
+                surfaces: 4,
+                batches_per_surface: 8,
+                per_batch: 750,
+                sigmas: vec![0.1, 0.3, 0.5, 1.0],
+                seed: 2014,
+            },
             theta_i: vec![0.0, 30.0, 60.0, 80.0],
             theta_o: vec![0.0, 15.0, 30.0, 45.0, 60.0, 70.0, 80.0, 85.0, 89.0],
             phi: vec![0.0, 45.0, 90.0, 135.0, 180.0],
-            seed: 2014,
         }
     }
     /// Test-sized settings (seconds).
     pub fn quick() -> Self {
         Self {
             name: "quick",
-            log2_n: 8,
-            fields: 2,
-            batches_per_field: 4,
-            per_batch: 60,
-            sigmas: vec![0.3],
+            run: RunSize {
+                log2_nodes: 8,
+                surfaces: 2,
+                batches_per_surface: 4,
+                per_batch: 60,
+                sigmas: vec![0.3],
+                seed: 2014,
+            },
             theta_i: vec![0.0, 60.0],
             theta_o: vec![0.0, 60.0, 85.0],
             phi: vec![0.0, 90.0, 180.0],
-            seed: 2014,
         }
-    }
-    /// Samples per cell.
-    pub fn samples_per_cell(&self) -> u64 {
-        self.fields * self.batches_per_field * self.per_batch
     }
     /// The (θi, θo, φ) grid, degrees, in a fixed order.
     pub fn grid(&self) -> Vec<[f64; 3]> {
@@ -97,9 +84,9 @@ impl Settings2d {
 
 /// The fields of a run (deterministic).
 pub fn make_fields(s: &Settings2d) -> Vec<Field> {
-    (0..s.fields)
+    (0..s.run.surfaces)
         .into_par_iter()
-        .map(|i| Field::generate(s.log2_n, mix_seed(&[s.seed, 2000 + i])))
+        .map(|i| Field::generate(s.run.log2_nodes, mix_seed(&[s.run.seed, 2000 + i])))
         .collect()
 }
 
@@ -243,16 +230,7 @@ impl Surface2d<'_> {
 pub fn model_g3(m: Model, sigma: f64, wi: [f64; 3], wo: [f64; 3]) -> f64 {
     let v = |w: [f64; 3]| Vec3::new(w[0], w[1], w[2]);
     let d = Dots::from_local(v(wi), v(wo));
-    let mm = beckmann_m_from_sigma(sigma);
-    match m {
-        Model::Blinn => g_blinn_dots(d),
-        Model::Modified => ModifiedG::<f64>::new(sigma).map_or(f64::NAN, |g| g.g_dots(d)),
-        Model::ModifiedPrinted => ModifiedG::<f64>::new(sigma).map_or(f64::NAN, |g| {
-            g.with_convention(Convention::Printed).g_dots(d)
-        }),
-        Model::SmithSeparable => g_smith_beckmann_separable(wi[2], wo[2], mm),
-        Model::SmithCorrelated => g_smith_beckmann_correlated(wi[2], wo[2], mm),
-    }
+    m.g_with(sigma, [wi[2], wo[2]], || g_blinn_dots(d), |g| g.g_dots(d))
 }
 
 /// One grid cell of the 3-D study.
@@ -307,8 +285,8 @@ pub fn sweep2d(
         .par_iter()
         .enumerate()
         .map(|(k, &g)| {
-            let seed = mix_seed(&[s.seed, (sigma * 1e6) as u64, k as u64]);
-            let sim = surf.g(g, s.per_batch, s.batches_per_field, seed);
+            let seed = mix_seed(&[s.run.seed, (sigma * 1e6) as u64, k as u64]);
+            let sim = surf.g(g, s.run.per_batch, s.run.batches_per_surface, seed);
             let (wi, wo) = pair(g, 0.0);
             let models = Model::ALL.map(|m| model_g3(m, sigma, wi, wo));
             let t = mg.map(|m| {

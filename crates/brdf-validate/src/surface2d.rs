@@ -75,6 +75,19 @@ const TRI: [[(i64, i64, f64, f64); 3]; 2] = [
     [(0, 0, 0.0, -1.0), (1, 1, 1.0, 0.0), (0, 1, -1.0, 1.0)],
 ];
 
+/// The slopes (d₁, d₂) of triangle `t` (0 lower, 1 upper) from the heights `h(dx, dy)` of
+/// its cell's corners ((0, 0) the cell's node): d = Σ over the triangle's three corners of
+/// (a₁, a₂)·h, the [`TRI`] weights.
+fn tri_slope_of(t: usize, h: impl Fn(i64, i64) -> f64) -> [f64; 2] {
+    let mut d = [0.0; 2];
+    for &(vx, vy, a1, a2) in &TRI[t] {
+        let z = h(vx, vy);
+        d[0] += a1 * z;
+        d[1] += a2 * z;
+    }
+    d
+}
+
 /// 1-D separable periodic convolution pass with the Gaussian kernel (along x or y).
 fn convolve(src: &[f64], n: usize, along_x: bool) -> Vec<f64> {
     let w: Vec<f64> = (0..=2 * KERNEL_HALF)
@@ -235,13 +248,7 @@ impl Field {
     }
     /// The slopes (d₁, d₂) of triangle `t` of cell (i, j) in the unconditioned field.
     pub fn tri_slope(&self, i: i64, j: i64, t: usize) -> [f64; 2] {
-        let mut d = [0.0; 2];
-        for &(vx, vy, a1, a2) in &TRI[t] {
-            let z = self.h(i + vx, j + vy);
-            d[0] += a1 * z;
-            d[1] += a2 * z;
-        }
-        d
+        tri_slope_of(t, |x, y| self.h(i + x, j + y))
     }
     /// Realised RMS of the node differences along x and along y (target 1 each).
     pub fn realised_slope_rms(&self) -> (f64, f64) {
@@ -384,13 +391,7 @@ impl<'a> Conditioned<'a> {
 
     /// Slopes of triangle `t` of cell (i, j) in the conditioned field.
     pub fn slope(&self, i: i64, j: i64, t: usize) -> [f64; 2] {
-        let mut d = [0.0; 2];
-        for &(vx, vy, a1, a2) in &TRI[t] {
-            let z = self.node(i + vx, j + vy);
-            d[0] += a1 * z;
-            d[1] += a2 * z;
-        }
-        d
+        tri_slope_of(t, |x, y| self.node(i + x, j + y))
     }
 
     /// Is the ray unblocked (the surface never rises above it)? The origin must lie on the

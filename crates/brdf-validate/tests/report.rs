@@ -6,8 +6,8 @@ fn quick_report_writes_figures_and_tables() {
     let dir = std::env::temp_dir().join(format!("brdf-validate-report-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     let mut s = brdf_validate::study::Settings::quick();
-    s.sigmas = vec![0.3];
-    s.per_batch = 100;
+    s.run.sigmas = vec![0.3];
+    s.run.per_batch = 100;
     let out = brdf_validate::report::run(&dir, &s).expect("report runs");
     for name in [
         "fig6_g_theta_i30_sigma0.3",

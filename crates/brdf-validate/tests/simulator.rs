@@ -3,7 +3,8 @@
 //! geometric fact (vertical rays, the projected-area identity, reciprocity), a closed form
 //! (Smith's Λ, the coupled model's albedo) or the paper's formulas evaluated by brdf-core.
 
-use brdf_core::masking::{lambda_beckmann, ModifiedG};
+use brdf_core::masking::ModifiedG;
+use brdf_core::microfacet::{Beckmann, Isotropic};
 use brdf_validate::facet::g_single_neighbour;
 use brdf_validate::profile::Profile;
 use brdf_validate::smith1d;
@@ -17,6 +18,14 @@ fn profiles() -> &'static [Profile] {
     P.get_or_init(|| (0..2).map(|i| Profile::generate(18, 40 + i)).collect())
 }
 
+/// A surface of the shared profiles at RMS slope `sigma`.
+fn surface(sigma: f64) -> Surface<'static> {
+    Surface {
+        profiles: profiles(),
+        sigma,
+    }
+}
+
 fn d(x: f64) -> f64 {
     x.to_radians()
 }
@@ -25,6 +34,12 @@ fn d(x: f64) -> f64 {
 /// of probability below ~3/n may simply not have occurred (the 95% "rule of three").
 fn agree(a: Estimate, b: f64, k: f64) -> bool {
     (a.mean - b).abs() <= k * a.se() + 3.0 / a.n as f64
+}
+
+/// Two independent estimates differ by less than `k` standard errors of the difference
+/// (√(SE_a² + SE_b²)).
+fn agree_both(a: Estimate, b: Estimate, k: f64) -> bool {
+    (a.mean - b.mean).abs() < k * (a.se().powi(2) + b.se().powi(2)).sqrt()
 }
 
 #[test]
@@ -43,10 +58,7 @@ fn profile_has_the_stated_statistics() {
 #[test]
 fn vertical_rays_are_never_blocked() {
     for sigma in [0.1, 0.5, 1.0] {
-        let s = Surface {
-            profiles: profiles(),
-            sigma,
-        };
+        let s = surface(sigma);
         let g = s.g(0.0, 0.0, 500, 2, 1);
         assert_eq!(g.g.mean, 1.0);
         // Normal incidence with any exit: only masking can act, so G = GM.
@@ -60,10 +72,7 @@ fn vertical_rays_are_never_blocked() {
 fn projected_area_identity_holds() {
     // For any height field the visible projected width seen from θ equals cos θ.
     for (k, sigma) in [0.3, 1.0].into_iter().enumerate() {
-        let s = Surface {
-            profiles: profiles(),
-            sigma,
-        };
+        let s = surface(sigma);
         for th in [30.0, 60.0, 80.0] {
             let (g1, id) = s.g1_area(d(th), 5000, 4, mix_seed(&[9, k as u64, th as u64]));
             assert!(agree(id, 1.0, 4.5), "σ {sigma} θ {th}: identity {id:?}");
@@ -79,10 +88,7 @@ fn projected_area_identity_holds() {
 
 #[test]
 fn simulated_g_is_reciprocal() {
-    let s = Surface {
-        profiles: profiles(),
-        sigma: 0.5,
-    };
+    let s = surface(0.5);
     for (ti, tr, mi, mr) in [
         (30.0, 70.0, 70.0, 30.0),
         (40.0, -65.0, 65.0, -40.0),
@@ -90,9 +96,8 @@ fn simulated_g_is_reciprocal() {
     ] {
         let a = s.g(d(ti), d(tr), 2000, 4, 11).g;
         let b = s.g(d(mi), d(mr), 2000, 4, 12).g;
-        let se = (a.se().powi(2) + b.se().powi(2)).sqrt();
         assert!(
-            (a.mean - b.mean).abs() < 4.5 * se,
+            agree_both(a, b, 4.5),
             "({ti},{tr}) {a:?} vs ({mi},{mr}) {b:?}"
         );
     }
@@ -104,10 +109,7 @@ fn one_sided_masking_is_close_to_smith() {
     // slope and its visibility; for Gaussian surfaces it is known to be accurate to a few
     // hundredths at these angles.
     for sigma in [0.1, 0.3, 1.0] {
-        let s = Surface {
-            profiles: profiles(),
-            sigma,
-        };
+        let s = surface(sigma);
         for tr in [40.0, 60.0, 70.0] {
             let g = s.g(0.0, d(tr), 2000, 4, 21).g;
             let sm = smith1d::g1(d(tr), sigma);
@@ -121,19 +123,12 @@ fn one_sided_masking_is_close_to_smith() {
 
 #[test]
 fn slope_bin_agrees_with_conditioning() {
-    let s = Surface {
-        profiles: profiles(),
-        sigma: 0.3,
-    };
+    let s = surface(0.3);
     for (ti, tr) in [(60.0, 60.0), (70.0, 80.0), (30.0, 75.0)] {
         let c = s.g(d(ti), d(tr), 2000, 4, 31).g;
         let b = s.g_slope_bin(d(ti), d(tr), 0.05, 2000, 4, 32);
         assert!(b.n > 4000, "too few facets in the bin: {}", b.n);
-        let se = (c.se().powi(2) + b.se().powi(2)).sqrt();
-        assert!(
-            (c.mean - b.mean).abs() < 4.5 * se,
-            "({ti},{tr}) {c:?} vs {b:?}"
-        );
+        assert!(agree_both(c, b, 4.5), "({ti},{tr}) {c:?} vs {b:?}");
     }
 }
 
@@ -187,7 +182,7 @@ fn smith_1d_matches_beckmann_lambda() {
     for sigma in [0.05, 0.3, 1.0] {
         for th in [10.0, 45.0, 80.0, 89.0] {
             let a = smith1d::lambda(d(th), sigma);
-            let b = lambda_beckmann(d(th).cos(), std::f64::consts::SQRT_2 * sigma);
+            let b = Beckmann::lambda_cos(d(th).cos(), std::f64::consts::SQRT_2 * sigma);
             assert!(
                 (a - b).abs() <= 1e-9 * (1.0 + b),
                 "σ {sigma} θ {th}: {a} vs {b}"

@@ -174,12 +174,12 @@ fn full_run() {
 #[ignore = "timing probe"]
 fn timing_probe() {
     let mut s = Settings2d::default_run();
-    s.sigmas = vec![0.1, 1.0];
-    s.per_batch = 20;
+    s.run.sigmas = vec![0.1, 1.0];
+    s.run.per_batch = 20;
     let fields = brdf_validate::study2d::make_fields(&s);
     let t0 = std::time::Instant::now();
     let pb = indicatif::ProgressBar::hidden();
-    for &sg in &s.sigmas {
+    for &sg in &s.run.sigmas {
         let t1 = std::time::Instant::now();
         let _ = brdf_validate::study2d::sweep2d(&s, &fields, sg, &pb);
         println!("σ = {sg}: {:.2} s", t1.elapsed().as_secs_f64());

@@ -8,38 +8,166 @@
 
 use brdf_bench::*;
 use brdf_core::masking::{self, ModifiedG};
+use brdf_core::microfacet::{Beckmann, Isotropic};
 use brdf_core::roughness::beckmann_m_from_sigma;
 use brdf_core::split_sum::{dfg_ggx, InnerRule, OuterRule};
 use brdf_lut::{AlbedoTable, AverageAlbedoTable, DfgTable, GTable, GTable3, SheenAlbedoTable};
 use std::hint::black_box;
 
-const KERNELS: &[&str] = &[
-    "g_direct_f32",
-    "g_direct_f64",
-    "g_lut3d",
-    "g_lut2d",
-    "g_lut3d_linear",
-    "g_lut2d_linear",
-    "smith_beckmann_f32",
-    "blinn_f32",
-    "dfg_lut",
-    "dfg_karis",
-    "dfg_direct_f64",
-    "floor_bilinear2",
-    "dfg_lut_std",
-    "g_lut2d_linear_std",
-    "g_lut2d_linear_batch",
-    "g_lut3d_linear_batch",
-    "dfg_lut_batch",
-    "e_lut_batch",
-    "eavg_lut_batch",
-    "e_lut",
-    "eavg_lut",
-    "g_lut2d_linear_dots",
-    "g_lut3d_linear_dots",
-    "sheen_e_lut",
-    "glass_e_lut3d",
-];
+/// The kernels, one row each, in `harness list` order: name, `{ set-up }` (run once, outside
+/// the count) and `|k| per-call expression` over input index `k`. Hands the rows to the
+/// callback macro `$cb!`: [`KERNELS`] takes their names, `main` makes them its match arms.
+/// The bracketed idents are the inputs the rows read (`main`'s locals: macro hygiene keeps
+/// a row from naming them itself): angle pairs (f32, f64), dot products, (μ, roughness)
+/// points and the asset reader.
+macro_rules! kernel_table {
+    ($cb:ident![$ti32:ident $tr32:ident $ti64:ident $tr64:ident $d32:ident $mr:ident $asset:ident]) => {
+        $cb! {
+            "g_direct_f32" {
+                let g = ModifiedG::<f32>::new(SIGMA as f32).unwrap();
+            } |k| g.g(black_box($ti32[k]), black_box($tr32[k])),
+            "g_direct_f64" {
+                let g = ModifiedG::<f64>::new(SIGMA).unwrap();
+            } |k| g.g(black_box($ti64[k]), black_box($tr64[k])),
+            "g_lut3d" {
+                let b = $asset(G3_ASSET);
+                let t = GTable3::parse(&b).unwrap();
+            } |k| t.g(black_box($ti32[k]), black_box($tr32[k]), SIGMA as f32),
+            "g_lut2d" {
+                let b = $asset(G2_ASSET);
+                let t = GTable::parse(&b).unwrap();
+            } |k| t.g(black_box($ti32[k]), black_box($tr32[k])),
+            "g_lut3d_linear" {
+                let b = $asset(G3_LINEAR_ASSET);
+                let t = GTable3::parse(&b).unwrap();
+            } |k| t.g(black_box($ti32[k]), black_box($tr32[k]), SIGMA as f32),
+            "g_lut2d_linear" {
+                let b = $asset(G2_LINEAR_ASSET);
+                let t = GTable::parse(&b).unwrap();
+            } |k| t.g(black_box($ti32[k]), black_box($tr32[k])),
+            "smith_beckmann_f32" {
+                let m = beckmann_m_from_sigma(SIGMA) as f32;
+            } |k| Beckmann::g_correlated_cos(black_box($d32[k].n_i), black_box($d32[k].n_o), m),
+            "blinn_f32" {} |k| masking::g_blinn_dots(black_box($d32[k])),
+            "dfg_lut" {
+                let b = $asset(DFG_LINEAR_ASSET);
+                let t = DfgTable::parse(&b).unwrap();
+            } |k| {
+                let (a, b) = t.ab(black_box($mr[k].0 as f32), black_box($mr[k].1 as f32));
+                a + b
+            },
+            "dfg_karis" {} |k| {
+                let (a, b) = env_brdf_approx(black_box($mr[k].0 as f32), black_box($mr[k].1 as f32));
+                a + b
+            },
+            "dfg_direct_f64" {} |k| {
+                let (a, b) =
+                    dfg_ggx::<f64, OuterRule, InnerRule>(black_box($mr[k].0), black_box($mr[k].1));
+                a + b
+            },
+            "floor_bilinear2" {
+                let t = FloorBilinear2::new();
+            } |k| {
+                let (a, b) = t.fetch(black_box($mr[k].0 as f32), black_box($mr[k].1 as f32));
+                a + b
+            },
+            "dfg_lut_std" {
+                let t = brdf_lut::Lut::from_path(assets_dir().join(DFG_LINEAR_ASSET)).unwrap();
+            } |k| {
+                let (a, b) = t
+                    .dfg(black_box($mr[k].0 as f32), black_box($mr[k].1 as f32))
+                    .unwrap();
+                a + b
+            },
+            "g_lut2d_linear_std" {
+                let t = brdf_lut::Lut::from_path(assets_dir().join(G2_LINEAR_ASSET)).unwrap();
+            } |k| t.g(black_box($ti32[k]), black_box($tr32[k]), SIGMA as f32).unwrap(),
+            "g_lut2d_linear_batch" {
+                let b = $asset(G2_LINEAR_ASSET);
+                let t = GTable::parse(&b[..]).unwrap();
+                let mut out = vec![0f32; BATCH];
+            } |_k| {
+                t.g_batch(black_box(&$ti32), black_box(&$tr32), &mut out);
+                out[0]
+            },
+            "g_lut3d_linear_batch" {
+                let b = $asset(G3_LINEAR_ASSET);
+                let t = GTable3::parse(&b[..]).unwrap();
+                let mut out = vec![0f32; BATCH];
+            } |_k| {
+                t.g_batch(black_box(&$ti32), black_box(&$tr32), SIGMA as f32, &mut out);
+                out[0]
+            },
+            "dfg_lut_batch" {
+                let b = $asset(DFG_LINEAR_ASSET);
+                let t = DfgTable::parse(&b[..]).unwrap();
+                let ((mu, r), mut a, mut bb) = (mu_r(&$mr), vec![0f32; BATCH], vec![0f32; BATCH]);
+            } |_k| {
+                t.ab_batch(black_box(&mu), black_box(&r), &mut a, &mut bb);
+                a[0] + bb[0]
+            },
+            "e_lut_batch" {
+                let b = $asset(E_ASSET);
+                let t = AlbedoTable::parse(&b[..]).unwrap();
+                let ((mu, r), mut a) = (mu_r(&$mr), vec![0f32; BATCH]);
+            } |_k| {
+                t.e_batch(black_box(&mu), black_box(&r), &mut a);
+                a[0]
+            },
+            "eavg_lut_batch" {
+                let b = $asset(EAVG_ASSET);
+                let t = AverageAlbedoTable::parse(&b[..]).unwrap();
+                let ((_, r), mut a) = (mu_r(&$mr), vec![0f32; BATCH]);
+            } |_k| {
+                t.e_avg_batch(black_box(&r), &mut a);
+                a[0]
+            },
+            "e_lut" {
+                let b = $asset(E_ASSET);
+                let t = AlbedoTable::parse(&b[..]).unwrap();
+            } |k| t.e(black_box($mr[k].0 as f32), black_box($mr[k].1 as f32)),
+            "eavg_lut" {
+                let b = $asset(EAVG_ASSET);
+                let t = AverageAlbedoTable::parse(&b[..]).unwrap();
+            } |k| t.e_avg(black_box($mr[k].1 as f32)),
+            "g_lut2d_linear_dots" {
+                let b = $asset(G2_LINEAR_ASSET);
+                let t = GTable::parse(&b).unwrap();
+            } |k| t.g_dots(black_box($d32[k].n_i), black_box($d32[k].n_o), black_box($d32[k].i_o)),
+            "g_lut3d_linear_dots" {
+                let b = $asset(G3_LINEAR_ASSET);
+                let t = GTable3::parse(&b).unwrap();
+            } |k| t.g_dots(
+                black_box($d32[k].n_i),
+                black_box($d32[k].n_o),
+                black_box($d32[k].i_o),
+                SIGMA as f32
+            ),
+            "sheen_e_lut" {
+                let b = sheen_table();
+                let t = SheenAlbedoTable::parse(&b[..]).unwrap();
+            } |k| t.e(black_box($mr[k].0 as f32), black_box($mr[k].1 as f32)),
+            "glass_e_lut3d" {
+                let b = glass_table_32();
+                let t = brdf_lut::GlassAlbedoTable::parse(&b[..]).unwrap();
+            } |k| {
+                let eta = 1.0 + 0.02 * (k % 97) as f32;
+                let (r, t) = t.rt(black_box($mr[k].0 as f32), black_box($mr[k].1 as f32), eta);
+                r + t
+            },
+        }
+    };
+}
+
+/// [`kernel_table`] callback: the names, as the `const KERNELS` item.
+macro_rules! kernel_names {
+    ($($name:literal { $($setup:tt)* } |$k:ident| $body:expr,)*) => {
+        /// The kernel names, in [`kernel_table`] order (`harness list`).
+        const KERNELS: &[&str] = &[$($name),*];
+    };
+}
+
+kernel_table!(kernel_names![ti32 tr32 ti64 tr64 d32 mr asset]);
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -64,196 +192,38 @@ fn main() {
     let d32 = dots_pairs::<f32>(BATCH);
     let mr = mu_roughness(BATCH);
     let mut acc = 0f64;
-    macro_rules! run {
-        ($body:expr) => {{
-            #[allow(unused_mut)]
-            let mut f = $body;
-            for k in 0..n {
-                acc += f(k % BATCH) as f64;
-            }
-        }};
-    }
     let asset = |a: &str| {
         read_asset(a).unwrap_or_else(|| {
             eprintln!("asset {a} missing");
             std::process::exit(1)
         })
     };
-    match name {
-        "g_direct_f32" => {
-            let g = ModifiedG::<f32>::new(SIGMA as f32).unwrap();
-            run!(|k: usize| g.g(black_box(ti32[k]), black_box(tr32[k])))
-        }
-        "g_direct_f64" => {
-            let g = ModifiedG::<f64>::new(SIGMA).unwrap();
-            run!(|k: usize| g.g(black_box(ti64[k]), black_box(tr64[k])))
-        }
-        "g_lut3d" => {
-            let b = asset(G3_ASSET);
-            let t = GTable3::parse(&b).unwrap();
-            run!(|k: usize| t.g(black_box(ti32[k]), black_box(tr32[k]), SIGMA as f32))
-        }
-        "g_lut2d" => {
-            let b = asset(G2_ASSET);
-            let t = GTable::parse(&b).unwrap();
-            run!(|k: usize| t.g(black_box(ti32[k]), black_box(tr32[k])))
-        }
-        "glass_e_lut3d" => {
-            let b = glass_table_32();
-            let t = brdf_lut::GlassAlbedoTable::parse(&b[..]).unwrap();
-            run!(|k: usize| {
-                let eta = 1.0 + 0.02 * (k % 97) as f32;
-                let (r, t) = t.rt(black_box(mr[k].0 as f32), black_box(mr[k].1 as f32), eta);
-                r + t
-            })
-        }
-        "g_lut3d_linear" => {
-            let b = asset(G3_LINEAR_ASSET);
-            let t = GTable3::parse(&b).unwrap();
-            run!(|k: usize| t.g(black_box(ti32[k]), black_box(tr32[k]), SIGMA as f32))
-        }
-        "g_lut2d_linear" => {
-            let b = asset(G2_LINEAR_ASSET);
-            let t = GTable::parse(&b).unwrap();
-            run!(|k: usize| t.g(black_box(ti32[k]), black_box(tr32[k])))
-        }
-        "smith_beckmann_f32" => {
-            let m = beckmann_m_from_sigma(SIGMA) as f32;
-            run!(|k: usize| masking::g_smith_beckmann_correlated(
-                black_box(d32[k].n_i),
-                black_box(d32[k].n_o),
-                m
-            ))
-        }
-        "blinn_f32" => run!(|k: usize| masking::g_blinn_dots(black_box(d32[k]))),
-        "dfg_lut" => {
-            let b = asset(DFG_LINEAR_ASSET);
-            let t = DfgTable::parse(&b).unwrap();
-            run!(|k: usize| {
-                let (a, b) = t.ab(black_box(mr[k].0 as f32), black_box(mr[k].1 as f32));
-                a + b
-            })
-        }
-        "dfg_karis" => run!(|k: usize| {
-            let (a, b) = env_brdf_approx(black_box(mr[k].0 as f32), black_box(mr[k].1 as f32));
-            a + b
-        }),
-        "dfg_direct_f64" => run!(|k: usize| {
-            let (a, b) =
-                dfg_ggx::<f64, OuterRule, InnerRule>(black_box(mr[k].0), black_box(mr[k].1));
-            a + b
-        }),
-        "floor_bilinear2" => {
-            let t = FloorBilinear2::new();
-            run!(|k: usize| {
-                let (a, b) = t.fetch(black_box(mr[k].0 as f32), black_box(mr[k].1 as f32));
-                a + b
-            })
-        }
-        "dfg_lut_std" => {
-            let t = brdf_lut::Lut::from_path(assets_dir().join(DFG_LINEAR_ASSET)).unwrap();
-            run!(|k: usize| {
-                let (a, b) = t
-                    .dfg(black_box(mr[k].0 as f32), black_box(mr[k].1 as f32))
-                    .unwrap();
-                a + b
-            })
-        }
-        "g_lut2d_linear_std" => {
-            let t = brdf_lut::Lut::from_path(assets_dir().join(G2_LINEAR_ASSET)).unwrap();
-            run!(|k: usize| t
-                .g(black_box(ti32[k]), black_box(tr32[k]), SIGMA as f32)
-                .unwrap())
-        }
-        "g_lut2d_linear_batch" => {
-            let b = asset(G2_LINEAR_ASSET);
-            let t = GTable::parse(&b[..]).unwrap();
-            let mut out = vec![0f32; BATCH];
-            run!(|_k: usize| {
-                t.g_batch(black_box(&ti32), black_box(&tr32), &mut out);
-                out[0]
-            })
-        }
-        "g_lut3d_linear_batch" => {
-            let b = asset(G3_LINEAR_ASSET);
-            let t = GTable3::parse(&b[..]).unwrap();
-            let mut out = vec![0f32; BATCH];
-            run!(|_k: usize| {
-                t.g_batch(black_box(&ti32), black_box(&tr32), SIGMA as f32, &mut out);
-                out[0]
-            })
-        }
-        "dfg_lut_batch" | "e_lut_batch" | "eavg_lut_batch" => {
-            let mu: Vec<f32> = mr.iter().map(|p| p.0 as f32).collect();
-            let r: Vec<f32> = mr.iter().map(|p| p.1 as f32).collect();
-            let (mut a, mut bb) = (vec![0f32; BATCH], vec![0f32; BATCH]);
+    // One match arm a row of the table: its set-up, then `n` calls cycling over the inputs.
+    macro_rules! dispatch {
+        ($($name:literal { $($setup:tt)* } |$k:ident| $body:expr,)*) => {
             match name {
-                "dfg_lut_batch" => {
-                    let b = asset(DFG_LINEAR_ASSET);
-                    let t = DfgTable::parse(&b[..]).unwrap();
-                    run!(|_k: usize| {
-                        t.ab_batch(black_box(&mu), black_box(&r), &mut a, &mut bb);
-                        a[0] + bb[0]
-                    })
-                }
-                "e_lut_batch" => {
-                    let b = asset(E_ASSET);
-                    let t = AlbedoTable::parse(&b[..]).unwrap();
-                    run!(|_k: usize| {
-                        t.e_batch(black_box(&mu), black_box(&r), &mut a);
-                        a[0]
-                    })
-                }
+                $($name => {
+                    $($setup)*
+                    #[allow(unused_mut)]
+                    let mut f = |$k: usize| $body;
+                    for k in 0..n {
+                        acc += f(k % BATCH) as f64;
+                    }
+                })*
                 _ => {
-                    let b = asset(EAVG_ASSET);
-                    let t = AverageAlbedoTable::parse(&b[..]).unwrap();
-                    run!(|_k: usize| {
-                        t.e_avg_batch(black_box(&r), &mut a);
-                        a[0]
-                    })
+                    eprintln!("unknown kernel {name}; `harness list` prints the names");
+                    std::process::exit(2);
                 }
             }
-        }
-        "g_lut2d_linear_dots" => {
-            let b = asset(G2_LINEAR_ASSET);
-            let t = GTable::parse(&b).unwrap();
-            run!(|k: usize| t.g_dots(
-                black_box(d32[k].n_i),
-                black_box(d32[k].n_o),
-                black_box(d32[k].i_o)
-            ))
-        }
-        "g_lut3d_linear_dots" => {
-            let b = asset(G3_LINEAR_ASSET);
-            let t = GTable3::parse(&b).unwrap();
-            run!(|k: usize| t.g_dots(
-                black_box(d32[k].n_i),
-                black_box(d32[k].n_o),
-                black_box(d32[k].i_o),
-                SIGMA as f32
-            ))
-        }
-        "sheen_e_lut" => {
-            let b = sheen_table();
-            let t = SheenAlbedoTable::parse(&b[..]).unwrap();
-            run!(|k: usize| t.e(black_box(mr[k].0 as f32), black_box(mr[k].1 as f32)))
-        }
-        "e_lut" => {
-            let b = asset(E_ASSET);
-            let t = AlbedoTable::parse(&b[..]).unwrap();
-            run!(|k: usize| t.e(black_box(mr[k].0 as f32), black_box(mr[k].1 as f32)))
-        }
-        "eavg_lut" => {
-            let b = asset(EAVG_ASSET);
-            let t = AverageAlbedoTable::parse(&b[..]).unwrap();
-            run!(|k: usize| t.e_avg(black_box(mr[k].1 as f32)))
-        }
-        _ => {
-            eprintln!("unknown kernel {name}; `harness list` prints the names");
-            std::process::exit(2);
-        }
+        };
     }
+    kernel_table!(dispatch![ti32 tr32 ti64 tr64 d32 mr asset]);
     black_box(acc);
+}
+
+/// The batch kernels' (μ, roughness) inputs as two f32 slices.
+fn mu_r(mr: &[(f64, f64)]) -> (Vec<f32>, Vec<f32>) {
+    mr.iter().map(|p| (p.0 as f32, p.1 as f32)).unzip()
 }
 
 /// A sheen albedo table for `sheen_e_lut`, built at start-up (no asset holds one; the
