@@ -54,12 +54,18 @@ impl Prepared {
         scalar: impl Fn([f32; D]) -> [f32; C],
     ) {
         #[cfg(hosted)]
-        if self.reader.chunked() {
-            return self.sample_batch::<D, C>(payload, x, out);
+        let r = &self.reader;
+        #[cfg(hosted)]
+        if r.chunked() {
+            return self.drive_batch::<D, C, CHUNK_SAMPLE>(x, out, payload, |xs, avx2| {
+                r.chunk::<D, C, CHUNK_SAMPLE>(payload, xs, avx2)
+            });
         }
         #[cfg(all(hosted, not(feature = "compact")))]
-        if self.reader.cubic_chunked() {
-            return self.cubic_batch::<D, C>(payload, x, out);
+        if r.cubic_chunked() {
+            return self.drive_batch::<D, C, CHUNK_CUBIC>(x, out, payload, |xs, _| {
+                r.chunk_cubic::<D, C, CHUNK_CUBIC>(payload, xs)
+            });
         }
         let _ = payload;
         // (Checked accesses: no panic path, whatever the compiler proves of the lengths.)
@@ -182,13 +188,12 @@ impl Prepared {
         let (m, s) = g_args1(theta_i, theta_r);
         #[cfg(hosted)]
         let (gm, gs) = if self.g_in_range {
-            self.reader
-                .pair3_in::<true>(&self.grid, payload, m, s, sigma)
+            self.reader.pair3::<true>(&self.grid, payload, m, s, sigma)
         } else {
-            self.reader.pair3(&self.grid, payload, m, s, sigma)
+            self.reader.pair3::<false>(&self.grid, payload, m, s, sigma)
         };
         #[cfg(not(hosted))]
-        let (gm, gs) = self.reader.pair3(&self.grid, payload, m, s, sigma);
+        let (gm, gs) = self.reader.pair3::<false>(&self.grid, payload, m, s, sigma);
         let (gm, gs) = (unit01(gm), unit01(gs));
         (gm, gs, min_g(gm, gs))
     }
@@ -205,7 +210,7 @@ impl Prepared {
     ) -> (f32, f32, f32) {
         let r = &self.reader;
         let (gm, gs) = if self.grid.dims == 3 {
-            r.pair3(&self.grid, payload, m, s, sigma)
+            r.pair3::<false>(&self.grid, payload, m, s, sigma)
         } else {
             self.pair2(payload, m, s)
         };
@@ -291,63 +296,91 @@ const CHUNK: usize = 32;
 /// splits unevenly).
 #[cfg(hosted)]
 const CHUNK_SAMPLE: usize = 8;
+/// Queries per chunk of the Catmull–Rom batch entry points.
+#[cfg(all(hosted, not(feature = "compact")))]
+const CHUNK_CUBIC: usize = 8;
 
+/// The batch drivers (hosted targets): chunks of [`Reader::chunk`] (linear u16 tables) or
+/// [`Reader::chunk_cubic`] (Catmull–Rom tables), then the scalar tail.
 #[cfg(hosted)]
 impl Prepared {
-    /// G of `N` in-plane pairs of a 2-D (`z` = None) or 3-D table at one σ: [`Prepared::g2`]
-    /// / [`Prepared::g3`] (`.2`) bit for bit. The table must be `chunked()`.
+    /// `out[k] = G(ti[k], tr[k])` (at σ = `sigma` for a 3-D table) for k < `out.len()`:
+    /// [`Prepared::g2`] / [`Prepared::g3`] (`.2`) bit for bit, in chunks of the table's
+    /// chunk path (a NaN σ fills `out` with NaN). `false`, nothing written, for a table
+    /// that is neither `chunked()` nor `cubic_chunked()`.
     #[inline(always)]
-    fn g_chunk<const N: usize>(
+    pub(crate) fn g_batch(
         &self,
         payload: &[u8],
-        ti: &[f32; N],
-        tr: &[f32; N],
-        z: Option<f32>,
-        avx2: bool,
-    ) -> [f32; N] {
-        let (m, s, nan) = g_args_n(ti, tr);
+        ti: &[f32],
+        tr: &[f32],
+        sigma: Option<f32>,
+        out: &mut [f32],
+    ) -> bool {
         let r = &self.reader;
-        let (gm, gs) = match z {
-            Some(z) => (
-                r.chunk3::<N>(payload, &m, z, avx2),
-                r.chunk3::<N>(payload, &s, z, avx2),
-            ),
-            None => (
-                r.chunk::<2, 1, N>(payload, &m, avx2)[0],
-                r.chunk::<2, 1, N>(payload, &s, avx2)[0],
-            ),
-        };
-        g_of_sides(&gm, &gs, &nan)
+        #[cfg(not(feature = "compact"))]
+        let cubic = r.cubic_chunked();
+        #[cfg(feature = "compact")]
+        let cubic = false;
+        if !r.chunked() && !cubic {
+            return false;
+        }
+        if sigma.is_some_and(f32::is_nan) {
+            out.fill(f32::NAN);
+            return true;
+        }
+        if r.chunked() {
+            crate::lookup::wide(
+                #[inline(always)]
+                |avx2| {
+                    self.g_drive::<CHUNK>(payload, ti, tr, sigma, out, |x| match sigma {
+                        Some(z) => r.chunk3::<CHUNK>(payload, x, z, avx2),
+                        None => r.chunk::<2, 1, CHUNK>(payload, x, avx2)[0],
+                    })
+                },
+            );
+        } else {
+            #[cfg(not(feature = "compact"))]
+            {
+                // The σ taps once for the whole batch.
+                let z = sigma.map(|z| r.lanes[2].cubic(z));
+                crate::lookup::wide(
+                    #[inline(always)]
+                    |_| {
+                        self.g_drive::<CHUNK_CUBIC>(payload, ti, tr, sigma, out, |x| match &z {
+                            Some(z) => r.chunk3_cubic::<CHUNK_CUBIC>(payload, x, z),
+                            None => r.chunk_cubic::<2, 1, CHUNK_CUBIC>(payload, x)[0],
+                        })
+                    },
+                );
+            }
+        }
+        true
     }
 
-    /// `out[k] = G(theta_i[k], theta_r[k])` for k < n (chunks, then the scalar tail).
+    /// The G batch loop: chunks of `N` in-plane pairs ([`g_args_n`], then `side` of each
+    /// side's `N` table arguments: its one-sided factors, then [`g_of_sides`]), and the
+    /// scalar tail ([`Prepared::g3`] at σ = `z`, or [`Prepared::g2`]).
     #[inline(always)]
-    fn g_batch(&self, payload: &[u8], ti: &[f32], tr: &[f32], z: Option<f32>, out: &mut [f32]) {
-        crate::lookup::wide(
-            #[inline(always)]
-            |avx2| self.g_batch_body(payload, ti, tr, z, out, avx2),
-        )
-    }
-
-    #[inline(always)]
-    fn g_batch_body(
+    fn g_drive<const N: usize>(
         &self,
         payload: &[u8],
         ti: &[f32],
         tr: &[f32],
         z: Option<f32>,
         out: &mut [f32],
-        avx2: bool,
+        side: impl Fn(&[[f32; N]; 2]) -> [f32; N],
     ) {
         let mut done = 0;
         for ((o, a), b) in out
-            .chunks_exact_mut(CHUNK)
-            .zip(ti.chunks_exact(CHUNK))
-            .zip(tr.chunks_exact(CHUNK))
+            .chunks_exact_mut(N)
+            .zip(ti.chunks_exact(N))
+            .zip(tr.chunks_exact(N))
         {
             if let (Some(a), Some(b)) = (a.first_chunk(), b.first_chunk()) {
-                o.copy_from_slice(&self.g_chunk::<CHUNK>(payload, a, b, z, avx2));
-                done += CHUNK;
+                let (m, s, nan) = g_args_n(a, b);
+                o.copy_from_slice(&g_of_sides(&side(&m), &side(&s), &nan));
+                done += N;
             }
         }
         for ((o, &a), &b) in out.iter_mut().zip(ti).zip(tr).skip(done) {
@@ -358,168 +391,54 @@ impl Prepared {
         }
     }
 
-    /// Channels of `D`-axis lookups over slices (chunks, then the scalar tail):
-    /// `out[c][k]` = channel c at (x[0][k], …); every slice has the same length.
+    /// The batch driver shared by every chunked path, compiled for AVX2 where the processor
+    /// has it ([`crate::lookup::wide`]; `chunk`'s flag says so): `chunk` computes `N`
+    /// queries at once (bit for bit the scalar lookup), the tail of fewer than `N` goes
+    /// through [`Reader::sample`]. `out[c][k]` = channel c at (x[0][k], …); every slice
+    /// has the same length.
     #[inline(always)]
-    fn sample_batch<const D: usize, const C: usize>(
+    fn drive_batch<const D: usize, const C: usize, const N: usize>(
         &self,
-        payload: &[u8],
         x: [&[f32]; D],
         out: [&mut [f32]; C],
+        payload: &[u8],
+        chunk: impl Fn(&[[f32; N]; D], bool) -> [[f32; N]; C],
     ) {
-        let r = &self.reader;
         crate::lookup::wide(
             #[inline(always)]
             |avx2| {
-                self.drive_batch::<D, C, CHUNK_SAMPLE>(x, out, payload, |xs| {
-                    r.chunk::<D, C, CHUNK_SAMPLE>(payload, xs, avx2)
-                })
+                let n = out[0].len();
+                let mut k = 0;
+                while k + N <= n {
+                    let mut xs = [[0.0f32; N]; D];
+                    for (d, xd) in xs.iter_mut().enumerate() {
+                        if let Some(c) = x[d].get(k..).and_then(|s| s.first_chunk::<N>()) {
+                            *xd = *c;
+                        }
+                    }
+                    let v = chunk(&xs, avx2);
+                    for c in 0..C {
+                        if let Some(o) = out[c].get_mut(k..k + N) {
+                            o.copy_from_slice(&v[c]);
+                        }
+                    }
+                    k += N;
+                }
+                while k < n {
+                    let mut xk = [0.0f32; D];
+                    for d in 0..D {
+                        xk[d] = x[d].get(k).copied().unwrap_or(f32::NAN);
+                    }
+                    let v = self.reader.sample::<D, C>(&self.grid, payload, xk);
+                    for c in 0..C {
+                        if let Some(o) = out[c].get_mut(k) {
+                            *o = v[c];
+                        }
+                    }
+                    k += 1;
+                }
             },
         );
-    }
-
-    /// The batch driver shared by every chunked path: `chunk` computes `N` queries at once
-    /// (bit for bit the scalar lookup), the tail of fewer than `N` goes through
-    /// [`Reader::sample`]. `out[c][k]` = channel c at (x[0][k], …); every slice has the same
-    /// length.
-    #[inline(always)]
-    pub(crate) fn drive_batch<const D: usize, const C: usize, const N: usize>(
-        &self,
-        x: [&[f32]; D],
-        out: [&mut [f32]; C],
-        payload: &[u8],
-        chunk: impl Fn(&[[f32; N]; D]) -> [[f32; N]; C],
-    ) {
-        let n = out[0].len();
-        let mut k = 0;
-        while k + N <= n {
-            let mut xs = [[0.0f32; N]; D];
-            for (d, xd) in xs.iter_mut().enumerate() {
-                if let Some(c) = x[d].get(k..).and_then(|s| s.first_chunk::<N>()) {
-                    *xd = *c;
-                }
-            }
-            let v = chunk(&xs);
-            for c in 0..C {
-                if let Some(o) = out[c].get_mut(k..k + N) {
-                    o.copy_from_slice(&v[c]);
-                }
-            }
-            k += N;
-        }
-        while k < n {
-            let mut xk = [0.0f32; D];
-            for d in 0..D {
-                xk[d] = x[d].get(k).copied().unwrap_or(f32::NAN);
-            }
-            let v = self.reader.sample::<D, C>(&self.grid, payload, xk);
-            for c in 0..C {
-                if let Some(o) = out[c].get_mut(k) {
-                    *o = v[c];
-                }
-            }
-            k += 1;
-        }
-    }
-}
-
-/// Queries per chunk of the Catmull–Rom batch entry points.
-#[cfg(all(hosted, not(feature = "compact")))]
-const CHUNK_CUBIC: usize = 8;
-
-/// The Catmull–Rom batch drivers (chunks of [`Reader::chunk_cubic`], then the scalar tail).
-#[cfg(all(hosted, not(feature = "compact")))]
-impl Prepared {
-    /// Channels of `D`-axis Catmull–Rom lookups over slices (chunks, then the scalar tail):
-    /// `out[c][k]` = channel c at (x[0][k], …); every slice has the same length. The table
-    /// must be `cubic_chunked()`.
-    pub(crate) fn cubic_batch<const D: usize, const C: usize>(
-        &self,
-        payload: &[u8],
-        x: [&[f32]; D],
-        out: [&mut [f32]; C],
-    ) {
-        let r = &self.reader;
-        crate::lookup::wide(
-            #[inline(always)]
-            |_| {
-                self.drive_batch::<D, C, CHUNK_CUBIC>(x, out, payload, |xs| {
-                    r.chunk_cubic::<D, C, CHUNK_CUBIC>(payload, xs)
-                })
-            },
-        );
-    }
-
-    /// G of `N` in-plane pairs of a 2-D (`z` = None) or 3-D Catmull–Rom table (`z`: the
-    /// first node and weights of σ): [`Prepared::g2`] / [`Prepared::g3`] (`.2`) bit for bit
-    /// (a NaN angle gives NaN before any lookup, as there).
-    #[inline(always)]
-    fn g_chunk_cubic<const N: usize>(
-        &self,
-        payload: &[u8],
-        ti: &[f32; N],
-        tr: &[f32; N],
-        z: Option<&(usize, [f32; 4])>,
-    ) -> [f32; N] {
-        let (m, s, nan) = g_args_n(ti, tr);
-        let r = &self.reader;
-        let (gm, gs) = match z {
-            Some(z) => (
-                r.chunk3_cubic::<N>(payload, &m, z),
-                r.chunk3_cubic::<N>(payload, &s, z),
-            ),
-            None => (
-                r.chunk_cubic::<2, 1, N>(payload, &m)[0],
-                r.chunk_cubic::<2, 1, N>(payload, &s)[0],
-            ),
-        };
-        g_of_sides(&gm, &gs, &nan)
-    }
-
-    /// `out[k] = G(theta_i[k], theta_r[k])` (at σ = `sigma` for a 3-D table, which must
-    /// not be NaN) of a Catmull–Rom table for k < `out.len()` (chunks, then the scalar
-    /// tail); the table must be `cubic_chunked()`.
-    pub(crate) fn g_batch_cubic(
-        &self,
-        payload: &[u8],
-        ti: &[f32],
-        tr: &[f32],
-        sigma: Option<f32>,
-        out: &mut [f32],
-    ) {
-        crate::lookup::wide(
-            #[inline(always)]
-            |_| self.g_batch_cubic_body(payload, ti, tr, sigma, out),
-        )
-    }
-
-    #[inline(always)]
-    fn g_batch_cubic_body(
-        &self,
-        payload: &[u8],
-        ti: &[f32],
-        tr: &[f32],
-        sigma: Option<f32>,
-        out: &mut [f32],
-    ) {
-        let z = sigma.map(|z| self.reader.lanes[2].cubic(z));
-        let mut done = 0;
-        for ((o, a), b) in out
-            .chunks_exact_mut(CHUNK_CUBIC)
-            .zip(ti.chunks_exact(CHUNK_CUBIC))
-            .zip(tr.chunks_exact(CHUNK_CUBIC))
-        {
-            if let (Some(a), Some(b)) = (a.first_chunk(), b.first_chunk()) {
-                o.copy_from_slice(&self.g_chunk_cubic::<CHUNK_CUBIC>(payload, a, b, z.as_ref()));
-                done += CHUNK_CUBIC;
-            }
-        }
-        for ((o, &a), &b) in out.iter_mut().zip(ti).zip(tr).skip(done) {
-            *o = match sigma {
-                Some(z) => self.g3(payload, a, b, z).2,
-                None => self.g2(payload, a, b).2,
-            };
-        }
     }
 }
 
@@ -753,14 +672,7 @@ impl<B: AsRef<[u8]>> GTable<B> {
         let p = self.payload();
         let n = theta_i.len().min(theta_r.len()).min(out.len());
         #[cfg(hosted)]
-        if self.p.reader.chunked() {
-            self.p.g_batch(p, theta_i, theta_r, None, &mut out[..n]);
-            return n;
-        }
-        #[cfg(all(hosted, not(feature = "compact")))]
-        if self.p.reader.cubic_chunked() {
-            self.p
-                .g_batch_cubic(p, theta_i, theta_r, None, &mut out[..n]);
+        if self.p.g_batch(p, theta_i, theta_r, None, &mut out[..n]) {
             return n;
         }
         for ((o, &a), &b) in out[..n].iter_mut().zip(theta_i).zip(theta_r) {
@@ -799,23 +711,10 @@ impl<B: AsRef<[u8]>> GTable3<B> {
         let p = self.payload();
         let n = theta_i.len().min(theta_r.len()).min(out.len());
         #[cfg(hosted)]
-        if self.p.reader.chunked() {
-            if sigma.is_nan() {
-                out[..n].fill(f32::NAN);
-            } else {
-                self.p
-                    .g_batch(p, theta_i, theta_r, Some(sigma), &mut out[..n]);
-            }
-            return n;
-        }
-        #[cfg(all(hosted, not(feature = "compact")))]
-        if self.p.reader.cubic_chunked() {
-            if sigma.is_nan() {
-                out[..n].fill(f32::NAN);
-            } else {
-                self.p
-                    .g_batch_cubic(p, theta_i, theta_r, Some(sigma), &mut out[..n]);
-            }
+        if self
+            .p
+            .g_batch(p, theta_i, theta_r, Some(sigma), &mut out[..n])
+        {
             return n;
         }
         for ((o, &a), &b) in out[..n].iter_mut().zip(theta_i).zip(theta_r) {
@@ -1000,10 +899,7 @@ mod tests {
     use brdf_core::geometry::Dots;
     use brdf_core::masking::ModifiedG;
 
-    fn asset(name: &str) -> std::vec::Vec<u8> {
-        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/");
-        std::fs::read(std::format!("{dir}{name}")).unwrap()
-    }
+    use crate::testing::asset;
 
     /// The batch entry points through the baseline (non-AVX2) build of their chunk loops
     /// equal the scalar lookups bit for bit (tests/batch_bits.rs checks the build that

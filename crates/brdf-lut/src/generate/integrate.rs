@@ -253,13 +253,9 @@ fn ab_rule<RO: Rule, RI: Rule, RG: Rule>(
         (Distribution::Ggx, Masking::SmithSeparable) => {
             ss(ndf, &|d| TrowbridgeReitz::g_separable_cos(d.n_i, d.n_o, w))
         }
-        (Distribution::Ggx, _) => {
-            ss(ndf, &|d| TrowbridgeReitz::g_correlated_cos(d.n_i, d.n_o, w))
-        }
+        (Distribution::Ggx, _) => ss(ndf, &|d| TrowbridgeReitz::g_correlated_cos(d.n_i, d.n_o, w)),
         (_, Masking::SmithSeparable) => ss(ndf, &|d| Beckmann::g_separable_cos(d.n_i, d.n_o, w)),
-        (_, Masking::SmithCorrelated) => {
-            ss(ndf, &|d| Beckmann::g_correlated_cos(d.n_i, d.n_o, w))
-        }
+        (_, Masking::SmithCorrelated) => ss(ndf, &|d| Beckmann::g_correlated_cos(d.n_i, d.n_o, w)),
         (_, Masking::VCavity) => ss(ndf, &g_blinn_dots),
         (_, Masking::Modified) => match ModifiedG::<f64, RG>::new(sigma) {
             Ok(g) => ss(ndf, &|d| g.g_dots(d)),

@@ -7,6 +7,7 @@ use super::Prepared;
 use crate::header::{Axis, Encoding, Interpolation, Placement, TableKind, Warp};
 use crate::lookup::simd::{Fast2, Kind};
 use crate::lookup::{Lane, Reader};
+use crate::testing::{asset, asset_path, axis};
 use crate::write;
 use crate::LutView;
 use std::vec::Vec;
@@ -22,6 +23,24 @@ fn agrees(x: f32, y: f32, v: (f32, f32), want: [f32; 2]) -> bool {
 }
 
 /// The table of `spec` holding `values`, written by the crate's writer.
+/// The spec of a made-up u16 table of one channel (directional albedo, `A`) or two
+/// (split-sum, `A` and `B`).
+fn u16_spec<'a>(
+    axes: &'a [Axis<'a>],
+    channels: usize,
+    interpolation: Interpolation,
+) -> write::Spec<'a> {
+    const NAMES: [&str; 2] = ["A", "B"];
+    write::Spec {
+        kind: [TableKind::DirectionalAlbedo, TableKind::SplitSum][channels - 1],
+        axes,
+        channels: &NAMES[..channels],
+        encoding: Encoding::Unorm16,
+        interpolation,
+        generator: Default::default(),
+    }
+}
+
 fn encode(spec: &write::Spec, values: &[f64]) -> Vec<u8> {
     let (chans, payload) = write::quantise(spec, values).unwrap();
     let h = write::header(spec, chans, Default::default()).unwrap();
@@ -215,18 +234,11 @@ fn batch_equals_scalar(f: &Fast2, r: &Reader, bytes: &[u8], hl: usize, xs: &[f32
     }
 }
 
-fn asset(name: &str) -> Vec<u8> {
-    let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../assets")
-        .join(name);
-    std::fs::read(p).unwrap()
-}
-
 /// Every committed asset: the one- and two-channel linear 2-D ones take the two-lane path (the
 /// split-sum speed tier its inlined form) and equal the general reader bit for bit.
 #[test]
 fn assets_equal_the_general_reader() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets");
+    let dir = asset_path("");
     let mut taken = Vec::new();
     for e in std::fs::read_dir(dir).unwrap() {
         let name = e.unwrap().file_name().into_string().unwrap();
@@ -258,14 +270,7 @@ fn assets_equal_the_general_reader() {
 /// clamp: the table takes the out-of-line form, with the same values.
 #[test]
 fn rounding_past_the_last_node_keeps_the_clamp() {
-    let ax = |hi: f64| Axis {
-        name: "x",
-        count: 256,
-        lo: 0.0,
-        hi,
-        warp: Warp::Sqrt,
-        placement: Placement::Endpoint,
-    };
+    let ax = |hi: f64| axis(256, 0.0, hi, Warp::Sqrt, Placement::Endpoint);
     let over = (1..1000)
         .map(|k| 0.3 + 0.0007 * k as f64)
         .find(|&hi| {
@@ -274,14 +279,7 @@ fn rounding_past_the_last_node_keeps_the_clamp() {
         })
         .expect("some range rounds past the last node");
     let axes = [ax(over), ax(1.0)];
-    let spec = write::Spec {
-        kind: TableKind::SplitSum,
-        axes: &axes,
-        channels: &["A", "B"],
-        encoding: Encoding::Unorm16,
-        interpolation: Interpolation::Linear,
-        generator: Default::default(),
-    };
+    let spec = u16_spec(&axes, 2, Interpolation::Linear);
     let values: Vec<f64> = (0..spec.nodes() * 2)
         .map(|k| (0.37 * k as f64).sin())
         .collect();
@@ -300,14 +298,7 @@ fn rounding_past_the_last_node_keeps_the_clamp() {
 /// some it does not (log warp, Catmull–Rom); two channels and one.
 #[test]
 fn made_up_tables_equal_the_general_reader() {
-    let ax = |count, lo, hi, warp, placement| Axis {
-        name: "x",
-        count,
-        lo,
-        hi,
-        warp,
-        placement,
-    };
+    let ax = axis;
     use Placement::{Endpoint as E, TexelCentre as T};
     use Warp::{Linear as L, Log, Sqrt as S};
     // (axes, channels, interpolation); two channels and linear unless said.
@@ -355,21 +346,9 @@ fn made_up_tables_equal_the_general_reader() {
             Interpolation::CatmullRom,
         ),
     ];
-    let names = ["A", "B"];
     let mut kinds = Vec::new();
     for (axes, nc, interpolation) in cases {
-        let spec = write::Spec {
-            kind: if nc == 2 {
-                TableKind::SplitSum
-            } else {
-                TableKind::DirectionalAlbedo
-            },
-            axes: &axes,
-            channels: &names[..nc],
-            encoding: Encoding::Unorm16,
-            interpolation,
-            generator: Default::default(),
-        };
+        let spec = u16_spec(&axes, nc, interpolation);
         let nodes = spec.nodes();
         // Smooth plus a fixed pseudo-random part, so neighbouring nodes differ.
         let values: Vec<f64> = (0..nodes * nc)
