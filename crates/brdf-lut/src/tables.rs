@@ -4,6 +4,8 @@
 //! payload.
 
 use crate::header::{Convention, TableKind};
+#[cfg(all(hosted, target_arch = "x86_64"))]
+use crate::lookup::simd::{One, Two};
 use crate::lookup::{Grid, Reader};
 use crate::view::LutView;
 use crate::LutError;
@@ -57,15 +59,23 @@ impl Prepared {
         let r = &self.reader;
         #[cfg(hosted)]
         if r.chunked() {
-            return self.drive_batch::<D, C, CHUNK_SAMPLE>(x, out, payload, |xs, avx2| {
-                r.chunk::<D, C, CHUNK_SAMPLE>(payload, xs, avx2)
-            });
+            return self.drive_batch::<D, C, CHUNK_SAMPLE>(
+                x,
+                out,
+                payload,
+                #[inline(always)]
+                |xs, avx2| r.chunk::<D, C, CHUNK_SAMPLE>(payload, xs, avx2),
+            );
         }
         #[cfg(all(hosted, not(feature = "compact")))]
         if r.cubic_chunked() {
-            return self.drive_batch::<D, C, CHUNK_CUBIC>(x, out, payload, |xs, _| {
-                r.chunk_cubic::<D, C, CHUNK_CUBIC>(payload, xs)
-            });
+            return self.drive_batch::<D, C, CHUNK_CUBIC>(
+                x,
+                out,
+                payload,
+                #[inline(always)]
+                |xs, _| r.chunk_cubic::<D, C, CHUNK_CUBIC>(payload, xs),
+            );
         }
         let _ = payload;
         // (Checked accesses: no panic path, whatever the compiler proves of the lengths.)
@@ -250,7 +260,7 @@ impl Prepared {
     #[cfg_attr(hosted, inline(always))]
     pub(crate) fn two(&self, payload: &[u8], x: f32, y: f32) -> (f32, f32) {
         #[cfg(all(hosted, target_arch = "x86_64"))]
-        if let Some(v) = self.fast2.ab(&self.reader, payload, 0, x, y) {
+        if let Some(v) = self.fast2.lookup::<Two>(&self.reader, payload, 0, x, y) {
             return v;
         }
         let [a, b] = self.reader.sample::<2, 2>(&self.grid, payload, [x, y]);
@@ -264,7 +274,10 @@ impl Prepared {
     #[cfg_attr(hosted, inline(always))]
     pub(crate) fn two_at(&self, bytes: &[u8], x: f32, y: f32) -> (f32, f32) {
         #[cfg(all(hosted, target_arch = "x86_64"))]
-        if let Some(v) = self.fast2.ab(&self.reader, bytes, self.header_len, x, y) {
+        if let Some(v) = self
+            .fast2
+            .lookup::<Two>(&self.reader, bytes, self.header_len, x, y)
+        {
             return v;
         }
         self.two(bytes.get(self.header_len..).unwrap_or(&[]), x, y)
@@ -275,7 +288,7 @@ impl Prepared {
     #[inline]
     pub(crate) fn two1(&self, payload: &[u8], x: f32, y: f32) -> f32 {
         #[cfg(all(hosted, target_arch = "x86_64"))]
-        if let Some(v) = self.fast2.e(&self.reader, payload, 0, x, y) {
+        if let Some(v) = self.fast2.lookup::<One>(&self.reader, payload, 0, x, y) {
             return v;
         }
         self.reader.sample::<2, 1>(&self.grid, payload, [x, y])[0]
@@ -285,6 +298,54 @@ impl Prepared {
     #[inline]
     pub(crate) fn one(&self, payload: &[u8], x: f32) -> f32 {
         self.reader.sample::<1, 1>(&self.grid, payload, [x])[0]
+    }
+
+    /// `out[k] = G(ti[k], tr[k])` (at σ = `sigma` of a 3-D table) for k < `out.len()`:
+    /// [`Prepared::g2`] / [`Prepared::g3`] (`.2`) bit for bit (a NaN σ fills `out` with
+    /// NaN): chunks first where the table has a chunk path (hosted targets: `chunked()` or
+    /// `cubic_chunked()`), then the scalar lookups.
+    #[inline]
+    pub(crate) fn g_batch(
+        &self,
+        payload: &[u8],
+        ti: &[f32],
+        tr: &[f32],
+        sigma: Option<f32>,
+        out: &mut [f32],
+    ) {
+        if sigma.is_some_and(f32::is_nan) {
+            return out.fill(f32::NAN);
+        }
+        #[cfg_attr(not(hosted), allow(unused_mut))]
+        let mut done = 0;
+        #[cfg(hosted)]
+        let r = &self.reader;
+        #[cfg(hosted)]
+        if r.chunked() {
+            done = self.g_drive::<CHUNK>(ti, tr, out, |sides, avx2| {
+                sides.map(|x| match sigma {
+                    Some(z) => r.chunk3::<CHUNK>(payload, x, z, avx2),
+                    None => r.chunk::<2, 1, CHUNK>(payload, x, avx2)[0],
+                })
+            });
+        }
+        #[cfg(all(hosted, not(feature = "compact")))]
+        if r.cubic_chunked() {
+            // The σ taps once for the whole batch.
+            let z = sigma.map(|z| r.lanes[2].cubic(z));
+            done = self.g_drive::<CHUNK_CUBIC>(ti, tr, out, |sides, _| {
+                sides.map(|x| match &z {
+                    Some(z) => r.chunk3_cubic::<CHUNK_CUBIC>(payload, x, z),
+                    None => r.chunk_cubic::<2, 1, CHUNK_CUBIC>(payload, x)[0],
+                })
+            });
+        }
+        for ((o, &a), &b) in out.iter_mut().zip(ti).zip(tr).skip(done) {
+            *o = match sigma {
+                Some(z) => self.g3(payload, a, b, z).2,
+                None => self.g2(payload, a, b).2,
+            };
+        }
     }
 }
 
@@ -304,93 +365,38 @@ const CHUNK_CUBIC: usize = 8;
 /// [`Reader::chunk_cubic`] (Catmull–Rom tables), then the scalar tail.
 #[cfg(hosted)]
 impl Prepared {
-    /// `out[k] = G(ti[k], tr[k])` (at σ = `sigma` for a 3-D table) for k < `out.len()`:
-    /// [`Prepared::g2`] / [`Prepared::g3`] (`.2`) bit for bit, in chunks of the table's
-    /// chunk path (a NaN σ fills `out` with NaN). `false`, nothing written, for a table
-    /// that is neither `chunked()` nor `cubic_chunked()`.
-    #[inline(always)]
-    pub(crate) fn g_batch(
-        &self,
-        payload: &[u8],
-        ti: &[f32],
-        tr: &[f32],
-        sigma: Option<f32>,
-        out: &mut [f32],
-    ) -> bool {
-        let r = &self.reader;
-        #[cfg(not(feature = "compact"))]
-        let cubic = r.cubic_chunked();
-        #[cfg(feature = "compact")]
-        let cubic = false;
-        if !r.chunked() && !cubic {
-            return false;
-        }
-        if sigma.is_some_and(f32::is_nan) {
-            out.fill(f32::NAN);
-            return true;
-        }
-        if r.chunked() {
-            crate::lookup::wide(
-                #[inline(always)]
-                |avx2| {
-                    self.g_drive::<CHUNK>(payload, ti, tr, sigma, out, |x| match sigma {
-                        Some(z) => r.chunk3::<CHUNK>(payload, x, z, avx2),
-                        None => r.chunk::<2, 1, CHUNK>(payload, x, avx2)[0],
-                    })
-                },
-            );
-        } else {
-            #[cfg(not(feature = "compact"))]
-            {
-                // The σ taps once for the whole batch.
-                let z = sigma.map(|z| r.lanes[2].cubic(z));
-                crate::lookup::wide(
-                    #[inline(always)]
-                    |_| {
-                        self.g_drive::<CHUNK_CUBIC>(payload, ti, tr, sigma, out, |x| match &z {
-                            Some(z) => r.chunk3_cubic::<CHUNK_CUBIC>(payload, x, z),
-                            None => r.chunk_cubic::<2, 1, CHUNK_CUBIC>(payload, x)[0],
-                        })
-                    },
-                );
-            }
-        }
-        true
-    }
-
-    /// The G batch loop: chunks of `N` in-plane pairs ([`g_args_n`], then `side` of each
-    /// side's `N` table arguments: its one-sided factors, then [`g_of_sides`]), and the
-    /// scalar tail ([`Prepared::g3`] at σ = `z`, or [`Prepared::g2`]).
+    /// The G chunk loop, compiled for AVX2 where the processor has it
+    /// ([`crate::lookup::wide`]; `sides`' flag says so): chunks of `N` in-plane pairs
+    /// ([`g_args_n`], then `sides` of both sides' `N` table arguments: their one-sided
+    /// factors, then [`g_of_sides`]). Returns the number of queries written.
     #[inline(always)]
     fn g_drive<const N: usize>(
         &self,
-        payload: &[u8],
         ti: &[f32],
         tr: &[f32],
-        z: Option<f32>,
         out: &mut [f32],
-        side: impl Fn(&[[f32; N]; 2]) -> [f32; N],
-    ) {
-        let mut done = 0;
-        for ((o, a), b) in out
-            .chunks_exact_mut(N)
-            .zip(ti.chunks_exact(N))
-            .zip(tr.chunks_exact(N))
-        {
-            if let (Some(a), Some(b)) = (a.first_chunk(), b.first_chunk()) {
-                let (m, s, nan) = g_args_n(a, b);
-                o.copy_from_slice(&g_of_sides(&side(&m), &side(&s), &nan));
-                done += N;
-            }
-        }
-        for ((o, &a), &b) in out.iter_mut().zip(ti).zip(tr).skip(done) {
-            *o = match z {
-                Some(z) => self.g3(payload, a, b, z).2,
-                None => self.g2(payload, a, b).2,
-            };
-        }
+        sides: impl Fn([&[[f32; N]; 2]; 2], bool) -> [[f32; N]; 2],
+    ) -> usize {
+        crate::lookup::wide(
+            #[inline(always)]
+            |avx2| {
+                let mut done = 0;
+                for ((o, a), b) in out
+                    .chunks_exact_mut(N)
+                    .zip(ti.chunks_exact(N))
+                    .zip(tr.chunks_exact(N))
+                {
+                    if let (Some(a), Some(b)) = (a.first_chunk(), b.first_chunk()) {
+                        let (m, s, nan) = g_args_n(a, b);
+                        let [gm, gs] = sides([&m, &s], avx2);
+                        o.copy_from_slice(&g_of_sides(&gm, &gs, &nan));
+                        done += N;
+                    }
+                }
+                done
+            },
+        )
     }
-
     /// The batch driver shared by every chunked path, compiled for AVX2 where the processor
     /// has it ([`crate::lookup::wide`]; `chunk`'s flag says so): `chunk` computes `N`
     /// queries at once (bit for bit the scalar lookup), the tail of fewer than `N` goes
@@ -671,13 +677,7 @@ impl<B: AsRef<[u8]>> GTable<B> {
     pub fn g_batch(&self, theta_i: &[f32], theta_r: &[f32], out: &mut [f32]) -> usize {
         let p = self.payload();
         let n = theta_i.len().min(theta_r.len()).min(out.len());
-        #[cfg(hosted)]
-        if self.p.g_batch(p, theta_i, theta_r, None, &mut out[..n]) {
-            return n;
-        }
-        for ((o, &a), &b) in out[..n].iter_mut().zip(theta_i).zip(theta_r) {
-            *o = self.p.g2(p, a, b).2;
-        }
+        self.p.g_batch(p, theta_i, theta_r, None, &mut out[..n]);
         n
     }
 }
@@ -710,16 +710,8 @@ impl<B: AsRef<[u8]>> GTable3<B> {
     pub fn g_batch(&self, theta_i: &[f32], theta_r: &[f32], sigma: f32, out: &mut [f32]) -> usize {
         let p = self.payload();
         let n = theta_i.len().min(theta_r.len()).min(out.len());
-        #[cfg(hosted)]
-        if self
-            .p
-            .g_batch(p, theta_i, theta_r, Some(sigma), &mut out[..n])
-        {
-            return n;
-        }
-        for ((o, &a), &b) in out[..n].iter_mut().zip(theta_i).zip(theta_r) {
-            *o = self.p.g3(p, a, b, sigma).2;
-        }
+        self.p
+            .g_batch(p, theta_i, theta_r, Some(sigma), &mut out[..n]);
         n
     }
 }

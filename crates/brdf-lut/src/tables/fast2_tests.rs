@@ -5,7 +5,7 @@
 
 use super::Prepared;
 use crate::header::{Axis, Encoding, Interpolation, Placement, TableKind, Warp};
-use crate::lookup::simd::{Fast2, Kind};
+use crate::lookup::simd::{Fast2, Kind, One, Two};
 use crate::lookup::{Lane, Reader};
 use crate::testing::{asset, asset_path, axis};
 use crate::write;
@@ -104,7 +104,7 @@ fn coords(l: &Lane) -> Vec<f32> {
     v
 }
 
-/// `Fast2::ab` (from the payload and from the whole file) against the general scalar
+/// `Fast2::lookup::<Two>` (from the payload and from the whole file) against the general scalar
 /// reader, bit for bit, over the product of both axes' coordinates; returns the kind.
 fn check(bytes: &[u8]) -> Kind {
     let view = LutView::parse(bytes).unwrap();
@@ -125,8 +125,8 @@ fn check(bytes: &[u8]) -> Kind {
         for &y in &ys {
             let want = p.reader.sample::<2, 2>(&p.grid, payload, [x, y]);
             let (a, b) = (
-                f.ab(&p.reader, payload, 0, x, y),
-                f.ab(&p.reader, bytes, hl, x, y),
+                f.lookup::<Two>(&p.reader, payload, 0, x, y),
+                f.lookup::<Two>(&p.reader, bytes, hl, x, y),
             );
             let ok = |v: Option<(f32, f32)>| v.is_some_and(|v| agrees(x, y, v, want));
             assert!(ok(a) && ok(b), "({x:e}, {y:e}): {a:?} {b:?} vs {want:?}");
@@ -142,16 +142,20 @@ fn check(bytes: &[u8]) -> Kind {
     // A payload one byte short of the last block reads NaN (no panic, no read past it).
     let short = &payload[..payload.len() - 1];
     let (l0, l1) = (&p.reader.lanes[0], &p.reader.lanes[1]);
-    let v = f.ab(&p.reader, short, 0, l0.hi, l1.hi).unwrap();
+    let v = f.lookup::<Two>(&p.reader, short, 0, l0.hi, l1.hi).unwrap();
     assert!(v.0.is_nan() && v.1.is_nan());
-    assert!(!f.ab(&p.reader, short, 0, l0.lo, l1.lo).unwrap().0.is_nan());
+    assert!(!f
+        .lookup::<Two>(&p.reader, short, 0, l0.lo, l1.lo)
+        .unwrap()
+        .0
+        .is_nan());
     if f.kind == Kind::Sqrt {
         batch_equals_scalar(&f, &p.reader, bytes, hl, &xs, &ys);
     }
     f.kind
 }
 
-/// [`check`] of a one-channel table: `Fast2::e` (from the payload and from the whole file)
+/// [`check`] of a one-channel table: `Fast2::lookup::<One>` (from the payload and from the whole file)
 /// against the general scalar reader, bit for bit, NaN exactly where a coordinate is NaN,
 /// and NaN from a payload one byte short of the last block.
 fn check_one(bytes: &[u8], p: &Prepared, f: &Fast2) -> Kind {
@@ -162,8 +166,8 @@ fn check_one(bytes: &[u8], p: &Prepared, f: &Fast2) -> Kind {
         for &y in &ys {
             let [want] = p.reader.sample::<2, 1>(&p.grid, payload, [x, y]);
             let got = [
-                f.e(&p.reader, payload, 0, x, y),
-                f.e(&p.reader, bytes, hl, x, y),
+                f.lookup::<One>(&p.reader, payload, 0, x, y),
+                f.lookup::<One>(&p.reader, bytes, hl, x, y),
             ];
             // As in `check`: only two NaNs of different signs leave the NaN's bits free.
             let free = x.is_nan() && y.is_nan() && x.to_bits() != y.to_bits();
@@ -178,14 +182,22 @@ fn check_one(bytes: &[u8], p: &Prepared, f: &Fast2) -> Kind {
     }
     let short = &payload[..payload.len() - 1];
     let (l0, l1) = (&p.reader.lanes[0], &p.reader.lanes[1]);
-    assert!(f.e(&p.reader, short, 0, l0.hi, l1.hi).unwrap().is_nan());
-    assert!(!f.e(&p.reader, short, 0, l0.lo, l1.lo).unwrap().is_nan());
+    assert!(f
+        .lookup::<One>(&p.reader, short, 0, l0.hi, l1.hi)
+        .unwrap()
+        .is_nan());
+    assert!(!f
+        .lookup::<One>(&p.reader, short, 0, l0.lo, l1.lo)
+        .unwrap()
+        .is_nan());
     // The two-channel entry points do not take a one-channel table.
-    assert!(f.ab(&p.reader, payload, 0, l0.lo, l1.lo).is_none());
+    assert!(f
+        .lookup::<Two>(&p.reader, payload, 0, l0.lo, l1.lo)
+        .is_none());
     f.kind
 }
 
-/// The eight-lane batch (where the processor has AVX2) against `Fast2::ab`, bit for
+/// The eight-lane batch (where the processor has AVX2) against `Fast2::lookup::<Two>`, bit for
 /// bit: every (x, y) of the coordinate product in query order, a tail of 1–7, and a
 /// payload one byte short, whose chunks that touch the last block fall back to the
 /// scalar lookup (NaN there).
@@ -221,7 +233,7 @@ fn batch_equals_scalar(f: &Fast2, r: &Reader, bytes: &[u8], hl: usize, xs: &[f32
         // SAFETY: the processor has AVX2 (checked above).
         assert!(unsafe { f.batch_avx2(r, data, hl, limit, x, y, [&mut a, &mut b]) });
         for k in 0..n {
-            let want = f.ab(r, data, hl, x[k], y[k]).unwrap();
+            let want = f.lookup::<Two>(r, data, hl, x[k], y[k]).unwrap();
             let ok = agrees(x[k], y[k], (a[k], b[k]), [want.0, want.1]);
             assert!(
                 ok,
