@@ -59,23 +59,15 @@ impl Prepared {
         let r = &self.reader;
         #[cfg(hosted)]
         if r.chunked() {
-            return self.drive_batch::<D, C, CHUNK_SAMPLE>(
-                x,
-                out,
-                payload,
-                #[inline(always)]
-                |xs, avx2| r.chunk::<D, C, CHUNK_SAMPLE>(payload, xs, avx2),
-            );
+            return self.drive_batch::<D, C, CHUNK_SAMPLE>(x, out, payload, |xs, avx2| {
+                r.chunk::<D, C, CHUNK_SAMPLE>(payload, xs, avx2)
+            });
         }
         #[cfg(all(hosted, not(feature = "compact")))]
         if r.cubic_chunked() {
-            return self.drive_batch::<D, C, CHUNK_CUBIC>(
-                x,
-                out,
-                payload,
-                #[inline(always)]
-                |xs, _| r.chunk_cubic::<D, C, CHUNK_CUBIC>(payload, xs),
-            );
+            return self.drive_batch::<D, C, CHUNK_CUBIC>(x, out, payload, |xs, _| {
+                r.chunk_cubic::<D, C, CHUNK_CUBIC>(payload, xs)
+            });
         }
         let _ = payload;
         // (Checked accesses: no panic path, whatever the compiler proves of the lengths.)
@@ -304,7 +296,7 @@ impl Prepared {
     /// [`Prepared::g2`] / [`Prepared::g3`] (`.2`) bit for bit (a NaN σ fills `out` with
     /// NaN): chunks first where the table has a chunk path (hosted targets: `chunked()` or
     /// `cubic_chunked()`), then the scalar lookups.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn g_batch(
         &self,
         payload: &[u8],
@@ -322,23 +314,33 @@ impl Prepared {
         let r = &self.reader;
         #[cfg(hosted)]
         if r.chunked() {
-            done = self.g_drive::<CHUNK>(ti, tr, out, |sides, avx2| {
-                sides.map(|x| match sigma {
+            done = self.g_drive::<CHUNK>(
+                ti,
+                tr,
+                out,
+                // (Inlined into the loop: compiled for AVX2 with it.)
+                #[inline(always)]
+                |x, avx2| match sigma {
                     Some(z) => r.chunk3::<CHUNK>(payload, x, z, avx2),
                     None => r.chunk::<2, 1, CHUNK>(payload, x, avx2)[0],
-                })
-            });
-        }
-        #[cfg(all(hosted, not(feature = "compact")))]
-        if r.cubic_chunked() {
-            // The σ taps once for the whole batch.
-            let z = sigma.map(|z| r.lanes[2].cubic(z));
-            done = self.g_drive::<CHUNK_CUBIC>(ti, tr, out, |sides, _| {
-                sides.map(|x| match &z {
-                    Some(z) => r.chunk3_cubic::<CHUNK_CUBIC>(payload, x, z),
-                    None => r.chunk_cubic::<2, 1, CHUNK_CUBIC>(payload, x)[0],
-                })
-            });
+                },
+            );
+        } else {
+            #[cfg(not(feature = "compact"))]
+            if r.cubic_chunked() {
+                // The σ taps once for the whole batch.
+                let z = sigma.map(|z| r.lanes[2].cubic(z));
+                done = self.g_drive::<CHUNK_CUBIC>(
+                    ti,
+                    tr,
+                    out,
+                    #[inline(always)]
+                    |x, _| match &z {
+                        Some(z) => r.chunk3_cubic::<CHUNK_CUBIC>(payload, x, z),
+                        None => r.chunk_cubic::<2, 1, CHUNK_CUBIC>(payload, x)[0],
+                    },
+                );
+            }
         }
         for ((o, &a), &b) in out.iter_mut().zip(ti).zip(tr).skip(done) {
             *o = match sigma {
@@ -366,8 +368,8 @@ const CHUNK_CUBIC: usize = 8;
 #[cfg(hosted)]
 impl Prepared {
     /// The G chunk loop, compiled for AVX2 where the processor has it
-    /// ([`crate::lookup::wide`]; `sides`' flag says so): chunks of `N` in-plane pairs
-    /// ([`g_args_n`], then `sides` of both sides' `N` table arguments: their one-sided
+    /// ([`crate::lookup::wide`]; `side`'s flag says so): chunks of `N` in-plane pairs
+    /// ([`g_args_n`], then `side` of each side's `N` table arguments: its one-sided
     /// factors, then [`g_of_sides`]). Returns the number of queries written.
     #[inline(always)]
     fn g_drive<const N: usize>(
@@ -375,7 +377,7 @@ impl Prepared {
         ti: &[f32],
         tr: &[f32],
         out: &mut [f32],
-        sides: impl Fn([&[[f32; N]; 2]; 2], bool) -> [[f32; N]; 2],
+        side: impl Fn(&[[f32; N]; 2], bool) -> [f32; N],
     ) -> usize {
         crate::lookup::wide(
             #[inline(always)]
@@ -388,7 +390,7 @@ impl Prepared {
                 {
                     if let (Some(a), Some(b)) = (a.first_chunk(), b.first_chunk()) {
                         let (m, s, nan) = g_args_n(a, b);
-                        let [gm, gs] = sides([&m, &s], avx2);
+                        let (gm, gs) = (side(&m, avx2), side(&s, avx2));
                         o.copy_from_slice(&g_of_sides(&gm, &gs, &nan));
                         done += N;
                     }
