@@ -67,22 +67,16 @@ impl Crc32 {
     }
 }
 
-/// CRC-32 of one byte string.
+/// CRC-32 of one byte string. The standard check value of CRC-32/ISO-HDLC, whole and in
+/// two pieces through [`Crc32`]:
+///
+/// ```
+/// use brdf_lut::{crc32, Crc32};
+/// assert_eq!(crc32(b"123456789"), 0xCBF4_3926);
+/// assert_eq!(crc32(b""), 0);
+/// let pieces = Crc32::new().update(b"1234").update(b"56789").finish();
+/// assert_eq!(pieces, 0xCBF4_3926);
+/// ```
 pub fn crc32(bytes: &[u8]) -> u32 {
     Crc32::new().update(bytes).finish()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    #[test]
-    fn check_value() {
-        // The standard check value of CRC-32/ISO-HDLC.
-        assert_eq!(crc32(b"123456789"), 0xCBF4_3926);
-        assert_eq!(crc32(b""), 0);
-        assert_eq!(
-            Crc32::new().update(b"1234").update(b"56789").finish(),
-            0xCBF4_3926
-        );
-    }
 }

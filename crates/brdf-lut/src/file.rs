@@ -394,11 +394,7 @@ pub fn summary(v: &LutView<'_>, file_len: usize) -> String {
 mod tests {
     use super::*;
 
-    fn asset(name: &str) -> std::path::PathBuf {
-        Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../../assets")
-            .join(name)
-    }
+    use crate::testing::asset_path as asset;
 
     #[test]
     fn path_reader_and_bytes_load_the_same_table() {
@@ -461,7 +457,7 @@ mod codec_tests {
     /// encoding is the one the files were written with.
     #[test]
     fn assets_round_trip_byte_for_byte() {
-        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets");
+        let dir = crate::testing::asset_path("");
         let mut n = 0;
         for e in std::fs::read_dir(&dir).unwrap() {
             let p = e.unwrap().path();

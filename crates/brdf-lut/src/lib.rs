@@ -35,6 +35,8 @@ mod kernel;
 pub mod limits;
 mod lookup;
 mod tables;
+#[cfg(test)]
+mod testing;
 mod view;
 
 #[cfg(feature = "std")]

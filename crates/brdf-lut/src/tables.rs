@@ -4,6 +4,8 @@
 //! payload.
 
 use crate::header::{Convention, TableKind};
+#[cfg(all(hosted, target_arch = "x86_64"))]
+use crate::lookup::simd::{One, Two};
 use crate::lookup::{Grid, Reader};
 use crate::view::LutView;
 use crate::LutError;
@@ -54,12 +56,18 @@ impl Prepared {
         scalar: impl Fn([f32; D]) -> [f32; C],
     ) {
         #[cfg(hosted)]
-        if self.reader.chunked() {
-            return self.sample_batch::<D, C>(payload, x, out);
+        let r = &self.reader;
+        #[cfg(hosted)]
+        if r.chunked() {
+            return self.drive_batch::<D, C, CHUNK_SAMPLE>(x, out, payload, |xs, avx2| {
+                r.chunk::<D, C, CHUNK_SAMPLE>(payload, xs, avx2)
+            });
         }
         #[cfg(all(hosted, not(feature = "compact")))]
-        if self.reader.cubic_chunked() {
-            return self.cubic_batch::<D, C>(payload, x, out);
+        if r.cubic_chunked() {
+            return self.drive_batch::<D, C, CHUNK_CUBIC>(x, out, payload, |xs, _| {
+                r.chunk_cubic::<D, C, CHUNK_CUBIC>(payload, xs)
+            });
         }
         let _ = payload;
         // (Checked accesses: no panic path, whatever the compiler proves of the lengths.)
@@ -182,13 +190,12 @@ impl Prepared {
         let (m, s) = g_args1(theta_i, theta_r);
         #[cfg(hosted)]
         let (gm, gs) = if self.g_in_range {
-            self.reader
-                .pair3_in::<true>(&self.grid, payload, m, s, sigma)
+            self.reader.pair3::<true>(&self.grid, payload, m, s, sigma)
         } else {
-            self.reader.pair3(&self.grid, payload, m, s, sigma)
+            self.reader.pair3::<false>(&self.grid, payload, m, s, sigma)
         };
         #[cfg(not(hosted))]
-        let (gm, gs) = self.reader.pair3(&self.grid, payload, m, s, sigma);
+        let (gm, gs) = self.reader.pair3::<false>(&self.grid, payload, m, s, sigma);
         let (gm, gs) = (unit01(gm), unit01(gs));
         (gm, gs, min_g(gm, gs))
     }
@@ -205,7 +212,7 @@ impl Prepared {
     ) -> (f32, f32, f32) {
         let r = &self.reader;
         let (gm, gs) = if self.grid.dims == 3 {
-            r.pair3(&self.grid, payload, m, s, sigma)
+            r.pair3::<false>(&self.grid, payload, m, s, sigma)
         } else {
             self.pair2(payload, m, s)
         };
@@ -245,7 +252,7 @@ impl Prepared {
     #[cfg_attr(hosted, inline(always))]
     pub(crate) fn two(&self, payload: &[u8], x: f32, y: f32) -> (f32, f32) {
         #[cfg(all(hosted, target_arch = "x86_64"))]
-        if let Some(v) = self.fast2.ab(&self.reader, payload, 0, x, y) {
+        if let Some(v) = self.fast2.lookup::<Two>(&self.reader, payload, 0, x, y) {
             return v;
         }
         let [a, b] = self.reader.sample::<2, 2>(&self.grid, payload, [x, y]);
@@ -259,7 +266,10 @@ impl Prepared {
     #[cfg_attr(hosted, inline(always))]
     pub(crate) fn two_at(&self, bytes: &[u8], x: f32, y: f32) -> (f32, f32) {
         #[cfg(all(hosted, target_arch = "x86_64"))]
-        if let Some(v) = self.fast2.ab(&self.reader, bytes, self.header_len, x, y) {
+        if let Some(v) = self
+            .fast2
+            .lookup::<Two>(&self.reader, bytes, self.header_len, x, y)
+        {
             return v;
         }
         self.two(bytes.get(self.header_len..).unwrap_or(&[]), x, y)
@@ -270,7 +280,7 @@ impl Prepared {
     #[inline]
     pub(crate) fn two1(&self, payload: &[u8], x: f32, y: f32) -> f32 {
         #[cfg(all(hosted, target_arch = "x86_64"))]
-        if let Some(v) = self.fast2.e(&self.reader, payload, 0, x, y) {
+        if let Some(v) = self.fast2.lookup::<One>(&self.reader, payload, 0, x, y) {
             return v;
         }
         self.reader.sample::<2, 1>(&self.grid, payload, [x, y])[0]
@@ -280,6 +290,64 @@ impl Prepared {
     #[inline]
     pub(crate) fn one(&self, payload: &[u8], x: f32) -> f32 {
         self.reader.sample::<1, 1>(&self.grid, payload, [x])[0]
+    }
+
+    /// `out[k] = G(ti[k], tr[k])` (at σ = `sigma` of a 3-D table) for k < `out.len()`:
+    /// [`Prepared::g2`] / [`Prepared::g3`] (`.2`) bit for bit (a NaN σ fills `out` with
+    /// NaN): chunks first where the table has a chunk path (hosted targets: `chunked()` or
+    /// `cubic_chunked()`), then the scalar lookups.
+    #[inline(always)]
+    pub(crate) fn g_batch(
+        &self,
+        payload: &[u8],
+        ti: &[f32],
+        tr: &[f32],
+        sigma: Option<f32>,
+        out: &mut [f32],
+    ) {
+        if sigma.is_some_and(f32::is_nan) {
+            return out.fill(f32::NAN);
+        }
+        #[cfg_attr(not(hosted), allow(unused_mut))]
+        let mut done = 0;
+        #[cfg(hosted)]
+        let r = &self.reader;
+        #[cfg(hosted)]
+        if r.chunked() {
+            done = self.g_drive::<CHUNK>(
+                ti,
+                tr,
+                out,
+                // (Inlined into the loop: compiled for AVX2 with it.)
+                #[inline(always)]
+                |x, avx2| match sigma {
+                    Some(z) => r.chunk3::<CHUNK>(payload, x, z, avx2),
+                    None => r.chunk::<2, 1, CHUNK>(payload, x, avx2)[0],
+                },
+            );
+        } else {
+            #[cfg(not(feature = "compact"))]
+            if r.cubic_chunked() {
+                // The σ taps once for the whole batch.
+                let z = sigma.map(|z| r.lanes[2].cubic(z));
+                done = self.g_drive::<CHUNK_CUBIC>(
+                    ti,
+                    tr,
+                    out,
+                    #[inline(always)]
+                    |x, _| match &z {
+                        Some(z) => r.chunk3_cubic::<CHUNK_CUBIC>(payload, x, z),
+                        None => r.chunk_cubic::<2, 1, CHUNK_CUBIC>(payload, x)[0],
+                    },
+                );
+            }
+        }
+        for ((o, &a), &b) in out.iter_mut().zip(ti).zip(tr).skip(done) {
+            *o = match sigma {
+                Some(z) => self.g3(payload, a, b, z).2,
+                None => self.g2(payload, a, b).2,
+            };
+        }
     }
 }
 
@@ -291,235 +359,94 @@ const CHUNK: usize = 32;
 /// splits unevenly).
 #[cfg(hosted)]
 const CHUNK_SAMPLE: usize = 8;
-
-#[cfg(hosted)]
-impl Prepared {
-    /// G of `N` in-plane pairs of a 2-D (`z` = None) or 3-D table at one σ: [`Prepared::g2`]
-    /// / [`Prepared::g3`] (`.2`) bit for bit. The table must be `chunked()`.
-    #[inline(always)]
-    fn g_chunk<const N: usize>(
-        &self,
-        payload: &[u8],
-        ti: &[f32; N],
-        tr: &[f32; N],
-        z: Option<f32>,
-        avx2: bool,
-    ) -> [f32; N] {
-        let (m, s, nan) = g_args_n(ti, tr);
-        let r = &self.reader;
-        let (gm, gs) = match z {
-            Some(z) => (
-                r.chunk3::<N>(payload, &m, z, avx2),
-                r.chunk3::<N>(payload, &s, z, avx2),
-            ),
-            None => (
-                r.chunk::<2, 1, N>(payload, &m, avx2)[0],
-                r.chunk::<2, 1, N>(payload, &s, avx2)[0],
-            ),
-        };
-        g_of_sides(&gm, &gs, &nan)
-    }
-
-    /// `out[k] = G(theta_i[k], theta_r[k])` for k < n (chunks, then the scalar tail).
-    #[inline(always)]
-    fn g_batch(&self, payload: &[u8], ti: &[f32], tr: &[f32], z: Option<f32>, out: &mut [f32]) {
-        crate::lookup::wide(
-            #[inline(always)]
-            |avx2| self.g_batch_body(payload, ti, tr, z, out, avx2),
-        )
-    }
-
-    #[inline(always)]
-    fn g_batch_body(
-        &self,
-        payload: &[u8],
-        ti: &[f32],
-        tr: &[f32],
-        z: Option<f32>,
-        out: &mut [f32],
-        avx2: bool,
-    ) {
-        let mut done = 0;
-        for ((o, a), b) in out
-            .chunks_exact_mut(CHUNK)
-            .zip(ti.chunks_exact(CHUNK))
-            .zip(tr.chunks_exact(CHUNK))
-        {
-            if let (Some(a), Some(b)) = (a.first_chunk(), b.first_chunk()) {
-                o.copy_from_slice(&self.g_chunk::<CHUNK>(payload, a, b, z, avx2));
-                done += CHUNK;
-            }
-        }
-        for ((o, &a), &b) in out.iter_mut().zip(ti).zip(tr).skip(done) {
-            *o = match z {
-                Some(z) => self.g3(payload, a, b, z).2,
-                None => self.g2(payload, a, b).2,
-            };
-        }
-    }
-
-    /// Channels of `D`-axis lookups over slices (chunks, then the scalar tail):
-    /// `out[c][k]` = channel c at (x[0][k], …); every slice has the same length.
-    #[inline(always)]
-    fn sample_batch<const D: usize, const C: usize>(
-        &self,
-        payload: &[u8],
-        x: [&[f32]; D],
-        out: [&mut [f32]; C],
-    ) {
-        let r = &self.reader;
-        crate::lookup::wide(
-            #[inline(always)]
-            |avx2| {
-                self.drive_batch::<D, C, CHUNK_SAMPLE>(x, out, payload, |xs| {
-                    r.chunk::<D, C, CHUNK_SAMPLE>(payload, xs, avx2)
-                })
-            },
-        );
-    }
-
-    /// The batch driver shared by every chunked path: `chunk` computes `N` queries at once
-    /// (bit for bit the scalar lookup), the tail of fewer than `N` goes through
-    /// [`Reader::sample`]. `out[c][k]` = channel c at (x[0][k], …); every slice has the same
-    /// length.
-    #[inline(always)]
-    pub(crate) fn drive_batch<const D: usize, const C: usize, const N: usize>(
-        &self,
-        x: [&[f32]; D],
-        out: [&mut [f32]; C],
-        payload: &[u8],
-        chunk: impl Fn(&[[f32; N]; D]) -> [[f32; N]; C],
-    ) {
-        let n = out[0].len();
-        let mut k = 0;
-        while k + N <= n {
-            let mut xs = [[0.0f32; N]; D];
-            for (d, xd) in xs.iter_mut().enumerate() {
-                if let Some(c) = x[d].get(k..).and_then(|s| s.first_chunk::<N>()) {
-                    *xd = *c;
-                }
-            }
-            let v = chunk(&xs);
-            for c in 0..C {
-                if let Some(o) = out[c].get_mut(k..k + N) {
-                    o.copy_from_slice(&v[c]);
-                }
-            }
-            k += N;
-        }
-        while k < n {
-            let mut xk = [0.0f32; D];
-            for d in 0..D {
-                xk[d] = x[d].get(k).copied().unwrap_or(f32::NAN);
-            }
-            let v = self.reader.sample::<D, C>(&self.grid, payload, xk);
-            for c in 0..C {
-                if let Some(o) = out[c].get_mut(k) {
-                    *o = v[c];
-                }
-            }
-            k += 1;
-        }
-    }
-}
-
 /// Queries per chunk of the Catmull–Rom batch entry points.
 #[cfg(all(hosted, not(feature = "compact")))]
 const CHUNK_CUBIC: usize = 8;
 
-/// The Catmull–Rom batch drivers (chunks of [`Reader::chunk_cubic`], then the scalar tail).
-#[cfg(all(hosted, not(feature = "compact")))]
+/// The batch drivers (hosted targets): chunks of [`Reader::chunk`] (linear u16 tables) or
+/// [`Reader::chunk_cubic`] (Catmull–Rom tables), then the scalar tail.
+#[cfg(hosted)]
 impl Prepared {
-    /// Channels of `D`-axis Catmull–Rom lookups over slices (chunks, then the scalar tail):
-    /// `out[c][k]` = channel c at (x[0][k], …); every slice has the same length. The table
-    /// must be `cubic_chunked()`.
-    pub(crate) fn cubic_batch<const D: usize, const C: usize>(
-        &self,
-        payload: &[u8],
-        x: [&[f32]; D],
-        out: [&mut [f32]; C],
-    ) {
-        let r = &self.reader;
-        crate::lookup::wide(
-            #[inline(always)]
-            |_| {
-                self.drive_batch::<D, C, CHUNK_CUBIC>(x, out, payload, |xs| {
-                    r.chunk_cubic::<D, C, CHUNK_CUBIC>(payload, xs)
-                })
-            },
-        );
-    }
-
-    /// G of `N` in-plane pairs of a 2-D (`z` = None) or 3-D Catmull–Rom table (`z`: the
-    /// first node and weights of σ): [`Prepared::g2`] / [`Prepared::g3`] (`.2`) bit for bit
-    /// (a NaN angle gives NaN before any lookup, as there).
+    /// The G chunk loop, compiled for AVX2 where the processor has it
+    /// ([`crate::lookup::wide`]; `side`'s flag says so): chunks of `N` in-plane pairs
+    /// ([`g_args_n`], then `side` of each side's `N` table arguments: its one-sided
+    /// factors, then [`g_of_sides`]). Returns the number of queries written.
     #[inline(always)]
-    fn g_chunk_cubic<const N: usize>(
+    fn g_drive<const N: usize>(
         &self,
-        payload: &[u8],
-        ti: &[f32; N],
-        tr: &[f32; N],
-        z: Option<&(usize, [f32; 4])>,
-    ) -> [f32; N] {
-        let (m, s, nan) = g_args_n(ti, tr);
-        let r = &self.reader;
-        let (gm, gs) = match z {
-            Some(z) => (
-                r.chunk3_cubic::<N>(payload, &m, z),
-                r.chunk3_cubic::<N>(payload, &s, z),
-            ),
-            None => (
-                r.chunk_cubic::<2, 1, N>(payload, &m)[0],
-                r.chunk_cubic::<2, 1, N>(payload, &s)[0],
-            ),
-        };
-        g_of_sides(&gm, &gs, &nan)
-    }
-
-    /// `out[k] = G(theta_i[k], theta_r[k])` (at σ = `sigma` for a 3-D table, which must
-    /// not be NaN) of a Catmull–Rom table for k < `out.len()` (chunks, then the scalar
-    /// tail); the table must be `cubic_chunked()`.
-    pub(crate) fn g_batch_cubic(
-        &self,
-        payload: &[u8],
         ti: &[f32],
         tr: &[f32],
-        sigma: Option<f32>,
         out: &mut [f32],
-    ) {
+        side: impl Fn(&[[f32; N]; 2], bool) -> [f32; N],
+    ) -> usize {
         crate::lookup::wide(
             #[inline(always)]
-            |_| self.g_batch_cubic_body(payload, ti, tr, sigma, out),
+            |avx2| {
+                let mut done = 0;
+                for ((o, a), b) in out
+                    .chunks_exact_mut(N)
+                    .zip(ti.chunks_exact(N))
+                    .zip(tr.chunks_exact(N))
+                {
+                    if let (Some(a), Some(b)) = (a.first_chunk(), b.first_chunk()) {
+                        let (m, s, nan) = g_args_n(a, b);
+                        let (gm, gs) = (side(&m, avx2), side(&s, avx2));
+                        o.copy_from_slice(&g_of_sides(&gm, &gs, &nan));
+                        done += N;
+                    }
+                }
+                done
+            },
         )
     }
-
+    /// The batch driver shared by every chunked path, compiled for AVX2 where the processor
+    /// has it ([`crate::lookup::wide`]; `chunk`'s flag says so): `chunk` computes `N`
+    /// queries at once (bit for bit the scalar lookup), the tail of fewer than `N` goes
+    /// through [`Reader::sample`]. `out[c][k]` = channel c at (x[0][k], …); every slice
+    /// has the same length.
     #[inline(always)]
-    fn g_batch_cubic_body(
+    fn drive_batch<const D: usize, const C: usize, const N: usize>(
         &self,
+        x: [&[f32]; D],
+        out: [&mut [f32]; C],
         payload: &[u8],
-        ti: &[f32],
-        tr: &[f32],
-        sigma: Option<f32>,
-        out: &mut [f32],
+        chunk: impl Fn(&[[f32; N]; D], bool) -> [[f32; N]; C],
     ) {
-        let z = sigma.map(|z| self.reader.lanes[2].cubic(z));
-        let mut done = 0;
-        for ((o, a), b) in out
-            .chunks_exact_mut(CHUNK_CUBIC)
-            .zip(ti.chunks_exact(CHUNK_CUBIC))
-            .zip(tr.chunks_exact(CHUNK_CUBIC))
-        {
-            if let (Some(a), Some(b)) = (a.first_chunk(), b.first_chunk()) {
-                o.copy_from_slice(&self.g_chunk_cubic::<CHUNK_CUBIC>(payload, a, b, z.as_ref()));
-                done += CHUNK_CUBIC;
-            }
-        }
-        for ((o, &a), &b) in out.iter_mut().zip(ti).zip(tr).skip(done) {
-            *o = match sigma {
-                Some(z) => self.g3(payload, a, b, z).2,
-                None => self.g2(payload, a, b).2,
-            };
-        }
+        crate::lookup::wide(
+            #[inline(always)]
+            |avx2| {
+                let n = out[0].len();
+                let mut k = 0;
+                while k + N <= n {
+                    let mut xs = [[0.0f32; N]; D];
+                    for (d, xd) in xs.iter_mut().enumerate() {
+                        if let Some(c) = x[d].get(k..).and_then(|s| s.first_chunk::<N>()) {
+                            *xd = *c;
+                        }
+                    }
+                    let v = chunk(&xs, avx2);
+                    for c in 0..C {
+                        if let Some(o) = out[c].get_mut(k..k + N) {
+                            o.copy_from_slice(&v[c]);
+                        }
+                    }
+                    k += N;
+                }
+                while k < n {
+                    let mut xk = [0.0f32; D];
+                    for d in 0..D {
+                        xk[d] = x[d].get(k).copied().unwrap_or(f32::NAN);
+                    }
+                    let v = self.reader.sample::<D, C>(&self.grid, payload, xk);
+                    for c in 0..C {
+                        if let Some(o) = out[c].get_mut(k) {
+                            *o = v[c];
+                        }
+                    }
+                    k += 1;
+                }
+            },
+        );
     }
 }
 
@@ -752,20 +679,7 @@ impl<B: AsRef<[u8]>> GTable<B> {
     pub fn g_batch(&self, theta_i: &[f32], theta_r: &[f32], out: &mut [f32]) -> usize {
         let p = self.payload();
         let n = theta_i.len().min(theta_r.len()).min(out.len());
-        #[cfg(hosted)]
-        if self.p.reader.chunked() {
-            self.p.g_batch(p, theta_i, theta_r, None, &mut out[..n]);
-            return n;
-        }
-        #[cfg(all(hosted, not(feature = "compact")))]
-        if self.p.reader.cubic_chunked() {
-            self.p
-                .g_batch_cubic(p, theta_i, theta_r, None, &mut out[..n]);
-            return n;
-        }
-        for ((o, &a), &b) in out[..n].iter_mut().zip(theta_i).zip(theta_r) {
-            *o = self.p.g2(p, a, b).2;
-        }
+        self.p.g_batch(p, theta_i, theta_r, None, &mut out[..n]);
         n
     }
 }
@@ -798,29 +712,8 @@ impl<B: AsRef<[u8]>> GTable3<B> {
     pub fn g_batch(&self, theta_i: &[f32], theta_r: &[f32], sigma: f32, out: &mut [f32]) -> usize {
         let p = self.payload();
         let n = theta_i.len().min(theta_r.len()).min(out.len());
-        #[cfg(hosted)]
-        if self.p.reader.chunked() {
-            if sigma.is_nan() {
-                out[..n].fill(f32::NAN);
-            } else {
-                self.p
-                    .g_batch(p, theta_i, theta_r, Some(sigma), &mut out[..n]);
-            }
-            return n;
-        }
-        #[cfg(all(hosted, not(feature = "compact")))]
-        if self.p.reader.cubic_chunked() {
-            if sigma.is_nan() {
-                out[..n].fill(f32::NAN);
-            } else {
-                self.p
-                    .g_batch_cubic(p, theta_i, theta_r, Some(sigma), &mut out[..n]);
-            }
-            return n;
-        }
-        for ((o, &a), &b) in out[..n].iter_mut().zip(theta_i).zip(theta_r) {
-            *o = self.p.g3(p, a, b, sigma).2;
-        }
+        self.p
+            .g_batch(p, theta_i, theta_r, Some(sigma), &mut out[..n]);
         n
     }
 }
@@ -1000,10 +893,7 @@ mod tests {
     use brdf_core::geometry::Dots;
     use brdf_core::masking::ModifiedG;
 
-    fn asset(name: &str) -> std::vec::Vec<u8> {
-        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets/");
-        std::fs::read(std::format!("{dir}{name}")).unwrap()
-    }
+    use crate::testing::asset;
 
     /// The batch entry points through the baseline (non-AVX2) build of their chunk loops
     /// equal the scalar lookups bit for bit (tests/batch_bits.rs checks the build that

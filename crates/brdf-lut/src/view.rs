@@ -380,16 +380,7 @@ mod tests {
         encode_into(&h, &payload[..len], buf).unwrap()
     }
 
-    fn ax(count: u32, lo: f64, hi: f64, warp: Warp, placement: Placement) -> Axis<'static> {
-        Axis {
-            name: "x",
-            count,
-            lo,
-            hi,
-            warp,
-            placement,
-        }
-    }
+    use crate::testing::axis as ax;
 
     #[test]
     fn linear_reproduces_bilinear_functions_and_nodes() {

@@ -34,10 +34,8 @@
 pub use super::work::{Work, REFERENCE_TOL, TOL};
 use super::{passing_with, Distribution, Kind, Masking, Roughness, Spec};
 use brdf_core::geometry::Dots;
-use brdf_core::masking::{
-    g_blinn_dots, g_smith_beckmann_correlated, g_smith_beckmann_separable, g_smith_ggx_correlated,
-    g_smith_ggx_separable, ModifiedG,
-};
+use brdf_core::masking::{g_blinn_dots, ModifiedG};
+use brdf_core::microfacet::{Beckmann, Isotropic, TrowbridgeReitz};
 use brdf_core::quadrature::{DefaultRule, GaussLegendre, Rule};
 use brdf_core::split_sum::converged::DfgGgxRow;
 use brdf_core::split_sum::polar::{Polar, PolarModel, PolarRow};
@@ -253,11 +251,11 @@ fn ab_rule<RO: Rule, RI: Rule, RG: Rule>(
     };
     match (spec.distribution, spec.masking) {
         (Distribution::Ggx, Masking::SmithSeparable) => {
-            ss(ndf, &|d| g_smith_ggx_separable(d.n_i, d.n_o, w))
+            ss(ndf, &|d| TrowbridgeReitz::g_separable_cos(d.n_i, d.n_o, w))
         }
-        (Distribution::Ggx, _) => ss(ndf, &|d| g_smith_ggx_correlated(d.n_i, d.n_o, w)),
-        (_, Masking::SmithSeparable) => ss(ndf, &|d| g_smith_beckmann_separable(d.n_i, d.n_o, w)),
-        (_, Masking::SmithCorrelated) => ss(ndf, &|d| g_smith_beckmann_correlated(d.n_i, d.n_o, w)),
+        (Distribution::Ggx, _) => ss(ndf, &|d| TrowbridgeReitz::g_correlated_cos(d.n_i, d.n_o, w)),
+        (_, Masking::SmithSeparable) => ss(ndf, &|d| Beckmann::g_separable_cos(d.n_i, d.n_o, w)),
+        (_, Masking::SmithCorrelated) => ss(ndf, &|d| Beckmann::g_correlated_cos(d.n_i, d.n_o, w)),
         (_, Masking::VCavity) => ss(ndf, &g_blinn_dots),
         (_, Masking::Modified) => match ModifiedG::<f64, RG>::new(sigma) {
             Ok(g) => ss(ndf, &|d| g.g_dots(d)),

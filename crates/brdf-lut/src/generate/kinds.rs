@@ -8,6 +8,8 @@ use super::integrate::{node, Work};
 use super::{AxisSpec, Kind, Masking, Roughness, Spec, MU_MIN};
 use crate::{TableKind, Warp};
 use core::f64::consts::FRAC_PI_2;
+use Role::{Eta, Mu, Phi, Sigma, Theta};
+use TableKind as T;
 
 /// What an axis holds: its name, default range and warp, and admissible domain follow.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -56,78 +58,75 @@ pub struct KindDef {
     pub value: fn(&Spec, &[f64], &mut [f64]) -> Work,
 }
 
-impl Kind {
-    /// This kind's entry in the one list of kinds.
-    pub fn def(&self) -> &'static KindDef {
-        use Role::*;
-        match self {
-            Kind::GPerSigma { .. } => &KindDef {
-                name: "g-per-sigma",
-                table: TableKind::PassingFactor,
-                axes: &[(Theta, 128), (Phi, 126)],
-                channels: &["F"],
-                check: Check::ModifiedG,
-                value: node,
-            },
-            Kind::GOverSigma => &KindDef {
-                name: "g-over-sigma",
-                table: TableKind::PassingFactor,
-                axes: &[(Theta, 64), (Phi, 64), (Sigma, 31)],
-                channels: &["F"],
-                check: Check::ModifiedG,
-                value: node,
-            },
-            Kind::SplitSum => &KindDef {
-                name: "split-sum",
-                table: TableKind::SplitSum,
-                axes: &[(Mu, 64), (Roughness, 64)],
-                channels: &["A", "B"],
-                check: Check::Values,
-                value: node,
-            },
-            Kind::Albedo => &KindDef {
-                name: "e",
-                table: TableKind::DirectionalAlbedo,
-                axes: &[(Mu, 64), (Roughness, 64)],
-                channels: &["E"],
-                check: Check::Values,
-                value: node,
-            },
-            Kind::AverageAlbedo => &KindDef {
-                name: "e-avg",
-                table: TableKind::AverageAlbedo,
-                axes: &[(Roughness, 32)],
-                channels: &["Eavg"],
-                check: Check::Values,
-                value: node,
-            },
-            Kind::SheenAlbedo { .. } => &KindDef {
-                name: "sheen-e",
-                table: TableKind::SheenAlbedo,
-                axes: &[(Mu, 64), (Roughness, 64)],
-                channels: &["E"],
-                check: Check::Values,
-                value: sheen_node,
-            },
-            Kind::GlassAlbedo => &KindDef {
-                name: "glass-e",
-                table: TableKind::GlassAlbedo,
-                axes: &[(Mu, 32), (Roughness, 32), (Eta, 32)],
-                channels: &["R", "T"],
-                check: Check::Values,
-                value: node,
-            },
-            Kind::GlassAverageAlbedo => &KindDef {
-                name: "glass-e-avg",
-                table: TableKind::GlassAverageAlbedo,
-                axes: &[(Roughness, 32), (Eta, 32)],
-                channels: &["R", "T"],
-                check: Check::Values,
-                value: node,
-            },
+impl KindDef {
+    /// The entry of a kind whose nodes are the f64 kernel's values ([`node`]), measured
+    /// against it at random points ([`Check::Values`]).
+    const fn values(
+        name: &'static str,
+        table: TableKind,
+        axes: &'static [(Role, u32)],
+        channels: &'static [&'static str],
+    ) -> KindDef {
+        let check = Check::Values;
+        KindDef {
+            name,
+            table,
+            axes,
+            channels,
+            check,
+            value: node,
+        }
+    }
+
+    /// The entry of a passing-factor table of the modified G: one channel `F`, its error
+    /// that of a G lookup ([`Check::ModifiedG`]).
+    const fn passing_factor(name: &'static str, axes: &'static [(Role, u32)]) -> KindDef {
+        let check = Check::ModifiedG;
+        KindDef {
+            check,
+            ..KindDef::values(name, TableKind::PassingFactor, axes, &["F"])
         }
     }
 }
+
+impl Kind {
+    /// This kind's entry in the one list of kinds.
+    pub fn def(&self) -> &'static KindDef {
+        match self {
+            Kind::GPerSigma { .. } => &G_PER_SIGMA,
+            Kind::GOverSigma => &G_OVER_SIGMA,
+            Kind::SplitSum => &SPLIT_SUM,
+            Kind::Albedo => &ALBEDO,
+            Kind::AverageAlbedo => &AVERAGE_ALBEDO,
+            Kind::SheenAlbedo { .. } => &SHEEN_ALBEDO,
+            Kind::GlassAlbedo => &GLASS_ALBEDO,
+            Kind::GlassAverageAlbedo => &GLASS_AVERAGE_ALBEDO,
+        }
+    }
+}
+
+// The entries: name, kind code, axes with their default node counts, channels.
+/// The roughness axis.
+const R: Role = Role::Roughness;
+const MU_R: &[(Role, u32)] = &[(Mu, 64), (R, 64)];
+const G_PER_SIGMA: KindDef = KindDef::passing_factor("g-per-sigma", &[(Theta, 128), (Phi, 126)]);
+const G_OVER_SIGMA: KindDef =
+    KindDef::passing_factor("g-over-sigma", &[(Theta, 64), (Phi, 64), (Sigma, 31)]);
+const SPLIT_SUM: KindDef = KindDef::values("split-sum", T::SplitSum, MU_R, &["A", "B"]);
+const ALBEDO: KindDef = KindDef::values("e", T::DirectionalAlbedo, MU_R, &["E"]);
+const AVERAGE_ALBEDO: KindDef = KindDef::values("e-avg", T::AverageAlbedo, &[(R, 32)], &["Eavg"]);
+const SHEEN_ALBEDO: KindDef = KindDef {
+    value: sheen_node,
+    ..KindDef::values("sheen-e", T::SheenAlbedo, MU_R, &["E"])
+};
+const GLASS_AXES: &[(Role, u32)] = &[(Mu, 32), (R, 32), (Eta, 32)];
+const GLASS_ALBEDO: KindDef = KindDef::values("glass-e", T::GlassAlbedo, GLASS_AXES, &["R", "T"]);
+const GLASS_AVERAGE_ALBEDO: KindDef = KindDef::values(
+    "glass-e-avg",
+    T::GlassAverageAlbedo,
+    &[(R, 32), (Eta, 32)],
+    &["R", "T"],
+);
 
 /// The `sheen-e` node at x = (μ, r) (`generate/sheen.rs`).
 fn sheen_node(s: &Spec, x: &[f64], out: &mut [f64]) -> Work {

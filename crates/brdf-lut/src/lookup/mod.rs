@@ -320,6 +320,29 @@ store!(
     f32::from_le_bytes([b0, b1, b2, b3])
 );
 
+/// The reader's specialised loop for its layout: `$r.$lin` (linear) or `$r.$cub`
+/// (Catmull–Rom) called with `$args`, its generic arguments the [`Store`] of the encoding
+/// (`U16`; `F16` and `F32` only without feature `compact`) followed by the given ones
+/// (`cubic::<D, C>`); `$other` for every other layout (short Catmull–Rom axes, and with
+/// `compact` float payloads).
+macro_rules! by_layout {
+    ($r:expr, $lin:ident | $cub:ident $(::<$($g:ident),*>)? ($($args:expr),*), $other:block) => {
+        match ($r.mode, $r.encoding) {
+            (Mode::Linear, Encoding::Unorm16) => $r.$lin::<U16 $($(, $g)*)?>($($args),*),
+            (Mode::Cubic, Encoding::Unorm16) => $r.$cub::<U16 $($(, $g)*)?>($($args),*),
+            #[cfg(not(feature = "compact"))]
+            (Mode::Linear, Encoding::F16) => $r.$lin::<F16 $($(, $g)*)?>($($args),*),
+            #[cfg(not(feature = "compact"))]
+            (Mode::Linear, Encoding::F32) => $r.$lin::<F32 $($(, $g)*)?>($($args),*),
+            #[cfg(not(feature = "compact"))]
+            (Mode::Cubic, Encoding::F16) => $r.$cub::<F16 $($(, $g)*)?>($($args),*),
+            #[cfg(not(feature = "compact"))]
+            (Mode::Cubic, Encoding::F32) => $r.$cub::<F32 $($(, $g)*)?>($($args),*),
+            _ => $other,
+        }
+    };
+}
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Mode {
     Linear,
@@ -419,48 +442,22 @@ impl Reader {
         data: &[u8],
         x: [f32; D],
     ) -> [f32; C] {
-        let raw = match (self.mode, self.encoding) {
-            (Mode::Linear, Encoding::Unorm16) => self.linear::<U16, D, C>(data, x),
-            (Mode::Cubic, Encoding::Unorm16) => self.cubic::<U16, D, C>(data, x),
-            #[cfg(not(feature = "compact"))]
-            (Mode::Linear, Encoding::F16) => self.linear::<F16, D, C>(data, x),
-            #[cfg(not(feature = "compact"))]
-            (Mode::Linear, Encoding::F32) => self.linear::<F32, D, C>(data, x),
-            #[cfg(not(feature = "compact"))]
-            (Mode::Cubic, Encoding::F16) => self.cubic::<F16, D, C>(data, x),
-            #[cfg(not(feature = "compact"))]
-            (Mode::Cubic, Encoding::F32) => self.cubic::<F32, D, C>(data, x),
-            // Short Catmull–Rom axes (and, with feature `compact`, float payloads).
-            _ => {
-                let v = grid.sample(data, &x);
-                let mut out = [0.0; C];
-                out.copy_from_slice(&v[..C]);
-                return out;
-            }
-        };
+        let raw = by_layout!(self, linear | cubic::<D, C>(data, x), {
+            let v = grid.sample(data, &x);
+            let mut out = [0.0; C];
+            out.copy_from_slice(&v[..C]);
+            return out;
+        });
         self.finish(raw)
     }
 
     /// Two one-channel 3-D lookups that share the last coordinate (the two one-sided factors
     /// of G over σ): the σ taps are computed once. Equal to two [`Reader::sample`] calls.
+    /// `IN_RANGE`: a and b lie in the ranges of axes 0 and 1 already (hosted targets skip
+    /// their clamp; the same values).
     #[cfg_attr(not(hosted), inline)]
     #[cfg_attr(hosted, inline(always))]
-    pub(crate) fn pair3(
-        &self,
-        grid: &Grid,
-        data: &[u8],
-        a: [f32; 2],
-        b: [f32; 2],
-        z: f32,
-    ) -> (f32, f32) {
-        self.pair3_in::<false>(grid, data, a, b, z)
-    }
-
-    /// [`Reader::pair3`]; `IN_RANGE`: a and b lie in the ranges of axes 0 and 1 already
-    /// (hosted targets skip their clamp; the same values).
-    #[cfg_attr(not(hosted), inline)]
-    #[cfg_attr(hosted, inline(always))]
-    pub(crate) fn pair3_in<const IN_RANGE: bool>(
+    pub(crate) fn pair3<const IN_RANGE: bool>(
         &self,
         grid: &Grid,
         data: &[u8],
@@ -486,24 +483,12 @@ impl Reader {
     /// [`Reader::pair3`] for every layout.
     #[inline]
     fn pair3_any(&self, grid: &Grid, data: &[u8], a: [f32; 2], b: [f32; 2], z: f32) -> (f32, f32) {
-        let (va, vb) = match (self.mode, self.encoding) {
-            (Mode::Linear, Encoding::Unorm16) => self.pair3_linear::<U16>(data, a, b, z),
-            (Mode::Cubic, Encoding::Unorm16) => self.pair3_cubic::<U16>(data, a, b, z),
-            #[cfg(not(feature = "compact"))]
-            (Mode::Linear, Encoding::F16) => self.pair3_linear::<F16>(data, a, b, z),
-            #[cfg(not(feature = "compact"))]
-            (Mode::Linear, Encoding::F32) => self.pair3_linear::<F32>(data, a, b, z),
-            #[cfg(not(feature = "compact"))]
-            (Mode::Cubic, Encoding::F16) => self.pair3_cubic::<F16>(data, a, b, z),
-            #[cfg(not(feature = "compact"))]
-            (Mode::Cubic, Encoding::F32) => self.pair3_cubic::<F32>(data, a, b, z),
-            _ => {
-                return (
-                    self.sample::<3, 1>(grid, data, [a[0], a[1], z])[0],
-                    self.sample::<3, 1>(grid, data, [b[0], b[1], z])[0],
-                )
-            }
-        };
+        let (va, vb) = by_layout!(self, pair3_linear | pair3_cubic(data, a, b, z), {
+            return (
+                self.sample::<3, 1>(grid, data, [a[0], a[1], z])[0],
+                self.sample::<3, 1>(grid, data, [b[0], b[1], z])[0],
+            );
+        });
         (
             self.offset[0] + self.scale[0] * va,
             self.offset[0] + self.scale[0] * vb,
@@ -583,13 +568,7 @@ impl Reader {
     #[cfg_attr(hosted, inline(always))]
     fn row<S: Store, const C: usize>(data: &[u8], at: usize, f: f32) -> [f32; C] {
         match Self::pair::<S, C>(data, at) {
-            Some((a, b)) => {
-                let mut v = [0.0; C];
-                for c in 0..C {
-                    v[c] = a[c] + f * (b[c] - a[c]);
-                }
-                v
-            }
+            Some((a, b)) => Self::lerp(a, b, f),
             None => [f32::NAN; C],
         }
     }

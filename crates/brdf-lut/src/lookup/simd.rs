@@ -14,12 +14,12 @@
 //! baseline), the 2 × 2 nodes of both channels are read as two 8-byte rows (the payload
 //! interleaves the channels, so a row of two nodes is A₀ B₀ A₁ B₁) behind one bounds check,
 //! and both channels and both rows are blended at once. A one-channel table (the sheen
-//! albedo's speed tier) takes the same steps with 4-byte rows ([`Fast2::e`]).
+//! albedo's speed tier) takes the same steps with 4-byte rows ([`One`]).
 //!
 //! Bit for bit the values of [`Reader::sample`]: every lane performs the scalar path's IEEE
 //! operations in the same order (no fused multiply–add; `maxps`/`minps` are the scalar
 //! comparisons' selects, NaN included), apart from operations that provably change no
-//! value for the tables that skip them (see `Fast2::ab_in`). Tables with linear or
+//! value for the tables that skip them (see `Fast2::cells`). Tables with linear or
 //! √-warped axes (w = √(x − lo)) take this path; any other warp, encoding, interpolant or
 //! shape keeps the general reader.
 
@@ -205,9 +205,9 @@ pub(crate) enum Kind {
     /// Any other mix of linear and √ axes: the general form, out of line, with the
     /// constants read from the lanes.
     Mixed,
-    /// [`Kind::Sqrt`] of a one-channel table ([`Fast2::e`]).
+    /// [`Kind::Sqrt`] of a one-channel table ([`One`]).
     SqrtOne,
-    /// [`Kind::Mixed`] of a one-channel table ([`Fast2::e`]).
+    /// [`Kind::Mixed`] of a one-channel table ([`One`]).
     MixedOne,
 }
 
@@ -234,7 +234,7 @@ pub(crate) struct Fast2 {
 /// Two constants in lanes 0 and 1 (one 8-byte load).
 #[inline(always)]
 fn pair(v: &[f32; 2]) -> __m128 {
-    // SAFETY: register-only SSE (see `Fast2::ab_in`).
+    // SAFETY: register-only SSE (see `Fast2::cells`).
     #[allow(unused_unsafe)]
     unsafe {
         _mm_setr_ps(v[0], v[1], 0.0, 0.0)
@@ -298,50 +298,31 @@ impl Fast2 {
         }
     }
 
-    /// Channels 0 and 1 at (x, y) of `reader`'s table, whose payload starts at byte `base`
-    /// of `data`: [`Reader::sample`]`::<2, 2>` bit for bit (NaN in either coordinate gives
-    /// NaN; coordinates are clamped to the axes' ranges); `None` if the table does not
-    /// take this path.
+    /// The lookup at (x, y) of `reader`'s table of `K` nodes, whose payload starts at byte
+    /// `base` of `data`: [`Reader::sample`] bit for bit (`::<2, 2>` channels 0 and 1 of a
+    /// two-channel table, [`Two`]; `::<2, 1>` of a one-channel one, [`One`]); NaN in either
+    /// coordinate gives NaN; coordinates are clamped to the axes' ranges. `None` if the
+    /// table does not take this path.
     #[inline(always)]
-    pub(crate) fn ab(
+    pub(crate) fn lookup<K: Node>(
         &self,
         reader: &Reader,
         data: &[u8],
         base: usize,
         x: f32,
         y: f32,
-    ) -> Option<(f32, f32)> {
-        if self.kind == Kind::Sqrt {
-            Some(self.ab_in::<true>(reader, data, base, x, y))
-        } else if self.kind == Kind::Mixed {
-            Some(self.ab_mixed(reader, data, base, x, y))
+    ) -> Option<K::Out> {
+        if self.kind == K::SQRT {
+            let node = self.node_at::<true>(reader, x, y, K::BYTES);
+            Some(self.read::<K>(reader, data, base, node))
+        } else if self.kind == K::MIXED {
+            Some(self.mixed::<K>(reader, data, base, x, y))
         } else {
             None
         }
     }
 
-    /// Channel 0 at (x, y) of a one-channel `reader` table, whose payload starts at byte
-    /// `base` of `data`: [`Reader::sample`]`::<2, 1>` bit for bit, as [`Fast2::ab`] is of
-    /// the two-channel one; `None` if the table does not take this path.
-    #[inline(always)]
-    pub(crate) fn e(
-        &self,
-        reader: &Reader,
-        data: &[u8],
-        base: usize,
-        x: f32,
-        y: f32,
-    ) -> Option<f32> {
-        if self.kind == Kind::SqrtOne {
-            Some(self.e_in::<true>(reader, data, base, x, y))
-        } else if self.kind == Kind::MixedOne {
-            Some(self.e_mixed(reader, data, base, x, y))
-        } else {
-            None
-        }
-    }
-
-    /// [`Fast2::ab`] over slices of one length (`a[k], b[k]` at `(x[k], y[k])`), eight
+    /// [`Fast2::lookup`] of a two-channel table over slices of one length (`a[k], b[k]` at `(x[k], y[k])`), eight
     /// queries at a time with AVX2 when the processor has it: `false` (nothing written)
     /// unless the table takes the `Sqrt` form and AVX2 is there. Bit for bit the scalar
     /// lookup: the eight lanes perform its IEEE operations in its order, and the tail of
@@ -403,6 +384,8 @@ impl Fast2 {
         let n = x.len();
         // SAFETY: `data` from `base`, base ≤ len (`limit` exists).
         let p = unsafe { data.as_ptr().add(base) };
+        let one =
+            |x, y| self.read::<Two>(reader, data, base, self.node_at::<true>(reader, x, y, 4));
         let mut k = 0;
         while k + 8 <= n {
             let (xs, ys) = (&x[k..k + 8], &y[k..k + 8]);
@@ -412,34 +395,32 @@ impl Fast2 {
             let done = unsafe { wide8::eight(self, reader, p, limit, xs, ys, [ak, bk]) };
             if !done {
                 for j in k..k + 8 {
-                    (a[j], b[j]) = self.ab_in::<true>(reader, data, base, x[j], y[j]);
+                    (a[j], b[j]) = one(x[j], y[j]);
                 }
             }
             k += 8;
         }
         for j in k..n {
-            (a[j], b[j]) = self.ab_in::<true>(reader, data, base, x[j], y[j]);
+            (a[j], b[j]) = one(x[j], y[j]);
         }
         true
     }
 
-    /// [`Fast2::ab`] of a `Mixed` table (no shipped table is one; marked cold so that the
-    /// `Sqrt` test comes first).
+    /// [`Fast2::lookup`] of a `Mixed` or `MixedOne` table (no shipped table is one; marked
+    /// cold so that the `Sqrt` test comes first).
     #[cold]
     #[inline(never)]
-    fn ab_mixed(&self, reader: &Reader, data: &[u8], base: usize, x: f32, y: f32) -> (f32, f32) {
-        self.ab_in::<false>(reader, data, base, x, y)
-    }
-
-    /// [`Fast2::e`] of a `MixedOne` table (out of line, as [`Fast2::ab_mixed`]).
-    #[cold]
-    #[inline(never)]
-    fn e_mixed(&self, reader: &Reader, data: &[u8], base: usize, x: f32, y: f32) -> f32 {
-        self.e_in::<false>(reader, data, base, x, y)
+    fn mixed<K: Node>(&self, reader: &Reader, data: &[u8], base: usize, x: f32, y: f32) -> K::Out {
+        self.read::<K>(
+            reader,
+            data,
+            base,
+            self.node_at::<false>(reader, x, y, K::BYTES),
+        )
     }
 
     /// The node index (lanes 0, 1: axis 0, 1; a truncating conversion) and the fraction of
-    /// both axes of [`Fast2::ab_in`]'s query: clamp, warp, t = a·w + b, clamp of t, node.
+    /// both axes of [`Fast2::lookup`]'s query: clamp, warp, t = a·w + b, clamp of t, node.
     #[inline(always)]
     fn cells<const SQRT: bool>(&self, reader: &Reader, x: f32, y: f32) -> (__m128i, __m128) {
         let [l0, l1, _] = &reader.lanes;
@@ -486,14 +467,16 @@ impl Fast2 {
         }
     }
 
-    /// The byte offset in the payload of the query's first node (nodes of `NODE` bytes:
-    /// 4 for two u16 channels, 2 for one) and the fractions of both axes ([`Fast2::cells`]).
+    /// The byte offset in the payload of the query's first node (nodes of `node` bytes:
+    /// 4 for two u16 channels, 2 for one; a constant once inlined) and the fractions of both
+    /// axes ([`Fast2::cells`]).
     #[inline(always)]
-    fn node_at<const SQRT: bool, const NODE: u32>(
+    fn node_at<const SQRT: bool>(
         &self,
         reader: &Reader,
         x: f32,
         y: f32,
+        node: u32,
     ) -> (usize, __m128) {
         let (i, f) = self.cells::<SQRT>(reader, x, y);
         // SAFETY: as above (register-only SSE2).
@@ -515,31 +498,77 @@ impl Fast2 {
         } else {
             i1.wrapping_mul(self.row)
         };
-        (i0.wrapping_mul(NODE).wrapping_add(r1) as usize, f)
+        (i0.wrapping_mul(node).wrapping_add(r1) as usize, f)
     }
 
-    /// [`Fast2::ab`]; `SQRT`: a `Sqrt` table.
+    /// The value of the query whose first node is at byte `at` of the payload, with the
+    /// fractions `f` of both axes (`node`: [`Fast2::node_at`]): one bounds check for both
+    /// rows, then [`Node::blend`].
     #[inline(always)]
-    fn ab_in<const SQRT: bool>(
+    fn read<K: Node>(
         &self,
         reader: &Reader,
         data: &[u8],
         base: usize,
-        x: f32,
-        y: f32,
-    ) -> (f32, f32) {
-        let (at, f) = self.node_at::<SQRT, 4>(reader, x, y);
+        (at, f): (usize, __m128),
+    ) -> K::Out {
         let row = self.row as usize;
-        // One bounds check for both rows.
-        if base + at + row + 8 > data.len() {
-            return short();
+        if base + at + row + 2 * K::BYTES as usize > data.len() {
+            return K::short();
         }
+        // SAFETY: base + at + row + 2·BYTES ≤ data.len() (checked above), so both rows of two
+        // nodes lie in `data`.
+        unsafe { K::blend(data.as_ptr().add(base + at), row, f, reader) }
+    }
+}
+
+/// The nodes of a two-lane table: u16 numbers of two channels ([`Two`]) or one ([`One`]),
+/// interleaved; their lookup's value, its forms and the blend of a query's 2 × 2 nodes.
+#[cfg(target_arch = "x86_64")]
+pub(crate) trait Node {
+    /// The value: both channels, or the one.
+    type Out;
+    /// Bytes per node.
+    const BYTES: u32;
+    /// The inlined form of such a table.
+    const SQRT: Kind;
+    /// The out-of-line form.
+    const MIXED: Kind;
+    /// Every channel NaN (a payload too short for the block; see [`short`]).
+    fn short() -> Self::Out;
+    /// Blends the 2 × 2 nodes at `p` (row 0) and `p + row` (row 1) with the fractions of
+    /// axis 0 and 1 in lanes 0 and 1 of `f`, then offset + scale per channel: the scalar
+    /// path's operations in its order.
+    ///
+    /// # Safety
+    /// `p` and `p + row` each start `2 · BYTES` readable bytes of one allocation.
+    unsafe fn blend(p: *const u8, row: usize, f: __m128, reader: &Reader) -> Self::Out;
+}
+
+/// Two-channel nodes (the split-sum speed tier).
+#[cfg(target_arch = "x86_64")]
+pub(crate) struct Two;
+/// One-channel nodes (the sheen albedo's speed tier).
+#[cfg(target_arch = "x86_64")]
+pub(crate) struct One;
+
+#[cfg(target_arch = "x86_64")]
+impl Node for Two {
+    type Out = (f32, f32);
+    const BYTES: u32 = 4;
+    const SQRT: Kind = Kind::Sqrt;
+    const MIXED: Kind = Kind::Mixed;
+    #[inline(always)]
+    fn short() -> (f32, f32) {
+        short()
+    }
+    #[inline(always)]
+    unsafe fn blend(p: *const u8, row: usize, f: __m128, reader: &Reader) -> (f32, f32) {
         let (sc, of) = (&reader.scale, &reader.offset);
-        // SAFETY: base + at + row + 8 ≤ data.len() (checked above), so both 8-byte reads lie in
-        // `data` (`movq` has no alignment requirement); the rest is register-only SSE2.
+        // SAFETY: both 8-byte reads lie in one allocation (the contract; `movq` has no
+        // alignment requirement); the rest is register-only SSE2.
         #[allow(unused_unsafe)]
         unsafe {
-            let p = data.as_ptr().add(base + at);
             // Stored u16 (node, row): A₀₀ B₀₀ A₁₀ B₁₀ and A₀₁ B₀₁ A₁₁ B₁₁.
             let r0 = _mm_loadl_epi64(p.cast::<__m128i>());
             let r1 = _mm_loadl_epi64(p.add(row).cast::<__m128i>());
@@ -566,35 +595,32 @@ impl Fast2 {
             (_mm_cvtss_f32(v), _mm_cvtss_f32(b))
         }
     }
+}
 
-    /// [`Fast2::e`]; `SQRT`: a `SqrtOne` table. [`Fast2::ab_in`]'s steps for one channel:
-    /// the rows are two u16 nodes (4 bytes) each, so lanes 0 and 1 carry the two rows.
+#[cfg(target_arch = "x86_64")]
+impl Node for One {
+    type Out = f32;
+    const BYTES: u32 = 2;
+    const SQRT: Kind = Kind::SqrtOne;
+    const MIXED: Kind = Kind::MixedOne;
     #[inline(always)]
-    fn e_in<const SQRT: bool>(
-        &self,
-        reader: &Reader,
-        data: &[u8],
-        base: usize,
-        x: f32,
-        y: f32,
-    ) -> f32 {
-        let (at, f) = self.node_at::<SQRT, 2>(reader, x, y);
-        let row = self.row as usize;
-        // One bounds check for both rows.
-        if base + at + row + 4 > data.len() {
-            return short().0;
-        }
-        // SAFETY: base + at + row + 4 ≤ data.len() (checked above), so both 4-byte reads lie
-        // in `data` (unaligned reads); the rest is register-only SSE2.
+    fn short() -> f32 {
+        short().0
+    }
+    /// [`Two`]'s steps for one channel: the rows are two u16 nodes (4 bytes) each, so lanes
+    /// 0 and 1 carry the two rows.
+    #[inline(always)]
+    unsafe fn blend(p: *const u8, row: usize, f: __m128, reader: &Reader) -> f32 {
+        // SAFETY: both 4-byte reads lie in one allocation (the contract; unaligned reads);
+        // the rest is register-only SSE2.
         #[allow(unused_unsafe)]
         let v = unsafe {
-            let p = data.as_ptr().add(base + at);
             // Stored u16 (node, row): A₀₀ A₁₀ and A₀₁ A₁₁.
             let r0 = _mm_cvtsi32_si128(p.cast::<i32>().read_unaligned());
             let r1 = _mm_cvtsi32_si128(p.add(row).cast::<i32>().read_unaligned());
             // (A₀₀ A₀₁ A₁₀ A₁₁): node 0 of both rows, then node 1, widened to 32 bits.
             let q = _mm_unpacklo_epi16(_mm_unpacklo_epi16(r0, r1), _mm_setzero_si128());
-            // p₁ − p₀ in the integer unit, exact as in `ab_in`.
+            // p₁ − p₀ in the integer unit, exact as in [`Two`]'s.
             let p0 = _mm_cvtepi32_ps(q);
             let d = _mm_cvtepi32_ps(_mm_sub_epi32(_mm_shuffle_epi32(q, 0b1110), q));
             // Along axis 0: r = p₀ + f₀ (p₁ − p₀) = (r₀, r₁).
@@ -623,7 +649,7 @@ mod wide8 {
         _mm_castpd_si128, _mm_castsi128_pd, _mm_cvtsi32_si128, _mm_loadh_pd, _mm_loadl_epi64,
     };
 
-    /// Node and fraction of eight coordinates on one `Sqrt` axis: [`Fast2::ab_in`]'s lane
+    /// Node and fraction of eight coordinates on one `Sqrt` axis: [`Fast2::cells`]' lane
     /// steps (the same IEEE operations, eight lanes wide).
     ///
     /// # Safety

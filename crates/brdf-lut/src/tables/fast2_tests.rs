@@ -5,8 +5,9 @@
 
 use super::Prepared;
 use crate::header::{Axis, Encoding, Interpolation, Placement, TableKind, Warp};
-use crate::lookup::simd::{Fast2, Kind};
+use crate::lookup::simd::{Fast2, Kind, One, Two};
 use crate::lookup::{Lane, Reader};
+use crate::testing::{asset, asset_path, axis};
 use crate::write;
 use crate::LutView;
 use std::vec::Vec;
@@ -22,6 +23,24 @@ fn agrees(x: f32, y: f32, v: (f32, f32), want: [f32; 2]) -> bool {
 }
 
 /// The table of `spec` holding `values`, written by the crate's writer.
+/// The spec of a made-up u16 table of one channel (directional albedo, `A`) or two
+/// (split-sum, `A` and `B`).
+fn u16_spec<'a>(
+    axes: &'a [Axis<'a>],
+    channels: usize,
+    interpolation: Interpolation,
+) -> write::Spec<'a> {
+    const NAMES: [&str; 2] = ["A", "B"];
+    write::Spec {
+        kind: [TableKind::DirectionalAlbedo, TableKind::SplitSum][channels - 1],
+        axes,
+        channels: &NAMES[..channels],
+        encoding: Encoding::Unorm16,
+        interpolation,
+        generator: Default::default(),
+    }
+}
+
 fn encode(spec: &write::Spec, values: &[f64]) -> Vec<u8> {
     let (chans, payload) = write::quantise(spec, values).unwrap();
     let h = write::header(spec, chans, Default::default()).unwrap();
@@ -85,7 +104,7 @@ fn coords(l: &Lane) -> Vec<f32> {
     v
 }
 
-/// `Fast2::ab` (from the payload and from the whole file) against the general scalar
+/// `Fast2::lookup::<Two>` (from the payload and from the whole file) against the general scalar
 /// reader, bit for bit, over the product of both axes' coordinates; returns the kind.
 fn check(bytes: &[u8]) -> Kind {
     let view = LutView::parse(bytes).unwrap();
@@ -106,8 +125,8 @@ fn check(bytes: &[u8]) -> Kind {
         for &y in &ys {
             let want = p.reader.sample::<2, 2>(&p.grid, payload, [x, y]);
             let (a, b) = (
-                f.ab(&p.reader, payload, 0, x, y),
-                f.ab(&p.reader, bytes, hl, x, y),
+                f.lookup::<Two>(&p.reader, payload, 0, x, y),
+                f.lookup::<Two>(&p.reader, bytes, hl, x, y),
             );
             let ok = |v: Option<(f32, f32)>| v.is_some_and(|v| agrees(x, y, v, want));
             assert!(ok(a) && ok(b), "({x:e}, {y:e}): {a:?} {b:?} vs {want:?}");
@@ -123,16 +142,20 @@ fn check(bytes: &[u8]) -> Kind {
     // A payload one byte short of the last block reads NaN (no panic, no read past it).
     let short = &payload[..payload.len() - 1];
     let (l0, l1) = (&p.reader.lanes[0], &p.reader.lanes[1]);
-    let v = f.ab(&p.reader, short, 0, l0.hi, l1.hi).unwrap();
+    let v = f.lookup::<Two>(&p.reader, short, 0, l0.hi, l1.hi).unwrap();
     assert!(v.0.is_nan() && v.1.is_nan());
-    assert!(!f.ab(&p.reader, short, 0, l0.lo, l1.lo).unwrap().0.is_nan());
+    assert!(!f
+        .lookup::<Two>(&p.reader, short, 0, l0.lo, l1.lo)
+        .unwrap()
+        .0
+        .is_nan());
     if f.kind == Kind::Sqrt {
         batch_equals_scalar(&f, &p.reader, bytes, hl, &xs, &ys);
     }
     f.kind
 }
 
-/// [`check`] of a one-channel table: `Fast2::e` (from the payload and from the whole file)
+/// [`check`] of a one-channel table: `Fast2::lookup::<One>` (from the payload and from the whole file)
 /// against the general scalar reader, bit for bit, NaN exactly where a coordinate is NaN,
 /// and NaN from a payload one byte short of the last block.
 fn check_one(bytes: &[u8], p: &Prepared, f: &Fast2) -> Kind {
@@ -143,8 +166,8 @@ fn check_one(bytes: &[u8], p: &Prepared, f: &Fast2) -> Kind {
         for &y in &ys {
             let [want] = p.reader.sample::<2, 1>(&p.grid, payload, [x, y]);
             let got = [
-                f.e(&p.reader, payload, 0, x, y),
-                f.e(&p.reader, bytes, hl, x, y),
+                f.lookup::<One>(&p.reader, payload, 0, x, y),
+                f.lookup::<One>(&p.reader, bytes, hl, x, y),
             ];
             // As in `check`: only two NaNs of different signs leave the NaN's bits free.
             let free = x.is_nan() && y.is_nan() && x.to_bits() != y.to_bits();
@@ -159,14 +182,22 @@ fn check_one(bytes: &[u8], p: &Prepared, f: &Fast2) -> Kind {
     }
     let short = &payload[..payload.len() - 1];
     let (l0, l1) = (&p.reader.lanes[0], &p.reader.lanes[1]);
-    assert!(f.e(&p.reader, short, 0, l0.hi, l1.hi).unwrap().is_nan());
-    assert!(!f.e(&p.reader, short, 0, l0.lo, l1.lo).unwrap().is_nan());
+    assert!(f
+        .lookup::<One>(&p.reader, short, 0, l0.hi, l1.hi)
+        .unwrap()
+        .is_nan());
+    assert!(!f
+        .lookup::<One>(&p.reader, short, 0, l0.lo, l1.lo)
+        .unwrap()
+        .is_nan());
     // The two-channel entry points do not take a one-channel table.
-    assert!(f.ab(&p.reader, payload, 0, l0.lo, l1.lo).is_none());
+    assert!(f
+        .lookup::<Two>(&p.reader, payload, 0, l0.lo, l1.lo)
+        .is_none());
     f.kind
 }
 
-/// The eight-lane batch (where the processor has AVX2) against `Fast2::ab`, bit for
+/// The eight-lane batch (where the processor has AVX2) against `Fast2::lookup::<Two>`, bit for
 /// bit: every (x, y) of the coordinate product in query order, a tail of 1–7, and a
 /// payload one byte short, whose chunks that touch the last block fall back to the
 /// scalar lookup (NaN there).
@@ -202,7 +233,7 @@ fn batch_equals_scalar(f: &Fast2, r: &Reader, bytes: &[u8], hl: usize, xs: &[f32
         // SAFETY: the processor has AVX2 (checked above).
         assert!(unsafe { f.batch_avx2(r, data, hl, limit, x, y, [&mut a, &mut b]) });
         for k in 0..n {
-            let want = f.ab(r, data, hl, x[k], y[k]).unwrap();
+            let want = f.lookup::<Two>(r, data, hl, x[k], y[k]).unwrap();
             let ok = agrees(x[k], y[k], (a[k], b[k]), [want.0, want.1]);
             assert!(
                 ok,
@@ -215,18 +246,11 @@ fn batch_equals_scalar(f: &Fast2, r: &Reader, bytes: &[u8], hl: usize, xs: &[f32
     }
 }
 
-fn asset(name: &str) -> Vec<u8> {
-    let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../assets")
-        .join(name);
-    std::fs::read(p).unwrap()
-}
-
 /// Every committed asset: the one- and two-channel linear 2-D ones take the two-lane path (the
 /// split-sum speed tier its inlined form) and equal the general reader bit for bit.
 #[test]
 fn assets_equal_the_general_reader() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets");
+    let dir = asset_path("");
     let mut taken = Vec::new();
     for e in std::fs::read_dir(dir).unwrap() {
         let name = e.unwrap().file_name().into_string().unwrap();
@@ -258,14 +282,7 @@ fn assets_equal_the_general_reader() {
 /// clamp: the table takes the out-of-line form, with the same values.
 #[test]
 fn rounding_past_the_last_node_keeps_the_clamp() {
-    let ax = |hi: f64| Axis {
-        name: "x",
-        count: 256,
-        lo: 0.0,
-        hi,
-        warp: Warp::Sqrt,
-        placement: Placement::Endpoint,
-    };
+    let ax = |hi: f64| axis(256, 0.0, hi, Warp::Sqrt, Placement::Endpoint);
     let over = (1..1000)
         .map(|k| 0.3 + 0.0007 * k as f64)
         .find(|&hi| {
@@ -274,14 +291,7 @@ fn rounding_past_the_last_node_keeps_the_clamp() {
         })
         .expect("some range rounds past the last node");
     let axes = [ax(over), ax(1.0)];
-    let spec = write::Spec {
-        kind: TableKind::SplitSum,
-        axes: &axes,
-        channels: &["A", "B"],
-        encoding: Encoding::Unorm16,
-        interpolation: Interpolation::Linear,
-        generator: Default::default(),
-    };
+    let spec = u16_spec(&axes, 2, Interpolation::Linear);
     let values: Vec<f64> = (0..spec.nodes() * 2)
         .map(|k| (0.37 * k as f64).sin())
         .collect();
@@ -300,14 +310,7 @@ fn rounding_past_the_last_node_keeps_the_clamp() {
 /// some it does not (log warp, Catmull–Rom); two channels and one.
 #[test]
 fn made_up_tables_equal_the_general_reader() {
-    let ax = |count, lo, hi, warp, placement| Axis {
-        name: "x",
-        count,
-        lo,
-        hi,
-        warp,
-        placement,
-    };
+    let ax = axis;
     use Placement::{Endpoint as E, TexelCentre as T};
     use Warp::{Linear as L, Log, Sqrt as S};
     // (axes, channels, interpolation); two channels and linear unless said.
@@ -355,21 +358,9 @@ fn made_up_tables_equal_the_general_reader() {
             Interpolation::CatmullRom,
         ),
     ];
-    let names = ["A", "B"];
     let mut kinds = Vec::new();
     for (axes, nc, interpolation) in cases {
-        let spec = write::Spec {
-            kind: if nc == 2 {
-                TableKind::SplitSum
-            } else {
-                TableKind::DirectionalAlbedo
-            },
-            axes: &axes,
-            channels: &names[..nc],
-            encoding: Encoding::Unorm16,
-            interpolation,
-            generator: Default::default(),
-        };
+        let spec = u16_spec(&axes, nc, interpolation);
         let nodes = spec.nodes();
         // Smooth plus a fixed pseudo-random part, so neighbouring nodes differ.
         let values: Vec<f64> = (0..nodes * nc)

@@ -142,12 +142,7 @@ mod tests {
     use super::*;
     use std::vec::Vec;
 
-    fn asset(name: &str) -> Vec<u8> {
-        let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../../assets")
-            .join(name);
-        std::fs::read(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
-    }
+    use crate::testing::asset;
 
     /// A grid over [lo, hi] with `n` points, ends included, plus points outside (clamped)
     /// and NaN.
