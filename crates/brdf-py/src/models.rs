@@ -67,14 +67,7 @@ fn params(spec: &'static ModelSpec, kw: Option<&Bound<'_, PyDict>>) -> PyResult<
     if let Some(kw) = kw {
         for (k, v) in kw.iter() {
             let k: String = k.extract()?;
-            let mut at = 0;
-            let Some(p) = spec.params.iter().find(|p| {
-                let hit = p.name == k;
-                if !hit {
-                    at += p.width();
-                }
-                hit
-            }) else {
+            let Some((at, p)) = spec.param_by_name(&k) else {
                 let keys: Vec<&str> = spec.params.iter().map(|p| p.name).collect();
                 return Err(PyValueError::new_err(format!(
                     "model {:?} has no parameter `{k}` (parameters: {})",
