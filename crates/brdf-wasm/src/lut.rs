@@ -22,7 +22,7 @@
 //! never a panic or an out-of-bounds read), and a table of another length or checksum gives
 //! NaN ([`NO_LUT`]).
 
-use crate::memory::{batch_ok, map2, usable, StaticBuf};
+use crate::memory::{batch, map2, usable, StaticBuf};
 use crate::status::{BAD_BUFFER, BAD_LUT, NO_LUT, OK};
 use brdf_lut::{DfgTable, GTable, GTable3, LutError, LutView, TableLayout};
 use core::cell::UnsafeCell;
@@ -217,12 +217,11 @@ pub unsafe extern "C" fn brdf_g_lut_batch(
     out: *mut f32,
     n: u32,
 ) -> i32 {
-    if !batch_ok(n, &[theta_i, theta_r, out.cast_const()]) {
-        return BAD_BUFFER;
-    }
-    // SAFETY: the pointers passed `batch_ok` and are valid for n f32 (the contract).
-    with_g3(|t| unsafe { map2(theta_i, theta_r, out, n, |a, b| t.g(a, b, sigma)) })
-        .unwrap_or(NO_LUT)
+    batch(n, &[theta_i, theta_r, out.cast_const()], || {
+        // SAFETY: the pointers passed `batch`'s check and are valid for n f32 (the contract).
+        with_g3(|t| unsafe { map2(theta_i, theta_r, out, n, |a, b| t.g(a, b, sigma)) })
+            .unwrap_or(NO_LUT)
+    })
 }
 
 /// The modified G from the one-σ table (slot 1) at in-plane angles (radians). NaN without a
@@ -272,22 +271,22 @@ pub unsafe extern "C" fn brdf_dfg_batch(
     out: *mut f32,
     n: u32,
 ) -> i32 {
-    if !batch_ok(n, &[mu, roughness, out.cast_const()]) {
-        return BAD_BUFFER;
-    }
-    with_dfg(|t| {
-        // SAFETY: the pointers are non-null and aligned (checked) and valid for n, n and 2n
-        // f32 (the contract); the inputs of row k are read before its outputs are written.
-        unsafe {
-            for k in 0..n as usize {
-                let (a, b) = t.ab(*mu.add(k), *roughness.add(k));
-                *out.add(2 * k) = a;
-                *out.add(2 * k + 1) = b;
+    batch(n, &[mu, roughness, out.cast_const()], || {
+        with_dfg(|t| {
+            // SAFETY: the pointers are non-null and aligned (checked) and valid for n, n and
+            // 2n f32 (the contract); the inputs of row k are read before its outputs are
+            // written.
+            unsafe {
+                for k in 0..n as usize {
+                    let (a, b) = t.ab(*mu.add(k), *roughness.add(k));
+                    *out.add(2 * k) = a;
+                    *out.add(2 * k + 1) = b;
+                }
             }
-        }
-        n as i32
+            n as i32
+        })
+        .unwrap_or(NO_LUT)
     })
-    .unwrap_or(NO_LUT)
 }
 
 #[cfg(test)]
