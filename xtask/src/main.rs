@@ -25,7 +25,8 @@ struct Cli {
 #[derive(Subcommand)]
 enum Cmd {
     /// Evaluate kernels on CSV rows read from stdin (for scripting).
-    Eval(eval::Args),
+    #[command(subcommand)]
+    Eval(eval::What),
     /// Generate, verify, inspect and export the LUT assets (default: generate the default set).
     Lut(lut::Args),
     /// Run the benchmark suite with short settings and write docs/benchmarks.md.

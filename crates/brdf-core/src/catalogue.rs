@@ -890,6 +890,23 @@ models! {
             "microfacet distribution D, in option order"),
     ]
 }
+
+impl ModelSpec {
+    /// The parameter named `name` and the index of its first slot in the flat array (the
+    /// widths of the parameters before it summed); `None` when the model has none of that
+    /// name. How the command line and the Python binding place a named value.
+    pub fn param_by_name(&self, name: &str) -> Option<(usize, &'static ParamSpec)> {
+        let mut at = 0;
+        for p in self.params {
+            if p.name == name {
+                return Some((at, p));
+            }
+            at += p.width();
+        }
+        None
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

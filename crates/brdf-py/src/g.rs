@@ -5,6 +5,7 @@
 use crate::arrays::{self, dir, num, Float, Kernel, SCALAR};
 use brdf_core::batch::{self, DotsSoa};
 use brdf_core::masking::{self, Convention, GTerms, ModifiedG};
+use brdf_core::microfacet::{Beckmann, Isotropic, TrowbridgeReitz};
 use brdf_core::quadrature::{GaussLegendre, Rule, DEFAULT_NODES, NODE_COUNTS};
 use brdf_core::ParamError;
 use brdf_core::{Dots, Vec3};
@@ -208,141 +209,135 @@ fn run_modified<'py>(
     arrays::one_or_tuple(py, arrays::run(py, args, widths, k)?)
 }
 
-/// The paper's modified geometric attenuation factor G = min(GM, GS) (eqs 6–13).
-///
-/// Parameters
-/// ----------
-/// theta_i, theta_r : array_like
-///     Incidence angle θi ∈ [0, π/2] and signed reflection angle θr ∈ [−π/2, π/2] in radians
-///     (θr > 0 on the forward side); broadcast together. Out-of-range angles are clamped,
-///     NaN gives NaN.
-/// sigma : float
-///     RMS slope σ ∈ (0, 1e6] of the Gaussian surface.
-/// convention : {"reciprocal", "printed"}
-///     "reciprocal" (default) or eq 12 as printed in the paper.
-/// nodes : int
-///     Gauss–Legendre nodes per integral: 4, 6, 8, 10 (default), 12, 16, 20, 24 or 32.
-/// terms : bool
-///     Return the tuple (GM, GS, G) instead of G.
-///
-/// Returns
-/// -------
-/// numpy.ndarray or float
-///     G (or GM, GS, G) in the broadcast shape, float32 when every array argument is float32,
-///     float64 otherwise (a NumPy scalar when that shape is ``()``); a Python float when
-///     every argument is a Python number.
-///
-/// Raises
-/// ------
-/// ValueError
-///     σ outside (0, 1e6], unknown convention or node count, shapes that do not broadcast.
-#[pyfunction]
-#[pyo3(signature = (theta_i, theta_r, sigma, *, convention="reciprocal", nodes=10, terms=false))]
-pub fn g_modified<'py>(
-    py: Python<'py>,
-    theta_i: &Bound<'py, PyAny>,
-    theta_r: &Bound<'py, PyAny>,
-    sigma: f64,
-    convention: &str,
-    nodes: usize,
-    terms: bool,
-) -> PyResult<Bound<'py, PyAny>> {
-    let k = modified(sigma, convention, nodes, Input::Angles, terms)?;
-    run_modified(py, &k, &[num("theta_i", theta_i), num("theta_r", theta_r)])
+/// Defines a Python function `$name(<arrays>, sigma, *, [n=None,] convention="reciprocal",
+/// nodes=10, terms=False)`: the modified G of input form `$input`, its array arguments `$arg`
+/// read by `$read` ([`num`] or [`dir`]) and, for the vector form, an optional normal `$n`
+/// (one definition of the parameters the three forms share and of their body).
+macro_rules! modified_function {
+    (
+        $(#[doc = $doc:literal])*
+        $name:ident($($arg:ident: $read:ident),+ $(; $n:ident)?) => $input:expr
+    ) => {
+        $(#[doc = $doc])*
+        #[pyfunction]
+        #[pyo3(signature = (
+            $($arg,)+ sigma, *, $($n=None,)? convention="reciprocal", nodes=10, terms=false
+        ))]
+        #[allow(clippy::too_many_arguments)]
+        pub fn $name<'py>(
+            py: Python<'py>,
+            $($arg: &Bound<'py, PyAny>,)+
+            sigma: f64,
+            $($n: Option<&Bound<'py, PyAny>>,)?
+            convention: &str,
+            nodes: usize,
+            terms: bool,
+        ) -> PyResult<Bound<'py, PyAny>> {
+            let k = modified(sigma, convention, nodes, $input, terms)?;
+            #[allow(unused_mut)]
+            let mut args = vec![$($read(stringify!($arg), $arg)),+];
+            $(args.extend($n.map(|v| dir(stringify!($n), v)));)?
+            run_modified(py, &k, &args)
+        }
+    };
 }
 
-/// The modified G from dot products: the reciprocal 3-D extension (shader form).
-///
-/// Parameters
-/// ----------
-/// n_i, n_o, i_o : array_like
-///     n·wi, n·wo and wi·wo of unit vectors (z up); broadcast together. A direction at or
-///     below the horizon gives 0, NaN gives NaN.
-/// sigma : float
-///     RMS slope σ ∈ (0, 1e6].
-/// convention : {"reciprocal", "printed"}
-///     As in :func:`g_modified`.
-/// nodes : int
-///     As in :func:`g_modified`.
-/// terms : bool
-///     Return (GM, GS, G) instead of G.
-///
-/// Returns
-/// -------
-/// numpy.ndarray or float
-///     G (or GM, GS, G), dtype as in :func:`g_modified`.
-///
-/// Raises
-/// ------
-/// ValueError
-///     As in :func:`g_modified`.
-#[pyfunction]
-#[pyo3(signature = (n_i, n_o, i_o, sigma, *, convention="reciprocal", nodes=10, terms=false))]
-#[allow(clippy::too_many_arguments)]
-pub fn g_modified_dots<'py>(
-    py: Python<'py>,
-    n_i: &Bound<'py, PyAny>,
-    n_o: &Bound<'py, PyAny>,
-    i_o: &Bound<'py, PyAny>,
-    sigma: f64,
-    convention: &str,
-    nodes: usize,
-    terms: bool,
-) -> PyResult<Bound<'py, PyAny>> {
-    let k = modified(sigma, convention, nodes, Input::Dots, terms)?;
-    run_modified(py, &k, &[num("n_i", n_i), num("n_o", n_o), num("i_o", i_o)])
-}
+modified_function!(
+    /// The paper's modified geometric attenuation factor G = min(GM, GS) (eqs 6–13).
+    ///
+    /// Parameters
+    /// ----------
+    /// theta_i, theta_r : array_like
+    ///     Incidence angle θi ∈ [0, π/2] and signed reflection angle θr ∈ [−π/2, π/2] in radians
+    ///     (θr > 0 on the forward side); broadcast together. Out-of-range angles are clamped,
+    ///     NaN gives NaN.
+    /// sigma : float
+    ///     RMS slope σ ∈ (0, 1e6] of the Gaussian surface.
+    /// convention : {"reciprocal", "printed"}
+    ///     "reciprocal" (default) or eq 12 as printed in the paper.
+    /// nodes : int
+    ///     Gauss–Legendre nodes per integral: 4, 6, 8, 10 (default), 12, 16, 20, 24 or 32.
+    /// terms : bool
+    ///     Return the tuple (GM, GS, G) instead of G.
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray or float
+    ///     G (or GM, GS, G) in the broadcast shape, float32 when every array argument is float32,
+    ///     float64 otherwise (a NumPy scalar when that shape is ``()``); a Python float when
+    ///     every argument is a Python number.
+    ///
+    /// Raises
+    /// ------
+    /// ValueError
+    ///     σ outside (0, 1e6], unknown convention or node count, shapes that do not broadcast.
+    g_modified(theta_i: num, theta_r: num) => Input::Angles
+);
 
-/// The modified G from directions: the reciprocal 3-D extension of
-/// :func:`g_modified_dots` with the dot products taken from the vectors
-/// (``brdf_core::masking::ModifiedG::g_vectors``).
-///
-/// Parameters
-/// ----------
-/// wi, wo : array_like, shape (..., 3)
-///     Directions toward the light and the viewer, any length (normalised here); the leading
-///     shapes broadcast. A zero or non-finite vector gives NaN; a direction at or below the
-///     horizon gives 0.
-/// sigma : float
-///     RMS slope σ ∈ (0, 1e6].
-/// n : array_like, shape (..., 3), optional
-///     The surface normal (normalised here; default +z, the local frame), broadcast with
-///     wi and wo.
-/// convention : {"reciprocal", "printed"}
-///     As in :func:`g_modified`.
-/// nodes : int
-///     As in :func:`g_modified`.
-/// terms : bool
-///     Return (GM, GS, G) instead of G.
-///
-/// Returns
-/// -------
-/// numpy.ndarray
-///     G (or GM, GS, G) in the broadcast leading shape; float32 when every array argument is
-///     float32, float64 otherwise.
-///
-/// Raises
-/// ------
-/// ValueError
-///     As in :func:`g_modified`; a last axis that is not 3.
-#[pyfunction]
-#[pyo3(signature = (wi, wo, sigma, *, n=None, convention="reciprocal", nodes=10, terms=false))]
-#[allow(clippy::too_many_arguments)]
-pub fn g_modified_vectors<'py>(
-    py: Python<'py>,
-    wi: &Bound<'py, PyAny>,
-    wo: &Bound<'py, PyAny>,
-    sigma: f64,
-    n: Option<&Bound<'py, PyAny>>,
-    convention: &str,
-    nodes: usize,
-    terms: bool,
-) -> PyResult<Bound<'py, PyAny>> {
-    let k = modified(sigma, convention, nodes, Input::Vectors(n.is_some()), terms)?;
-    let mut args = vec![dir("wi", wi), dir("wo", wo)];
-    args.extend(n.map(|n| dir("n", n)));
-    run_modified(py, &k, &args)
-}
+modified_function!(
+    /// The modified G from dot products: the reciprocal 3-D extension (shader form).
+    ///
+    /// Parameters
+    /// ----------
+    /// n_i, n_o, i_o : array_like
+    ///     n·wi, n·wo and wi·wo of unit vectors (z up); broadcast together. A direction at or
+    ///     below the horizon gives 0, NaN gives NaN.
+    /// sigma : float
+    ///     RMS slope σ ∈ (0, 1e6].
+    /// convention : {"reciprocal", "printed"}
+    ///     As in :func:`g_modified`.
+    /// nodes : int
+    ///     As in :func:`g_modified`.
+    /// terms : bool
+    ///     Return (GM, GS, G) instead of G.
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray or float
+    ///     G (or GM, GS, G), dtype as in :func:`g_modified`.
+    ///
+    /// Raises
+    /// ------
+    /// ValueError
+    ///     As in :func:`g_modified`.
+    g_modified_dots(n_i: num, n_o: num, i_o: num) => Input::Dots
+);
+
+modified_function!(
+    /// The modified G from directions: the reciprocal 3-D extension of
+    /// :func:`g_modified_dots` with the dot products taken from the vectors
+    /// (``brdf_core::masking::ModifiedG::g_vectors``).
+    ///
+    /// Parameters
+    /// ----------
+    /// wi, wo : array_like, shape (..., 3)
+    ///     Directions toward the light and the viewer, any length (normalised here); the leading
+    ///     shapes broadcast. A zero or non-finite vector gives NaN; a direction at or below the
+    ///     horizon gives 0.
+    /// sigma : float
+    ///     RMS slope σ ∈ (0, 1e6].
+    /// n : array_like, shape (..., 3), optional
+    ///     The surface normal (normalised here; default +z, the local frame), broadcast with
+    ///     wi and wo.
+    /// convention : {"reciprocal", "printed"}
+    ///     As in :func:`g_modified`.
+    /// nodes : int
+    ///     As in :func:`g_modified`.
+    /// terms : bool
+    ///     Return (GM, GS, G) instead of G.
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray
+    ///     G (or GM, GS, G) in the broadcast leading shape; float32 when every array argument is
+    ///     float32, float64 otherwise.
+    ///
+    /// Raises
+    /// ------
+    /// ValueError
+    ///     As in :func:`g_modified`; a last axis that is not 3.
+    g_modified_vectors(wi: dir, wo: dir; n) => Input::Vectors(n.is_some())
+);
 
 /// Blinn's V-groove G (paper eq 4), from angles or from dot products.
 struct Blinn {
@@ -451,10 +446,10 @@ impl Kernel for Smith {
             return Err("internal: output count".into());
         };
         let f: fn(T, T, T) -> T = match (self.ggx, self.correlated) {
-            (false, false) => masking::g_smith_beckmann_separable,
-            (false, true) => masking::g_smith_beckmann_correlated,
-            (true, false) => masking::g_smith_ggx_separable,
-            (true, true) => masking::g_smith_ggx_correlated,
+            (false, false) => Beckmann::<T>::g_separable_cos,
+            (false, true) => Beckmann::<T>::g_correlated_cos,
+            (true, false) => TrowbridgeReitz::<T>::g_separable_cos,
+            (true, true) => TrowbridgeReitz::<T>::g_correlated_cos,
         };
         for ((o, &a), &b) in o.iter_mut().zip(*ci).zip(*co) {
             *o = f(a, b, w);

@@ -67,14 +67,7 @@ fn params(spec: &'static ModelSpec, kw: Option<&Bound<'_, PyDict>>) -> PyResult<
     if let Some(kw) = kw {
         for (k, v) in kw.iter() {
             let k: String = k.extract()?;
-            let mut at = 0;
-            let Some(p) = spec.params.iter().find(|p| {
-                let hit = p.name == k;
-                if !hit {
-                    at += p.width();
-                }
-                hit
-            }) else {
+            let Some((at, p)) = spec.param_by_name(&k) else {
                 let keys: Vec<&str> = spec.params.iter().map(|p| p.name).collect();
                 return Err(PyValueError::new_err(format!(
                     "model {:?} has no parameter `{k}` (parameters: {})",
@@ -175,44 +168,56 @@ impl Kernel for ModelKernel {
     }
 }
 
-/// Evaluates a catalogue model f(wi, wo) (1/sr per channel; the Dirac part of a model with
-/// a mirror is not included).
-///
-/// Parameters
-/// ----------
-/// model : str
-///     Catalogue name (see :func:`models`), e.g. "ggx", "torrance-sparrow".
-/// wi, wo : array_like, shape (..., 3)
-///     Directions toward the light and the viewer in the local frame (z = normal);
-///     normalised here; the leading shapes broadcast. A zero or non-finite vector gives NaN.
-///     Below the surface (z < 0) a BRDF gives 0; the BSDF "rough-dielectric" gives its
-///     transmitted part when wi and wo lie on opposite sides (radiance convention).
-/// **params
-///     The model's parameters by name (defaults for the others); a colour takes one number
-///     or three, a choice its option name.
-///
-/// Returns
-/// -------
-/// numpy.ndarray, shape (..., 3)
-///     f per RGB channel; float32 when wi and wo are float32, float64 otherwise.
-///
-/// Raises
-/// ------
-/// ValueError
-///     Unknown model or parameter, a parameter outside its range (the message names it and
-///     the range), a last axis that is not 3, shapes that do not broadcast.
-#[pyfunction]
-#[pyo3(signature = (model, wi, wo, **params))]
-pub fn eval<'py>(
-    py: Python<'py>,
-    model: &str,
-    wi: &Bound<'py, PyAny>,
-    wo: &Bound<'py, PyAny>,
-    params: Option<&Bound<'py, PyDict>>,
-) -> PyResult<Bound<'py, PyAny>> {
-    let k = ModelKernel::new(model, params, Job::Eval)?;
-    arrays::single(arrays::run(py, &[dir("wi", wi), dir("wo", wo)], &[3], &k)?)
+/// Defines a Python function `$name(model, <directions>, **params)`: job `$job` of the
+/// catalogue model over the direction arrays `$arg` (shape (..., 3) each), one (..., 3)
+/// result (one definition of what evaluation and albedo share).
+macro_rules! model_function {
+    ($(#[doc = $doc:literal])* $name:ident($($arg:ident),+) => $job:expr) => {
+        $(#[doc = $doc])*
+        #[pyfunction]
+        #[pyo3(signature = (model, $($arg,)+ **params))]
+        pub fn $name<'py>(
+            py: Python<'py>,
+            model: &str,
+            $($arg: &Bound<'py, PyAny>,)+
+            params: Option<&Bound<'py, PyDict>>,
+        ) -> PyResult<Bound<'py, PyAny>> {
+            let k = ModelKernel::new(model, params, $job)?;
+            let args = [$(dir(stringify!($arg), $arg)),+];
+            arrays::single(arrays::run(py, &args, &[3], &k)?)
+        }
+    };
 }
+
+model_function!(
+    /// Evaluates a catalogue model f(wi, wo) (1/sr per channel; the Dirac part of a model with
+    /// a mirror is not included).
+    ///
+    /// Parameters
+    /// ----------
+    /// model : str
+    ///     Catalogue name (see :func:`models`), e.g. "ggx", "torrance-sparrow".
+    /// wi, wo : array_like, shape (..., 3)
+    ///     Directions toward the light and the viewer in the local frame (z = normal);
+    ///     normalised here; the leading shapes broadcast. A zero or non-finite vector gives NaN.
+    ///     Below the surface (z < 0) a BRDF gives 0; the BSDF "rough-dielectric" gives its
+    ///     transmitted part when wi and wo lie on opposite sides (radiance convention).
+    /// **params
+    ///     The model's parameters by name (defaults for the others); a colour takes one number
+    ///     or three, a choice its option name.
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray, shape (..., 3)
+    ///     f per RGB channel; float32 when wi and wo are float32, float64 otherwise.
+    ///
+    /// Raises
+    /// ------
+    /// ValueError
+    ///     Unknown model or parameter, a parameter outside its range (the message names it and
+    ///     the range), a last axis that is not 3, shapes that do not broadcast.
+    eval(wi, wo) => Job::Eval
+);
 
 /// Importance-samples a catalogue model.
 ///
@@ -273,38 +278,30 @@ pub fn sample<'py>(
     arrays::one_or_tuple(py, r)
 }
 
-/// Directional albedo R(wo) = ∫ f(wi, wo) cos θi dωi of a catalogue model (fixed-size
-/// lobe-following quadrature; the Dirac part is not included).
-///
-/// Parameters
-/// ----------
-/// model : str
-///     Catalogue name.
-/// wo : array_like, shape (..., 3)
-///     Direction toward the viewer (normalised here).
-/// **params
-///     The model's parameters, as in :func:`eval`.
-///
-/// Returns
-/// -------
-/// numpy.ndarray, shape (..., 3)
-///     Albedo per channel; dtype follows wo.
-///
-/// Raises
-/// ------
-/// ValueError
-///     As in :func:`eval`.
-#[pyfunction]
-#[pyo3(signature = (model, wo, **params))]
-pub fn albedo<'py>(
-    py: Python<'py>,
-    model: &str,
-    wo: &Bound<'py, PyAny>,
-    params: Option<&Bound<'py, PyDict>>,
-) -> PyResult<Bound<'py, PyAny>> {
-    let k = ModelKernel::new(model, params, Job::Albedo)?;
-    arrays::single(arrays::run(py, &[dir("wo", wo)], &[3], &k)?)
-}
+model_function!(
+    /// Directional albedo R(wo) = ∫ f(wi, wo) cos θi dωi of a catalogue model (fixed-size
+    /// lobe-following quadrature; the Dirac part is not included).
+    ///
+    /// Parameters
+    /// ----------
+    /// model : str
+    ///     Catalogue name.
+    /// wo : array_like, shape (..., 3)
+    ///     Direction toward the viewer (normalised here).
+    /// **params
+    ///     The model's parameters, as in :func:`eval`.
+    ///
+    /// Returns
+    /// -------
+    /// numpy.ndarray, shape (..., 3)
+    ///     Albedo per channel; dtype follows wo.
+    ///
+    /// Raises
+    /// ------
+    /// ValueError
+    ///     As in :func:`eval`.
+    albedo(wo) => Job::Albedo
+);
 
 /// One parameter as a dict.
 fn param_dict<'py>(py: Python<'py>, p: &catalogue::ParamSpec) -> PyResult<Bound<'py, PyDict>> {

@@ -16,26 +16,24 @@ use brdf_core::microfacet::{from_cos, Beckmann, Distribution};
 use brdf_core::models::{Brdf, GeometricTerm, TorranceSparrow};
 use brdf_core::{Dots, Real, Vec3};
 use brdf_lut::{DfgTable, GTable, GTable3};
+use rand::{Rng as _, RngCore, SeedableRng};
+use rand_pcg::Pcg64;
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
 /// Rows per export.
 const N: usize = 1000;
 
-/// SplitMix64: a small, fixed, portable pseudo-random sequence.
-struct Rng(u64);
+/// The pseudo-random inputs: the workspace's PCG generator (`rand_pcg`) from a fixed seed,
+/// with the draws the groups use.
+struct Rng(Pcg64);
 impl Rng {
     fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
+        self.0.next_u64()
     }
     /// Uniform f32 in [lo, hi].
     fn f(&mut self, lo: f32, hi: f32) -> f32 {
-        let u = (self.next() >> 40) as f32 / (1u64 << 24) as f32;
-        lo + (hi - lo) * u
+        self.0.random_range(lo..=hi)
     }
     /// A unit direction, above the horizon with probability ~0.9.
     fn dir(&mut self) -> Vec3<f32> {
@@ -179,7 +177,7 @@ fn main() {
             .unwrap_or_else(|| concat!(env!("CARGO_MANIFEST_DIR"), "/pkg").to_string()),
     );
     std::fs::create_dir_all(&out_dir).expect("create output directory");
-    let mut rng = Rng(0x5EED_B4DF_2015_0184);
+    let mut rng = Rng(Pcg64::seed_from_u64(0x5EED_B4DF_2015_0184));
     let mut groups: Vec<Group> = Vec::new();
     // The groups in the order the random sequence is drawn: changing it changes every row.
     for kind in 0..6u32 {

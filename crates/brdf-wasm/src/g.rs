@@ -6,8 +6,8 @@
 //! reciprocal convention, docs/conventions.md §4), 5 the modified G with eq 12 as printed.
 //! σ is the RMS slope (finite, > 0; accuracy specified for [0.05, 1]).
 
-use crate::memory::{batch_ok, map2};
-use crate::status::{BAD_BUFFER, BAD_PARAM};
+use crate::memory::{batch, map2};
+use crate::status::BAD_PARAM;
 use brdf_core::geometry::{clamp_theta_i, clamp_theta_r};
 use brdf_core::masking::{g_blinn, Convention, ModifiedG};
 use brdf_core::microfacet::{from_cos, Beckmann, Distribution};
@@ -147,14 +147,13 @@ pub unsafe extern "C" fn brdf_g_batch(
     out: *mut f32,
     n: u32,
 ) -> i32 {
-    if !batch_ok(n, &[theta_i, theta_r, out.cast_const()]) {
-        return BAD_BUFFER;
-    }
-    let Some(g) = PreparedG::new(kind, sigma) else {
-        return BAD_PARAM;
-    };
-    // SAFETY: the pointers passed `batch_ok` and are valid for n f32 (the contract).
-    unsafe { map2(theta_i, theta_r, out, n, |a, b| g.in_plane(a, b)) }
+    batch(n, &[theta_i, theta_r, out.cast_const()], || {
+        let Some(g) = PreparedG::new(kind, sigma) else {
+            return BAD_PARAM;
+        };
+        // SAFETY: the pointers passed `batch`'s check and are valid for n f32 (the contract).
+        unsafe { map2(theta_i, theta_r, out, n, |a, b| g.in_plane(a, b)) }
+    })
 }
 
 /// Batch [`brdf_g_dots`]: `dots` holds n triples (n·wi, n·wo, wi·wo), `out` n values.
@@ -171,27 +170,27 @@ pub unsafe extern "C" fn brdf_g_dots_batch(
     out: *mut f32,
     n: u32,
 ) -> i32 {
-    if !batch_ok(n, &[dots, out.cast_const()]) {
-        return BAD_BUFFER;
-    }
-    let Some(g) = PreparedG::new(kind, sigma) else {
-        return BAD_PARAM;
-    };
-    // SAFETY: both pointers are non-null and aligned (checked) and valid for 3n and n f32
-    // (the contract); row k is read before element k is written.
-    unsafe {
-        for k in 0..n as usize {
-            let p = dots.add(3 * k);
-            let v = g.dots(Dots::new(*p, *p.add(1), *p.add(2)));
-            *out.add(k) = v;
+    batch(n, &[dots, out.cast_const()], || {
+        let Some(g) = PreparedG::new(kind, sigma) else {
+            return BAD_PARAM;
+        };
+        // SAFETY: both pointers are non-null and aligned (checked) and valid for 3n and n
+        // f32 (the contract); row k is read before element k is written.
+        unsafe {
+            for k in 0..n as usize {
+                let p = dots.add(3 * k);
+                let v = g.dots(Dots::new(*p, *p.add(1), *p.add(2)));
+                *out.add(k) = v;
+            }
         }
-    }
-    n as i32
+        n as i32
+    })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::status::BAD_BUFFER;
 
     #[test]
     fn bad_parameters_give_nan_and_status() {

@@ -22,7 +22,7 @@
 //! never a panic or an out-of-bounds read), and a table of another length or checksum gives
 //! NaN ([`NO_LUT`]).
 
-use crate::memory::{batch_ok, map2, usable, StaticBuf};
+use crate::memory::{batch, map2, usable, StaticBuf};
 use crate::status::{BAD_BUFFER, BAD_LUT, NO_LUT, OK};
 use brdf_lut::{DfgTable, GTable, GTable3, LutError, LutView, TableLayout};
 use core::cell::UnsafeCell;
@@ -217,12 +217,11 @@ pub unsafe extern "C" fn brdf_g_lut_batch(
     out: *mut f32,
     n: u32,
 ) -> i32 {
-    if !batch_ok(n, &[theta_i, theta_r, out.cast_const()]) {
-        return BAD_BUFFER;
-    }
-    // SAFETY: the pointers passed `batch_ok` and are valid for n f32 (the contract).
-    with_g3(|t| unsafe { map2(theta_i, theta_r, out, n, |a, b| t.g(a, b, sigma)) })
-        .unwrap_or(NO_LUT)
+    batch(n, &[theta_i, theta_r, out.cast_const()], || {
+        // SAFETY: the pointers passed `batch`'s check and are valid for n f32 (the contract).
+        with_g3(|t| unsafe { map2(theta_i, theta_r, out, n, |a, b| t.g(a, b, sigma)) })
+            .unwrap_or(NO_LUT)
+    })
 }
 
 /// The modified G from the one-σ table (slot 1) at in-plane angles (radians). NaN without a
@@ -272,34 +271,27 @@ pub unsafe extern "C" fn brdf_dfg_batch(
     out: *mut f32,
     n: u32,
 ) -> i32 {
-    if !batch_ok(n, &[mu, roughness, out.cast_const()]) {
-        return BAD_BUFFER;
-    }
-    with_dfg(|t| {
-        // SAFETY: the pointers are non-null and aligned (checked) and valid for n, n and 2n
-        // f32 (the contract); the inputs of row k are read before its outputs are written.
-        unsafe {
-            for k in 0..n as usize {
-                let (a, b) = t.ab(*mu.add(k), *roughness.add(k));
-                *out.add(2 * k) = a;
-                *out.add(2 * k + 1) = b;
+    batch(n, &[mu, roughness, out.cast_const()], || {
+        with_dfg(|t| {
+            // SAFETY: the pointers are non-null and aligned (checked) and valid for n, n and
+            // 2n f32 (the contract); the inputs of row k are read before its outputs are
+            // written.
+            unsafe {
+                for k in 0..n as usize {
+                    let (a, b) = t.ab(*mu.add(k), *roughness.add(k));
+                    *out.add(2 * k) = a;
+                    *out.add(2 * k + 1) = b;
+                }
             }
-        }
-        n as i32
+            n as i32
+        })
+        .unwrap_or(NO_LUT)
     })
-    .unwrap_or(NO_LUT)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn asset(name: &str) -> Vec<u8> {
-        let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../../assets")
-            .join(name);
-        std::fs::read(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
-    }
 
     fn put(s: u32, bytes: &[u8]) -> i32 {
         let cap = brdf_lut_capacity(s) as usize;
@@ -313,17 +305,17 @@ mod tests {
     // One test touches the static slots, so parallel tests never share them.
     #[test]
     fn load_query_and_reject() {
-        let g3 = asset("g_modified.blut");
-        let dfg = asset("dfg_ggx.blut");
+        let g3: &[u8] = include_bytes!("../../../assets/g_modified.blut");
+        let dfg: &[u8] = include_bytes!("../../../assets/dfg_ggx.blut");
         assert!(brdf_g_lut(0.3, 0.5, 0.5).is_nan(), "no table yet");
         let mut ab = [0.0f32; 2];
         // SAFETY: the pointers are to live local arrays of the lengths the call states.
         assert_eq!(unsafe { brdf_dfg(0.5, 0.5, ab.as_mut_ptr()) }, NO_LUT);
 
-        assert_eq!(put(0, &g3), OK);
+        assert_eq!(put(0, g3), OK);
         // Against brdf-core's own view over the same bytes, and within the asset's stated
         // accuracy (1e-3) of the direct kernel.
-        let t = GTable3::parse(&g3).unwrap();
+        let t = GTable3::parse(g3).unwrap();
         let direct = brdf_core::masking::ModifiedG::<f64>::new(0.3).unwrap();
         for (ti, tr) in [(0.5f32, 0.5f32), (0.2, -1.2), (1.4, 1.5)] {
             let v = brdf_g_lut(0.3, ti, tr);
@@ -334,7 +326,7 @@ mod tests {
         assert!(brdf_g_lut(f32::NAN, 0.5, 0.5).is_nan());
 
         // Corruptions: a flipped payload byte (checksum), truncation, wrong kind, too long.
-        let mut bad = g3.clone();
+        let mut bad = g3.to_vec();
         let k = bad.len() - 100;
         bad[k] ^= 0x10;
         assert_eq!(put(0, &bad), BAD_LUT);
@@ -344,26 +336,26 @@ mod tests {
             "a failed load leaves no table"
         );
         assert_eq!(put(0, &g3[..g3.len() / 2]), BAD_LUT);
-        assert_eq!(put(0, &dfg), BAD_LUT);
+        assert_eq!(put(0, dfg), BAD_LUT);
         assert_eq!(brdf_lut_error(), 8);
         assert_eq!(brdf_lut_load(0, 300 * 1024), BAD_BUFFER);
         assert_eq!(brdf_lut_load(3, 10), BAD_BUFFER);
         assert_eq!(put(0, b"BLUT"), BAD_LUT);
 
-        assert_eq!(put(2, &dfg), OK);
+        assert_eq!(put(2, dfg), OK);
         // SAFETY: the pointers are to live local arrays of the lengths the call states.
         assert_eq!(unsafe { brdf_dfg(0.5, 0.5, ab.as_mut_ptr()) }, OK);
-        let (a, b) = DfgTable::parse(&dfg).unwrap().ab(0.5, 0.5);
+        let (a, b) = DfgTable::parse(dfg).unwrap().ab(0.5, 0.5);
         assert_eq!(ab, [a, b]);
         // Directional albedo with F = 1 is A + B ∈ (0, 1] (docs/conventions.md §8).
         assert!(a + b > 0.5 && a + b <= 1.0, "{a} + {b}");
 
         // The host rewrites slot 1 without loading: the queries do not trust the bytes.
-        let s3 = asset("g_modified_sigma0.3.blut");
-        let s5 = asset("g_modified_sigma0.5.blut");
+        let s3: &[u8] = include_bytes!("../../../assets/g_modified_sigma0.3.blut");
+        let s5: &[u8] = include_bytes!("../../../assets/g_modified_sigma0.5.blut");
         assert_eq!(s3.len(), s5.len(), "two tables of one length");
-        let (t3, t5) = (GTable::parse(&s3).unwrap(), GTable::parse(&s5).unwrap());
-        assert_eq!(put(1, &s3), OK);
+        let (t3, t5) = (GTable::parse(s3).unwrap(), GTable::parse(s5).unwrap());
+        assert_eq!(put(1, s3), OK);
         assert_eq!(brdf_g_lut_fixed(0.4, -1.1), t3.g(0.4, -1.1));
         // SAFETY: slot 1's buffer is larger than these tables (their `put` above succeeded),
         // and no other reference to it is live during the copy.
@@ -371,7 +363,7 @@ mod tests {
             core::ptr::copy_nonoverlapping(bytes.as_ptr(), brdf_lut_ptr(1), bytes.len())
         };
         // Another table of the same length: its CRC-32 field differs, so no table.
-        write(&s5);
+        write(s5);
         assert!(brdf_g_lut_fixed(0.4, -1.1).is_nan());
         assert!(brdf_g_lut_fixed_sigma().is_nan());
         // A changed payload under the loaded header is read as it is (no panic): in a
@@ -379,12 +371,12 @@ mod tests {
         // offset clamped into [0, 1] (whatever the interpolation weights: w · 0 = 0).
         let view = t3.view().unwrap();
         let offset = view.header().channels[0].offset.clamp(0.0, 1.0);
-        let mut zero = s3.clone();
+        let mut zero = s3.to_vec();
         zero[view.header_len()..].fill(0);
         write(&zero);
         assert_eq!(brdf_g_lut_fixed(0.4, -1.1), offset);
         // Loading makes the new table the slot's.
-        assert_eq!(put(1, &s5), OK);
+        assert_eq!(put(1, s5), OK);
         assert_eq!(brdf_g_lut_fixed_sigma(), 0.5);
         assert_eq!(brdf_g_lut_fixed(0.4, -1.1), t5.g(0.4, -1.1));
         assert_ne!(t3.g(0.4, -1.1), t5.g(0.4, -1.1));

@@ -4,6 +4,7 @@
 //! exports and reads the outputs back. The JavaScript wrapper hands out consecutive,
 //! 16-byte-aligned regions of it per call.
 
+use crate::status::BAD_BUFFER;
 use core::cell::UnsafeCell;
 
 /// Size of the scratch buffer in bytes: a 512 × 512 RGBA image plus 64 KiB for parameters.
@@ -70,17 +71,27 @@ pub(crate) fn usable<T>(p: *const T) -> bool {
 /// Largest array length the batch exports accept.
 pub const MAX_BATCH: u32 = 1 << 24;
 
-/// The buffer check of every batch export: `n` at most [`MAX_BATCH`] and every
-/// array [`usable`]. A `false` is the export's `BAD_BUFFER`, checked before anything else.
-pub(crate) fn batch_ok(n: u32, arrays: &[*const f32]) -> bool {
+/// The buffer check of every batch export: `n` at most [`MAX_BATCH`] and every array
+/// [`usable`] (one function, not a copy in each export).
+fn batch_ok(n: u32, arrays: &[*const f32]) -> bool {
     n <= MAX_BATCH && arrays.iter().all(|&p| usable(p))
+}
+
+/// The frame of every batch export: [`BAD_BUFFER`] unless [`batch_ok`] (checked before
+/// anything else, nothing written), else `body`'s status (n, or the export's own negative
+/// status).
+pub(crate) fn batch(n: u32, arrays: &[*const f32], body: impl FnOnce() -> i32) -> i32 {
+    if !batch_ok(n, arrays) {
+        return BAD_BUFFER;
+    }
+    body()
 }
 
 /// `out[k] = f(a[k], b[k])` for k < n, each element read before it is written (so `out`
 /// may coincide with an input); returns n.
 ///
 /// # Safety
-/// `a` and `b` valid for reads and `out` for writes of n f32 ([`batch_ok`] checked the
+/// `a` and `b` valid for reads and `out` for writes of n f32 ([`batch`] checked the
 /// pointers' null and alignment).
 pub(crate) unsafe fn map2(
     a: *const f32,

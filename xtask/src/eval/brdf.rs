@@ -42,14 +42,7 @@ fn flat_params(spec: &'static ModelSpec, raw: &[String]) -> Result<Vec<f64>> {
             .split_once('=')
             .ok_or_else(|| anyhow!("--param `{r}`: expected KEY=VALUE"))?;
         let (k, v) = (k.trim(), v.trim());
-        let mut at = 0;
-        let Some(p) = spec.params.iter().find(|p| {
-            let hit = p.name == k;
-            if !hit {
-                at += p.width();
-            }
-            hit
-        }) else {
+        let Some((at, p)) = spec.param_by_name(k) else {
             let keys: Vec<&str> = spec.params.iter().map(|p| p.name).collect();
             bail!(
                 "model `{}` has no parameter `{k}` (parameters: {})",

@@ -2,9 +2,8 @@
 //! and Smith's G out, computed with the f64 kernels and printed to 17 significant digits.
 
 use anyhow::{bail, Context, Result};
-use brdf_core::masking::{
-    g_blinn, g_smith_beckmann_correlated, g_smith_beckmann_separable, Convention, ModifiedG,
-};
+use brdf_core::masking::{g_blinn, Convention, ModifiedG};
+use brdf_core::microfacet::{Beckmann, Isotropic};
 use brdf_core::quadrature::{GaussLegendre, Rule, DEFAULT_NODES, NODE_COUNTS};
 use std::io::Write;
 
@@ -81,8 +80,8 @@ pub fn direct_columns<R: Rule>(row: &Row<'_>, conv: Convention) -> Result<[f64; 
         t.gs,
         t.g,
         g_blinn(ti, tr),
-        g_smith_beckmann_separable(ci, co, m),
-        g_smith_beckmann_correlated(ci, co, m),
+        Beckmann::g_separable_cos(ci, co, m),
+        Beckmann::g_correlated_cos(ci, co, m),
     ])
 }
 
@@ -95,18 +94,25 @@ pub fn parse_convention(s: &str) -> Result<Convention> {
     }
 }
 
-fn run_with<R: Rule>(conv: Convention) -> Result<()> {
+/// The command's output: the header, then for each input row its fields and the six
+/// columns `columns(row, lineno)` gives, to 17 significant digits.
+fn write_rows(mut columns: impl FnMut(&Row<'_>, usize) -> Result<[f64; 6]>) -> Result<()> {
     let mut out = std::io::BufWriter::new(std::io::stdout().lock());
     writeln!(out, "{HEADER}")?;
     super::for_each_row(std::io::stdin().lock(), &COLUMNS, |lineno, f| {
         let row = parse_row(f, lineno)?;
-        let cols = direct_columns::<R>(&row, conv).with_context(|| format!("line {lineno}"))?;
-        let cols: Vec<String> = cols.iter().map(|&x| fmt17(x)).collect();
+        let cols: Vec<String> = columns(&row, lineno)?.iter().map(|&x| fmt17(x)).collect();
         writeln!(out, "{},{}", row.fields.join(","), cols.join(","))?;
         Ok(())
     })?;
     out.flush()?;
     Ok(())
+}
+
+fn run_with<R: Rule>(conv: Convention) -> Result<()> {
+    write_rows(|row, lineno| {
+        direct_columns::<R>(row, conv).with_context(|| format!("line {lineno}"))
+    })
 }
 
 /// `--lut`: the direct columns with GM, GS, G replaced by the table's. A 3-D table answers
@@ -119,10 +125,7 @@ fn run_lut(path: &std::path::Path, conv: Convention) -> Result<()> {
     let lut = crate::fsio::load_lut(path)?;
     let h = lut.header();
     let sigma_axis = h.axes.get(2).map(|a| (a.lo, a.hi));
-    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
-    writeln!(out, "{HEADER}")?;
-    super::for_each_row(std::io::stdin().lock(), &COLUMNS, |lineno, f| {
-        let row = parse_row(f, lineno)?;
+    write_rows(|row, lineno| {
         if let Some((lo, hi)) = sigma_axis {
             let s = row.sigma as f32;
             if s < lo as f32 || s > hi as f32 {
@@ -134,7 +137,7 @@ fn run_lut(path: &std::path::Path, conv: Convention) -> Result<()> {
                 );
             }
         }
-        let mut cols = direct_columns::<GaussLegendre<4>>(&row, conv)
+        let mut cols = direct_columns::<GaussLegendre<4>>(row, conv)
             .with_context(|| format!("line {lineno}"))?;
         let (gm, gs, g) = lut
             .g_terms(
@@ -146,12 +149,8 @@ fn run_lut(path: &std::path::Path, conv: Convention) -> Result<()> {
         cols[0] = gm as f64;
         cols[1] = gs as f64;
         cols[2] = g as f64;
-        let cols: Vec<String> = cols.iter().map(|&x| fmt17(x)).collect();
-        writeln!(out, "{},{}", row.fields.join(","), cols.join(","))?;
-        Ok(())
-    })?;
-    out.flush()?;
-    Ok(())
+        Ok(cols)
+    })
 }
 
 pub fn run(a: Args) -> Result<()> {

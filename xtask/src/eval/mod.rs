@@ -11,14 +11,9 @@ mod brdf;
 mod dfg;
 mod g;
 
-#[derive(clap::Args)]
-pub struct Args {
-    #[command(subcommand)]
-    what: What,
-}
-
+/// The `eval` subcommands (nested under `cargo xtask eval`).
 #[derive(Subcommand)]
-enum What {
+pub enum What {
     /// The modified G (GM, GS, G) with Blinn's and Smith's G, from `theta_i_deg,theta_r_deg,sigma` rows.
     G(g::Args),
     /// A BRDF model from `wi_x,wi_y,wi_z,wo_x,wo_y,wo_z` rows (local frame, z = normal).
@@ -27,8 +22,8 @@ enum What {
     Dfg(dfg::Args),
 }
 
-pub fn run(a: Args) -> anyhow::Result<()> {
-    match a.what {
+pub fn run(what: What) -> anyhow::Result<()> {
+    match what {
         What::G(a) => g::run(a),
         What::Brdf(a) => brdf::run(a),
         What::Dfg(a) => dfg::run(a),

@@ -15,6 +15,7 @@
 use brdf_core::batch;
 use brdf_core::catalogue;
 use brdf_core::masking::{self, ModifiedG};
+use brdf_core::microfacet::{Beckmann, Isotropic, TrowbridgeReitz};
 use brdf_core::models::Brdf;
 use brdf_core::{Dots, Real, Vec3};
 use std::process::ExitCode;
@@ -110,10 +111,10 @@ fn smith<T: Elem>(a: &[String]) -> Result<(), String> {
     let n = x.len() / 2;
     let w = T::from_f64(num(&a[0])?);
     let fs: [fn(T, T, T) -> T; 4] = [
-        masking::g_smith_beckmann_separable,
-        masking::g_smith_beckmann_correlated,
-        masking::g_smith_ggx_separable,
-        masking::g_smith_ggx_correlated,
+        Beckmann::<T>::g_separable_cos,
+        Beckmann::<T>::g_correlated_cos,
+        TrowbridgeReitz::<T>::g_separable_cos,
+        TrowbridgeReitz::<T>::g_correlated_cos,
     ];
     let cols: Vec<Vec<T>> = fs
         .iter()
@@ -127,12 +128,8 @@ fn eval<T: Elem>(a: &[String]) -> Result<(), String> {
     let mut flat: Vec<T> = spec.defaults::<T>()[..spec.slots()].to_vec();
     for kv in &a[3..] {
         let (k, v) = kv.split_once('=').ok_or("expected KEY=NUMBER")?;
-        let mut at = 0;
-        for p in spec.params {
-            if p.name == k {
-                flat[at..at + p.width()].fill(T::from_f64(num(v)?));
-            }
-            at += p.width();
+        if let Some((at, p)) = spec.param_by_name(k) {
+            flat[at..at + p.width()].fill(T::from_f64(num(v)?));
         }
     }
     let m = spec.build::<T>(&flat).map_err(|e| e.to_string())?;
