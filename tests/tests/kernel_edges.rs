@@ -684,7 +684,7 @@ fn check_unchecked<T: Real>(a: f64) {
             Some(TrowbridgeReitz::clamped(a, a).sample_normal(u)),
             TrowbridgeReitz::clamped(a, a).sample_visible_normal(wo, u),
             Some(Beckmann::clamped(a, a).sample_normal(u)),
-            sampling::sample_beckmann_visible_normal(wo, a, a, u),
+            Beckmann::clamped(a, a).sample_visible_normal(wo, u),
         ]
         .into_iter()
         .flatten()
@@ -1033,7 +1033,9 @@ fn visible_normal_samplers_refuse_wo_below_the_horizon() {
                     .is_none(),
                 "{wo:?}"
             );
-            assert!(sampling::sample_beckmann_visible_normal(wo, 0.3, 0.3, u).is_none());
+            assert!(Beckmann::clamped(0.3, 0.3)
+                .sample_visible_normal(wo, u)
+                .is_none());
             assert!(TrowbridgeReitz::new(0.3, 0.1)
                 .unwrap()
                 .sample_visible_normal(wo, u)

@@ -15,6 +15,7 @@
 //! Run with `--nocapture` to see the p-values and the albedo table.
 
 use brdf_core::albedo::directional_albedo;
+use brdf_core::microfacet::{Beckmann, Distribution};
 use brdf_core::models::*;
 use brdf_core::quadrature::{GaussLegendre, Rule};
 use brdf_core::sampling;
@@ -991,14 +992,14 @@ impl Brdf<f64> for VisibleBeckmannProbe {
     fn pdf(&self, wo: Vec3<f64>, wi: Vec3<f64>) -> f64 {
         match wi.add(wo).normalize() {
             Some(h) => sampling::wi_pdf_from_h(
-                sampling::beckmann_visible_normal_pdf(wo, h, self.ax, self.ay),
+                Beckmann::clamped(self.ax, self.ay).visible_normal_pdf(wo, h),
                 wo.dot(h),
             ),
             None => 0.0,
         }
     }
     fn sample(&self, wo: Vec3<f64>, u: [f64; 2]) -> Option<BrdfSample<f64>> {
-        let h = sampling::sample_beckmann_visible_normal(wo, self.ax, self.ay, u)?;
+        let h = Beckmann::clamped(self.ax, self.ay).sample_visible_normal(wo, u)?;
         let wi = sampling::reflect_about(wo, h);
         let pdf = self.pdf(wo, wi);
         (pdf > 0.0).then(|| BrdfSample {
@@ -1026,12 +1027,8 @@ fn beckmann_visible_normal_pdf_is_normalised() {
                     let r = (1.0 - z * z).max(0.0).sqrt();
                     adapt(
                         &mut |phi: f64| {
-                            sampling::beckmann_visible_normal_pdf(
-                                wo,
-                                Vec3::new(r * phi.cos(), r * phi.sin(), z),
-                                ax,
-                                ay,
-                            )
+                            Beckmann::clamped(ax, ay)
+                                .visible_normal_pdf(wo, Vec3::new(r * phi.cos(), r * phi.sin(), z))
                         },
                         0.0,
                         2.0 * PI,
@@ -1071,15 +1068,18 @@ fn beckmann_visible_normal_sampler_fits_its_pdf() {
         }
     }
     // Degenerate input is None, never NaN.
-    let s = |wo: Vec3<f64>| sampling::sample_beckmann_visible_normal(wo, 0.3, 0.3, [0.5, 0.5]);
+    let b = Beckmann::isotropic(0.3).unwrap();
+    let s = |wo: Vec3<f64>| b.sample_visible_normal(wo, [0.5, 0.5]);
     assert!(s(Vec3::new(0.0, 0.0, -1.0)).is_none());
     assert!(s(Vec3::new(f64::NAN, 0.0, 1.0)).is_none());
-    assert!(
-        sampling::sample_beckmann_visible_normal(dir(30.0, 0.0), 0.0, 0.3, [0.5, 0.5]).is_none()
-    );
+    // A zero width is refused by the checked constructor (the typed error, not a NaN sample).
+    assert!(Beckmann::new(0.0, 0.3).is_err());
     // u at the ends of [0, 1] stays finite.
     for u in [[0.0, 0.0], [1.0, 1.0], [0.0, 1.0], [1.0, 0.0]] {
-        let h = sampling::sample_beckmann_visible_normal(dir(70.0, 0.4), 0.5, 0.2, u).unwrap();
+        let h = Beckmann::new(0.5, 0.2)
+            .unwrap()
+            .sample_visible_normal(dir(70.0, 0.4), u)
+            .unwrap();
         assert!(h.x.is_finite() && h.y.is_finite() && h.z > 0.0);
     }
 }

@@ -18,7 +18,6 @@
 //! it), which converges for every u because F is increasing on the bracket. The slopes are
 //! then rotated back by v's azimuth and unstretched, and h = normalise(−x, −y, 1).
 
-use super::{Beckmann, Distribution};
 use crate::geometry::Vec3;
 use crate::sampling::unit;
 use crate::Real;
@@ -89,22 +88,7 @@ fn visible_x_slope<T: Real>(c: T, s: T, u: T) -> T {
     solve_increasing(f, df, u * f(hi), -m, hi)
 }
 
-/// Samples a Beckmann visible normal for the view direction `wo` and widths ax, ay > 0.
-/// `None` for degenerate input (wo at or below the horizon, NaN, widths ≤ 0). The widths are
-/// clamped as by [`Beckmann::clamped`].
-pub fn sample_beckmann_visible_normal<T: Real>(
-    wo: Vec3<T>,
-    ax: T,
-    ay: T,
-    u: [T; 2],
-) -> Option<Vec3<T>> {
-    if !(ax > T::ZERO && ay > T::ZERO) {
-        return None;
-    }
-    Beckmann::clamped(ax, ay).sample_visible_normal(wo, u)
-}
-
-/// The sampler behind [`Beckmann`]'s visible normals (wo checked by the caller).
+/// The sampler behind [`super::Beckmann`]'s visible normals (wo checked by the caller).
 pub(crate) fn sample<T: Real>(wo: Vec3<T>, ax: T, ay: T, u: [T; 2]) -> Option<Vec3<T>> {
     // Stretch to unit width.
     let v = Vec3::new(ax * wo.x, ay * wo.y, wo.z).normalize()?;
@@ -120,11 +104,4 @@ pub(crate) fn sample<T: Real>(wo: Vec3<T>, ax: T, ay: T, u: [T; 2]) -> Option<Ve
     let sx = ax * (cp * x - sp * y);
     let sy = ay * (sp * x + cp * y);
     Vec3::new(-sx, -sy, T::ONE).normalize()
-}
-
-/// G1(wo) max(wo·h, 0) D(h)/cos θo: the density of [`sample_beckmann_visible_normal`] per
-/// unit solid angle of h ([`Distribution::visible_normal_pdf`] of [`Beckmann::clamped`]).
-/// G1 uses the Smith Λ of the width projected on wo's azimuth.
-pub fn beckmann_visible_normal_pdf<T: Real>(wo: Vec3<T>, h: Vec3<T>, ax: T, ay: T) -> T {
-    Beckmann::clamped(ax, ay).visible_normal_pdf(wo, h)
 }

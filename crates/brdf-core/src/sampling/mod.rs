@@ -19,9 +19,6 @@
 pub mod half_vector;
 pub mod hemisphere;
 pub mod lobe;
-pub use crate::microfacet::beckmann_visible::{
-    beckmann_visible_normal_pdf, sample_beckmann_visible_normal,
-};
 pub use half_vector::{
     ashikhmin_shirley_pdf_h, reflect_about, sample_ashikhmin_shirley_h, wi_pdf_from_h,
 };
