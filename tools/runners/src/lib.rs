@@ -4,6 +4,9 @@
 //! the host's. `device` holds what the firmware and C runners share: QEMU, the output
 //! protocol, ELF sizes. xtask owns the command line and calls each module's `run`.
 
+#![deny(unsafe_op_in_unsafe_fn)]
+#![deny(clippy::undocumented_unsafe_blocks)]
+
 pub mod cffi;
 mod device;
 pub mod firmware;

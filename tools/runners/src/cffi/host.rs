@@ -359,22 +359,27 @@ fn table_values(t: &HostTables, kernel: &str, a: &[Arg]) -> Result<Vec<Val>> {
     Ok(match kernel {
         "g_table" => {
             let (mut p, h) = (n(2)?, tbl(&t.g, kernel)?);
+            // SAFETY: `h` is a parsed handle from `HostTables::load` (above).
             unsafe { brdf_g_table_terms(h, p.f()?, p.f()?) }.vals()
         }
         "g_table_dots" => {
             let (mut p, h) = (n(3)?, tbl(&t.g, kernel)?);
+            // SAFETY: `h` is a parsed handle from `HostTables::load` (above).
             vec![unsafe { brdf_g_table_g_dots(h, p.f()?, p.f()?, p.f()?) }.val()]
         }
         "dfg" => {
             let (mut p, h) = (n(2)?, tbl(&t.dfg, kernel)?);
+            // SAFETY: `h` is a parsed handle from `HostTables::load` (above).
             unsafe { brdf_dfg_table_ab(h, p.f()?, p.f()?) }.vals()
         }
         "e" => {
             let (mut p, h) = (n(2)?, tbl(&t.e, kernel)?);
+            // SAFETY: `h` is a parsed handle from `HostTables::load` (above).
             vec![unsafe { brdf_albedo_table_e(h, p.f()?, p.f()?) }.val()]
         }
         "eavg" => {
             let (mut p, h) = (n(1)?, tbl(&t.eavg, kernel)?);
+            // SAFETY: `h` is a parsed handle from `HostTables::load` (above).
             vec![unsafe { brdf_average_albedo_table_e_avg(h, p.f()?) }.val()]
         }
         other => bail!("the host does not know kernel {other:?}"),
