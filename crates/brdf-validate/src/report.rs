@@ -54,36 +54,7 @@ pub fn run(root: &Path, s: &Settings) -> Result<Outcome> {
     let fig7 = sweep(s, &profiles, 0.3, &fine7, 3, &pb);
     pb.finish_and_clear();
 
-    // Figures.
-    figures::write(
-        &fig_dir,
-        "fig6_g_theta_i30_sigma0.3",
-        (900, 620),
-        &Fig6 {
-            sweep: &fig6,
-            ti: 30.0,
-        },
-    )?;
-    figures::write(
-        &fig_dir,
-        "fig7_brdf_theta_i10_sigma0.3",
-        (900, 620),
-        &Fig7 { sweep: &fig7 },
-    )?;
-    let heat_sigmas: Vec<&Sweep> = sweeps
-        .iter()
-        .filter(|w| [0.1, 0.3, 1.0].iter().any(|x| (w.sigma - x).abs() < 1e-9))
-        .collect();
-    figures::write(
-        &fig_dir,
-        "heatmap_g_error",
-        (1600, 270 * heat_sigmas.len() as u32 + 70),
-        &Heat {
-            sweeps: heat_sigmas,
-            step: s.step_deg,
-            lim: 0.5,
-        },
-    )?;
+    write_figures(&fig_dir, s, &sweeps, &fig6, &fig7)?;
     let albedo_note = crate::albedo_fig::write(&fig_dir)?;
     let anchors = [
         root.join(".cache").join("anchors"),
@@ -107,11 +78,61 @@ pub fn run(root: &Path, s: &Settings) -> Result<Outcome> {
         Some(sec) => crate::report2d::splice(&md, sec),
         None => md,
     };
-    std::fs::write(&md_path, &md)?;
+    replace_file(&md_path, md.as_bytes())?;
     Ok(Outcome {
         markdown: md,
         seconds: elapsed,
     })
+}
+
+/// Replaces a generated report file: the bytes go to `<path>.tmp` in the same folder, which
+/// is then renamed over `path`, so a failed write never leaves a partial report.
+pub(crate) fn replace_file(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let mut tmp = path.as_os_str().to_owned();
+    tmp.push(".tmp");
+    std::fs::write(&tmp, bytes)?;
+    std::fs::rename(&tmp, path)
+}
+
+/// The in-plane figures: Fig. 6 (G at θi = 30°), Fig. 7 (the BRDF at θi = 10°) and the
+/// heat maps of the G error for σ ∈ {0.1, 0.3, 1}.
+fn write_figures(
+    fig_dir: &Path,
+    s: &Settings,
+    sweeps: &[Sweep],
+    fig6: &Sweep,
+    fig7: &Sweep,
+) -> Result<()> {
+    figures::write(
+        fig_dir,
+        "fig6_g_theta_i30_sigma0.3",
+        (900, 620),
+        &Fig6 {
+            sweep: fig6,
+            ti: 30.0,
+        },
+    )?;
+    figures::write(
+        fig_dir,
+        "fig7_brdf_theta_i10_sigma0.3",
+        (900, 620),
+        &Fig7 { sweep: fig7 },
+    )?;
+    let heat_sigmas: Vec<&Sweep> = sweeps
+        .iter()
+        .filter(|w| [0.1, 0.3, 1.0].iter().any(|x| (w.sigma - x).abs() < 1e-9))
+        .collect();
+    figures::write(
+        fig_dir,
+        "heatmap_g_error",
+        (1600, 270 * heat_sigmas.len() as u32 + 70),
+        &Heat {
+            sweeps: heat_sigmas,
+            step: s.step_deg,
+            lim: 0.5,
+        },
+    )?;
+    Ok(())
 }
 
 /// The report's prose, with placeholders for the numbers `markdown` computes.

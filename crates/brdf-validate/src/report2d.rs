@@ -109,11 +109,14 @@ pub fn run(root: &Path, s: &Settings2d) -> Result<Outcome2d> {
     let mut data = data;
     data["figures"] = Json::from(figs);
     let json_text = serde_json::to_string_pretty(&data)? + "\n";
-    std::fs::write(root.join("docs").join("validation-2d.json"), &json_text)?;
+    crate::report::replace_file(
+        &root.join("docs").join("validation-2d.json"),
+        json_text.as_bytes(),
+    )?;
     let section = fill(&data)?;
     let md_path = root.join("docs").join("validation.md");
     let old = std::fs::read_to_string(&md_path).unwrap_or_default();
-    std::fs::write(&md_path, splice(&old, &section))?;
+    crate::report::replace_file(&md_path, splice(&old, &section).as_bytes())?;
     Ok(Outcome2d {
         section,
         json: json_text,
@@ -129,7 +132,7 @@ pub fn rerender(root: &Path) -> Result<String> {
     let section = fill(&data)?;
     let md_path = root.join("docs").join("validation.md");
     let old = std::fs::read_to_string(&md_path).unwrap_or_default();
-    std::fs::write(&md_path, splice(&old, &section))?;
+    crate::report::replace_file(&md_path, splice(&old, &section).as_bytes())?;
     Ok(section)
 }
 

@@ -92,7 +92,8 @@ pub fn run(a: Args) -> Result<()> {
     if let Some(dir) = out.parent() {
         std::fs::create_dir_all(dir)?;
     }
-    std::fs::write(&out, md).with_context(|| format!("writing {}", out.display()))?;
+    brdf_engine_assets::fsio::replace(&out, md.as_bytes())
+        .with_context(|| format!("writing {}", out.display()))?;
     eprintln!("wrote {}", out.display());
     Ok(())
 }
@@ -156,7 +157,7 @@ fn measure(env: &Env, a: &Args) -> Result<Data> {
     };
     let raw = env.target.join("bench/report.json");
     std::fs::create_dir_all(env.target.join("bench"))?;
-    std::fs::write(&raw, serde_json::to_vec_pretty(&data)?)?;
+    brdf_engine_assets::fsio::replace(&raw, &serde_json::to_vec_pretty(&data)?)?;
     eprintln!("raw results: {}", raw.display());
     Ok(data)
 }
@@ -188,7 +189,8 @@ fn smoke(env: &Env) -> Result<()> {
     }
     let section = report::render_tablegen(&t)?;
     let out = env.target.join("bench/table-generation.md");
-    std::fs::write(&out, &section).with_context(|| format!("writing {}", out.display()))?;
+    brdf_engine_assets::fsio::replace(&out, section.as_bytes())
+        .with_context(|| format!("writing {}", out.display()))?;
     eprintln!("{section}(written to {})", out.display());
     eprintln!(
         "bench smoke test passed in {:.0} s",

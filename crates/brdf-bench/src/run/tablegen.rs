@@ -35,7 +35,8 @@ fn mc_peer(env: &Env, stride: usize) -> std::result::Result<tg::McPeer, String> 
     let dir = env.target.join("bench");
     let reference = dir.join(format!("dfg_converged_stride{stride}.f64"));
     std::fs::create_dir_all(&dir).map_err(|e| e.to_string())?;
-    std::fs::write(&reference, tg::converged_rows(stride)).map_err(|e| e.to_string())?;
+    brdf_engine_assets::fsio::replace(&reference, &tg::converged_rows(stride))
+        .map_err(|e| e.to_string())?;
     let n = |x: usize| x.to_string();
     let o = Command::new(&py)
         .arg(env.root.join("crates/brdf-bench/peer/dfg_mc_peer.py"))
