@@ -39,7 +39,8 @@ pub type OuterRule = GaussLegendre<32>;
 /// The inner (φ) rule of the default split-sum kernels.
 pub type InnerRule = GaussLegendre<16>;
 
-/// A normal distribution with an invertible CDF in θh.
+/// The split-sum kernels' choice of distribution at run time: which one, and its width
+/// (GGX α, Beckmann m). Every formula is the distribution's own ([`Isotropic`]).
 #[derive(Clone, Copy, Debug)]
 pub enum Ndf<T> {
     /// GGX with roughness α ≥ 0.
@@ -49,45 +50,18 @@ pub enum Ndf<T> {
 }
 
 impl<T: Real> Ndf<T> {
-    /// ξ = P(θh < θ) from tan²θ: GGX t/(α² + t), Beckmann 1 − exp(−t/m²).
+    /// ξ = P(θh < θ) from tan²θ: the distribution's [`Isotropic::normal_cdf_tan2`].
     fn cdf_tan2(self, t2: T) -> T {
         match self {
-            Ndf::Ggx(a) => {
-                let d = a * a + t2;
-                if d > T::ZERO {
-                    t2 / d
-                } else {
-                    T::ONE
-                }
-            }
-            Ndf::Beckmann(m) => {
-                let m2 = m * m;
-                if m2 > T::ZERO {
-                    T::ONE - (-t2 / m2).exp()
-                } else {
-                    T::ONE
-                }
-            }
+            Ndf::Ggx(a) => TrowbridgeReitz::normal_cdf_tan2(t2, a),
+            Ndf::Beckmann(m) => Beckmann::normal_cdf_tan2(t2, m),
         }
     }
-    /// tan²θ from ξ (inverse of [`Ndf::cdf_tan2`]).
+    /// tan²θ from ξ: the distribution's [`Isotropic::normal_tan2_at_cdf`].
     fn tan2_of(self, xi: T) -> T {
-        let q = (T::ONE - xi).max(T::ZERO);
         match self {
-            Ndf::Ggx(a) => {
-                if q > T::ZERO {
-                    a * a * xi / q
-                } else {
-                    T::INFINITY
-                }
-            }
-            Ndf::Beckmann(m) => {
-                if q > T::ZERO {
-                    -(m * m) * q.ln()
-                } else {
-                    T::INFINITY
-                }
-            }
+            Ndf::Ggx(a) => TrowbridgeReitz::normal_tan2_at_cdf(xi, a),
+            Ndf::Beckmann(m) => Beckmann::normal_tan2_at_cdf(xi, m),
         }
     }
     /// D(h) in 1/sr at n·h = `cos_h`: the distribution's [`Isotropic::d_cos`].

@@ -36,6 +36,26 @@ impl<T: Real> Isotropic<T> for Beckmann<T> {
     fn d_cos(cos_h: T, m: T) -> T {
         Self::d_iso(cos_h, m)
     }
+    /// ξ = 1 − exp(−t/m²) (the unit Gaussian's radial CDF 1 − e^{−r²}, r² = t/m²).
+    #[inline]
+    fn normal_cdf_tan2(t2: T, m: T) -> T {
+        let m2 = m * m;
+        if m2 > T::ZERO {
+            T::ONE - (-t2 / m2).exp()
+        } else {
+            T::ONE
+        }
+    }
+    /// t = −m² ln(1 − ξ).
+    #[inline]
+    fn normal_tan2_at_cdf(xi: T, m: T) -> T {
+        let q = (T::ONE - xi).max(T::ZERO);
+        if q > T::ZERO {
+            -(m * m) * q.ln()
+        } else {
+            T::INFINITY
+        }
+    }
     #[inline]
     fn lambda_cos(cos_t: T, m: T) -> T {
         if cos_t.is_nan() || m.is_nan() {

@@ -77,6 +77,26 @@ impl<T: Real> Isotropic<T> for TrowbridgeReitz<T> {
     fn d_cos(cos_h: T, alpha: T) -> T {
         Self::d_iso(cos_h, alpha)
     }
+    /// ξ = t/(α² + t) (the stretched slopes' radial CDF r²/(1 + r²), r² = t/α²).
+    #[inline]
+    fn normal_cdf_tan2(t2: T, a: T) -> T {
+        let d = a * a + t2;
+        if d > T::ZERO {
+            t2 / d
+        } else {
+            T::ONE
+        }
+    }
+    /// t = α² ξ/(1 − ξ).
+    #[inline]
+    fn normal_tan2_at_cdf(xi: T, a: T) -> T {
+        let q = (T::ONE - xi).max(T::ZERO);
+        if q > T::ZERO {
+            a * a * xi / q
+        } else {
+            T::INFINITY
+        }
+    }
     #[inline]
     fn lambda_cos(cos_t: T, alpha: T) -> T {
         if alpha.is_nan() {

@@ -179,6 +179,12 @@ pub trait Isotropic<T: Real>: Distribution<T> {
     fn d_cos(cos_h: T, alpha: T) -> T;
     /// Smith's Λ at polar cosine `cos_t`.
     fn lambda_cos(cos_t: T, alpha: T) -> T;
+    /// The radial CDF of the normals' density D(h) cos θh in t = tan²θh:
+    /// ξ = P(tan²θh < t) (the CDF [`Distribution::sample_normal`] inverts); 1 when it is a
+    /// step at θh = 0 (α ≤ 0).
+    fn normal_cdf_tan2(t2: T, alpha: T) -> T;
+    /// The inverse of [`Isotropic::normal_cdf_tan2`]: tan²θh at ξ ∈ [0, 1] (∞ at ξ = 1).
+    fn normal_tan2_at_cdf(xi: T, alpha: T) -> T;
     /// One-sided Smith masking G1 = 1/(1 + Λ).
     #[inline]
     fn g1_cos(cos_t: T, alpha: T) -> T {
