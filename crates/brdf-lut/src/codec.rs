@@ -121,15 +121,8 @@ impl<'a> Reader<'a> {
 
     /// The header after the magic; the version must already have been read.
     pub(crate) fn header(&mut self) -> Result<Header<'a>, LutError> {
-        let kind = match self.tag(7)? {
-            0 => TableKind::PassingFactor,
-            1 => TableKind::SplitSum,
-            2 => TableKind::DirectionalAlbedo,
-            3 => TableKind::AverageAlbedo,
-            4 => TableKind::SheenAlbedo,
-            5 => TableKind::GlassAlbedo,
-            _ => TableKind::GlassAverageAlbedo,
-        };
+        let code = self.tag(TableKind::ALL.len() as u32)?;
+        let kind = TableKind::from_code(code).ok_or(LutError::MalformedHeader)?;
         let mut axes = List::new();
         for _ in 0..self.list_len(MAX_AXES)? {
             let _ = axes.push(self.axis()?);
@@ -242,7 +235,7 @@ impl<'b> Writer<'b> {
     pub(crate) fn header(&mut self, h: &Header<'_>) -> Result<(), LutError> {
         self.bytes(&MAGIC)?;
         self.varint(FORMAT_VERSION as u64)?;
-        self.varint(h.kind as u64)?;
+        self.varint(h.kind.code() as u64)?;
         self.varint(h.axes.len() as u64)?;
         for a in h.axes.iter() {
             self.str(a.name)?;

@@ -29,24 +29,22 @@
 //! This module is the only code that computes table node values: the default asset set
 //! ([`default_set`]), `cargo xtask lut generate`, the engine textures (through
 //! [`evaluate`]) and `lut verify` (through [`measure`]) all build a [`Spec`] and call it.
-//! The kinds it knows are one list ([`Kind::def`], `generate/kinds.rs`).
+//! The kinds it knows are one list ([`Kind::def`], `src/kinds.rs`).
 
 mod defaults;
 pub mod describe;
+pub(crate) mod entry;
 pub mod glass;
 mod integrate;
-mod kinds;
 mod measure;
-mod sheen;
+pub(crate) mod sheen;
 mod verify;
 mod work;
 
 pub use defaults::{default_set, Asset, DEFAULT_SET_TOOL};
 pub use describe::{check_limits, DescribeError, Description, Value};
-pub use integrate::{
-    ggx_converged, reference, GgxQuery, Work, REFERENCE_TOL, TOL as INTEGRATION_TOL,
-};
-pub use kinds::{Check, KindDef, Role};
+pub use entry::{Check, KindDef, Role};
+pub use integrate::{ggx_converged, GgxQuery, Work, REFERENCE_TOL, TOL as INTEGRATION_TOL};
 pub use measure::measure;
 pub use sheen::{
     sheen_e, sheen_e_reference, sheen_grid, SheenE, SheenGrid, GRID_DEGREE as SHEEN_GRID_DEGREE,
@@ -61,7 +59,7 @@ pub use verify::{
 use crate::write;
 use crate::{
     Axis, Convention, Encoding, ErrorStats, Generator, Header, Interpolation, List, Model,
-    Placement, TableKind, Warp, MAX_AXIS_COUNT,
+    Placement, Warp, MAX_AXIS_COUNT,
 };
 use brdf_core::masking::ModifiedG;
 use brdf_core::models::GeometricTerm;
@@ -84,35 +82,8 @@ pub const MAX_GENERATED_VALUES: u64 = crate::limits::MAX_BUILD_VALUES;
 /// The generator's name in the headers of tables built to order.
 pub const TOOL: &str = "brdf-lut generate";
 
-/// What the table holds (each kind's axes, channels and kernel: [`Kind::def`]).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Kind {
-    /// The modified G's passing factor F(θ, φ) for one σ (2 axes: theta, phi).
-    GPerSigma {
-        /// The RMS slope σ > 0.
-        sigma: f64,
-    },
-    /// The modified G's passing factor F(θ, φ, σ) (3 axes: theta, phi, sigma).
-    GOverSigma,
-    /// Split-sum (A, B) (2 axes: mu, roughness).
-    SplitSum,
-    /// Directional albedo E(μ) with F = 1 (2 axes: mu, roughness).
-    Albedo,
-    /// Average albedo E_avg (1 axis: roughness).
-    AverageAlbedo,
-    /// Sheen directional albedo E_sheen(μ, r) = ∫ D V μl dωl of the Charlie sheen (colour 1)
-    /// with this visibility (2 axes: mu, roughness; perceptual r, α = r² ≥ 1e-4). The spec's
-    /// distribution and masking do not apply.
-    SheenAlbedo {
-        /// The visibility term.
-        visibility: SheenVisibility,
-    },
-    /// Rough-glass directional albedo (R, T) (3 axes: mu, roughness, eta;
-    /// `generate/glass.rs`).
-    GlassAlbedo,
-    /// Rough-glass average albedo (R_avg, T_avg) (2 axes: roughness, eta).
-    GlassAverageAlbedo,
-}
+/// What the table holds, and the one list of kinds (`src/kinds.rs`).
+pub use crate::kinds::{Kind, KINDS};
 
 /// The microfacet distribution: the model catalogue's
 /// ([`brdf_core::catalogue::DISTRIBUTIONS`]; names, other spellings and the G terms each
@@ -354,21 +325,14 @@ impl Spec {
         }
     }
 
-    /// The header's model code for this distribution and G (the catalogue's mapping,
-    /// [`Model::from_catalogue`]).
+    /// The header's model code of this spec (its kind's rule, [`KindDef::model`]).
     pub fn model(&self) -> Result<Model, GenError> {
-        if let Kind::SheenAlbedo { visibility } = self.kind {
-            return Ok(Model::from_sheen(visibility));
-        }
-        if glass::is_glass(self.kind) {
-            return Model::from_dielectric(self.distribution).ok_or_else(|| {
-                GenError::Invalid(
-                    "rough-glass tables take the GGX distribution (the rough dielectric's \
-                     Beckmann is not tabulated yet)"
-                        .into(),
-                )
-            });
-        }
+        (self.kind.def().model)(self)
+    }
+
+    /// The header's model code for this distribution and G (the catalogue's mapping,
+    /// [`Model::from_catalogue`]): the microfacet kinds' [`KindDef::model`].
+    pub fn microfacet_model(&self) -> Result<Model, GenError> {
         let g = self.masking.term();
         let d = (self.kind.def().check != Check::ModifiedG).then_some(self.distribution);
         match Model::from_catalogue(d, g) {
@@ -414,36 +378,19 @@ impl Spec {
         Ok(())
     }
 
-    /// The model options: G tables are the modified G over σ; GGX has no σ.
+    /// The model options: the kind's own ([`KindDef::validate`]; its model for every kind
+    /// but the G tables, which hold no BRDF); GGX has no σ.
     fn validate_model(&self) -> Result<(), GenError> {
-        if self.kind.def().check == Check::ModifiedG {
-            if self.masking != Masking::Modified {
-                return invalid(
-                    "G tables hold the modified G's passing factor: choose the modified G \
-                     (the Smith and V-cavity G are closed forms that need no table)",
-                );
-            }
-            if self.roughness != Roughness::Sigma {
-                return invalid("G tables are parameterised by the RMS slope σ only");
-            }
-        } else {
+        let def = self.kind.def();
+        if def.check != Check::ModifiedG {
             self.model()?;
-            glass::validate(self)?;
         }
-        if matches!(self.kind, Kind::SheenAlbedo { .. }) && self.roughness != Roughness::Perceptual
-        {
-            return invalid("sheen tables are parameterised by the perceptual roughness r only");
-        }
+        (def.validate)(self)?;
         if self.distribution == Distribution::Ggx && self.roughness == Roughness::Sigma {
             return invalid(
                 "GGX has no RMS slope σ (its slope variance is infinite): choose the \
                  perceptual or alpha parameterisation",
             );
-        }
-        if let Some(sigma) = self.fixed_sigma() {
-            if !(sigma.is_finite() && sigma > 0.0) {
-                return invalid(format!("σ of a per-σ G table must be > 0 (got {sigma})"));
-            }
         }
         Ok(())
     }
@@ -503,8 +450,9 @@ impl Spec {
 
     /// The direct f64 kernel at a point of the table's domain: one value per channel.
     pub fn value(&self, x: &[f64]) -> Vec<f64> {
-        let mut out = vec![0.0; self.kind.def().channels.len()];
-        integrate::value(self, x, &mut out);
+        let def = self.kind.def();
+        let mut out = vec![0.0; def.channels.len()];
+        (def.point)(self, x, &mut out);
         out
     }
 
@@ -518,24 +466,9 @@ impl Spec {
         (out, w)
     }
 
-    /// The quadrature node counts the header records: empty for the converged GGX rule
-    /// (adaptive, to [`integrate::TOL`]); otherwise the stored rule's — split
-    /// sums: outer nodes, inner nodes, outer panels; E_avg: μ nodes first; the modified G:
-    /// nodes per integral.
+    /// The quadrature node counts the header records ([`KindDef::record`]).
     fn nodes_record(&self) -> &'static [u16] {
-        use brdf_core::split_sum::OUTER_PANELS;
-        let polar_axis = self.axes.last().is_some_and(|a| {
-            integrate::polar_row(self, a.lo).is_some() && integrate::polar_row(self, a.hi).is_some()
-        });
-        match self.kind {
-            Kind::GPerSigma { .. } | Kind::GOverSigma => &[20],
-            Kind::SheenAlbedo { .. } => &[],
-            _ if polar_axis => &[],
-            Kind::AverageAlbedo => &[24, 32, 16, OUTER_PANELS as u16],
-            // Adaptive (the converged cap integrator to `integrate::TOL`).
-            Kind::GlassAlbedo | Kind::GlassAverageAlbedo => &[],
-            _ => &[32, 16, OUTER_PANELS as u16],
-        }
+        (self.kind.def().record)(self)
     }
 
     fn header_axes(&self) -> Vec<Axis<'static>> {
@@ -559,41 +492,14 @@ impl Spec {
     /// error-measurement settings and tool), so a file can be re-measured or rebuilt; `None`
     /// for a header this generator cannot describe.
     pub fn from_header(h: &Header<'_>) -> Option<Spec> {
-        use Distribution as D;
-        let kind = match (h.kind, h.axes.len()) {
-            (TableKind::PassingFactor, 2) => Kind::GPerSigma {
-                sigma: h.generator.sigma?,
-            },
-            (TableKind::PassingFactor, 3) => Kind::GOverSigma,
-            (TableKind::SplitSum, 2) => Kind::SplitSum,
-            (TableKind::DirectionalAlbedo, 2) => Kind::Albedo,
-            (TableKind::AverageAlbedo, 1) => Kind::AverageAlbedo,
-            (TableKind::SheenAlbedo, 2) => Kind::SheenAlbedo {
-                visibility: h.generator.model.sheen()?,
-            },
-            (TableKind::GlassAlbedo, 3) => Kind::GlassAlbedo,
-            (TableKind::GlassAverageAlbedo, 2) => Kind::GlassAverageAlbedo,
-            _ => return None,
-        };
-        // The generator writes the reciprocal modified G; a file's convention is not part
-        // of its spec.
-        let (d, g) = h.generator.model.catalogue(Convention::Reciprocal);
-        let (distribution, masking) = match kind {
-            // A sheen table's spec has no microfacet G; these fields are not used.
-            Kind::SheenAlbedo { .. } => (D::Ggx, Masking::SmithCorrelated),
-            // A rough-glass table's model is its distribution; G is separable Smith.
-            Kind::GlassAlbedo | Kind::GlassAverageAlbedo => {
-                (h.generator.model.dielectric()?, Masking::SmithSeparable)
-            }
-            _ => (d.unwrap_or(D::TorranceSparrow), Masking::from_term(g)?),
-        };
-        let rough_axis = if glass::is_glass(kind) {
-            h.axes.len().checked_sub(2).and_then(|i| h.axes.get(i))
-        } else {
-            h.axes.last()
-        };
-        let roughness = match rough_axis.map(|a| a.name) {
-            _ if kind.def().check == Check::ModifiedG => Roughness::Sigma,
+        let def = KINDS
+            .iter()
+            .map(|(_, k)| k.def())
+            .find(|d| d.table == h.kind && d.axes.len() == h.axes.len())?;
+        let (kind, distribution, masking) = (def.from_header)(def, h)?;
+        let rough_axis = def.axes.iter().position(|a| a.0 == Role::Roughness);
+        let roughness = match rough_axis.and_then(|i| h.axes.get(i)).map(|a| a.name) {
+            _ if def.check == Check::ModifiedG => Roughness::Sigma,
             Some("roughness") => Roughness::Perceptual,
             Some("alpha") | Some("m") => Roughness::Alpha,
             Some("sigma") => Roughness::Sigma,
@@ -726,7 +632,8 @@ fn evaluate_on(
         let coords = |i| write::node_coords(&axes, r * n0 + i);
         let mus: Vec<f64> = (0..n0).map(|i| coords(i)[0]).collect();
         let rx = coords(0).get(1).copied().unwrap_or(f64::NAN);
-        if integrate::converged_row(spec, &mus, rx, stride, v).is_none() {
+        let row = def.row.and_then(|row| row(spec, &mus, rx, stride, v));
+        if row.is_none() {
             for (i, out) in v.chunks_mut(stride).enumerate() {
                 let w = (def.value)(spec, &coords(i), &mut out[..nc]);
                 (out[nc], out[nc + 1]) = (w.error, w.evals as f64);
@@ -751,6 +658,12 @@ fn evaluate_on(
         integration,
         evals,
     })
+}
+
+/// `lut verify`'s independent reference at `x`: (values, its own error estimate), by the
+/// kind's rule ([`KindDef::reference`]).
+pub fn reference(spec: &Spec, x: &[f64]) -> ([f64; 2], f64) {
+    (spec.kind.def().reference)(spec, x)
 }
 
 /// Builds the table: validates, computes every node ([`evaluate_with_error`]), quantises,

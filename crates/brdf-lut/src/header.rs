@@ -106,31 +106,8 @@ impl<T: fmt::Debug, const N: usize> fmt::Debug for List<T, N> {
     }
 }
 
-/// What a table holds.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum TableKind {
-    /// The paper's one-sided passing factor F(θ, φ[, σ]) = M(θ, (θ − φ)/2) (channel `F`);
-    /// G = min(F(|θr|, sgn θr · θi), F(θi, θr)).
-    #[default]
-    PassingFactor,
-    /// Split-sum (A, B) (channels `A`, `B`): the environment-lighting pair of the split-sum
-    /// approximation, docs/conventions.md §8.
-    SplitSum,
-    /// Directional albedo E(μ, r) with F = 1 (channel `E`), Kulla–Conty.
-    DirectionalAlbedo,
-    /// Cosine-weighted average albedo E_avg(r) = 2∫ E(μ) μ dμ (channel `Eavg`).
-    AverageAlbedo,
-    /// Sheen directional albedo E_sheen(μ, r) = ∫ D V μl dωl of the Charlie sheen with
-    /// colour 1 (channel `E`); the visibility is the header's model.
-    SheenAlbedo,
-    /// Rough-glass directional albedo over (μ, roughness, η), channels `R` (reflected) and
-    /// `T` (transmitted energy fraction: the adjoint, without the η² radiance factor), light
-    /// arriving from the side of index 1, η the far side's index over the near side's
-    /// (docs/lut-format.md, "Rough glass"). The model (distribution) is in the generator.
-    GlassAlbedo,
-    /// Rough-glass average albedo over (roughness, η): 2∫ (R, T)(μ) μ dμ (channels `R`, `T`).
-    GlassAverageAlbedo,
-}
+/// What a table holds: the one list of kinds (`src/kinds.rs`).
+pub use crate::kinds::TableKind;
 
 /// How a physical coordinate x ∈ [lo, hi] maps to the unit coordinate s ∈ [0, 1].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

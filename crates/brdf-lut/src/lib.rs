@@ -32,6 +32,7 @@ mod error;
 mod f16;
 mod header;
 mod kernel;
+mod kinds;
 pub mod limits;
 mod lookup;
 mod tables;

@@ -103,19 +103,7 @@ pub fn check_grid(counts: &[u64], channels: u64) -> Result<u64, LimitError> {
 /// G costs more per evaluation than Smith's closed forms.
 pub fn cost_per_point_us(kind: TableKind, model: Model) -> u64 {
     let modified = matches!(model, Model::ModifiedG | Model::TorranceSparrowModifiedG);
-    match (kind, modified) {
-        (TableKind::PassingFactor, _) => 5,
-        (TableKind::SplitSum, false) => 100,
-        (TableKind::SplitSum, true) => 400,
-        (TableKind::DirectionalAlbedo, false) => 100,
-        (TableKind::DirectionalAlbedo, true) => 400,
-        (TableKind::AverageAlbedo, false) => 10_000,
-        (TableKind::AverageAlbedo, true) => 40_000,
-        // (Measured 0.86 ms a node on average over the 1024² Khronos grid.)
-        (TableKind::SheenAlbedo, _) => 1_500,
-        (TableKind::GlassAlbedo, _) => 2_000,
-        (TableKind::GlassAverageAlbedo, _) => 200_000,
-    }
+    kind.cost_per_point_us(modified)
 }
 
 /// Checks the estimated work of building a table with `nodes` nodes and measuring it at

@@ -92,15 +92,7 @@ pub(crate) fn check_header(h: &Header<'_>) -> Result<(), LutError> {
         return Err(I("table larger than the format allows"));
     }
     let (d, c) = (h.axes.len(), h.channels.len());
-    let ok = match h.kind {
-        TableKind::PassingFactor => c == 1 && (d == 2 || d == 3),
-        TableKind::SplitSum => c == 2 && d == 2,
-        TableKind::DirectionalAlbedo => c == 1 && d == 2,
-        TableKind::AverageAlbedo => c == 1 && d == 1,
-        TableKind::SheenAlbedo => c == 1 && d == 2,
-        TableKind::GlassAlbedo => c == 2 && d == 3,
-        TableKind::GlassAverageAlbedo => c == 2 && d == 2,
-    };
+    let ok = h.kind.fits(d, c);
     if !ok {
         return Err(I("axis or channel count does not fit the table kind"));
     }

@@ -5,7 +5,7 @@
 use brdf_core::catalogue::{DistributionId, DISTRIBUTIONS, MASKINGS};
 use brdf_core::models::{GeometricTerm, SheenVisibility};
 use brdf_lut::generate::{Distribution, Kind, Masking, Spec};
-use brdf_lut::{Convention, Model};
+use brdf_lut::{Convention, Model, TableKind};
 
 /// The (distribution, G) pairs the catalogue says tables are made of, plus the G tables
 /// (no distribution) of the modified G in both readings.
@@ -142,4 +142,73 @@ fn generator_options_are_the_catalogue_s() {
         opts.len(),
         DISTRIBUTIONS.iter().map(|d| 1 + d.aliases.len()).sum()
     );
+}
+
+/// The table-kind codes and shapes against docs/lut-format.md §3 (the field-3 row and the
+/// "`kind` fixes the shape" rule), and every generator kind's axes and channels against the
+/// shape of its code: the one list of kinds (`src/kinds.rs`) says what the format says.
+#[test]
+fn kind_codes_and_shapes_are_the_documented_ones() {
+    let doc = include_str!("../../../docs/lut-format.md");
+    let row = doc
+        .lines()
+        .find(|l| l.contains("| `kind`") && l.contains("GlassAverageAlbedo"))
+        .expect("the kind row");
+    let cell = row.split('|').nth(4).unwrap();
+    let mut codes = 0;
+    let words: Vec<&str> = cell.split_whitespace().collect();
+    for w in words.windows(2) {
+        let Ok(code) = w[0].parse::<u32>() else {
+            continue;
+        };
+        let name = w[1].trim_end_matches(',').trim_matches('`');
+        let kind = TableKind::from_code(code).unwrap_or_else(|| panic!("code {code}"));
+        assert_eq!(format!("{kind:?}"), name);
+        assert_eq!(kind.code(), code);
+        codes += 1;
+    }
+    assert_eq!(codes, TableKind::ALL.len());
+    assert_eq!(TableKind::from_code(codes as u32), None);
+    // "* `kind` fixes the shape: `A` 1 channel and 2 or 3 axes; `B` 2 channels (…) and 2 axes; …"
+    let start = doc.find("* `kind` fixes the shape:").unwrap();
+    let rule = &doc[start..start + doc[start..].find("\n* ").unwrap()];
+    let rule = rule.split_once(':').unwrap().1.replace('\n', " ");
+    let mut seen = 0;
+    for clause in rule.split(';') {
+        let name = clause.split('`').nth(1).unwrap();
+        let kind = *TableKind::ALL
+            .iter()
+            .find(|k| format!("{k:?}") == name)
+            .unwrap_or_else(|| panic!("{name}"));
+        let ch = clause.find(" channel").unwrap();
+        let channels: Vec<usize> = clause[..ch]
+            .split_whitespace()
+            .last()
+            .and_then(|w| w.parse().ok())
+            .into_iter()
+            .collect();
+        let between = &clause[ch..clause.find(" ax").unwrap()];
+        let between = between.rsplit(')').next().unwrap();
+        let axes: Vec<usize> = between
+            .split(|c: char| !c.is_ascii_digit())
+            .filter_map(|t| t.parse().ok())
+            .collect();
+        assert_eq!(channels.len(), 1, "{clause}");
+        for c in 1..=4 {
+            for d in 1..=3 {
+                let documented = c == channels[0] && axes.contains(&d);
+                assert_eq!(
+                    kind.fits(d, c),
+                    documented,
+                    "{name}: {d} axes, {c} channels"
+                );
+            }
+        }
+        seen += 1;
+    }
+    assert_eq!(seen, TableKind::ALL.len());
+    for (name, kind) in brdf_lut::generate::KINDS {
+        let def = kind.def();
+        assert!(def.table.fits(def.axes.len(), def.channels.len()), "{name}");
+    }
 }

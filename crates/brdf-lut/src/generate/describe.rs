@@ -9,8 +9,8 @@
 //! axis; each `[axes.NAME]` table; `res` (node counts, over the axes' own `count`); then
 //! encoding, interpolation, samples and seed; finally [`Spec::validate`].
 
+use super::AxisSpec;
 use super::{distribution_options, Distribution, GenError, Kind, Masking, Roughness, Spec};
-use super::{AxisSpec, SheenVisibility};
 use crate::limits::{self, LimitError};
 use crate::{Encoding, Interpolation, Placement, Warp};
 use std::collections::BTreeMap;
@@ -106,35 +106,8 @@ pub const FIELDS: &[&str] = &[
 /// The fields of one axis.
 pub const AXIS_FIELDS: &[&str] = &["count", "lo", "hi", "warp", "placement"];
 
-/// The kinds by name (a g-per-sigma table's σ is filled in from `sigma`; a sheen table's
-/// visibility is part of its name).
-pub const KINDS: &[(&str, Kind)] = &[
-    ("g-per-sigma", Kind::GPerSigma { sigma: 0.0 }),
-    ("g-over-sigma", Kind::GOverSigma),
-    ("split-sum", Kind::SplitSum),
-    ("e", Kind::Albedo),
-    ("e-avg", Kind::AverageAlbedo),
-    (
-        "sheen-e",
-        Kind::SheenAlbedo {
-            visibility: SheenVisibility::EstevezKulla,
-        },
-    ),
-    (
-        "sheen-e-estevez-kulla",
-        Kind::SheenAlbedo {
-            visibility: SheenVisibility::EstevezKulla,
-        },
-    ),
-    (
-        "sheen-e-ashikhmin",
-        Kind::SheenAlbedo {
-            visibility: SheenVisibility::Ashikhmin,
-        },
-    ),
-    ("glass-e", Kind::GlassAlbedo),
-    ("glass-e-avg", Kind::GlassAverageAlbedo),
-];
+/// The kinds by name: the one list's (`src/kinds.rs`).
+pub use crate::kinds::KINDS;
 
 /// What `samples` counts, in limit messages.
 const POINTS: &str = "error-measurement points";
@@ -536,12 +509,10 @@ impl Description {
             (_, Some(_)) => return Err(DescribeError::SigmaNotApplicable),
             (_, None) => {}
         }
-        let g_table = matches!(kind, Kind::GPerSigma { .. } | Kind::GOverSigma);
-        let dist = match &self.model {
-            Some(m) => choose("model", m, &distribution_options())?,
-            None if g_table => Distribution::TorranceSparrow,
-            None if matches!(kind, Kind::SheenAlbedo { .. }) => Distribution::Ggx,
-            None => {
+        let dist = match (&self.model, kind.def().default_distribution) {
+            (Some(m), _) => choose("model", m, &distribution_options())?,
+            (None, Some(d)) => d,
+            (None, None) => {
                 return Err(DescribeError::Missing {
                     field: "model",
                     options: vec!["ggx", "beckmann", "torrance-sparrow"],

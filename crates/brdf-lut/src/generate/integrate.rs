@@ -87,6 +87,23 @@ pub fn ggx_converged(q: GgxQuery, r: f64) -> ([f64; 2], Work) {
     polar_converged(q, PolarRow::new(r))
 }
 
+/// The quadrature node counts the header records for a microfacet kind: empty for the
+/// converged polar rule (adaptive, to [`TOL`]) and for brdf-core's fixed rule otherwise its
+/// counts — split sums: outer nodes, inner nodes, outer panels; E_avg: μ nodes first; the
+/// modified G's passing factor records its own (`src/kinds.rs`).
+pub fn nodes_record(spec: &Spec) -> &'static [u16] {
+    use brdf_core::split_sum::OUTER_PANELS;
+    let polar_axis = spec
+        .axes
+        .last()
+        .is_some_and(|a| polar_row(spec, a.lo).is_some() && polar_row(spec, a.hi).is_some());
+    match spec.kind {
+        _ if polar_axis => &[],
+        Kind::AverageAlbedo => &[24, 32, 16, OUTER_PANELS as u16],
+        _ => &[32, 16, OUTER_PANELS as u16],
+    }
+}
+
 /// A whole row of split-sum or albedo nodes along the μ axis (axis 0) at one roughness-axis
 /// value `rx`, by brdf-core's row integrator ([`brdf_core::split_sum::rows`]: piecewise
 /// Chebyshev interpolation in ln μ over polar nodes, each texel's estimate ≤ [`TOL`]):
@@ -342,12 +359,8 @@ fn node_by<F: Family>(spec: &Spec, x: &[f64], evals: &Cell<u64>) -> [f64; 2] {
             [a + b, 0.0]
         }
         Kind::AverageAlbedo => [F::e_avg(spec, x[0], evals), 0.0],
-        Kind::SheenAlbedo { visibility } => {
-            let e = super::sheen::sheen_e(x[0], x[1], super::sheen::TOL);
-            [e.value[super::sheen::channel(visibility)], 0.0]
-        }
-        // Rough glass is integrated in `generate/glass.rs` (dispatched before this).
-        Kind::GlassAlbedo | Kind::GlassAverageAlbedo => [f64::NAN; 2],
+        // Other kinds have their own kernels (`KindDef::value`).
+        _ => [f64::NAN; 2],
     }
 }
 
@@ -377,9 +390,6 @@ fn ggx_query(spec: &Spec, x: &[f64]) -> Option<(GgxQuery, f64)> {
 /// the modified G's 20-point passing factor, else brdf-core's fixed rule (module docs).
 /// What the error measurement at random points compares the table with.
 pub fn value(spec: &Spec, x: &[f64], out: &mut [f64]) {
-    if super::glass::node(spec, x, out).is_some() {
-        return;
-    }
     let v = if let Some((q, row)) = polar_query(spec, x) {
         polar_converged(q, row).0
     } else {
@@ -400,9 +410,6 @@ pub fn value(spec: &Spec, x: &[f64], out: &mut [f64]) {
 /// the converged polar rule's own estimate, else the embedded difference from the coarser
 /// rule (module docs).
 pub fn node(spec: &Spec, x: &[f64], out: &mut [f64]) -> Work {
-    if let Some(w) = super::glass::node(spec, x, out) {
-        return w;
-    }
     if let Some((q, row)) = polar_query(spec, x) {
         let (v, w) = polar_converged(q, row);
         for (o, v) in out.iter_mut().zip(v) {
@@ -438,12 +445,6 @@ pub fn node(spec: &Spec, x: &[f64], out: &mut [f64]) -> Work {
 /// its E under the 32-point μ rule, with |32-point − 24-point| added), else the `Fine`
 /// rule and |Fine − FineCheck| (module docs).
 pub fn reference(spec: &Spec, x: &[f64]) -> ([f64; 2], f64) {
-    if let Some(r) = super::glass::reference(spec, x) {
-        return r;
-    }
-    if let Kind::SheenAlbedo { visibility } = spec.kind {
-        return super::sheen::reference(visibility, x[0], x[1]);
-    }
     if let Some((q, r)) = ggx_query(spec, x) {
         let row = DfgGgxRow::new(r);
         return match q {

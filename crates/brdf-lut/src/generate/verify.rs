@@ -1,7 +1,7 @@
 //! `lut verify`'s check of a table's recorded integration error bound: a sample of nodes
 //! recomputed by an independent, much finer rule ([`super::reference`]).
 
-use super::integrate::reference;
+use super::reference;
 use super::{Role, Spec};
 use crate::write::node_coords;
 use crate::{Encoding, LutView};
