@@ -5,7 +5,7 @@
 //! for comparison across branches; and an independent brute-force value (`brute`, P = "μ,r,η").
 #![cfg(feature = "generate")]
 
-use brdf_lut::generate::glass::glass_e;
+use brdf_lut::generate::glass::{glass_e, glass_e_cap};
 use brdf_lut::generate::INTEGRATION_TOL;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
@@ -49,16 +49,35 @@ fn measure_random_points() {
         let v: Vec<f64> = p.split(',').map(|x| x.parse().unwrap()).collect();
         pts = vec![(v[0], v[1], v[2])];
     }
-    for (mu, r, eta) in pts {
+    let (mut worst, mut worst_ratio, mut bad) = (0f64, 0f64, 0usize);
+    let (mut evals, mut secs) = ([0u64; 2], [0f64; 2]);
+    for (mu, r, eta) in pts.iter().copied() {
         let t0 = std::time::Instant::now();
         let (v, w) = glass_e(mu, r * r, eta, INTEGRATION_TOL);
         let dt = t0.elapsed().as_secs_f64();
-        let (rf, wr) = glass_e(mu, r * r, eta, INTEGRATION_TOL / 100.0);
+        let side = usize::from(eta >= 1.0);
+        evals[side] += w.evals;
+        secs[side] += dt;
+        let (rf, wr) = glass_e_cap(mu, r * r, eta, INTEGRATION_TOL / 100.0);
+        let d = (v[0] - rf[0]).abs().max((v[1] - rf[1]).abs());
+        worst = worst.max(d);
+        worst_ratio = worst_ratio.max(d / (w.error + wr.error));
+        bad += usize::from(d > w.error + wr.error);
         println!(
-            "P {mu:.17e} {r:.17e} {eta:.17e} {:.17e} {:.17e} {:.3e} {} {:.4e} {:.17e} {:.17e} {:.3e}",
+            "P {mu:.17e} {r:.17e} {eta:.17e} {:.17e} {:.17e} {:.3e} {} {:.4e} {:.17e} {:.17e} {:.3e} diff {d:.3e}",
             v[0], v[1], w.error, w.evals, dt, rf[0], rf[1], wr.error
         );
     }
+    let n = (pts.len() / 2).max(1) as f64;
+    println!(
+        "{} points: max |rings − cap| {worst:.3e}, max ratio to the two estimates {worst_ratio:.3}, \
+         {bad} beyond; inside {:.0} evals {:.3} ms per node, outside {:.0} evals {:.3} ms",
+        pts.len(),
+        evals[0] as f64 / n,
+        secs[0] / n * 1e3,
+        evals[1] as f64 / n,
+        secs[1] / n * 1e3
+    );
 }
 /// The midpoint rule on n × n grids (n = 1000 … 8000) in the cap's (θ, φ), the integrands
 /// written directly from F, G1 and the refraction: no cuts, no adaptivity. Its error falls

@@ -62,6 +62,8 @@ use brdf_core::quadrature::kronrod::{gk15_combine, gk15_nodes};
 use brdf_core::split_sum::converged::{integrate_cap, CapIntegrand, GgxSplitSum};
 use std::format;
 
+mod rings;
+
 /// Tolerance of `lut verify`'s E_avg reference: 10× below the generator's [`TOL`].
 pub const AVERAGE_REFERENCE_TOL: f64 = 2e-7;
 
@@ -194,10 +196,22 @@ impl CapIntegrand<f64> for Refracted {
     }
 }
 
-/// (R, T) at (μ, α, η) to the absolute tolerance `tol` per channel: values, the larger
-/// estimate, and the work (integrand plus cut-search evaluations). μ is clamped to
-/// [1e-9, 1] and α floored at 1e-4 (module docs).
+/// (R, T) at (μ, α, η) to the absolute tolerance `tol` per channel by the generator's
+/// ring rule ([`rings`]): values, the larger estimate, and the integrand evaluations. μ is
+/// clamped to [1e-9, 1] and α floored at 1e-4 (module docs).
 pub fn glass_e(mu: f64, alpha: f64, eta: f64, tol: f64) -> ([f64; 2], Work) {
+    let mu = mu.clamp(1e-9, 1.0);
+    let alpha = alpha.max(ALPHA_FLOOR);
+    if mu.is_nan() || alpha.is_nan() || !(eta > 0.0) {
+        return ([f64::NAN; 2], Work::default());
+    }
+    rings::glass_e_rings(mu, alpha, eta, tol)
+}
+
+/// (R, T) at (μ, α, η) to `tol` by the cap integrator (module docs, **Rule**): `lut
+/// verify`'s independent reference for [`glass_e`]. Values, the larger estimate, and the
+/// work (integrand plus cut-search evaluations). μ clamped to [1e-9, 1], α floored at 1e-4.
+pub fn glass_e_cap(mu: f64, alpha: f64, eta: f64, tol: f64) -> ([f64; 2], Work) {
     let mu = mu.clamp(1e-9, 1.0);
     let alpha = alpha.max(ALPHA_FLOOR);
     let Ok(dist) = TrowbridgeReitz::isotropic(alpha) else {
@@ -236,12 +250,13 @@ pub fn glass_e(mu: f64, alpha: f64, eta: f64, tol: f64) -> ([f64; 2], Work) {
 
 /// 2∫ₐᵇ (R, T)(μ) μ dμ by K15 in μ, halving where |K15 − G7| plus the panel width × its
 /// largest node estimate exceeds `tol`: (values, estimate, work).
-fn mu_adapt(a: f64, b: f64, alpha: f64, eta: f64, tol: f64, depth: u32) -> ([f64; 2], Work) {
+fn mu_adapt(a: f64, b: f64, row: Row, tol: f64, depth: u32) -> ([f64; 2], Work) {
+    let (alpha, eta) = (row.alpha, row.eta);
     let t = gk15_nodes(a, b);
     let mut y = [[0.0; 2]; 15];
     let (mut worst, mut evals) = (0f64, 0u64);
     for (y, &mu) in y.iter_mut().zip(&t) {
-        let (v, w) = glass_e(mu, alpha, eta, tol * 0.25);
+        let (v, w) = (row.e)(mu, alpha, eta, tol * 0.25);
         *y = [2.0 * mu * v[0], 2.0 * mu * v[1]];
         worst = worst.max(w.error);
         evals += w.evals;
@@ -252,8 +267,8 @@ fn mu_adapt(a: f64, b: f64, alpha: f64, eta: f64, tol: f64, depth: u32) -> ([f64
         return (v, Work { error, evals });
     }
     let m = 0.5 * (a + b);
-    let (v0, w0) = mu_adapt(a, m, alpha, eta, tol * 0.5, depth + 1);
-    let (v1, w1) = mu_adapt(m, b, alpha, eta, tol * 0.5, depth + 1);
+    let (v0, w0) = mu_adapt(a, m, row, tol * 0.5, depth + 1);
+    let (v1, w1) = mu_adapt(m, b, row, tol * 0.5, depth + 1);
     let w = Work {
         error: w0.error + w1.error,
         evals: evals + w0.evals + w1.evals,
@@ -264,16 +279,52 @@ fn mu_adapt(a: f64, b: f64, alpha: f64, eta: f64, tol: f64, depth: u32) -> ([f64
 /// (R_avg, T_avg)(α, η) = 2∫₀¹ (R, T)(μ) μ dμ to `tol` per channel, broken at
 /// μ_c = √(1 − η²) for η < 1 (module docs).
 pub fn glass_e_avg(alpha: f64, eta: f64, tol: f64) -> ([f64; 2], Work) {
+    e_avg(
+        Row {
+            alpha,
+            eta,
+            e: glass_e,
+        },
+        tol,
+    )
+}
+
+/// [`glass_e_avg`] with the cap integrator's E ([`glass_e_cap`]): `lut verify`'s reference.
+pub fn glass_e_avg_cap(alpha: f64, eta: f64, tol: f64) -> ([f64; 2], Work) {
+    e_avg(
+        Row {
+            alpha,
+            eta,
+            e: glass_e_cap,
+        },
+        tol,
+    )
+}
+
+/// An E(μ) to tolerance: [`glass_e`] or [`glass_e_cap`].
+type EFn = fn(f64, f64, f64, f64) -> ([f64; 2], Work);
+
+/// The (α, η) of an E_avg and the rule of its E(μ).
+#[derive(Clone, Copy)]
+struct Row {
+    alpha: f64,
+    eta: f64,
+    e: EFn,
+}
+
+/// E_avg of `row` (see [`glass_e_avg`]).
+fn e_avg(row: Row, tol: f64) -> ([f64; 2], Work) {
+    let eta = row.eta;
     let cut = if eta < 1.0 {
         ((1.0 - eta) * (1.0 + eta)).sqrt()
     } else {
         0.0
     };
     if !(cut > 0.0 && cut < 1.0) {
-        return mu_adapt(0.0, 1.0, alpha, eta, tol, 0);
+        return mu_adapt(0.0, 1.0, row, tol, 0);
     }
-    let (v0, w0) = mu_adapt(0.0, cut, alpha, eta, tol * cut, 0);
-    let (v1, w1) = mu_adapt(cut, 1.0, alpha, eta, tol * (1.0 - cut), 0);
+    let (v0, w0) = mu_adapt(0.0, cut, row, tol * cut, 0);
+    let (v1, w1) = mu_adapt(cut, 1.0, row, tol * (1.0 - cut), 0);
     let w = Work {
         error: w0.error + w1.error,
         evals: w0.evals + w1.evals,
@@ -286,11 +337,15 @@ pub fn is_glass(kind: Kind) -> bool {
     matches!(kind, Kind::GlassAlbedo | Kind::GlassAverageAlbedo)
 }
 
-/// The rough-glass node at `x` to tolerance `tol`: (μ, roughness, η) or (roughness, η).
-fn at(spec: &Spec, x: &[f64], tol: f64) -> ([f64; 2], Work) {
+/// The rough-glass node at `x` to tolerance `tol` with the E rule `e` ([`glass_e`] or
+/// [`glass_e_cap`]): (μ, roughness, η) or (roughness, η).
+fn at(spec: &Spec, x: &[f64], tol: f64, e: EFn) -> ([f64; 2], Work) {
     match (spec.kind, x) {
-        (Kind::GlassAlbedo, &[mu, r, eta]) => glass_e(mu, spec.width_sigma(r).0, eta, tol),
-        (Kind::GlassAverageAlbedo, &[r, eta]) => glass_e_avg(spec.width_sigma(r).0, eta, tol),
+        (Kind::GlassAlbedo, &[mu, r, eta]) => e(mu, spec.width_sigma(r).0, eta, tol),
+        (Kind::GlassAverageAlbedo, &[r, eta]) => {
+            let alpha = spec.width_sigma(r).0;
+            e_avg(Row { alpha, eta, e }, tol)
+        }
         _ => ([f64::NAN; 2], Work::default()),
     }
 }
@@ -301,16 +356,17 @@ pub fn node(spec: &Spec, x: &[f64], out: &mut [f64]) -> Option<Work> {
     if !is_glass(spec.kind) {
         return None;
     }
-    let (v, w) = at(spec, x, TOL);
+    let (v, w) = at(spec, x, TOL, glass_e);
     for (o, v) in out.iter_mut().zip(v) {
         *o = v;
     }
     Some(w)
 }
 
-/// `lut verify`'s reference at `x`: the same cap integrator at [`REFERENCE_TOL`] (100×
-/// tighter, so its panels and rows are refined far beyond the generator's; E_avg at
-/// [`AVERAGE_REFERENCE_TOL`], whose μ panels multiply the cost): (values, its estimate);
+/// `lut verify`'s reference at `x`: the cap integrator ([`glass_e_cap`], a different rule in
+/// different coordinates from the generator's [`glass_e`]) at [`REFERENCE_TOL`] (100×
+/// tighter; E_avg at [`AVERAGE_REFERENCE_TOL`], whose μ panels multiply the cost): (values,
+/// its estimate);
 /// `None` for a kind that is not rough glass.
 pub fn reference(spec: &Spec, x: &[f64]) -> Option<([f64; 2], f64)> {
     if !is_glass(spec.kind) {
@@ -321,7 +377,7 @@ pub fn reference(spec: &Spec, x: &[f64]) -> Option<([f64; 2], f64)> {
     } else {
         REFERENCE_TOL
     };
-    let (v, w) = at(spec, x, tol);
+    let (v, w) = at(spec, x, tol, glass_e_cap);
     Some((v, w.error))
 }
 
