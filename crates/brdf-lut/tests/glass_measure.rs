@@ -135,3 +135,32 @@ fn brute() {
         println!("n {n}: R {:.10} T {:.10}", sum[0] * m, sum[1] * m);
     }
 }
+
+/// Wall time and evaluations per node of the default 32³ glass-e table on one side
+/// (GLASS_SIDE = "inside": η ∈ [1/3, 1], else η ∈ [1, 3]); threads from RAYON_NUM_THREADS.
+/// Run under `/usr/bin/time` for the CPU time (the wall time depends on the machine's load).
+#[test]
+#[ignore = "a measurement"]
+fn time_default_table() {
+    use brdf_lut::generate::{generate, Distribution, Kind, Masking, Spec};
+    let inside = std::env::var("GLASS_SIDE").is_ok_and(|s| s == "inside");
+    let (lo, hi) = if inside { (1.0 / 3.0, 1.0) } else { (1.0, 3.0) };
+    let mut spec = Spec::new(
+        Kind::GlassAlbedo,
+        Distribution::Ggx,
+        Masking::SmithSeparable,
+    );
+    if let Some(a) = spec.axes.last_mut() {
+        (a.lo, a.hi) = (lo, hi);
+    }
+    let t0 = std::time::Instant::now();
+    let g = generate(&spec, &|_| {}).unwrap();
+    let secs = t0.elapsed().as_secs_f64();
+    let nodes: usize = spec.axes.iter().map(|a| a.count as usize).product();
+    println!(
+        "glass-e η ∈ [{lo:.3}, {hi}]: {nodes} nodes in {secs:.2} s wall on {} threads, {:.0} evals/node, bound {:e}",
+        brdf_lut::generate::threads(),
+        g.evals as f64 / nodes as f64,
+        g.integration
+    );
+}

@@ -22,25 +22,34 @@
 //! 17 and 20–21: f |cos θi| over the sampling density leaves the weights F G1(wi) and
 //! (1 − F) G1(wi), bounded by 1.) Per channel: E_avg = 2∫₀¹ E(μ) μ dμ.
 //!
-//! **Rule.** Each channel is one converged integral over the spherical cap of the GGX
-//! visible-normal map ([`brdf_core::split_sum::converged::integrate_cap`], Dupuy & Benyoub
-//! 2023): rows cut exactly where the integrand's support changes sign, adaptive 15-point
-//! Kronrod panels with embedded 7-point Gauss estimates in θ and φ. The support of R is
-//! n·wi_r (the horizon, where G1 → 0 linearly); that of T is min(η² − 1 + (wo·h)², −n·wi_t):
-//! the horizon of the refracted ray and the total-internal-reflection edge, past which
-//! 1 − F = 0 (F → 1 as a square root there, in R and T). For η ≥ 1 no refracted ray is cut
-//! (c − √(η² − 1 + c²) ≤ 0: it always leaves below the surface): T's rows are whole
-//! (`CapIntegrand::uncut`) and the graded breaks toward the cap edge stop at a
-//! gap ~α for both channels (`cap_edge_grades`). For η < 1 (inside) both channels take the
-//! same path as before that speed-up: R's rows are cut at its horizon (the split sum's row
-//! form), T's lit intervals are found by scanning its support, both graded to the last bit;
-//! the TIR edge then lies inside R's pieces and ends T's, resolved by the adaptive panels
-//! (less surely for R: tests/glass_tables.rs keeps a failing point). Exact TIR and
-//! refracted-horizon cuts for T with square-root end substitutions were tried and left
-//! out: faster per node, but at one measured point 7.1e-7 off, past their estimate and 5×
-//! the scan's error (`Refracted::uncut`). E_avg integrates E in μ by adaptive K15/G7 panels,
-//! broken at μ_c = √(1 − η²) for η < 1 (where TIR sets in at normal incidence on the mean
-//! surface and E(μ) bends sharply for small α).
+//! **Rule (the generator's, [`glass_e`]).** Rings of the half vector around the normal
+//! ([`rings`]): on a ring the integrand depends on wo·h alone, so the visibility edge, both
+//! horizons and the total-internal-reflection edge are closed-form cuts; each piece is
+//! integrated in a sin² substitution that makes the square roots at its ends (the ring's
+//! ends, the TIR edge) analytic, the outer integral over the ring radius is broken where
+//! the ring's structure changes (closed-form roots), and both levels are adaptive K15 with
+//! an estimate of K15's own error. Measured: ~4.6k integrand evaluations per node for light
+//! from outside, ~7k from inside (tests/glass_measure.rs), against ~279k for the cap rule.
+//!
+//! **Reference ([`glass_e_cap`], `lut verify`).** Each channel is one converged integral over
+//! the spherical cap of the GGX visible-normal map
+//! ([`brdf_core::split_sum::converged::integrate_cap`], Dupuy & Benyoub 2023): rows cut
+//! exactly where the integrand's support changes sign, adaptive 15-point Kronrod panels with
+//! embedded 7-point Gauss estimates in θ and φ. The support of R is n·wi_r (the horizon,
+//! where G1 → 0 linearly); that of T is min(η² − 1 + (wo·h)², −n·wi_t): the horizon of the
+//! refracted ray and the total-internal-reflection edge, past which 1 − F = 0 (F → 1 as a
+//! square root there, in R and T). For η ≥ 1 no refracted ray is cut (c − √(η² − 1 + c²)
+//! ≤ 0: it always leaves below the surface): T's rows are whole (`CapIntegrand::uncut`) and
+//! the graded breaks toward the cap edge stop at a gap ~α for both channels
+//! (`cap_edge_grades`). For η < 1 (inside) R's rows are cut at its horizon (the split sum's
+//! row form), T's lit intervals are found by scanning its support, both graded to the last
+//! bit; the TIR edge then lies inside R's pieces and ends T's, resolved by the adaptive
+//! panels — not always: inside, the cap rule's R (and at times T) can be off by more than
+//! its estimate (up to 5.4e-6 measured, where an independent brute-force rule agrees with
+//! the ring rule to 1e-8; tests/glass_tables.rs, tests/glass_measure.rs). E_avg integrates
+//! E in μ by adaptive K15/G7 panels, broken at μ_c = √(1 − η²) for η < 1 (where TIR sets
+//! in at normal incidence on the mean surface and E(μ) has a square-root edge rounded over
+//! ~α) and graded toward it at α·4ʲ.
 //!
 //! **Narrow limit.** The kernel floors α at [`brdf_core::models::rough_dielectric::ALPHA_FLOOR`]
 //! = 1e-4; so do the tables (roughness 0 is α = 1e-4). There R = F(μ) + O(α²/μ²) and
@@ -314,22 +323,42 @@ struct Row {
 
 /// E_avg of `row` (see [`glass_e_avg`]).
 fn e_avg(row: Row, tol: f64) -> ([f64; 2], Work) {
-    let eta = row.eta;
-    let cut = if eta < 1.0 {
+    let (mut v, mut w) = ([0.0; 2], Work::default());
+    let breaks = mu_breaks(row.alpha.max(ALPHA_FLOOR), row.eta);
+    for p in breaks.windows(2) {
+        let (pv, pw) = mu_adapt(p[0], p[1], row, tol * (p[1] - p[0]), 0);
+        v = [v[0] + pv[0], v[1] + pv[1]];
+        w.error += pw.error;
+        w.evals += pw.evals;
+    }
+    (v, w)
+}
+
+/// The μ panels of E_avg: [0, 1], for η < 1 broken at μ_c = √(1 − η²) (where TIR sets in
+/// at normal incidence on the mean surface: E has a square-root edge there, rounded over
+/// ~α) and graded toward it on both sides at μ_c ± α·4ʲ while that is closer than 0.1
+/// (the narrow limit: T(μ) ≈ 1 − F(μ) ∝ √(μ − μ_c) beyond a rounding of width ~α).
+fn mu_breaks(alpha: f64, eta: f64) -> std::vec::Vec<f64> {
+    let mut b = std::vec![0.0, 1.0];
+    let mc = if eta < 1.0 {
         ((1.0 - eta) * (1.0 + eta)).sqrt()
     } else {
         0.0
     };
-    if !(cut > 0.0 && cut < 1.0) {
-        return mu_adapt(0.0, 1.0, row, tol, 0);
+    if mc > 0.0 && mc < 1.0 {
+        b.push(mc);
+        let mut d = alpha;
+        while d < 0.1 {
+            b.extend(
+                [mc - d, mc + d]
+                    .into_iter()
+                    .filter(|m| *m > 0.0 && *m < 1.0),
+            );
+            d *= 4.0;
+        }
     }
-    let (v0, w0) = mu_adapt(0.0, cut, row, tol * cut, 0);
-    let (v1, w1) = mu_adapt(cut, 1.0, row, tol * (1.0 - cut), 0);
-    let w = Work {
-        error: w0.error + w1.error,
-        evals: w0.evals + w1.evals,
-    };
-    ([v0[0] + v1[0], v0[1] + v1[1]], w)
+    b.sort_by(|x, y| x.total_cmp(y));
+    b
 }
 
 /// Whether the kind is a rough-glass kind.
