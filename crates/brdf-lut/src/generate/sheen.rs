@@ -181,7 +181,7 @@ struct Panel {
 /// the two channels and the two channels' own error at x (weighted into the estimate by
 /// the Kronrod weights). Each panel is halved until max |K15 − G7| ≤ tol × its length
 /// (or its depth reaches 40). Returns (value, estimate) per channel.
-pub(super) fn adaptive(
+fn adaptive(
     breaks: &[f64],
     tol: f64,
     f: &mut dyn FnMut(f64) -> ([f64; 2], [f64; 2]),
