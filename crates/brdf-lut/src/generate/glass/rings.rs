@@ -110,23 +110,45 @@ fn k15_error(y: &[f64; 15], h: f64, d: f64, r: f64) -> f64 {
     if !(e1 > 0.0) {
         return d;
     }
-    let q = if e0 > 0.0 { (e1 / e0).powf(0.25) } else { 1.0 };
-    if q < 0.5 {
-        return 20.0 * h * e1 * q.powi(12);
+    // q⁴ = e1/e0 < 1/16, q¹² = (e1/e0)³.
+    let q4 = if e0 > 0.0 { e1 / e0 } else { 1.0 };
+    if q4 < 1.0 / 16.0 {
+        return 20.0 * h * e1 * q4 * q4 * q4;
     }
     if r > 0.0 {
-        r * (200.0 * d / r).powf(1.5).min(1.0)
+        let z = 200.0 * d / r;
+        r * (z * z.sqrt()).min(1.0)
     } else {
         d
     }
 }
 
+/// The integrand of [`adaptive`]: f(t, j) with j = Some(node index) on a unit panel
+/// [i, i + 1] (whose sin/cos of the substitution are tabulated: [`substitution`]).
+trait Integrand: FnMut(f64, Option<usize>) -> ([f64; 2], [f64; 2]) {}
+impl<F: FnMut(f64, Option<usize>) -> ([f64; 2], [f64; 2])> Integrand for F {}
+
+/// The piece i ≤ `last` of t and (sin β, cos β) of its sin² substitution, β = (t − i)π/2;
+/// tabulated at the nodes of unit panels (node index j).
+#[inline]
+fn substitution(t: f64, j: Option<usize>, last: usize) -> (usize, f64, f64) {
+    static UNIT: OnceLock<[(f64, f64); 15]> = OnceLock::new();
+    let i = (t as usize).min(last);
+    if let Some(j) = j {
+        let u = UNIT.get_or_init(|| gk15_nodes(0.0f64, 1.0).map(|x| (x * FRAC_PI_2).sin_cos()));
+        return (i, u[j].0, u[j].1);
+    }
+    let (sb, cb) = ((t - i as f64) * FRAC_PI_2).sin_cos();
+    (i, sb, cb)
+}
+
 /// K15 over [a, b] of f (values and their own errors): the value and its estimate per
 /// channel ([`k15_error`]) + the Kronrod-weighted errors f reports.
-fn panel(a: f64, b: f64, f: &mut impl FnMut(f64) -> ([f64; 2], [f64; 2])) -> Panel {
+fn panel(a: f64, b: f64, f: &mut impl Integrand) -> Panel {
     let (mut y, mut ye) = ([[0.0; 2]; 15], [[0.0; 2]; 15]);
+    let unit = b - a == 1.0 && a.fract() == 0.0;
     for (j, x) in gk15_nodes(a, b).into_iter().enumerate() {
-        (y[j], ye[j]) = f(x);
+        (y[j], ye[j]) = f(x, unit.then_some(j));
     }
     let h = 0.5 * (b - a);
     let (v, d) = gk15_combine(&y, h);
@@ -144,11 +166,7 @@ fn panel(a: f64, b: f64, f: &mut impl FnMut(f64) -> ([f64; 2], [f64; 2])) -> Pan
 /// ∫ of f over the unit panels [i, i + 1], i < n, to the absolute tolerance `tol` per
 /// channel: globally adaptive K15 (the panel with the largest estimate is halved until the
 /// sum of the estimates is ≤ tol, or [`MAX_PANELS`]). (value, estimate) per channel.
-fn adaptive(
-    n: usize,
-    tol: f64,
-    f: &mut impl FnMut(f64) -> ([f64; 2], [f64; 2]),
-) -> ([f64; 2], [f64; 2]) {
+fn adaptive(n: usize, tol: f64, f: &mut impl Integrand) -> ([f64; 2], [f64; 2]) {
     let mut ps: Vec<Panel> = (0..n).map(|i| panel(i as f64, i as f64 + 1.0, f)).collect();
     loop {
         let (mut v, mut e) = ([0.0; 2], [0.0; 2]);
@@ -205,11 +223,10 @@ struct Ring {
 }
 
 impl Ring {
-    /// The point of piece [a, b] at β (its sin² substitution, in √(x − x_k) above x_k) and
+    /// The point of piece [a, b] at β given (sin β, cos β) (its sin² substitution, in √(x − x_k) above x_k) and
     /// the weight dφ/dβ / (π/2 per unit t) there: (x, weight).
     #[inline]
-    fn point(&self, a: f64, b: f64, beta: f64) -> (f64, f64) {
-        let (sb, cb) = beta.sin_cos();
+    fn point(&self, a: f64, b: f64, sb: f64, cb: f64) -> (f64, f64) {
         let (s2, c2) = (sb * sb, cb * cb);
         let d = 2.0 * sb * cb * FRAC_PI_2;
         if a >= self.xk {
@@ -378,10 +395,9 @@ impl Node {
             return ([0.0; 2], [0.0; 2], 0);
         }
         let mut evals = 0u64;
-        let mut f = |t: f64| {
-            let i = (t as usize).min(pieces - 1);
-            let (a, b) = (r.ends[i], r.ends[i + 1]);
-            let (x, jac) = r.point(a, b, (t - i as f64) * FRAC_PI_2);
+        let mut f = |t: f64, j: Option<usize>| {
+            let (i, sb, cb) = substitution(t, j, pieces - 1);
+            let (x, jac) = r.point(r.ends[i], r.ends[i + 1], sb, cb);
             evals += 1;
             if !(jac.is_finite()) {
                 return ([0.0; 2], [0.0; 2]);
@@ -474,10 +490,8 @@ pub(super) fn glass_e_rings(mu: f64, alpha: f64, eta: f64, tol: f64) -> ([f64; 2
     let u_end = (-w_end).exp();
     let ring_tol = RING_SHARE * tol / segs;
     let mut evals = 0u64;
-    let mut f = |t: f64| {
-        let i = t as usize;
-        let beta = (t - i as f64) * FRAC_PI_2;
-        let (sb, cb) = beta.sin_cos();
+    let mut f = |t: f64, j: Option<usize>| {
+        let (i, sb, cb) = substitution(t, j, panels);
         let s2 = sb * sb;
         let dsub = 2.0 * sb * cb * FRAC_PI_2;
         let (wv, jac, tail) = if i < panels {
@@ -592,7 +606,7 @@ mod tests {
         ];
         for (f, exact, ds) in cases {
             for &d in ds {
-                let p = panel(-1.0, 1.0, &mut |x| ([f(x, d), 0.0], [0.0; 2]));
+                let p = panel(-1.0, 1.0, &mut |x, _| ([f(x, d), 0.0], [0.0; 2]));
                 let err = (p.v[0] - exact(d)).abs();
                 assert!(
                     err <= p.e[0] + 1e-14 * exact(d).abs(),
