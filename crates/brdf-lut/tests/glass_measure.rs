@@ -1,8 +1,11 @@
 //! Measurements (ignored, run with `--release --ignored --nocapture`): the rough-glass
-//! albedo `glass_e` at the generator's tolerance and at a 100× tighter one at seeded random
-//! points (`measure`: GLASS_N points per side, μ log-uniform in [cos 89°, 1], r uniform,
-//! α = r², η uniform in [1/3, 1] and [1, 3]; or the one point GLASS_P = "μ,r,η"), printed
-//! for comparison across branches; and an independent brute-force value (`brute`, P = "μ,r,η").
+//! albedo by the generator's ring rule (`glass_e`, at the generator's tolerance) against the
+//! cap integrator (`glass_e_cap`, 100× tighter) at seeded random points
+//! (`measure_random_points`: GLASS_N points per side, μ log-uniform in [cos 89°, 1], r
+//! uniform, α = r², η uniform in [1/3, 1] and [1, 3]; or the one point GLASS_P = "μ,r,η"),
+//! printed with a summary (largest difference, points beyond the two estimates, evaluations
+//! and time per node); an independent brute-force value (`brute`, P = "μ,r,η") to settle a
+//! disagreement; and the default 32³ table's generation (`time_default_table`).
 #![cfg(feature = "generate")]
 
 use brdf_lut::generate::glass::{glass_e, glass_e_cap};
