@@ -1,11 +1,14 @@
 //! Measurements (ignored, run with `--release --ignored --nocapture`): the rough-glass
-//! albedo `glass_e` at the generator's tolerance and at a 100× tighter one at seeded random
-//! points (`measure`: GLASS_N points per side, μ log-uniform in [cos 89°, 1], r uniform,
-//! α = r², η uniform in [1/3, 1] and [1, 3]; or the one point GLASS_P = "μ,r,η"), printed
-//! for comparison across branches; and an independent brute-force value (`brute`, P = "μ,r,η").
+//! albedo by the generator's ring rule (`glass_e`, at the generator's tolerance) against the
+//! cap integrator (`glass_e_cap`, 100× tighter) at seeded random points
+//! (`measure_random_points`: GLASS_N points per side, μ log-uniform in [cos 89°, 1], r
+//! uniform, α = r², η uniform in [1/3, 1] and [1, 3]; or the one point GLASS_P = "μ,r,η"),
+//! printed with a summary (largest difference, points beyond the two estimates, evaluations
+//! and time per node); an independent brute-force value (`brute`, P = "μ,r,η") to settle a
+//! disagreement; and the default 32³ table's generation (`time_default_table`).
 #![cfg(feature = "generate")]
 
-use brdf_lut::generate::glass::glass_e;
+use brdf_lut::generate::glass::{glass_e, glass_e_cap};
 use brdf_lut::generate::INTEGRATION_TOL;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
@@ -49,16 +52,35 @@ fn measure_random_points() {
         let v: Vec<f64> = p.split(',').map(|x| x.parse().unwrap()).collect();
         pts = vec![(v[0], v[1], v[2])];
     }
-    for (mu, r, eta) in pts {
+    let (mut worst, mut worst_ratio, mut bad) = (0f64, 0f64, 0usize);
+    let (mut evals, mut secs) = ([0u64; 2], [0f64; 2]);
+    for (mu, r, eta) in pts.iter().copied() {
         let t0 = std::time::Instant::now();
         let (v, w) = glass_e(mu, r * r, eta, INTEGRATION_TOL);
         let dt = t0.elapsed().as_secs_f64();
-        let (rf, wr) = glass_e(mu, r * r, eta, INTEGRATION_TOL / 100.0);
+        let side = usize::from(eta >= 1.0);
+        evals[side] += w.evals;
+        secs[side] += dt;
+        let (rf, wr) = glass_e_cap(mu, r * r, eta, INTEGRATION_TOL / 100.0);
+        let d = (v[0] - rf[0]).abs().max((v[1] - rf[1]).abs());
+        worst = worst.max(d);
+        worst_ratio = worst_ratio.max(d / (w.error + wr.error));
+        bad += usize::from(d > w.error + wr.error);
         println!(
-            "P {mu:.17e} {r:.17e} {eta:.17e} {:.17e} {:.17e} {:.3e} {} {:.4e} {:.17e} {:.17e} {:.3e}",
+            "P {mu:.17e} {r:.17e} {eta:.17e} {:.17e} {:.17e} {:.3e} {} {:.4e} {:.17e} {:.17e} {:.3e} diff {d:.3e}",
             v[0], v[1], w.error, w.evals, dt, rf[0], rf[1], wr.error
         );
     }
+    let n = (pts.len() / 2).max(1) as f64;
+    println!(
+        "{} points: max |rings − cap| {worst:.3e}, max ratio to the two estimates {worst_ratio:.3}, \
+         {bad} beyond; inside {:.0} evals {:.3} ms per node, outside {:.0} evals {:.3} ms",
+        pts.len(),
+        evals[0] as f64 / n,
+        secs[0] / n * 1e3,
+        evals[1] as f64 / n,
+        secs[1] / n * 1e3
+    );
 }
 /// The midpoint rule on n × n grids (n = 1000 … 8000) in the cap's (θ, φ), the integrands
 /// written directly from F, G1 and the refraction: no cuts, no adaptivity. Its error falls
@@ -115,4 +137,33 @@ fn brute() {
         let m = map.measure() * dt * dp;
         println!("n {n}: R {:.10} T {:.10}", sum[0] * m, sum[1] * m);
     }
+}
+
+/// Wall time and evaluations per node of the default 32³ glass-e table on one side
+/// (GLASS_SIDE = "inside": η ∈ [1/3, 1], else η ∈ [1, 3]); threads from RAYON_NUM_THREADS.
+/// Run under `/usr/bin/time` for the CPU time (the wall time depends on the machine's load).
+#[test]
+#[ignore = "a measurement"]
+fn time_default_table() {
+    use brdf_lut::generate::{generate, Distribution, Kind, Masking, Spec};
+    let inside = std::env::var("GLASS_SIDE").is_ok_and(|s| s == "inside");
+    let (lo, hi) = if inside { (1.0 / 3.0, 1.0) } else { (1.0, 3.0) };
+    let mut spec = Spec::new(
+        Kind::GlassAlbedo,
+        Distribution::Ggx,
+        Masking::SmithSeparable,
+    );
+    if let Some(a) = spec.axes.last_mut() {
+        (a.lo, a.hi) = (lo, hi);
+    }
+    let t0 = std::time::Instant::now();
+    let g = generate(&spec, &|_| {}).unwrap();
+    let secs = t0.elapsed().as_secs_f64();
+    let nodes: usize = spec.axes.iter().map(|a| a.count as usize).product();
+    println!(
+        "glass-e η ∈ [{lo:.3}, {hi}]: {nodes} nodes in {secs:.2} s wall on {} threads, {:.0} evals/node, bound {:e}",
+        brdf_lut::generate::threads(),
+        g.evals as f64 / nodes as f64,
+        g.integration
+    );
 }

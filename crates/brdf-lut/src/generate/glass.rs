@@ -22,25 +22,34 @@
 //! 17 and 20–21: f |cos θi| over the sampling density leaves the weights F G1(wi) and
 //! (1 − F) G1(wi), bounded by 1.) Per channel: E_avg = 2∫₀¹ E(μ) μ dμ.
 //!
-//! **Rule.** Each channel is one converged integral over the spherical cap of the GGX
-//! visible-normal map ([`brdf_core::split_sum::converged::integrate_cap`], Dupuy & Benyoub
-//! 2023): rows cut exactly where the integrand's support changes sign, adaptive 15-point
-//! Kronrod panels with embedded 7-point Gauss estimates in θ and φ. The support of R is
-//! n·wi_r (the horizon, where G1 → 0 linearly); that of T is min(η² − 1 + (wo·h)², −n·wi_t):
-//! the horizon of the refracted ray and the total-internal-reflection edge, past which
-//! 1 − F = 0 (F → 1 as a square root there, in R and T). For η ≥ 1 no refracted ray is cut
-//! (c − √(η² − 1 + c²) ≤ 0: it always leaves below the surface): T's rows are whole
-//! (`CapIntegrand::uncut`) and the graded breaks toward the cap edge stop at a
-//! gap ~α for both channels (`cap_edge_grades`). For η < 1 (inside) both channels take the
-//! same path as before that speed-up: R's rows are cut at its horizon (the split sum's row
-//! form), T's lit intervals are found by scanning its support, both graded to the last bit;
-//! the TIR edge then lies inside R's pieces and ends T's, resolved by the adaptive panels
-//! (less surely for R: tests/glass_tables.rs keeps a failing point). Exact TIR and
-//! refracted-horizon cuts for T with square-root end substitutions were tried and left
-//! out: faster per node, but at one measured point 7.1e-7 off, past their estimate and 5×
-//! the scan's error (`Refracted::uncut`). E_avg integrates E in μ by adaptive K15/G7 panels,
-//! broken at μ_c = √(1 − η²) for η < 1 (where TIR sets in at normal incidence on the mean
-//! surface and E(μ) bends sharply for small α).
+//! **Rule (the generator's, [`glass_e`]).** Rings of the half vector around the normal
+//! ([`rings`]): on a ring the integrand depends on wo·h alone, so the visibility edge, both
+//! horizons and the total-internal-reflection edge are closed-form cuts; each piece is
+//! integrated in a sin² substitution that makes the square roots at its ends (the ring's
+//! ends, the TIR edge) analytic, the outer integral over the ring radius is broken where
+//! the ring's structure changes (closed-form roots), and both levels are adaptive K15 with
+//! an estimate of K15's own error. Measured: ~4.6k integrand evaluations per node for light
+//! from outside, ~7k from inside (tests/glass_measure.rs), against ~279k for the cap rule.
+//!
+//! **Reference ([`glass_e_cap`], `lut verify`).** Each channel is one converged integral over
+//! the spherical cap of the GGX visible-normal map
+//! ([`brdf_core::split_sum::converged::integrate_cap`], Dupuy & Benyoub 2023): rows cut
+//! exactly where the integrand's support changes sign, adaptive 15-point Kronrod panels with
+//! embedded 7-point Gauss estimates in θ and φ. The support of R is n·wi_r (the horizon,
+//! where G1 → 0 linearly); that of T is min(η² − 1 + (wo·h)², −n·wi_t): the horizon of the
+//! refracted ray and the total-internal-reflection edge, past which 1 − F = 0 (F → 1 as a
+//! square root there, in R and T). For η ≥ 1 no refracted ray is cut (c − √(η² − 1 + c²)
+//! ≤ 0: it always leaves below the surface): T's rows are whole (`CapIntegrand::uncut`) and
+//! the graded breaks toward the cap edge stop at a gap ~α for both channels
+//! (`cap_edge_grades`). For η < 1 (inside) R's rows are cut at its horizon (the split sum's
+//! row form), T's lit intervals are found by scanning its support, both graded to the last
+//! bit; the TIR edge then lies inside R's pieces and ends T's, resolved by the adaptive
+//! panels — not always: inside, the cap rule's R (and at times T) can be off by more than
+//! its estimate (up to 5.4e-6 measured, where an independent brute-force rule agrees with
+//! the ring rule to 1e-8; tests/glass_tables.rs, tests/glass_measure.rs). E_avg integrates
+//! E in μ by adaptive K15/G7 panels, broken at μ_c = √(1 − η²) for η < 1 (where TIR sets
+//! in at normal incidence on the mean surface and E(μ) has a square-root edge rounded over
+//! ~α) and graded toward it at α·4ʲ.
 //!
 //! **Narrow limit.** The kernel floors α at [`brdf_core::models::rough_dielectric::ALPHA_FLOOR`]
 //! = 1e-4; so do the tables (roughness 0 is α = 1e-4). There R = F(μ) + O(α²/μ²) and
@@ -61,6 +70,8 @@ use brdf_core::models::rough_dielectric::{refract, ALPHA_FLOOR};
 use brdf_core::quadrature::kronrod::{gk15_combine, gk15_nodes};
 use brdf_core::split_sum::converged::{integrate_cap, CapIntegrand, GgxSplitSum};
 use std::format;
+
+mod rings;
 
 /// Tolerance of `lut verify`'s E_avg reference: 10× below the generator's [`TOL`].
 pub const AVERAGE_REFERENCE_TOL: f64 = 2e-7;
@@ -194,10 +205,22 @@ impl CapIntegrand<f64> for Refracted {
     }
 }
 
-/// (R, T) at (μ, α, η) to the absolute tolerance `tol` per channel: values, the larger
-/// estimate, and the work (integrand plus cut-search evaluations). μ is clamped to
-/// [1e-9, 1] and α floored at 1e-4 (module docs).
+/// (R, T) at (μ, α, η) to the absolute tolerance `tol` per channel by the generator's
+/// ring rule ([`rings`]): values, the larger estimate, and the integrand evaluations. μ is
+/// clamped to [1e-9, 1] and α floored at 1e-4 (module docs).
 pub fn glass_e(mu: f64, alpha: f64, eta: f64, tol: f64) -> ([f64; 2], Work) {
+    let mu = mu.clamp(1e-9, 1.0);
+    let alpha = alpha.max(ALPHA_FLOOR);
+    if mu.is_nan() || alpha.is_nan() || !(eta > 0.0) {
+        return ([f64::NAN; 2], Work::default());
+    }
+    rings::glass_e_rings(mu, alpha, eta, tol)
+}
+
+/// (R, T) at (μ, α, η) to `tol` by the cap integrator (module docs, **Rule**): `lut
+/// verify`'s independent reference for [`glass_e`]. Values, the larger estimate, and the
+/// work (integrand plus cut-search evaluations). μ clamped to [1e-9, 1], α floored at 1e-4.
+pub fn glass_e_cap(mu: f64, alpha: f64, eta: f64, tol: f64) -> ([f64; 2], Work) {
     let mu = mu.clamp(1e-9, 1.0);
     let alpha = alpha.max(ALPHA_FLOOR);
     let Ok(dist) = TrowbridgeReitz::isotropic(alpha) else {
@@ -236,12 +259,13 @@ pub fn glass_e(mu: f64, alpha: f64, eta: f64, tol: f64) -> ([f64; 2], Work) {
 
 /// 2∫ₐᵇ (R, T)(μ) μ dμ by K15 in μ, halving where |K15 − G7| plus the panel width × its
 /// largest node estimate exceeds `tol`: (values, estimate, work).
-fn mu_adapt(a: f64, b: f64, alpha: f64, eta: f64, tol: f64, depth: u32) -> ([f64; 2], Work) {
+fn mu_adapt(a: f64, b: f64, row: Row, tol: f64, depth: u32) -> ([f64; 2], Work) {
+    let (alpha, eta) = (row.alpha, row.eta);
     let t = gk15_nodes(a, b);
     let mut y = [[0.0; 2]; 15];
     let (mut worst, mut evals) = (0f64, 0u64);
     for (y, &mu) in y.iter_mut().zip(&t) {
-        let (v, w) = glass_e(mu, alpha, eta, tol * 0.25);
+        let (v, w) = (row.e)(mu, alpha, eta, tol * 0.25);
         *y = [2.0 * mu * v[0], 2.0 * mu * v[1]];
         worst = worst.max(w.error);
         evals += w.evals;
@@ -252,8 +276,8 @@ fn mu_adapt(a: f64, b: f64, alpha: f64, eta: f64, tol: f64, depth: u32) -> ([f64
         return (v, Work { error, evals });
     }
     let m = 0.5 * (a + b);
-    let (v0, w0) = mu_adapt(a, m, alpha, eta, tol * 0.5, depth + 1);
-    let (v1, w1) = mu_adapt(m, b, alpha, eta, tol * 0.5, depth + 1);
+    let (v0, w0) = mu_adapt(a, m, row, tol * 0.5, depth + 1);
+    let (v1, w1) = mu_adapt(m, b, row, tol * 0.5, depth + 1);
     let w = Work {
         error: w0.error + w1.error,
         evals: evals + w0.evals + w1.evals,
@@ -264,21 +288,77 @@ fn mu_adapt(a: f64, b: f64, alpha: f64, eta: f64, tol: f64, depth: u32) -> ([f64
 /// (R_avg, T_avg)(α, η) = 2∫₀¹ (R, T)(μ) μ dμ to `tol` per channel, broken at
 /// μ_c = √(1 − η²) for η < 1 (module docs).
 pub fn glass_e_avg(alpha: f64, eta: f64, tol: f64) -> ([f64; 2], Work) {
-    let cut = if eta < 1.0 {
+    e_avg(
+        Row {
+            alpha,
+            eta,
+            e: glass_e,
+        },
+        tol,
+    )
+}
+
+/// [`glass_e_avg`] with the cap integrator's E ([`glass_e_cap`]): `lut verify`'s reference.
+pub fn glass_e_avg_cap(alpha: f64, eta: f64, tol: f64) -> ([f64; 2], Work) {
+    e_avg(
+        Row {
+            alpha,
+            eta,
+            e: glass_e_cap,
+        },
+        tol,
+    )
+}
+
+/// An E(μ) to tolerance: [`glass_e`] or [`glass_e_cap`].
+type EFn = fn(f64, f64, f64, f64) -> ([f64; 2], Work);
+
+/// The (α, η) of an E_avg and the rule of its E(μ).
+#[derive(Clone, Copy)]
+struct Row {
+    alpha: f64,
+    eta: f64,
+    e: EFn,
+}
+
+/// E_avg of `row` (see [`glass_e_avg`]).
+fn e_avg(row: Row, tol: f64) -> ([f64; 2], Work) {
+    let (mut v, mut w) = ([0.0; 2], Work::default());
+    let breaks = mu_breaks(row.alpha.max(ALPHA_FLOOR), row.eta);
+    for p in breaks.windows(2) {
+        let (pv, pw) = mu_adapt(p[0], p[1], row, tol * (p[1] - p[0]), 0);
+        v = [v[0] + pv[0], v[1] + pv[1]];
+        w.error += pw.error;
+        w.evals += pw.evals;
+    }
+    (v, w)
+}
+
+/// The μ panels of E_avg: [0, 1], for η < 1 broken at μ_c = √(1 − η²) (where TIR sets in
+/// at normal incidence on the mean surface: E has a square-root edge there, rounded over
+/// ~α) and graded toward it on both sides at μ_c ± α·4ʲ while that is closer than 0.1
+/// (the narrow limit: T(μ) ≈ 1 − F(μ) ∝ √(μ − μ_c) beyond a rounding of width ~α).
+fn mu_breaks(alpha: f64, eta: f64) -> std::vec::Vec<f64> {
+    let mut b = std::vec![0.0, 1.0];
+    let mc = if eta < 1.0 {
         ((1.0 - eta) * (1.0 + eta)).sqrt()
     } else {
         0.0
     };
-    if !(cut > 0.0 && cut < 1.0) {
-        return mu_adapt(0.0, 1.0, alpha, eta, tol, 0);
+    if mc > 0.0 && mc < 1.0 {
+        b.push(mc);
+        let mut d = alpha;
+        while d < 0.1 {
+            b.extend(
+                [mc - d, mc + d]
+                    .into_iter()
+                    .filter(|m| *m > 0.0 && *m < 1.0),
+            );
+            d *= 4.0;
+        }
     }
-    let (v0, w0) = mu_adapt(0.0, cut, alpha, eta, tol * cut, 0);
-    let (v1, w1) = mu_adapt(cut, 1.0, alpha, eta, tol * (1.0 - cut), 0);
-    let w = Work {
-        error: w0.error + w1.error,
-        evals: w0.evals + w1.evals,
-    };
-    ([v0[0] + v1[0], v0[1] + v1[1]], w)
+    b.sort_by(|x, y| x.total_cmp(y));
+    b
 }
 
 /// Whether the kind is a rough-glass kind.
@@ -286,11 +366,15 @@ pub fn is_glass(kind: Kind) -> bool {
     matches!(kind, Kind::GlassAlbedo | Kind::GlassAverageAlbedo)
 }
 
-/// The rough-glass node at `x` to tolerance `tol`: (μ, roughness, η) or (roughness, η).
-fn at(spec: &Spec, x: &[f64], tol: f64) -> ([f64; 2], Work) {
+/// The rough-glass node at `x` to tolerance `tol` with the E rule `e` ([`glass_e`] or
+/// [`glass_e_cap`]): (μ, roughness, η) or (roughness, η).
+fn at(spec: &Spec, x: &[f64], tol: f64, e: EFn) -> ([f64; 2], Work) {
     match (spec.kind, x) {
-        (Kind::GlassAlbedo, &[mu, r, eta]) => glass_e(mu, spec.width_sigma(r).0, eta, tol),
-        (Kind::GlassAverageAlbedo, &[r, eta]) => glass_e_avg(spec.width_sigma(r).0, eta, tol),
+        (Kind::GlassAlbedo, &[mu, r, eta]) => e(mu, spec.width_sigma(r).0, eta, tol),
+        (Kind::GlassAverageAlbedo, &[r, eta]) => {
+            let alpha = spec.width_sigma(r).0;
+            e_avg(Row { alpha, eta, e }, tol)
+        }
         _ => ([f64::NAN; 2], Work::default()),
     }
 }
@@ -301,16 +385,17 @@ pub fn node(spec: &Spec, x: &[f64], out: &mut [f64]) -> Option<Work> {
     if !is_glass(spec.kind) {
         return None;
     }
-    let (v, w) = at(spec, x, TOL);
+    let (v, w) = at(spec, x, TOL, glass_e);
     for (o, v) in out.iter_mut().zip(v) {
         *o = v;
     }
     Some(w)
 }
 
-/// `lut verify`'s reference at `x`: the same cap integrator at [`REFERENCE_TOL`] (100×
-/// tighter, so its panels and rows are refined far beyond the generator's; E_avg at
-/// [`AVERAGE_REFERENCE_TOL`], whose μ panels multiply the cost): (values, its estimate);
+/// `lut verify`'s reference at `x`: the cap integrator ([`glass_e_cap`], a different rule in
+/// different coordinates from the generator's [`glass_e`]) at [`REFERENCE_TOL`] (100×
+/// tighter; E_avg at [`AVERAGE_REFERENCE_TOL`], whose μ panels multiply the cost): (values,
+/// its estimate);
 /// `None` for a kind that is not rough glass.
 pub fn reference(spec: &Spec, x: &[f64]) -> Option<([f64; 2], f64)> {
     if !is_glass(spec.kind) {
@@ -321,7 +406,7 @@ pub fn reference(spec: &Spec, x: &[f64]) -> Option<([f64; 2], f64)> {
     } else {
         REFERENCE_TOL
     };
-    let (v, w) = at(spec, x, tol);
+    let (v, w) = at(spec, x, tol, glass_e_cap);
     Some((v, w.error))
 }
 
