@@ -497,16 +497,17 @@ impl Spec {
             .map(|(_, k)| k.def())
             .find(|d| d.table == h.kind && d.axes.len() == h.axes.len())?;
         let (kind, distribution, masking) = (def.from_header)(def, h)?;
-        let rough_axis = def.axes.iter().position(|a| a.0 == Role::Roughness);
-        let roughness = match rough_axis.and_then(|i| h.axes.get(i)).map(|a| a.name) {
-            _ if def.check == Check::ModifiedG => Roughness::Sigma,
-            Some("roughness") => Roughness::Perceptual,
-            Some("alpha") | Some("m") => Roughness::Alpha,
-            Some("sigma") => Roughness::Sigma,
-            _ => return None,
-        };
+        // The roughness parameterisation is the roughness axis's name; a kind without one
+        // (the G tables: σ) keeps its default.
         let mut spec = Spec::new(kind, distribution, masking);
-        spec.roughness = roughness;
+        if let Some(i) = def.axes.iter().position(|a| a.0 == Role::Roughness) {
+            spec.roughness = match h.axes.get(i).map(|a| a.name) {
+                Some("roughness") => Roughness::Perceptual,
+                Some("alpha") | Some("m") => Roughness::Alpha,
+                Some("sigma") => Roughness::Sigma,
+                _ => return None,
+            };
+        }
         spec.axes = h
             .axes
             .iter()
