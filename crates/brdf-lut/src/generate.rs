@@ -29,13 +29,14 @@
 //! This module is the only code that computes table node values: the default asset set
 //! ([`default_set`]), `cargo xtask lut generate`, the engine textures (through
 //! [`evaluate`]) and `lut verify` (through [`measure`]) all build a [`Spec`] and call it.
-//! The kinds it knows are one list ([`Kind::def`], `src/kinds.rs`).
+//! The kinds it knows are one list ([`Kind::def`], `generate/kinds.rs`).
 
 mod defaults;
 pub mod describe;
 pub(crate) mod entry;
 pub mod glass;
 mod integrate;
+pub(crate) mod kinds;
 mod measure;
 pub(crate) mod sheen;
 mod verify;
@@ -82,8 +83,8 @@ pub const MAX_GENERATED_VALUES: u64 = crate::limits::MAX_BUILD_VALUES;
 /// The generator's name in the headers of tables built to order.
 pub const TOOL: &str = "brdf-lut generate";
 
-/// What the table holds, and the one list of kinds (`src/kinds.rs`).
-pub use crate::kinds::{Kind, KINDS};
+/// What the table holds, and the one list of kinds (`generate/kinds.rs`).
+pub use kinds::{Kind, KINDS};
 
 /// The microfacet distribution: the model catalogue's
 /// ([`brdf_core::catalogue::DISTRIBUTIONS`]; names, other spellings and the G terms each

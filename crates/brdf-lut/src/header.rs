@@ -106,8 +106,8 @@ impl<T: fmt::Debug, const N: usize> fmt::Debug for List<T, N> {
     }
 }
 
-/// What a table holds: the one list of kinds (`src/kinds.rs`).
-pub use crate::kinds::TableKind;
+/// What a table holds: the one list of kinds (`generate/kinds.rs`).
+pub use crate::generate::kinds::TableKind;
 
 /// How a physical coordinate x ∈ [lo, hi] maps to the unit coordinate s ∈ [0, 1].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

@@ -32,7 +32,6 @@ mod error;
 mod f16;
 mod header;
 mod kernel;
-mod kinds;
 pub mod limits;
 mod lookup;
 mod tables;
@@ -44,6 +43,12 @@ mod view;
 mod file;
 #[cfg(feature = "generate")]
 pub mod generate;
+/// Without the `generate` feature only the one list of table kinds of the generator is
+/// compiled (its format half: [`TableKind`]'s codes and shapes).
+#[cfg(not(feature = "generate"))]
+mod generate {
+    pub(crate) mod kinds;
+}
 #[cfg(feature = "alloc")]
 pub mod write;
 

@@ -146,7 +146,7 @@ fn generator_options_are_the_catalogue_s() {
 
 /// The table-kind codes and shapes against docs/lut-format.md §3 (the field-3 row and the
 /// "`kind` fixes the shape" rule), and every generator kind's axes and channels against the
-/// shape of its code: the one list of kinds (`src/kinds.rs`) says what the format says.
+/// shape of its code: the one list of kinds (`src/generate/kinds.rs`) says what the format says.
 #[test]
 fn kind_codes_and_shapes_are_the_documented_ones() {
     let doc = include_str!("../../../docs/lut-format.md");

@@ -18,6 +18,7 @@
 
 pub mod albedo_fig;
 pub mod dfg_fig;
+pub mod document;
 pub mod facet;
 pub mod figures;
 pub mod profile;

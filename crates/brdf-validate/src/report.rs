@@ -74,24 +74,15 @@ pub fn run(root: &Path, s: &Settings) -> Result<Outcome> {
     // Keep the 3-D study's section (§7, `cargo xtask plot --3d`) when rewriting the file.
     let md_path = root.join("docs").join("validation.md");
     let old = std::fs::read_to_string(&md_path).unwrap_or_default();
-    let md = match crate::report2d::existing_section(&old) {
-        Some(sec) => crate::report2d::splice(&md, sec),
+    let md = match crate::document::existing_section(&old) {
+        Some(sec) => crate::document::splice(&md, sec),
         None => md,
     };
-    replace_file(&md_path, md.as_bytes())?;
+    crate::document::replace_file(&md_path, md.as_bytes())?;
     Ok(Outcome {
         markdown: md,
         seconds: elapsed,
     })
-}
-
-/// Replaces a generated report file: the bytes go to `<path>.tmp` in the same folder, which
-/// is then renamed over `path`, so a failed write never leaves a partial report.
-pub(crate) fn replace_file(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let mut tmp = path.as_os_str().to_owned();
-    tmp.push(".tmp");
-    std::fs::write(&tmp, bytes)?;
-    std::fs::rename(&tmp, path)
 }
 
 /// The in-plane figures: Fig. 6 (G at θi = 30°), Fig. 7 (the BRDF at θi = 10°) and the

@@ -106,8 +106,8 @@ pub const FIELDS: &[&str] = &[
 /// The fields of one axis.
 pub const AXIS_FIELDS: &[&str] = &["count", "lo", "hi", "warp", "placement"];
 
-/// The kinds by name: the one list's (`src/kinds.rs`).
-pub use crate::kinds::KINDS;
+/// The kinds by name: the one list's (`generate/kinds.rs`).
+pub use super::KINDS;
 
 /// What `samples` counts, in limit messages.
 const POINTS: &str = "error-measurement points";

@@ -1,5 +1,5 @@
 //! What an entry of the one list of table kinds holds ([`KindDef`], the list itself is
-//! `src/kinds.rs`), the roles of its axes ([`Role`]) and the microfacet kernels' defaults
+//! `generate/kinds.rs`), the roles of its axes ([`Role`]) and the microfacet kernels' defaults
 //! that most entries take ([`KindDef::microfacet`]).
 
 use super::integrate::{self, Work};
@@ -44,7 +44,7 @@ pub type HeaderModel = (Kind, Distribution, Masking);
 /// the stride of a node's slot, the slots), `None` when the row is done node by node.
 pub type RowFn = fn(&Spec, &[f64], f64, usize, &mut [f64]) -> Option<()>;
 
-/// One kind's entry in the list (`src/kinds.rs`). The function fields are the kind's
+/// One kind's entry in the list (`generate/kinds.rs`). The function fields are the kind's
 /// kernel, reference and model rules; [`KindDef::microfacet`] fills them with the
 /// microfacet kernels' (`generate/integrate.rs`).
 pub struct KindDef {

@@ -90,7 +90,7 @@ pub fn ggx_converged(q: GgxQuery, r: f64) -> ([f64; 2], Work) {
 /// The quadrature node counts the header records for a microfacet kind: empty for the
 /// converged polar rule (adaptive, to [`TOL`]) and for brdf-core's fixed rule otherwise its
 /// counts — split sums: outer nodes, inner nodes, outer panels; E_avg: μ nodes first; the
-/// modified G's passing factor records its own (`src/kinds.rs`).
+/// modified G's passing factor records its own (`generate/kinds.rs`).
 pub fn nodes_record(spec: &Spec) -> &'static [u16] {
     use brdf_core::split_sum::OUTER_PANELS;
     let polar_axis = spec

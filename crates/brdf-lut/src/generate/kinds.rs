@@ -112,11 +112,11 @@ pub use list::{Kind, KINDS};
 /// The generator's entries (`generate` feature).
 #[cfg(feature = "generate")]
 mod list {
-    use super::TableKind as T;
-    use crate::generate::{
+    use super::super::{
         entry, entry::HeaderModel, glass, Check, Distribution, GenError, KindDef, Masking, Role,
         SheenVisibility, Spec, Work,
     };
+    use super::TableKind as T;
     use crate::{Header, Model, Warp};
     use Role::{Eta, Mu, Phi, Sigma, Theta};
 
@@ -320,19 +320,19 @@ mod list {
 
     /// The `sheen-e` node at x = (μ, r) (`generate/sheen.rs`).
     fn sheen_node(s: &Spec, x: &[f64], out: &mut [f64]) -> Work {
-        crate::generate::sheen::node(sheen_visibility(s), x[0], x[1], out)
+        super::super::sheen::node(sheen_visibility(s), x[0], x[1], out)
     }
 
     /// The direct sheen albedo at x = (μ, r), what the error measurement compares with.
     fn sheen_point(s: &Spec, x: &[f64], out: &mut [f64]) {
-        let e = crate::generate::sheen_e(x[0], x[1], crate::generate::SHEEN_TOL);
+        let e = super::super::sheen_e(x[0], x[1], super::super::SHEEN_TOL);
         if let Some(o) = out.first_mut() {
-            *o = e.value[crate::generate::sheen::channel(sheen_visibility(s))];
+            *o = e.value[super::super::sheen::channel(sheen_visibility(s))];
         }
     }
 
     fn sheen_reference(s: &Spec, x: &[f64]) -> ([f64; 2], f64) {
-        crate::generate::sheen::reference(sheen_visibility(s), x[0], x[1])
+        super::super::sheen::reference(sheen_visibility(s), x[0], x[1])
     }
 
     fn sheen_model(s: &Spec) -> Result<Model, GenError> {
@@ -340,7 +340,7 @@ mod list {
     }
 
     fn sheen_validate(s: &Spec) -> Result<(), GenError> {
-        if s.roughness != crate::generate::Roughness::Perceptual {
+        if s.roughness != super::super::Roughness::Perceptual {
             return Err(GenError::Invalid(
                 "sheen tables are parameterised by the perceptual roughness r only".into(),
             ));
