@@ -49,7 +49,7 @@
 //! the ring rule to 1e-8; tests/glass_tables.rs, tests/glass_measure.rs). E_avg integrates
 //! E in μ by the ring rule's globally adaptive K15 ([`rings`], its estimate) on panels
 //! broken at μ_c = √(1 − η²) for η < 1 (where TIR sets in at normal incidence on the mean
-//! surface and E(μ) has a square-root edge rounded over ~α) and graded toward it at α·4ʲ
+//! surface and E(μ) has a square-root edge rounded over ~α) and graded toward it at α·8ʲ
 //! (without the grading the estimate missed 8.6e-7 at (α, η) = (1e-4, 0.7)), each mapped by
 //! a sin² substitution; each node's E is asked for the share of the tolerance its weight
 //! allows, and its estimate enters through the weights ([`mu_integral`]).
@@ -340,11 +340,16 @@ fn e_avg(row: Row, tol: f64) -> ([f64; 2], Work) {
 
 /// The μ panels of E_avg: [0, 1], for η < 1 broken at μ_c = √(1 − η²) (where TIR sets in
 /// at normal incidence on the mean surface: E has a square-root edge there, rounded over
-/// ~α) and graded toward it on both sides at μ_c ± α·4ʲ while that is closer than 0.1
+/// ~α) and graded toward it on both sides at μ_c ± α·8ʲ while that is closer than 0.1
 /// (the narrow limit: T(μ) ≈ 1 − F(μ) ∝ √(μ − μ_c) beyond a rounding of width ~α), and at
 /// μ = η, below which the TIR cone wo·h = √(1 − η²) crosses the half vectors' horizon
 /// (h_z = 0, where wo·h ≤ sin θo): E(μ) is not analytic there for rough surfaces (without
-/// this break E_avg at (α, η) = (0.3, 1/1.5) missed 4e-7, past its estimate: étendue test).
+/// this break E_avg at (α, η) = (0.3, 1/1.5) missed 4e-7, past its estimate: étendue test),
+/// and at μ = 2μ_c, where the ring rule's crossing of the TIR edge and the reflected horizon
+/// (1 + τ² = 4μ_c²/μ², [`rings`]) enters at τ = 0. (The other outer breaks of the ring rule
+/// are roots of quadratics whose discriminants, k²(1 − k²) and μ²η², never vanish; their
+/// leading and constant terms change sign at μ = η and μ = μ_c.) Graded toward μ_c at
+/// α·8ʲ (4ʲ: 792k instead of 687k evaluations at (α, η) = (1e-4, 0.7), the same errors).
 fn mu_breaks(alpha: f64, eta: f64) -> std::vec::Vec<f64> {
     let mut b = std::vec![0.0, 1.0];
     let mc = if eta < 1.0 {
@@ -353,7 +358,7 @@ fn mu_breaks(alpha: f64, eta: f64) -> std::vec::Vec<f64> {
         0.0
     };
     if mc > 0.0 && mc < 1.0 {
-        b.extend([mc, eta]);
+        b.extend([mc, eta, 2.0 * mc].into_iter().filter(|m| *m < 1.0));
         let mut d = alpha;
         while d < 0.1 {
             b.extend(
@@ -361,7 +366,7 @@ fn mu_breaks(alpha: f64, eta: f64) -> std::vec::Vec<f64> {
                     .into_iter()
                     .filter(|m| *m > 0.0 && *m < 1.0),
             );
-            d *= 4.0;
+            d *= 8.0;
         }
     }
     b.sort_by(|x, y| x.total_cmp(y));
