@@ -193,6 +193,7 @@ fn average_points() {
     }
 }
 
+/// One E_avg, P = "α,η,tol": values and work, printed (to compare tolerances).
 #[test]
 #[ignore = "a measurement"]
 fn average_one() {
