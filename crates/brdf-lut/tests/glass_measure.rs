@@ -141,6 +141,7 @@ fn brute() {
 
 /// Wall time and evaluations per node of the default 32³ glass-e table on one side
 /// (GLASS_SIDE = "inside": η ∈ [1/3, 1], else η ∈ [1, 3]); threads from RAYON_NUM_THREADS.
+/// GLASS_KIND = "avg": the 32² glass-e-avg table instead.
 /// Run under `/usr/bin/time` for the CPU time (the wall time depends on the machine's load).
 #[test]
 #[ignore = "a measurement"]
@@ -148,11 +149,13 @@ fn time_default_table() {
     use brdf_lut::generate::{generate, Distribution, Kind, Masking, Spec};
     let inside = std::env::var("GLASS_SIDE").is_ok_and(|s| s == "inside");
     let (lo, hi) = if inside { (1.0 / 3.0, 1.0) } else { (1.0, 3.0) };
-    let mut spec = Spec::new(
-        Kind::GlassAlbedo,
-        Distribution::Ggx,
-        Masking::SmithSeparable,
-    );
+    let avg = std::env::var("GLASS_KIND").is_ok_and(|s| s == "avg");
+    let kind = if avg {
+        Kind::GlassAverageAlbedo
+    } else {
+        Kind::GlassAlbedo
+    };
+    let mut spec = Spec::new(kind, Distribution::Ggx, Masking::SmithSeparable);
     if let Some(a) = spec.axes.last_mut() {
         (a.lo, a.hi) = (lo, hi);
     }
@@ -161,9 +164,44 @@ fn time_default_table() {
     let secs = t0.elapsed().as_secs_f64();
     let nodes: usize = spec.axes.iter().map(|a| a.count as usize).product();
     println!(
-        "glass-e η ∈ [{lo:.3}, {hi}]: {nodes} nodes in {secs:.2} s wall on {} threads, {:.0} evals/node, bound {:e}",
+        "{kind:?} η ∈ [{lo:.3}, {hi}]: {nodes} nodes in {secs:.2} s wall on {} threads, {:.0} evals/node, bound {:e}",
         brdf_lut::generate::threads(),
         g.evals as f64 / nodes as f64,
         g.integration
     );
+}
+
+/// E_avg at a sample of (α, η), both sides: value, estimate and evaluations (`glass_e_avg`
+/// at the generator's tolerance), printed.
+#[test]
+#[ignore = "a measurement"]
+fn average_points() {
+    use brdf_lut::generate::glass::glass_e_avg;
+    for &alpha in &[1e-4, 0.01, 0.1, 0.3, 0.6, 1.0] {
+        for &eta in &[1.0 / 3.0, 0.7, 0.99, 1.01, 1.5, 3.0] {
+            let t0 = std::time::Instant::now();
+            let (v, w) = glass_e_avg(alpha, eta, 2e-6);
+            println!(
+                "α {alpha} η {eta:.3}: R {:.9} T {:.9} est {:.2e} evals {} {:.0} ms",
+                v[0],
+                v[1],
+                w.error,
+                w.evals,
+                t0.elapsed().as_secs_f64() * 1e3
+            );
+        }
+    }
+}
+
+/// One E_avg, P = "α,η,tol": values and work, printed (to compare tolerances).
+#[test]
+#[ignore = "a measurement"]
+fn average_one() {
+    let v: Vec<f64> = std::env::var("P")
+        .unwrap()
+        .split(',')
+        .map(|x| x.parse().unwrap())
+        .collect();
+    let (r, w) = brdf_lut::generate::glass::glass_e_avg(v[0], v[1], v[2]);
+    println!("{r:?} {w:?}");
 }

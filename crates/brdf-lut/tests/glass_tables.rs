@@ -395,3 +395,77 @@ fn brute_force_points(channels: &[usize]) {
         }
     }
 }
+
+/// An independent E_avg: composite K15 in μ on fixed panels (no adaptivity), broken at 0,
+/// μ_c = √(1 − η²), η (η < 1) and 1, each piece mapped by μ = a + (b − a) sin²β and cut
+/// geometrically toward both ends at 2⁻ʲ (j ≤ 16) of its β range plus 8 uniform panels,
+/// with E at 1e-9. Returns the values and Σ|K15 − G7| (the embedded Gauss rule's
+/// difference, a pessimistic bound of the composite rule's error).
+fn dense_average(alpha: f64, eta: f64) -> ([f64; 2], f64) {
+    use brdf_core::quadrature::kronrod::{gk15_combine, gk15_nodes};
+    let mut pts = vec![0.0, 1.0];
+    if eta < 1.0 {
+        pts.extend([((1.0 - eta) * (1.0 + eta)).sqrt(), eta]);
+    }
+    pts.sort_by(f64::total_cmp);
+    let mut cuts: Vec<f64> = (0..=8).map(|i| i as f64 / 8.0).collect();
+    for j in 4..=16 {
+        let d = 0.5f64.powi(j);
+        cuts.extend([d, 1.0 - d]);
+    }
+    cuts.sort_by(f64::total_cmp);
+    let (mut v, mut err) = ([0.0; 2], 0.0);
+    for p in pts.windows(2) {
+        let (a, b) = (p[0], p[1]);
+        for c in cuts.windows(2) {
+            let y = gk15_nodes(c[0], c[1]).map(|t| {
+                let (sb, cb) = (t * std::f64::consts::FRAC_PI_2).sin_cos();
+                let mu = a + (b - a) * sb * sb;
+                let jac = 2.0 * mu * (b - a) * 2.0 * sb * cb * std::f64::consts::FRAC_PI_2;
+                let (e, _) = glass_e(mu, alpha, eta, 1e-9);
+                [e[0] * jac, e[1] * jac]
+            });
+            let (pv, pe) = gk15_combine(&y, 0.5 * (c[1] - c[0]));
+            v = [v[0] + pv[0], v[1] + pv[1]];
+            err += pe[0].max(pe[1]);
+        }
+    }
+    (v, err)
+}
+
+/// E_avg's estimate bounds its true error against [`dense_average`] (other panels, no
+/// adaptivity, E 2000× tighter) at the narrow floor α = 1e-4, η near 1 on both sides, from
+/// inside with μ_c and η inside (0, 1), and rough: |E_avg − dense| ≤ estimate + the dense
+/// rule's |K15 − G7| sum (asserted below 1e-7 so that the check has teeth).
+#[test]
+fn average_estimate_bounds_its_error() {
+    for &(alpha, eta) in &[
+        (1e-4, 0.7),
+        (1e-4, 1.5),
+        (1e-4, 0.99),
+        (0.05, 1.01),
+        (0.3, 1.0 / 1.5),
+        (0.6, 1.0 / 3.0),
+        (1.0, 2.5),
+    ] {
+        let (v, w) = glass_e_avg(alpha, eta, TOL);
+        let (rf, re) = dense_average(alpha, eta);
+        assert!(re < 1e-7, "({alpha}, {eta}): dense rule's bound {re:e}");
+        println!(
+            "({alpha}, {eta:.4}): |ΔR| {:.1e} |ΔT| {:.1e} estimate {:.1e} dense {re:.1e} evals {}",
+            (v[0] - rf[0]).abs(),
+            (v[1] - rf[1]).abs(),
+            w.error,
+            w.evals
+        );
+        for c in 0..2 {
+            assert!(
+                (v[c] - rf[c]).abs() <= w.error + re,
+                "({alpha}, {eta}) channel {c}: {} vs dense {} (estimate {:e}, dense {re:e})",
+                v[c],
+                rf[c],
+                w.error
+            );
+        }
+    }
+}

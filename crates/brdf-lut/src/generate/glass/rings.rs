@@ -125,13 +125,13 @@ fn k15_error(y: &[f64; 15], h: f64, d: f64, r: f64) -> f64 {
 
 /// The integrand of [`adaptive`]: f(t, j) with j = Some(node index) on a unit panel
 /// [i, i + 1] (whose sin/cos of the substitution are tabulated: [`substitution`]).
-trait Integrand: FnMut(f64, Option<usize>) -> ([f64; 2], [f64; 2]) {}
+pub(super) trait Integrand: FnMut(f64, Option<usize>) -> ([f64; 2], [f64; 2]) {}
 impl<F: FnMut(f64, Option<usize>) -> ([f64; 2], [f64; 2])> Integrand for F {}
 
 /// The piece i ≤ `last` of t and (sin β, cos β) of its sin² substitution, β = (t − i)π/2;
 /// tabulated at the nodes of unit panels (node index j).
 #[inline]
-fn substitution(t: f64, j: Option<usize>, last: usize) -> (usize, f64, f64) {
+pub(super) fn substitution(t: f64, j: Option<usize>, last: usize) -> (usize, f64, f64) {
     static UNIT: OnceLock<[(f64, f64); 15]> = OnceLock::new();
     let i = (t as usize).min(last);
     if let Some(j) = j {
@@ -166,7 +166,7 @@ fn panel(a: f64, b: f64, f: &mut impl Integrand) -> Panel {
 /// ∫ of f over the unit panels [i, i + 1], i < n, to the absolute tolerance `tol` per
 /// channel: globally adaptive K15 (the panel with the largest estimate is halved until the
 /// sum of the estimates is ≤ tol, or [`MAX_PANELS`]). (value, estimate) per channel.
-fn adaptive(n: usize, tol: f64, f: &mut impl Integrand) -> ([f64; 2], [f64; 2]) {
+pub(super) fn adaptive(n: usize, tol: f64, f: &mut impl Integrand) -> ([f64; 2], [f64; 2]) {
     let mut ps: Vec<Panel> = (0..n).map(|i| panel(i as f64, i as f64 + 1.0, f)).collect();
     loop {
         let (mut v, mut e) = ([0.0; 2], [0.0; 2]);
