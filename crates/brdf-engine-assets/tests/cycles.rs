@@ -206,3 +206,47 @@ fn cycles_sizes_are_checked() {
         );
     }
 }
+
+/// The E_avg arrays (2 nodes per axis): n² values each, x = r fastest; at the α floor
+/// E_avg = 1 (E = 1 but for the O(α²/μ²) residue, whose 2∫μ-weighted integral is ~α²
+/// ln(1/α) = 1e-7), and at η = 1 + 2e-8 with α = 1, E_avg = 2∫₀¹ G1(μ) μ dμ with G1 =
+/// 2μ/(1 + μ), i.e. 4 ln 2 − 2, from both sides. Tolerance 1e-5: the integrator's 2e-6 per
+/// channel and f32 rounding. Ignored: E_avg from inside at η = 1/99.5 costs ~3e8 integrand
+/// evaluations per node (minutes); run with `--release -- --ignored`.
+#[test]
+#[ignore = "minutes: E_avg from inside; cargo test --release -p brdf-engine-assets --test cycles -- --ignored"]
+fn cycles_e_avg_meets_its_closed_forms() {
+    let files = brdf_engine_assets::cycles(2, true, &|_| {}).unwrap();
+    let f = files
+        .iter()
+        .find(|f| f.name == "cycles_ggx_glass.tables")
+        .unwrap();
+    let t = parse_tables(std::str::from_utf8(&f.bytes).unwrap());
+    let names: Vec<&str> = t.iter().map(|t| t.0.as_str()).collect();
+    assert_eq!(
+        names,
+        [
+            "ggx_glass_E",
+            "ggx_glass_inv_E",
+            "ggx_glass_Eavg",
+            "ggx_glass_inv_Eavg"
+        ]
+    );
+    let closed = 4.0 * std::f64::consts::LN_2 - 2.0;
+    for (name, v) in &t[2..] {
+        assert_eq!(v.len(), 4, "{name}");
+        // index i + 2 k: (r, z) = (1e-4, 0), (1, 0), (1e-4, 0.99), (1, 0.99)
+        for k in 0..2 {
+            assert!(
+                (v[2 * k] as f64 - 1.0).abs() < 1e-5,
+                "{name} r = 1e-4, k {k}: {}",
+                v[2 * k]
+            );
+        }
+        assert!(
+            (v[1] as f64 - closed).abs() < 1e-5,
+            "{name} r = 1, eta ~ 1: {} vs {closed}",
+            v[1]
+        );
+    }
+}
