@@ -155,8 +155,8 @@ fn c_source(n: usize, tables: &Tables) -> String {
 /// `table_ggx_glass_inv_Eavg` of n²) and the sidecar `cycles_ggx_glass.json`. Every value is
 /// R + T from [`glass_e`] / [`glass_e_avg`] at Cycles' node, each channel converged to
 /// [`INTEGRATION_TOL`], saturated to [0, 1] as Cycles does, rounded to f32. `progress(1)` per
-/// node. Cost (release, 2 cores): E ≈ 1 s per direction at n = 16; E_avg from inside is the
-/// bulk (tens of minutes at 16², docs/engines.md).
+/// node. Cost (release, 2 shared cores): both 16³ E tables 143 s; E_avg from inside is the
+/// bulk (~3e8 integrand evaluations per node at α = 1, η = 1/99.5; docs/engines.md).
 pub fn cycles(n: usize, with_avg: bool, progress: &(dyn Fn(u64) + Sync)) -> Result<Vec<File>> {
     if !(2..=CYCLES_MAX_EDGE).contains(&n) {
         return Err(Error::Size(n));
@@ -216,7 +216,7 @@ fn sidecar(
         "drop_in": if n == CYCLES_EDGE { "same names, sizes, nodes and index order as Cycles' tables; NOT the same model: see masking" } else { "no: Cycles' lookups hard-code 16 nodes per axis" },
         "integral": "E(mu, r, eta) = R + T: the total single-scattering directional albedo of a GGX rough dielectric for light arriving along mu = cos(theta) from the side of index 1; R = integral of f_r |cos theta_i| over the near hemisphere, T = integral of the adjoint (energy) transmission f_t* |cos theta_i| over the far hemisphere (without the eta^2 radiance factor; Cycles' sample weight eval/pdf is the same energy fraction). E_avg = 2 * integral over [0, 1] of E(mu) mu dmu.",
         "model": "rough dielectric of Walter, Marschner, Li, Torrance (EGSR 2007): GGX NDF, alpha = r^2, exact unpolarised dielectric Fresnel (total internal reflection included); brdf-core models::rough_dielectric through brdf_lut::generate::glass::{glass_e, glass_e_avg}",
-        "masking": "SEPARABLE Smith G = G1(wi) G1(wo) (the generator's only glass masking). Cycles' closure (bsdf_microfacet.h: eval = F D common / (1 + Lambda_i + Lambda_o)) uses the HEIGHT-CORRELATED G, and its shipped tables hold that model's E, which is larger at high roughness and grazing mu: at eta -> 1 the separable E is G1(mu) and the correlated E is (1 + Lambda)/(1 + 2 Lambda) (mu = 4/15, r = 1: 0.421 vs 0.633; Cycles ships 0.6385 at ior 1.0089). Used as is, these arrays make Cycles' energy compensation 1/E too strong there; a drop-in needs the correlated variant of the generator (not written: docs/engines.md).",
+        "masking": "SEPARABLE Smith G = G1(wi) G1(wo) (the generator's only glass masking). Cycles' closure (bsdf_microfacet.h: eval = F D common / (1 + Lambda_i + Lambda_o)) uses the HEIGHT-CORRELATED G, and its shipped tables hold that model's E, which is larger at high roughness and grazing mu: at eta -> 1 the separable E is G1(mu) and the correlated E is (1 + Lambda)/(1 + 2 Lambda) (mu = 4/15, r = 1: limits 0.421 vs 0.633; at ior 1.0089 these arrays hold 0.427 where Cycles ships 0.6385). Used as is, these arrays make Cycles' energy compensation 1/E too strong there; a drop-in needs the correlated variant of the generator (not written: docs/engines.md).",
         "axes": {
             "x": "fastest: r = clamp(i/(N - 1), 1e-4, 1), GGX alpha = r^2",
             "y": "mu = clamp(j/(N - 1), 1e-4, 1) (E tables only)",
