@@ -212,9 +212,9 @@ fn cycles_sizes_are_checked() {
 /// ln(1/α) = 1e-7), and at η = 1 + 2e-8 with α = 1, E_avg = 2∫₀¹ G1(μ) μ dμ with G1 =
 /// 2μ/(1 + μ), i.e. 4 ln 2 − 2, from both sides. Tolerance 1e-5: the integrator's 2e-6 per
 /// channel and f32 rounding. Ignored: E_avg from inside at η = 1/99.5 costs ~3e8 integrand
-/// evaluations per node (minutes); run with `--release -- --ignored`.
+/// evaluations per node (over 20 min on 2 loaded cores); run with `--release -- --ignored`.
 #[test]
-#[ignore = "minutes: E_avg from inside; cargo test --release -p brdf-engine-assets --test cycles -- --ignored"]
+#[ignore = "over 20 min on 2 loaded cores (not yet run to the end): E_avg from inside; cargo test --release -p brdf-engine-assets --test cycles -- --ignored"]
 fn cycles_e_avg_meets_its_closed_forms() {
     let files = brdf_engine_assets::cycles(2, true, &|_| {}).unwrap();
     let f = files
