@@ -22,6 +22,7 @@
 //! not carry.
 
 mod containers;
+pub mod cycles;
 pub mod export;
 pub mod fsio;
 mod layouts;
@@ -31,6 +32,7 @@ pub mod sidecar;
 pub mod table_shaders;
 
 pub use containers::{half_bits, unorm16, unorm8};
+pub use cycles::cycles;
 pub use layouts::{
     bevy, exr, filament, filament_cloth, glass, glass_spec, khronos, khronos_sheen, sheen_texels,
     threejs, CLOTH_TOL,
