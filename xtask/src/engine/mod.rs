@@ -29,8 +29,8 @@ pub enum Target {
     /// η) + BLUT + JSON sidecar, light from outside (`glass_e`, η ∈ [1, 3]) and from inside
     /// (`glass_e_inv`, η ∈ [1/3, 1]); --size N gives N³ (default 32).
     Glass,
-    /// Blender Cycles' rough-glass albedo tables (`table_ggx_glass_E`, `_inv_E`, `_Eavg`,
-    /// `_inv_Eavg`) as C arrays in Cycles' nodes and index order + JSON sidecar; --size N
+    /// Blender Cycles' rough-glass albedo tables (`table_ggx_glass_E`, `_inv_E`; E_avg only
+    /// through the library) as C arrays in Cycles' nodes and index order + JSON sidecar; --size N
     /// gives N nodes per axis (default and drop-in: 16). Values from the generator's
     /// separable-G rough dielectric (Cycles' closure uses the height-correlated G: the
     /// sidecar's `masking`).
@@ -180,20 +180,21 @@ fn glass(n: usize, dir: &Path, force: bool) -> Result<()> {
     Ok(())
 }
 
-/// The Cycles tables into `dir` (E and E_avg, both directions), n nodes per axis.
+/// The Cycles E tables into `dir` (both directions), n nodes per axis. E_avg is left to
+/// the library call (`with_avg`): from inside at ior 99.5 it takes hours.
 fn cycles(n: usize, dir: &Path, force: bool) -> Result<()> {
     let cap = brdf_engine_assets::cycles::CYCLES_MAX_EDGE;
     if !(2..=cap).contains(&n) {
         bail!("--size {n}: a Cycles table's edge must be between 2 and {cap} (Cycles: 16)");
     }
-    let bar = ProgressBar::new((2 * n * n * n + 2 * n * n) as u64);
+    let bar = ProgressBar::new((2 * n * n * n) as u64);
     bar.set_style(
         ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} nodes, eta {eta}")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
-    bar.set_message(format!("Cycles glass {n}³ + {n}²"));
+    bar.set_message(format!("Cycles glass {n}³"));
     let t0 = std::time::Instant::now();
-    let files = brdf_engine_assets::cycles(n, true, &|k| bar.inc(k));
+    let files = brdf_engine_assets::cycles(n, false, &|k| bar.inc(k));
     bar.finish_and_clear();
     let files = files?;
     write_set(dir, &files, force)?;
@@ -202,7 +203,7 @@ fn cycles(n: usize, dir: &Path, force: bool) -> Result<()> {
         .map(|f| dir.join(&f.name).display().to_string())
         .collect();
     let secs = t0.elapsed().as_secs_f64();
-    println!("cycles: {n}³ + {n}² in {secs:.1} s → {}", names.join(", "));
+    println!("cycles: {n}³ in {secs:.1} s → {}", names.join(", "));
     Ok(())
 }
 
