@@ -23,7 +23,7 @@
 //! (1 − F) G1(wi), bounded by 1.) Per channel: E_avg = 2∫₀¹ E(μ) μ dμ.
 //!
 //! **Rule (the generator's, [`glass_e`]).** Rings of the half vector around the normal
-//! ([`rings`]): on a ring the integrand depends on wo·h alone, so the visibility edge, both
+//! (`glass/rings.rs`): on a ring the integrand depends on wo·h alone, so the visibility edge, both
 //! horizons and the total-internal-reflection edge are closed-form cuts; each piece is
 //! integrated in a sin² substitution that makes the square roots at its ends (the ring's
 //! ends, the TIR edge) analytic, the outer integral over the ring radius is broken where
@@ -47,12 +47,12 @@
 //! panels — not always: inside, the cap rule's R (and at times T) can be off by more than
 //! its estimate (up to 5.4e-6 measured, where an independent brute-force rule agrees with
 //! the ring rule to 1e-8; tests/glass_tables.rs, tests/glass_measure.rs). E_avg integrates
-//! E in μ by the ring rule's globally adaptive K15 ([`rings`], its estimate) on panels
+//! E in μ by the ring rule's globally adaptive K15 (`glass/rings.rs`, its estimate) on panels
 //! broken at μ_c = √(1 − η²) for η < 1 (where TIR sets in at normal incidence on the mean
 //! surface and E(μ) has a square-root edge rounded over ~α) and graded toward it at α·8ʲ
 //! (without the grading the estimate missed 8.6e-7 at (α, η) = (1e-4, 0.7)), each mapped by
 //! a sin² substitution; each node's E is asked for the share of the tolerance its weight
-//! allows, and its estimate enters through the weights ([`mu_integral`]).
+//! allows, and its estimate enters through the weights (`mu_integral`).
 //!
 //! **Narrow limit.** The kernel floors α at [`brdf_core::models::rough_dielectric::ALPHA_FLOOR`]
 //! = 1e-4; so do the tables (roughness 0 is α = 1e-4). There R = F(μ) + O(α²/μ²) and
@@ -210,7 +210,7 @@ impl CapIntegrand<f64> for Refracted {
 }
 
 /// (R, T) at (μ, α, η) to the absolute tolerance `tol` per channel by the generator's
-/// ring rule ([`rings`]): values, the larger estimate, and the integrand evaluations. μ is
+/// ring rule (`glass/rings.rs`): values, the larger estimate, and the integrand evaluations. μ is
 /// clamped to [1e-9, 1] and α floored at 1e-4 (module docs).
 pub fn glass_e(mu: f64, alpha: f64, eta: f64, tol: f64) -> ([f64; 2], Work) {
     let mu = mu.clamp(1e-9, 1.0);
