@@ -32,18 +32,19 @@ pub enum TableKind {
     GlassAverageAlbedo,
 }
 
-/// What the format and the tools' limits know of a kind.
+/// What the format and the tools' limits know of a kind (small integers: the table is in
+/// every reader, the WASM module's budget included).
 struct Shape {
     /// Its channel count.
-    channels: usize,
+    channels: u8,
     /// Its smallest and largest axis counts.
-    axes: (usize, usize),
+    axes: (u8, u8),
     /// Estimated microseconds of one core per direct evaluation: (Smith or closed-form
     /// models, the modified G) — upper estimates, see [`crate::limits::cost_per_point_us`].
-    cost_us: (u64, u64),
+    cost_us: (u32, u32),
 }
 
-const fn shape(channels: usize, axes: (usize, usize), cost_us: (u64, u64)) -> Shape {
+const fn shape(channels: u8, axes: (u8, u8), cost_us: (u32, u32)) -> Shape {
     Shape {
         channels,
         axes,
@@ -90,7 +91,8 @@ impl TableKind {
     /// Whether a table of this kind may have `axes` axes and `channels` channels.
     pub const fn fits(self, axes: usize, channels: usize) -> bool {
         let s = self.shape();
-        channels == s.channels && axes >= s.axes.0 && axes <= s.axes.1
+        let (lo, hi) = (s.axes.0 as usize, s.axes.1 as usize);
+        channels == s.channels as usize && axes >= lo && axes <= hi
     }
 
     /// Estimated microseconds of one core to evaluate the direct kernel once (upper
@@ -98,11 +100,7 @@ impl TableKind {
     /// Smith's closed forms.
     pub const fn cost_per_point_us(self, modified: bool) -> u64 {
         let c = self.shape().cost_us;
-        if modified {
-            c.1
-        } else {
-            c.0
-        }
+        (if modified { c.1 } else { c.0 }) as u64
     }
 }
 
