@@ -121,8 +121,7 @@ impl<'a> Reader<'a> {
 
     /// The header after the magic; the version must already have been read.
     pub(crate) fn header(&mut self) -> Result<Header<'a>, LutError> {
-        let code = self.tag(TableKind::ALL.len() as u32)?;
-        let kind = TableKind::from_code(code).ok_or(LutError::MalformedHeader)?;
+        let kind = TableKind::from_code(self.u32()?).ok_or(LutError::MalformedHeader)?;
         let mut axes = List::new();
         for _ in 0..self.list_len(MAX_AXES)? {
             let _ = axes.push(self.axis()?);

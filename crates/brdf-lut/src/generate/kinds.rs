@@ -32,26 +32,6 @@ pub enum TableKind {
     GlassAverageAlbedo,
 }
 
-/// What the format and the tools' limits know of a kind (small integers: the table is in
-/// every reader, the WASM module's budget included).
-struct Shape {
-    /// Its channel count.
-    channels: u8,
-    /// Its smallest and largest axis counts.
-    axes: (u8, u8),
-    /// Estimated microseconds of one core per direct evaluation: (Smith or closed-form
-    /// models, the modified G) — upper estimates, see [`crate::limits::cost_per_point_us`].
-    cost_us: (u32, u32),
-}
-
-const fn shape(channels: u8, axes: (u8, u8), cost_us: (u32, u32)) -> Shape {
-    Shape {
-        channels,
-        axes,
-        cost_us,
-    }
-}
-
 impl TableKind {
     /// Every kind, in code order.
     pub const ALL: [TableKind; 7] = [
@@ -64,17 +44,18 @@ impl TableKind {
         TableKind::GlassAverageAlbedo,
     ];
 
-    /// Its channels, axes and cost. (An average-albedo point of the default assets was
-    /// measured at 6–9 ms; a sheen node at 0.86 ms on average over the 1024² Khronos grid.)
-    const fn shape(self) -> Shape {
+    /// Estimated microseconds of one core per direct evaluation: (Smith or closed-form
+    /// models, the modified G), upper estimates (an average-albedo point of the default
+    /// assets was measured at 6–9 ms; a sheen node at 0.86 ms on average over the 1024²
+    /// Khronos grid).
+    const fn cost_us(self) -> (u32, u32) {
         match self {
-            TableKind::PassingFactor => shape(1, (2, 3), (5, 5)),
-            TableKind::SplitSum => shape(2, (2, 2), (100, 400)),
-            TableKind::DirectionalAlbedo => shape(1, (2, 2), (100, 400)),
-            TableKind::AverageAlbedo => shape(1, (1, 1), (10_000, 40_000)),
-            TableKind::SheenAlbedo => shape(1, (2, 2), (1_500, 1_500)),
-            TableKind::GlassAlbedo => shape(2, (3, 3), (2_000, 2_000)),
-            TableKind::GlassAverageAlbedo => shape(2, (2, 2), (200_000, 200_000)),
+            TableKind::PassingFactor => (5, 5),
+            TableKind::SplitSum | TableKind::DirectionalAlbedo => (100, 400),
+            TableKind::AverageAlbedo => (10_000, 40_000),
+            TableKind::SheenAlbedo => (1_500, 1_500),
+            TableKind::GlassAlbedo => (2_000, 2_000),
+            TableKind::GlassAverageAlbedo => (200_000, 200_000),
         }
     }
 
@@ -88,18 +69,26 @@ impl TableKind {
         TableKind::ALL.get(code as usize).copied()
     }
 
-    /// Whether a table of this kind may have `axes` axes and `channels` channels.
+    /// Whether a table of this kind may have `axes` axes and `channels` channels (a match of
+    /// comparisons: it is in every reader, and the WASM module's 64 KiB budget counts its
+    /// bytes).
     pub const fn fits(self, axes: usize, channels: usize) -> bool {
-        let s = self.shape();
-        let (lo, hi) = (s.axes.0 as usize, s.axes.1 as usize);
-        channels == s.channels as usize && axes >= lo && axes <= hi
+        match self {
+            TableKind::PassingFactor => channels == 1 && (axes == 2 || axes == 3),
+            TableKind::SplitSum => channels == 2 && axes == 2,
+            TableKind::DirectionalAlbedo => channels == 1 && axes == 2,
+            TableKind::AverageAlbedo => channels == 1 && axes == 1,
+            TableKind::SheenAlbedo => channels == 1 && axes == 2,
+            TableKind::GlassAlbedo => channels == 2 && axes == 3,
+            TableKind::GlassAverageAlbedo => channels == 2 && axes == 2,
+        }
     }
 
     /// Estimated microseconds of one core to evaluate the direct kernel once (upper
     /// estimates); `modified` for the modified G, which costs more per evaluation than
     /// Smith's closed forms.
     pub const fn cost_per_point_us(self, modified: bool) -> u64 {
-        let c = self.shape().cost_us;
+        let c = self.cost_us();
         (if modified { c.1 } else { c.0 }) as u64
     }
 }
