@@ -65,28 +65,30 @@ struct Values {
 
 /// E = R + T at every node of an n³ table (Cycles' index order), on all cores.
 fn e_table(n: usize, inside: bool, progress: &(dyn Fn(u64) + Sync)) -> Values {
-    let out: Vec<(f64, f64)> = (0..n * n * n)
-        .into_par_iter()
-        .map(|idx| {
-            let (r, mu, ior) = cycles_node(idx % n, idx / n % n, idx / (n * n), n);
-            let (rt, w) = glass_e(mu, r * r, eta_of(ior, inside), INTEGRATION_TOL);
-            progress(1);
-            (rt[0] + rt[1], w.error)
-        })
-        .collect();
-    Values {
-        v: out.iter().map(|p| p.0).collect(),
-        bound: out.iter().map(|p| p.1).fold(0.0, f64::max),
-    }
+    table(n * n * n, progress, |idx| {
+        let (r, mu, ior) = cycles_node(idx % n, idx / n % n, idx / (n * n), n);
+        glass_e(mu, r * r, eta_of(ior, inside), INTEGRATION_TOL)
+    })
 }
 
 /// E_avg = R_avg + T_avg at every node of an n² table (x = r fastest, z = ior), all cores.
 fn avg_table(n: usize, inside: bool, progress: &(dyn Fn(u64) + Sync)) -> Values {
-    let out: Vec<(f64, f64)> = (0..n * n)
+    table(n * n, progress, |idx| {
+        let (r, _, ior) = cycles_node(idx % n, 0, idx / n, n);
+        glass_e_avg(r * r, eta_of(ior, inside), INTEGRATION_TOL)
+    })
+}
+
+/// R + T of `node(idx)` for `idx` in 0..count, on all cores, with the largest estimate.
+fn table(
+    count: usize,
+    progress: &(dyn Fn(u64) + Sync),
+    node: impl Fn(usize) -> ([f64; 2], brdf_lut::generate::Work) + Sync,
+) -> Values {
+    let out: Vec<(f64, f64)> = (0..count)
         .into_par_iter()
         .map(|idx| {
-            let (r, _, ior) = cycles_node(idx % n, 0, idx / n, n);
-            let (rt, w) = glass_e_avg(r * r, eta_of(ior, inside), INTEGRATION_TOL);
+            let (rt, w) = node(idx);
             progress(1);
             (rt[0] + rt[1], w.error)
         })

@@ -9,6 +9,8 @@ use brdf_lut::generate::glass::glass_e;
 use brdf_lut::generate::INTEGRATION_TOL;
 use std::sync::OnceLock;
 
+mod common;
+
 /// The arrays of a `.tables` file: name → values, parsed with no knowledge of the writer.
 fn parse_tables(text: &str) -> Vec<(String, Vec<f32>)> {
     let mut out = Vec::new();
@@ -87,15 +89,7 @@ fn small() -> &'static Vec<(String, Vec<f32>)> {
             .find(|f| f.name == "cycles_ggx_glass.json")
             .unwrap();
         let side: serde_json::Value = serde_json::from_slice(&side.bytes).unwrap();
-        for k in [
-            "integral",
-            "model",
-            "axes",
-            "orientation",
-            "encoding",
-            "linear",
-            "masking",
-        ] {
+        for k in common::SIDECAR_KEYS.iter().chain(&["masking"]) {
             assert!(side.get(k).is_some(), "sidecar key {k}");
         }
         parse_tables(std::str::from_utf8(&f.bytes).unwrap())

@@ -169,14 +169,27 @@ fn glass(n: usize, dir: &Path, force: bool) -> Result<()> {
     for inside in [false, true] {
         let t0 = std::time::Instant::now();
         let files = brdf_engine_assets::glass([n; 3], inside, &|_| {})?;
-        write_set(dir, &files, force)?;
-        let names: Vec<String> = files
-            .iter()
-            .map(|f| dir.join(&f.name).display().to_string())
-            .collect();
-        let secs = t0.elapsed().as_secs_f64();
-        println!("glass: {n}³ in {secs:.1} s → {}", names.join(", "));
+        write_and_report("glass", n, t0, dir, &files, force)?;
     }
+    Ok(())
+}
+
+/// Writes `files` into `dir` and prints what was written and how long it took since `t0`.
+fn write_and_report(
+    what: &str,
+    n: usize,
+    t0: std::time::Instant,
+    dir: &Path,
+    files: &[brdf_engine_assets::File],
+    force: bool,
+) -> Result<()> {
+    write_set(dir, files, force)?;
+    let names: Vec<String> = files
+        .iter()
+        .map(|f| dir.join(&f.name).display().to_string())
+        .collect();
+    let secs = t0.elapsed().as_secs_f64();
+    println!("{what}: {n}³ in {secs:.1} s → {}", names.join(", "));
     Ok(())
 }
 
@@ -196,15 +209,7 @@ fn cycles(n: usize, dir: &Path, force: bool) -> Result<()> {
     let t0 = std::time::Instant::now();
     let files = brdf_engine_assets::cycles(n, false, &|k| bar.inc(k));
     bar.finish_and_clear();
-    let files = files?;
-    write_set(dir, &files, force)?;
-    let names: Vec<String> = files
-        .iter()
-        .map(|f| dir.join(&f.name).display().to_string())
-        .collect();
-    let secs = t0.elapsed().as_secs_f64();
-    println!("cycles: {n}³ in {secs:.1} s → {}", names.join(", "));
-    Ok(())
+    write_and_report("cycles", n, t0, dir, &files?, force)
 }
 
 pub fn run(a: Args) -> Result<()> {
