@@ -199,6 +199,52 @@ pub const TAIL_TAU: f64 = 4.0;
 /// rings' Kronrod-weighted estimates, is held to 0.9 tol).
 pub const RING_SHARE: f64 = 0.5;
 
+/// What the ring rule integrates per visible normal besides the geometry: the weights of
+/// the reflected and the transmitted ray (both functions of v·h alone on a ring, so every
+/// variant keeps the edges of the module docs' table). One variant per integrand; each is
+/// documented where its public entry point is.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Weights {
+    /// The generator's glass integrand (glass.rs module docs): F G1(l), (1 − F) G1(|t|),
+    /// the separable Smith G of brdf-core's rough dielectric.
+    #[default]
+    Separable,
+}
+
+/// The rays of one visible normal, as [`Weights::at`] takes them.
+#[derive(Clone, Copy)]
+#[allow(dead_code)] // c and s are for the variants that weight by them
+pub struct Rays {
+    /// c = v·h > 0.
+    pub c: f64,
+    /// s = √(η² − 1 + c²) (= η cos θt), NaN under total internal reflection.
+    pub s: f64,
+    /// The exact dielectric Fresnel F(c) (1 under total internal reflection).
+    pub f: f64,
+    /// n·l of the reflected ray (its weight is 0 where l_z ≤ 0).
+    pub lz: f64,
+    /// n·t of the refracted ray (its weight is 0 where t_z ≥ 0; 0 under TIR).
+    pub tz: f64,
+}
+
+impl Weights {
+    /// (reflected, transmitted) weight at `r` for a node of squared width `a2`; the ring
+    /// rule multiplies by x and the node's 2 G1(v)/(π μ).
+    #[inline]
+    pub fn at(self, r: &Rays, a2: f64) -> [f64; 2] {
+        match self {
+            Weights::Separable => [
+                if r.lz > 0.0 { r.f * g1(r.lz, a2) } else { 0.0 },
+                if r.tz < 0.0 {
+                    (1.0 - r.f) * g1(-r.tz, a2)
+                } else {
+                    0.0
+                },
+            ],
+        }
+    }
+}
+
 /// Per-node constants.
 struct Node {
     mu: f64,
@@ -209,6 +255,8 @@ struct Node {
     k: f64,
     /// 2 G1(v)/(π μ).
     pref: f64,
+    /// The integrand's weights.
+    weights: Weights,
 }
 
 /// One ring: h_z, its x range [x₋, x₊] and the pieces' ends (x₋, the edges inside, x₊).
@@ -287,7 +335,7 @@ fn positive_roots(a: f64, b: f64, c: f64) -> [f64; 2] {
 }
 
 impl Node {
-    fn new(mu: f64, alpha: f64, eta: f64) -> Self {
+    fn new(mu: f64, alpha: f64, eta: f64, weights: Weights) -> Self {
         let sv = ((1.0 - mu) * (1.0 + mu)).max(0.0).sqrt();
         let k = if eta < 1.0 {
             ((1.0 - eta) * (1.0 + eta)).sqrt()
@@ -302,31 +350,39 @@ impl Node {
             eta,
             k,
             pref: 2.0 * g1v / (PI * mu),
+            weights,
         }
     }
 
-    /// x₊ (F G1(l_z), (1 − F) G1(|t_z|)) at x on a ring of h_z (module docs).
+    /// x₊ × the weights ([`Weights::at`]; the generator's: (F G1(l_z), (1 − F) G1(|t_z|)))
+    /// at x on a ring of h_z (module docs).
     #[inline]
     fn value(&self, hz: f64, x: f64) -> [f64; 2] {
         let c = (hz * x).min(1.0);
         if !(c > 0.0) {
             return [0.0; 2];
         }
-        let a2 = self.alpha * self.alpha;
         let s2 = (self.eta - 1.0) * (self.eta + 1.0) + c * c;
         let lz = 2.0 * c * hz - self.mu;
-        if !(s2 > 0.0) {
-            return [if lz > 0.0 { x * g1(lz, a2) } else { 0.0 }, 0.0];
-        }
-        let s = s2.sqrt();
-        let f = fresnel(self.eta, c, s);
-        let r = if lz > 0.0 { f * g1(lz, a2) } else { 0.0 };
-        let tz = ((c - s) * hz - self.mu) / self.eta;
-        let t = if tz < 0.0 {
-            (1.0 - f) * g1(-tz, a2)
+        let rays = if s2 > 0.0 {
+            let s = s2.sqrt();
+            Rays {
+                c,
+                s,
+                f: fresnel(self.eta, c, s),
+                lz,
+                tz: ((c - s) * hz - self.mu) / self.eta,
+            }
         } else {
-            0.0
+            Rays {
+                c,
+                s: f64::NAN,
+                f: 1.0,
+                lz,
+                tz: 0.0,
+            }
         };
+        let [r, t] = self.weights.at(&rays, self.alpha * self.alpha);
         [x * r, x * t]
     }
 
@@ -479,10 +535,23 @@ impl Node {
     }
 }
 
-/// (R, T) at (μ, α, η) to `tol` per channel by the ring rule (module docs): values, the
-/// larger estimate and the integrand evaluations. μ ∈ (0, 1], α > 0, η > 0 as given.
+/// (R, T) at (μ, α, η) to `tol` per channel by the ring rule (module docs) with the
+/// generator's weights ([`Weights::Separable`]): values, the larger estimate and the
+/// integrand evaluations. μ ∈ (0, 1], α > 0, η > 0 as given.
 pub(super) fn glass_e_rings(mu: f64, alpha: f64, eta: f64, tol: f64) -> ([f64; 2], Work) {
-    let node = Node::new(mu, alpha, eta);
+    glass_rings_with(mu, alpha, eta, Weights::Separable, tol)
+}
+
+/// The ring rule's two integrals (reflected, transmitted) of `weights` at (μ, α, η) to
+/// `tol` per channel: values, the larger estimate and the integrand evaluations.
+pub(super) fn glass_rings_with(
+    mu: f64,
+    alpha: f64,
+    eta: f64,
+    weights: Weights,
+    tol: f64,
+) -> ([f64; 2], Work) {
+    let node = Node::new(mu, alpha, eta, weights);
     let w = node.w_breaks();
     let w_end = *w.last().unwrap_or(&0.0);
     let panels = w.len() - 1;
