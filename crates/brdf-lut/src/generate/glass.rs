@@ -31,24 +31,29 @@
 //! an estimate of K15's own error. Measured: ~4.6k integrand evaluations per node for light
 //! from outside, ~7k from inside (tests/glass_measure.rs), against ~279k for the cap rule.
 //!
-//! **Reference ([`glass_e_cap`], `lut verify`).** Each channel is one converged integral over
-//! the spherical cap of the GGX visible-normal map
-//! ([`brdf_core::split_sum::converged::integrate_cap`], Dupuy & Benyoub 2023): rows cut
-//! exactly where the integrand's support changes sign, adaptive 15-point Kronrod panels with
-//! embedded 7-point Gauss estimates in θ and φ. The support of R is n·wi_r (the horizon,
-//! where G1 → 0 linearly); that of T is min(η² − 1 + (wo·h)², −n·wi_t): the horizon of the
-//! refracted ray and the total-internal-reflection edge, past which 1 − F = 0 (F → 1 as a
-//! square root there, in R and T). For η ≥ 1 no refracted ray is cut (c − √(η² − 1 + c²)
-//! ≤ 0: it always leaves below the surface): T's rows are whole (`CapIntegrand::uncut`) and
-//! the graded breaks toward the cap edge stop at a gap ~α for both channels
-//! (`cap_edge_grades`). For η < 1 (inside) R's rows are cut at its horizon (the split sum's
-//! row form), T's lit intervals are found by scanning its support, both graded to the last
-//! bit; the TIR edge then lies inside R's pieces and ends T's, resolved by the adaptive
-//! panels — not always: inside, the cap rule's R (and at times T) can be off by more than
-//! its estimate (up to 5.4e-6 measured, where an independent brute-force rule agrees with
-//! the ring rule to 1e-8; tests/glass_tables.rs, tests/glass_measure.rs). E_avg integrates
-//! E in μ by the ring rule's globally adaptive K15 (`glass/rings.rs`, its estimate) on panels
-//! broken at μ_c = √(1 − η²) for η < 1 (where TIR sets in at normal incidence on the mean
+//! **Reference ([`glass_e_radial`], `lut verify`, both sides).** The same two integrals in
+//! the other order, in other variables and with other integrand code (`glass/radial.rs`):
+//! the half vector's azimuth φ outer, its radial variable inner (τ = tan θh near 0, ln τ,
+//! then 1/τ toward the horizon); at each φ every edge is cut at its closed-form root in τ
+//! (visibility, reflected horizon, TIR with its square root made analytic by the pieces'
+//! sin² substitution, refracted horizon) and graded toward the two horizons (where G1 varies
+//! on the scale α); the φ integral is broken where the inner structure changes (closed forms
+//! in cos φ) and graded toward the complex ones next to the real axis; both levels are the
+//! ring rule's adaptive K15 driver, the integrand brdf-core's `f_dielectric`, `refract` and
+//! `TrowbridgeReitz::g1` on the half vector. Measured at 150 seeded random points per side
+//! against the ring rule at 1e-10 (tests/glass_radial.rs): its error ≤ 0.47× its estimate
+//! from inside and ≤ 0.05× from outside, ~30k integrand evaluations (~2 ms) per node from
+//! inside and ~16k (~1.4 ms) from outside. The cap integrator ([`glass_e_cap`]: one
+//! converged integral per channel over the spherical cap of the GGX visible-normal map,
+//! [`brdf_core::split_sum::converged::integrate_cap`], rows cut where the support changes
+//! sign) stays as a second cross-check in tests: it takes ~814k evaluations (~52 ms) from
+//! inside and ~32k (~3 ms) from outside at the same points, and its estimate does not bound
+//! its error (up to 1.7e3× from inside, 8.5e2× from outside; its R is 5.4e-6 off near the
+//! TIR edge where an 8000² brute-force rule agrees with both other rules to 3e-8:
+//! tests/glass_tables.rs, tests/glass_measure.rs).
+//!
+//! **E_avg** (either rule's E) integrates E in μ by the ring rule's globally adaptive K15
+//! (`glass/rings.rs`, its estimate) on panels broken at μ_c = √(1 − η²) for η < 1 (where TIR sets in at normal incidence on the mean
 //! surface and E(μ) has a square-root edge rounded over ~α) and graded toward it at α·8ʲ
 //! (without the grading the estimate missed 8.6e-7 at (α, η) = (1e-4, 0.7)), each mapped by
 //! a sin² substitution; each node's E is asked for the share of the tolerance its weight
@@ -73,6 +78,7 @@ use brdf_core::models::rough_dielectric::{refract, ALPHA_FLOOR};
 use brdf_core::split_sum::converged::{integrate_cap, CapIntegrand, GgxSplitSum};
 use std::format;
 
+mod radial;
 mod rings;
 
 /// Tolerance of `lut verify`'s E_avg reference: 10× below the generator's [`TOL`].
@@ -221,8 +227,22 @@ pub fn glass_e(mu: f64, alpha: f64, eta: f64, tol: f64) -> ([f64; 2], Work) {
     rings::glass_e_rings(mu, alpha, eta, tol)
 }
 
-/// (R, T) at (μ, α, η) to `tol` by the cap integrator (module docs, **Rule**): `lut
-/// verify`'s independent reference for [`glass_e`]. Values, the larger estimate, and the
+/// (R, T) at (μ, α, η) to `tol` by the radial rule (`glass/radial.rs`: the half vector's
+/// azimuth outer, its radial variable inner, brdf-core's F, refraction and G1): `lut
+/// verify`'s independent reference for [`glass_e`] (module docs, **Reference**). Values,
+/// the larger estimate, and the integrand evaluations. μ clamped to [1e-9, 1], α floored at
+/// 1e-4.
+pub fn glass_e_radial(mu: f64, alpha: f64, eta: f64, tol: f64) -> ([f64; 2], Work) {
+    let mu = mu.clamp(1e-9, 1.0);
+    let alpha = alpha.max(ALPHA_FLOOR);
+    if mu.is_nan() || alpha.is_nan() || !(eta > 0.0) {
+        return ([f64::NAN; 2], Work::default());
+    }
+    radial::glass_e_radial(mu, alpha, eta, tol)
+}
+
+/// (R, T) at (μ, α, η) to `tol` by the cap integrator (module docs, **Reference**): a
+/// second cross-check of [`glass_e`] in tests (no longer `lut verify`'s reference). Values, the larger estimate, and the
 /// work (integrand plus cut-search evaluations). μ clamped to [1e-9, 1], α floored at 1e-4.
 pub fn glass_e_cap(mu: f64, alpha: f64, eta: f64, tol: f64) -> ([f64; 2], Work) {
     let mu = mu.clamp(1e-9, 1.0);
@@ -309,7 +329,20 @@ pub fn glass_e_avg(alpha: f64, eta: f64, tol: f64) -> ([f64; 2], Work) {
     )
 }
 
-/// [`glass_e_avg`] with the cap integrator's E ([`glass_e_cap`]): `lut verify`'s reference.
+/// [`glass_e_avg`] with the radial rule's E ([`glass_e_radial`]): `lut verify`'s reference.
+pub fn glass_e_avg_radial(alpha: f64, eta: f64, tol: f64) -> ([f64; 2], Work) {
+    e_avg(
+        Row {
+            alpha,
+            eta,
+            e: glass_e_radial,
+        },
+        tol,
+    )
+}
+
+/// [`glass_e_avg`] with the cap integrator's E ([`glass_e_cap`]): a second cross-check
+/// (tests).
 pub fn glass_e_avg_cap(alpha: f64, eta: f64, tol: f64) -> ([f64; 2], Work) {
     e_avg(
         Row {
@@ -321,7 +354,7 @@ pub fn glass_e_avg_cap(alpha: f64, eta: f64, tol: f64) -> ([f64; 2], Work) {
     )
 }
 
-/// An E(μ) to tolerance: [`glass_e`] or [`glass_e_cap`].
+/// An E(μ) to tolerance: [`glass_e`], [`glass_e_radial`] or [`glass_e_cap`].
 type EFn = fn(f64, f64, f64, f64) -> ([f64; 2], Work);
 
 /// The (α, η) of an E_avg and the rule of its E(μ).
@@ -380,7 +413,7 @@ pub fn is_glass(kind: Kind) -> bool {
 }
 
 /// The rough-glass node at `x` to tolerance `tol` with the E rule `e` ([`glass_e`] or
-/// [`glass_e_cap`]): (μ, roughness, η) or (roughness, η).
+/// [`glass_e_radial`]): (μ, roughness, η) or (roughness, η).
 fn at(spec: &Spec, x: &[f64], tol: f64, e: EFn) -> ([f64; 2], Work) {
     match (spec.kind, x) {
         (Kind::GlassAlbedo, &[mu, r, eta]) => e(mu, spec.width_sigma(r).0, eta, tol),
@@ -405,10 +438,10 @@ pub fn node(spec: &Spec, x: &[f64], out: &mut [f64]) -> Option<Work> {
     Some(w)
 }
 
-/// `lut verify`'s reference at `x`: the cap integrator ([`glass_e_cap`], a different rule in
-/// different coordinates from the generator's [`glass_e`]) at [`REFERENCE_TOL`] (100×
-/// tighter; E_avg at [`AVERAGE_REFERENCE_TOL`], whose μ panels multiply the cost): (values,
-/// its estimate);
+/// `lut verify`'s reference at `x`: the radial rule ([`glass_e_radial`], the other order of
+/// integration in other variables and other integrand code from the generator's
+/// [`glass_e`]) at [`REFERENCE_TOL`] (100× tighter; E_avg at [`AVERAGE_REFERENCE_TOL`], whose
+/// μ panels multiply the cost): (values, its estimate);
 /// `None` for a kind that is not rough glass.
 pub fn reference(spec: &Spec, x: &[f64]) -> Option<([f64; 2], f64)> {
     if !is_glass(spec.kind) {
@@ -419,7 +452,7 @@ pub fn reference(spec: &Spec, x: &[f64]) -> Option<([f64; 2], f64)> {
     } else {
         REFERENCE_TOL
     };
-    let (v, w) = at(spec, x, tol, glass_e_cap);
+    let (v, w) = at(spec, x, tol, glass_e_radial);
     Some((v, w.error))
 }
 
