@@ -5,7 +5,9 @@
 #![cfg(feature = "generate")]
 
 use brdf_core::fresnel::f_dielectric;
-use brdf_lut::generate::glass::{glass_e, glass_e_cap, glass_e_radial};
+use brdf_lut::generate::glass::{
+    glass_e, glass_e_avg, glass_e_avg_radial, glass_e_cap, glass_e_radial, AVERAGE_REFERENCE_TOL,
+};
 use brdf_lut::generate::INTEGRATION_TOL;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
@@ -44,6 +46,13 @@ const BRUTE_ACC: f64 = 2e-7;
 fn inside_points_agree_with_the_brute_force_rule() {
     for &(mu, r, eta, rr, tt) in &BRUTE {
         let (v, w) = glass_e_radial(mu, r * r, eta, REF_TOL);
+        println!(
+            "({mu:.5}, {r:.5}, {eta:.5}): |ΔR| {:.1e} |ΔT| {:.1e} estimate {:.1e} evals {}",
+            (v[0] - rr).abs(),
+            (v[1] - tt).abs(),
+            w.error,
+            w.evals
+        );
         for (c, want) in [rr, tt].into_iter().enumerate() {
             assert!(
                 (v[c] - want).abs() <= w.error + BRUTE_ACC,
@@ -82,7 +91,7 @@ fn estimate_bounds_the_error_at_the_brute_force_points() {
     }
 }
 
-/// ~100 seeded random (μ, α, η) per side (μ log-uniform in [cos 89°, 1], r uniform,
+/// 100 seeded random (μ, α, η) per side (GLASS_N) (μ log-uniform in [cos 89°, 1], r uniform,
 /// α = r², η uniform in [1/3, 1] and [1, 3]): the ring rule at the generator's tolerance
 /// and the radial rule at `lut verify`'s lie within the sum of their estimates. Prints the
 /// largest |difference|/(sum of estimates), evaluations and time per node of both.
@@ -91,7 +100,7 @@ fn agrees_with_the_ring_rule_at_random_points() {
     let n: usize = std::env::var("GLASS_N")
         .ok()
         .and_then(|s| s.parse().ok())
-        .unwrap_or(50);
+        .unwrap_or(100);
     let mut g = Pcg64::seed_from_u64(0x7ad1a1);
     let mu_lo = 89f64.to_radians().cos();
     for side in 0..2 {
@@ -187,6 +196,50 @@ fn index_matched_interface_is_g1() {
                 w.error
             );
         }
+    }
+}
+
+/// `lut verify`'s E_avg reference (the radial E in the same μ rule, at its tolerance 2e-7)
+/// against the generator's E_avg (ring E at 2e-6): within the sum of the two estimates, at
+/// the narrow floor from inside (the square-root edge at μ_c), rough from inside and from
+/// outside.
+#[test]
+fn average_reference_agrees_with_the_generator() {
+    for &(alpha, eta) in &[(1e-4, 0.7), (0.3, 1.0 / 1.5), (0.6, 2.0)] {
+        let (v, w) = glass_e_avg(alpha, eta, TOL);
+        let (rf, wr) = glass_e_avg_radial(alpha, eta, AVERAGE_REFERENCE_TOL);
+        assert!(
+            wr.error <= AVERAGE_REFERENCE_TOL,
+            "({alpha}, {eta}): {:e}",
+            wr.error
+        );
+        for c in 0..2 {
+            assert!(
+                (v[c] - rf[c]).abs() <= w.error + wr.error,
+                "({alpha}, {eta}) channel {c}: {} vs {} (estimates {:e}, {:e})",
+                v[c],
+                rf[c],
+                w.error,
+                wr.error
+            );
+        }
+    }
+}
+
+/// Étendue (Walter et al. 2007 §5.2; glass_tables.rs): T_avg(η) = η² T_avg(1/η), both
+/// sides by the radial E at `lut verify`'s E_avg tolerance, within the two estimates.
+#[test]
+fn average_reference_obeys_etendue() {
+    for &(alpha, eta) in &[(0.3, 1.5), (1e-4, 1.5)] {
+        let (a, wa) = glass_e_avg_radial(alpha, eta, AVERAGE_REFERENCE_TOL);
+        let (b, wb) = glass_e_avg_radial(alpha, 1.0 / eta, AVERAGE_REFERENCE_TOL);
+        let allowed = wa.error + eta * eta * wb.error + 1e-12;
+        assert!(
+            (a[1] - eta * eta * b[1]).abs() <= allowed,
+            "α {alpha} η {eta}: {} vs {} (allowed {allowed:e})",
+            a[1],
+            eta * eta * b[1]
+        );
     }
 }
 
