@@ -350,3 +350,33 @@ fn measure_against_the_cap_rule() {
         );
     }
 }
+
+/// Bad input is NaN, not a panic; μ → 0 is clamped to 1e-9 like the generator's and there
+/// both rules agree within their estimates (the grazing end of the φ and τ gradings).
+#[test]
+fn bad_input_and_grazing_limit() {
+    for (mu, alpha, eta) in [
+        (f64::NAN, 0.3, 1.5),
+        (0.5, 0.3, f64::NAN),
+        (0.5, 0.3, 0.0),
+        (0.5, 0.3, -1.0),
+    ] {
+        let (v, _) = glass_e_radial(mu, alpha, eta, REF_TOL);
+        assert!(
+            v.iter().all(|v| v.is_nan()),
+            "({mu}, {alpha}, {eta}): {v:?}"
+        );
+    }
+    for (mu, alpha, eta) in [(0.0, 0.3, 1.5), (1e-6, 0.05, 0.7), (1e-9, 1.0, 0.4)] {
+        let (v, w) = glass_e(mu, alpha, eta, TOL);
+        let (rf, wr) = glass_e_radial(mu, alpha, eta, REF_TOL);
+        for c in 0..2 {
+            assert!(
+                (v[c] - rf[c]).abs() <= w.error + wr.error,
+                "({mu}, {alpha}, {eta}) channel {c}: {} vs {}",
+                v[c],
+                rf[c]
+            );
+        }
+    }
+}
