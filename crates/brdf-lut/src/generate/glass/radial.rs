@@ -16,11 +16,12 @@
 //! ```
 //!
 //! (φ and −φ give the same value). The inner integral runs in three variables: τ on
-//! [0, τ_L] (τ_L = min(α, 1)/2: the weight's poles τ = ±iα and h_z's τ = ±i stay ≥ 2 piece
-//! lengths away), ζ = ln τ on [τ_L, τ_R] (weight u²/(1 + u²)² = 1/(4 cosh²(ζ − ln α)) and
-//! h_z analytic in the strip |Im ζ| < π/2; pieces at most [`MAX_LOG_STEP`] long) and
-//! v = 1/τ on [0, 1/τ_R] (τ_R = max([`FAR_TAU`], last edge): x u du/(1 + u²)² =
-//! α²(μ v + sv cos φ)/(1 + α² v²)² dv, h_z = v/√(1 + v²), analytic down to v = 0).
+//! [0, τ_L] (τ_L = min(α/2, 1/2, the first cut/e): the weight's poles τ = ±iα and h_z's
+//! τ = ±i stay ≥ 2 piece lengths away), ζ = ln τ on [τ_L, τ_R] (weight u²/(1 + u²)² =
+//! 1/(4 cosh²(ζ − ln α)) and h_z analytic in the strip |Im ζ| < π/2; pieces at most
+//! [`MAX_LOG_STEP`] long) and v = 1/τ on [0, 1/τ_R] (τ_R = max([`FAR_TAU`], e × the last
+//! cut): x u du/(1 + u²)² = α²(μ v + sv cos φ)/(1 + α² v²)² dv, h_z = v/√(1 + v²), analytic
+//! down to v = 0).
 //!
 //! **Edges at fixed φ** (p = sv cos φ), each a closed-form root in τ, a cut of the inner
 //! integral:
@@ -109,6 +110,8 @@ struct Setup {
 }
 
 /// The positive finite roots of a τ² + b τ + c = 0 (a = 0 allowed), appended to `out`.
+/// (rings.rs has its own private one; kept apart on purpose: the reference shares no edge
+/// code with the rule it checks.)
 fn push_roots(a: f64, b: f64, c: f64, out: &mut Vec<f64>) {
     let mut keep = |t: f64| {
         if t > 0.0 && t.is_finite() {
