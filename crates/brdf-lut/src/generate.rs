@@ -53,8 +53,9 @@ pub use sheen::{
     REFERENCE_TOL as SHEEN_REFERENCE_TOL, TOL as SHEEN_TOL,
 };
 pub use verify::{
-    check_nodes, check_recorded_bound, measure_table, sample_nodes, verify_points,
-    worse_than_recorded, BoundCheck, NodeCheck, OverBudget, VerifyPoints,
+    allowed_above, check_nodes, check_recorded_bound, measure_table, sample_nodes, verify_points,
+    worse_than_recorded, BoundCheck, Measured, NodeCheck, OverBudget, VerifyPoints, Worse,
+    FALSE_ALARM,
 };
 
 use crate::write;

@@ -68,6 +68,21 @@ fn points(spec: &Spec, axes: &[Axis<'_>]) -> Vec<Vec<f64>> {
 /// `ModifiedG` (the same f64 kernel, its σ-dependent normaliser computed once per group);
 /// every other kind channel by channel at the f32 point the table sees.
 pub fn measure(spec: &Spec, view: &LutView<'_>, axes: &[Axis<'_>]) -> ErrorStats {
+    stats(spec, &errors(spec, view, axes))
+}
+
+/// The max and RMS of `errs` ([`errors`]) as recorded for `spec`'s points and seed.
+pub(super) fn stats(spec: &Spec, errs: &[f64]) -> ErrorStats {
+    let mut acc = ErrorAccumulator::default();
+    for &x in errs {
+        acc.add(x);
+    }
+    acc.finish(spec.samples, spec.seed)
+}
+
+/// |table − direct kernel| at [`measure`]'s points, channel by channel (point k's channels
+/// at k·channels …).
+pub(super) fn errors(spec: &Spec, view: &LutView<'_>, axes: &[Axis<'_>]) -> Vec<f64> {
     let pts = points(spec, axes);
     let nc = spec.kind.def().channels.len();
     let mut errs = vec![0.0; pts.len() * nc];
@@ -102,11 +117,7 @@ pub fn measure(spec: &Spec, view: &LutView<'_>, axes: &[Axis<'_>]) -> ErrorStats
             })
         }
     }
-    let mut acc = ErrorAccumulator::default();
-    for &x in &errs {
-        acc.add(x);
-    }
-    acc.finish(spec.samples, spec.seed)
+    errs
 }
 
 #[cfg(test)]

@@ -183,30 +183,112 @@ pub fn verify_points(
     })
 }
 
-/// Max and RMS |table − direct kernel| at `n` random points (seeded by `seed`), measured
-/// ([`super::measure`]) with the spec the table's header describes; NaN statistics when
-/// it describes no table this generator builds (NaN fails every comparison).
-pub fn measure_table(view: &LutView<'_>, n: u32, seed: u64) -> crate::ErrorStats {
+/// A table measured afresh ([`measure_table`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Measured {
+    /// Max and RMS |table − direct kernel| over the points and channels.
+    pub stats: crate::ErrorStats,
+    /// Each point's largest |error| over its channels, in point order.
+    pub point_max: Vec<f64>,
+}
+
+/// The table measured at `n` random points (seeded by `seed`) with the spec its header
+/// describes ([`super::measure`]'s points and errors); NaN statistics and errors when it
+/// describes no table this generator builds (NaN fails every comparison).
+pub fn measure_table(view: &LutView<'_>, n: u32, seed: u64) -> Measured {
     let h = view.header();
     match Spec::from_header(h) {
         Some(mut spec) => {
             (spec.samples, spec.seed) = (n, seed);
-            super::measure(&spec, view, &h.axes)
+            let errs = super::measure::errors(&spec, view, &h.axes);
+            let nc = spec.kind.def().channels.len().max(1);
+            Measured {
+                stats: super::measure::stats(&spec, &errs),
+                point_max: errs
+                    .chunks(nc)
+                    .map(|c| c.iter().fold(0.0, |m: f64, &e| m.max(e)))
+                    .collect(),
+            }
         }
-        None => crate::ErrorStats {
-            max_abs: f32::NAN,
-            rms: f32::NAN,
-            samples: n,
-            seed,
+        None => Measured {
+            stats: crate::ErrorStats {
+                max_abs: f32::NAN,
+                rms: f32::NAN,
+                samples: n,
+                seed,
+            },
+            point_max: vec![f64::NAN; n as usize],
         },
     }
 }
 
-/// Whether a measured max |error| is worse than the recorded one allows: measured >
-/// recorded × (1 + `tolerance`) + 1e-6, or not a number.
-pub fn worse_than_recorded(measured: f32, recorded: f32, tolerance: f64) -> bool {
-    let limit = recorded as f64 * (1.0 + tolerance) + 1e-6;
-    measured.is_nan() || measured as f64 > limit
+/// The false-alarm rate of [`worse_than_recorded`] for a table that is as its header says.
+pub const FALSE_ALARM: f64 = 1e-3;
+
+/// How many of `fresh` points may lie above the maximum recorded over `recorded` points
+/// before a table is judged worse than its header: the smallest K with
+/// P(K or more above) ≤ [`FALSE_ALARM`]. If the recorded and fresh points are drawn alike
+/// (exchangeable: the same uniform law over the same table, whatever the law of the
+/// errors), K given fresh points exceed the largest of all recorded ones with probability
+/// Π_{i<K} (M − i)/(N + M − i) (M fresh, N recorded: the K largest of the N + M errors fall
+/// among the fresh). Heavy-tailed errors (a kink the grid does not resolve) move the
+/// maximum of a sample a lot and this count not at all.
+pub fn allowed_above(fresh: u32, recorded: u32) -> u32 {
+    let (m, n) = (fresh as f64, recorded.max(1) as f64);
+    let mut p = 1.0;
+    for k in 0..fresh {
+        p *= (m - k as f64) / (n + m - k as f64);
+        if p <= FALSE_ALARM {
+            return k;
+        }
+    }
+    fresh
+}
+
+/// How a table is worse than its header's maximum ([`worse_than_recorded`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Worse {
+    /// An error is not a number.
+    NotANumber,
+    /// At the header's own points (its seed, a prefix of its count) the largest error is
+    /// above the recorded maximum (× (1 + tolerance) + 1e-6): the claim is false.
+    OwnPoints {
+        /// The largest error found there.
+        max: f64,
+    },
+    /// More fresh points lie above it than would by chance ([`allowed_above`]).
+    FreshPoints {
+        /// Fresh points above.
+        above: u32,
+        /// Those a table as recorded may have.
+        allowed: u32,
+    },
+}
+
+/// Whether a table is worse than its header's maximum allows (limit: recorded ×
+/// (1 + `tolerance`) + 1e-6). Two checks: `own`, the table measured at the header's own
+/// points (its seed and the first of its count: the points of the claim, so a true claim
+/// can never fail), must stay within the limit; `fresh`, measured at other points, may have
+/// at most [`allowed_above`] points above it (whether the recorded sample is
+/// representative, at a false-alarm rate of [`FALSE_ALARM`] whatever the errors' law).
+pub fn worse_than_recorded(
+    own: &Measured,
+    fresh: &Measured,
+    recorded: &crate::ErrorStats,
+    tolerance: f64,
+) -> Option<Worse> {
+    let limit = recorded.max_abs as f64 * (1.0 + tolerance) + 1e-6;
+    let all = || own.point_max.iter().chain(&fresh.point_max);
+    if own.stats.max_abs.is_nan() || fresh.stats.max_abs.is_nan() || all().any(|e| e.is_nan()) {
+        return Some(Worse::NotANumber);
+    }
+    let max = own.point_max.iter().fold(0.0, |m: f64, &e| m.max(e));
+    if max > limit {
+        return Some(Worse::OwnPoints { max });
+    }
+    let above = fresh.point_max.iter().filter(|&&e| e > limit).count() as u32;
+    let allowed = allowed_above(fresh.point_max.len() as u32, recorded.samples);
+    (above > allowed).then_some(Worse::FreshPoints { above, allowed })
 }
 
 /// The recorded integration bound of a table checked at nodes ([`check_nodes`]).
