@@ -55,7 +55,7 @@ fn parse(text: &str) -> Vec<(String, Vec<usize>, Vec<f32>)> {
         let name = s[..s.find('[').unwrap()].to_string();
         let eq = s.find('=').unwrap();
         let shape: Vec<usize> = s[s.find('[').unwrap()..eq]
-            .split(|c| c == '[' || c == ']')
+            .split(['[', ']'])
             .filter(|t| !t.trim().is_empty())
             .map(|t| t.trim().parse().unwrap())
             .collect();
