@@ -174,15 +174,16 @@ fn glass(n: usize, dir: &Path, force: bool) -> Result<()> {
     for inside in [false, true] {
         let t0 = std::time::Instant::now();
         let files = brdf_engine_assets::glass([n; 3], inside, &|_| {})?;
-        write_and_report("glass", n, t0, dir, &files, force)?;
+        write_and_report("glass", &format!("{n}³"), t0, dir, &files, force)?;
     }
     Ok(())
 }
 
-/// Writes `files` into `dir` and prints what was written and how long it took since `t0`.
+/// Writes `files` into `dir` and prints what was written (`size`: the table's shape) and how
+/// long it took since `t0`.
 fn write_and_report(
     what: &str,
-    n: usize,
+    size: &str,
     t0: std::time::Instant,
     dir: &Path,
     files: &[brdf_engine_assets::File],
@@ -194,7 +195,7 @@ fn write_and_report(
         .map(|f| dir.join(&f.name).display().to_string())
         .collect();
     let secs = t0.elapsed().as_secs_f64();
-    println!("{what}: {n}³ in {secs:.1} s → {}", names.join(", "));
+    println!("{what}: {size} in {secs:.1} s → {}", names.join(", "));
     Ok(())
 }
 
@@ -214,7 +215,7 @@ fn cycles(n: usize, dir: &Path, force: bool) -> Result<()> {
     let t0 = std::time::Instant::now();
     let files = brdf_engine_assets::cycles(n, false, &|k| bar.inc(k));
     bar.finish_and_clear();
-    write_and_report("cycles", n, t0, dir, &files?, force)
+    write_and_report("cycles", &format!("{n}³"), t0, dir, &files?, force)
 }
 
 /// EEVEE's glass tables into `dir`: n × n nodes on (η, μ), max(2, n/4) roughness slices.
@@ -233,7 +234,7 @@ fn eevee(n: usize, dir: &Path, force: bool) -> Result<()> {
     let t0 = std::time::Instant::now();
     let files = brdf_engine_assets::eevee::eevee(n, m, &|k| bar.inc(k));
     bar.finish_and_clear();
-    write_and_report("eevee", n, t0, dir, &files?, force)
+    write_and_report("eevee", &format!("{n}×{n}×{m}"), t0, dir, &files?, force)
 }
 
 pub fn run(a: Args) -> Result<()> {
