@@ -23,6 +23,7 @@
 
 mod containers;
 pub mod cycles;
+pub mod eevee;
 pub mod export;
 pub mod fsio;
 mod layouts;

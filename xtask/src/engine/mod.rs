@@ -35,6 +35,10 @@ pub enum Target {
     /// separable-G rough dielectric (Cycles' closure uses the height-correlated G: the
     /// sidecar's `masking`).
     Cycles,
+    /// Blender EEVEE's rough-glass tables (`bsdf_ggx`, `btdf_ggx` of `eevee_lut.cc`) as C++
+    /// arrays in EEVEE's nodes and order + JSON sidecar: each channel the converged integral
+    /// of what EEVEE's generator averages; --size N gives N × N × max(2, N/4) (EEVEE: 64).
+    Eevee,
     /// Compare our files (from `--out`, generated when missing) with the engines' shipped
     /// tables and write docs/engines.md.
     Report,
@@ -80,6 +84,7 @@ impl Target {
             Target::All => "all",
             Target::Glass => "glass",
             Target::Cycles => "cycles",
+            Target::Eevee => "eevee",
             Target::Report => "report",
         }
     }
@@ -169,15 +174,16 @@ fn glass(n: usize, dir: &Path, force: bool) -> Result<()> {
     for inside in [false, true] {
         let t0 = std::time::Instant::now();
         let files = brdf_engine_assets::glass([n; 3], inside, &|_| {})?;
-        write_and_report("glass", n, t0, dir, &files, force)?;
+        write_and_report("glass", &format!("{n}³"), t0, dir, &files, force)?;
     }
     Ok(())
 }
 
-/// Writes `files` into `dir` and prints what was written and how long it took since `t0`.
+/// Writes `files` into `dir` and prints what was written (`size`: the table's shape) and how
+/// long it took since `t0`.
 fn write_and_report(
     what: &str,
-    n: usize,
+    size: &str,
     t0: std::time::Instant,
     dir: &Path,
     files: &[brdf_engine_assets::File],
@@ -189,7 +195,7 @@ fn write_and_report(
         .map(|f| dir.join(&f.name).display().to_string())
         .collect();
     let secs = t0.elapsed().as_secs_f64();
-    println!("{what}: {n}³ in {secs:.1} s → {}", names.join(", "));
+    println!("{what}: {size} in {secs:.1} s → {}", names.join(", "));
     Ok(())
 }
 
@@ -209,10 +215,33 @@ fn cycles(n: usize, dir: &Path, force: bool) -> Result<()> {
     let t0 = std::time::Instant::now();
     let files = brdf_engine_assets::cycles(n, false, &|k| bar.inc(k));
     bar.finish_and_clear();
-    write_and_report("cycles", n, t0, dir, &files?, force)
+    write_and_report("cycles", &format!("{n}³"), t0, dir, &files?, force)
+}
+
+/// EEVEE's glass tables into `dir`: n × n nodes on (η, μ), max(2, n/4) roughness slices.
+fn eevee(n: usize, dir: &Path, force: bool) -> Result<()> {
+    let cap = brdf_engine_assets::eevee::EEVEE_EDGE;
+    if !(2..=cap).contains(&n) {
+        bail!("--size {n}: an EEVEE table's edge must be between 2 and {cap} (EEVEE: 64)");
+    }
+    let m = (n / 4).max(2);
+    let bar = ProgressBar::new((2 * n * n * m) as u64);
+    bar.set_style(
+        ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} nodes, eta {eta}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    bar.set_message(format!("EEVEE glass {n}×{n}×{m}"));
+    let t0 = std::time::Instant::now();
+    let files = brdf_engine_assets::eevee::eevee(n, m, &|k| bar.inc(k));
+    bar.finish_and_clear();
+    write_and_report("eevee", &format!("{n}×{n}×{m}"), t0, dir, &files?, force)
 }
 
 pub fn run(a: Args) -> Result<()> {
+    if a.target == Target::Eevee {
+        let out = a.out.unwrap_or_else(|| default_out(a.target));
+        return eevee(a.size.unwrap_or(64), &out, a.force);
+    }
     if a.target == Target::Cycles {
         let out = a.out.unwrap_or_else(|| default_out(a.target));
         return cycles(a.size.unwrap_or(16), &out, a.force);

@@ -209,6 +209,14 @@ pub enum Weights {
     /// the separable Smith G of brdf-core's rough dielectric.
     #[default]
     Separable,
+    /// Blender EEVEE's reflection split (glass/eevee.rs): (1 − S) G1(l), S G1(l) with
+    /// Schlick's S = (1 − |h·t|)⁵, |h·t| = s/η the refracted cosine (S = 1 under total
+    /// internal reflection): the `scale` and `bias` of `bsdf_ggx`.
+    SchlickSplit,
+    /// Blender EEVEE's transmission (glass/eevee.rs): G1(|t|) without Fresnel, and
+    /// (1 − S) G1(|t|) with S = (1 − |h·v|)⁵ for η > 1, (1 − |h·t|)⁵ for η ≤ 1: the
+    /// `transmission_factor` of `btdf_ggx` / `bsdf_ggx`.
+    SchlickTransmission,
 }
 
 /// The rays of one visible normal, as [`Weights::at`] takes them.
@@ -225,6 +233,8 @@ pub struct Rays {
     pub lz: f64,
     /// n·t of the refracted ray (its weight is 0 where t_z ≥ 0; 0 under TIR).
     pub tz: f64,
+    /// η (|h·t| = s/η).
+    pub eta: f64,
 }
 
 impl Weights {
@@ -241,8 +251,29 @@ impl Weights {
                     0.0
                 },
             ],
+            Weights::SchlickSplit => {
+                let g = if r.lz > 0.0 { g1(r.lz, a2) } else { 0.0 };
+                let sch = if r.s > 0.0 { schlick(r.s / r.eta) } else { 1.0 };
+                [(1.0 - sch) * g, sch * g]
+            }
+            Weights::SchlickTransmission => {
+                if !(r.tz < 0.0) {
+                    return [0.0; 2];
+                }
+                let g = g1(-r.tz, a2);
+                let cos = if r.eta > 1.0 { r.c } else { r.s / r.eta };
+                [g, (1.0 - schlick(cos)) * g]
+            }
         }
     }
+}
+
+/// Schlick's factor (1 − cos)⁵ (Schlick 1994), cos clamped to [0, 1] as EEVEE saturates it.
+#[inline]
+fn schlick(cos: f64) -> f64 {
+    let m = 1.0 - cos.clamp(0.0, 1.0);
+    let m2 = m * m;
+    m2 * m2 * m
 }
 
 /// Per-node constants.
@@ -372,6 +403,7 @@ impl Node {
                 f: fresnel(self.eta, c, s),
                 lz,
                 tz: ((c - s) * hz - self.mu) / self.eta,
+                eta: self.eta,
             }
         } else {
             Rays {
@@ -380,6 +412,7 @@ impl Node {
                 f: 1.0,
                 lz,
                 tz: 0.0,
+                eta: self.eta,
             }
         };
         let [r, t] = self.weights.at(&rays, self.alpha * self.alpha);
