@@ -209,6 +209,12 @@ pub enum Weights {
     /// the separable Smith G of brdf-core's rough dielectric.
     #[default]
     Separable,
+    /// Blender Cycles' glass closure (`glass/correlated.rs`): the sampled weight
+    /// eval/pdf = G2(v, o)/G1(v) with the height-correlated G2 = 1/(1 + Λ(v) + Λ(o)), times
+    /// F (reflected, where l_z > 0) or 1 − F (refracted, wherever the refraction exists:
+    /// Cycles does not test the side of the refracted ray, so for η < 1 rays refracted
+    /// upwards, t_z > 0, count with Λ(|t_z|)).
+    HeightCorrelated,
 }
 
 /// The rays of one visible normal, as [`Weights::at`] takes them.
@@ -225,6 +231,8 @@ pub struct Rays {
     pub lz: f64,
     /// n·t of the refracted ray (its weight is 0 where t_z ≥ 0; 0 under TIR).
     pub tz: f64,
+    /// Λ(v) of the node (Smith's masking exponent at μ; the correlated weights use it).
+    pub lambda_v: f64,
 }
 
 impl Weights {
@@ -241,8 +249,36 @@ impl Weights {
                     0.0
                 },
             ],
+            Weights::HeightCorrelated => [
+                if r.lz > 0.0 {
+                    r.f * g2_over_g1v(r.lz, a2, r.lambda_v)
+                } else {
+                    0.0
+                },
+                if r.s >= 0.0 {
+                    (1.0 - r.f) * g2_over_g1v(r.tz.abs(), a2, r.lambda_v)
+                } else {
+                    0.0
+                },
+            ],
         }
     }
+
+    /// Whether rays refracted upwards (t_z > 0, η < 1) carry weight: T's support on a ring
+    /// then starts at the TIR edge x_k, not at the refracted horizon x_t.
+    fn counts_upward_refraction(self) -> bool {
+        matches!(self, Weights::HeightCorrelated)
+    }
+}
+
+/// G2(v, o)/G1(v) = (1 + Λ(v))/(1 + Λ(v) + Λ(z)) at polar cosine z = |n·o| ∈ [0, 1] of the
+/// other ray, with GGX's Λ(z) = (√(1 + α²(1 − z²)/z²) − 1)/2 (Heitz 2014, eqs 72 and 99):
+/// with q = 1 + 2Λ(v), (1 + q) z/(q z + √(z² + α²(1 − z²))), which → 0 linearly at z = 0.
+#[inline]
+fn g2_over_g1v(z: f64, a2: f64, lambda_v: f64) -> f64 {
+    let z = z.min(1.0);
+    let q = 1.0 + 2.0 * lambda_v;
+    (1.0 + q) * z / (q * z + (z * z + a2 * (1.0 - z) * (1.0 + z)).sqrt())
 }
 
 /// Per-node constants.
@@ -255,6 +291,8 @@ struct Node {
     k: f64,
     /// 2 G1(v)/(π μ).
     pref: f64,
+    /// Λ(v) = 1/G1(v) − 1.
+    lambda_v: f64,
     /// The integrand's weights.
     weights: Weights,
 }
@@ -350,6 +388,7 @@ impl Node {
             eta,
             k,
             pref: 2.0 * g1v / (PI * mu),
+            lambda_v: <TrowbridgeReitz<f64> as Isotropic<f64>>::lambda_cos(mu, alpha),
             weights,
         }
     }
@@ -372,6 +411,7 @@ impl Node {
                 f: fresnel(self.eta, c, s),
                 lz,
                 tz: ((c - s) * hz - self.mu) / self.eta,
+                lambda_v: self.lambda_v,
             }
         } else {
             Rays {
@@ -380,6 +420,7 @@ impl Node {
                 f: 1.0,
                 lz,
                 tz: 0.0,
+                lambda_v: self.lambda_v,
             }
         };
         let [r, t] = self.weights.at(&rays, self.alpha * self.alpha);
@@ -389,7 +430,8 @@ impl Node {
     /// The ring at τ with its edges (module docs' table) and its structure: the edges
     /// inside (visibility 1, reflected horizon 2, TIR 3, refracted horizon 4) in x order,
     /// three bits each. The pieces start where R or T can first be nonzero: min(x_r, T's
-    /// first x: 0 for η ≥ 1, else x_t where k h_z > μ, else x_k), or at x₋.
+    /// first x: 0 for η ≥ 1, else x_t where k h_z > μ, else x_k; always x_k for weights
+    /// that count upward refraction), or at x₋.
     fn ring(&self, tau: f64) -> (Ring, u32) {
         let q2 = 1.0 + tau * tau;
         let hz = 1.0 / q2.sqrt();
@@ -402,7 +444,11 @@ impl Node {
         } else {
             (f64::NAN, f64::NAN)
         };
-        let t0 = if k > 0.0 { xt.max(xk) } else { 0.0 };
+        let t0 = match (k > 0.0, self.weights.counts_upward_refraction()) {
+            (false, _) => 0.0,
+            (true, false) => xt.max(xk),
+            (true, true) => xk,
+        };
         let start = xr.min(t0);
         let mut e = [(0.0, 0u32); 4];
         let mut n = 0;
