@@ -229,7 +229,7 @@ pub struct Rays {
     pub f: f64,
     /// n·l of the reflected ray (its weight is 0 where l_z ≤ 0).
     pub lz: f64,
-    /// n·t of the refracted ray (its weight is 0 where t_z ≥ 0; 0 under TIR).
+    /// n·t of the refracted ray (0 under TIR; the separable weight is 0 where t_z ≥ 0).
     pub tz: f64,
     /// Λ(v) of the node (Smith's masking exponent at μ; the correlated weights use it).
     pub lambda_v: f64,
@@ -272,7 +272,7 @@ impl Weights {
 }
 
 /// G2(v, o)/G1(v) = (1 + Λ(v))/(1 + Λ(v) + Λ(z)) at polar cosine z = |n·o| ∈ [0, 1] of the
-/// other ray, with GGX's Λ(z) = (√(1 + α²(1 − z²)/z²) − 1)/2 (Heitz 2014, eqs 72 and 99):
+/// other ray, with GGX's Λ(z) = (√(1 + α²(1 − z²)/z²) − 1)/2 (Heitz 2014, eq. 72; G2 his §6):
 /// with q = 1 + 2Λ(v), (1 + q) z/(q z + √(z² + α²(1 − z²))), which → 0 linearly at z = 0.
 #[inline]
 fn g2_over_g1v(z: f64, a2: f64, lambda_v: f64) -> f64 {
