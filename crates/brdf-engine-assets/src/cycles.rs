@@ -1,8 +1,9 @@
 //! Blender Cycles' rough-glass albedo tables (`table_ggx_glass_E`, `table_ggx_glass_inv_E`,
 //! `table_ggx_glass_Eavg`, `table_ggx_glass_inv_Eavg` of `intern/cycles/scene/shader.tables`)
-//! in Cycles' own nodes and index order, filled from brdf-lut's generator
-//! ([`brdf_lut::generate::glass`]), written as the C arrays Cycles compiles, with a JSON
-//! sidecar.
+//! in Cycles' own nodes and index order, filled with the converged integrals of Cycles' own
+//! closure ([`brdf_lut::generate::glass::correlated`]: GGX, exact Fresnel, the
+//! height-correlated Smith G2 of `bsdf_microfacet.h`, the sampled weight Cycles' precompute
+//! averages), written as the C arrays Cycles compiles, with a JSON sidecar.
 //!
 //! **Cycles' layout** (pinned from blender/blender `intern/cycles/app/cycles_precompute.cpp`,
 //! the generator of those arrays, and `intern/cycles/kernel/closure/bsdf_microfacet.h`
@@ -20,9 +21,20 @@
 //! (light inside); `E_avg = 2∫₀¹ E μ dμ`. Cycles saturates each value to [0, 1] and reads
 //! the tables with z = √(|ior − 1|/(ior + 1)) (its reciprocal for ior < 1), linear between
 //! nodes.
+//!
+//! **Model.** Cycles' precompute averages the closure's sample weight eval/pdf; with its
+//! lobe choice by F that is G2/G1(wo) = (1 + Λ(wo))/(1 + Λ(wo) + Λ(wi)) per visible normal,
+//! times F (reflection above the surface) or 1 − F (refraction, either side: Cycles does
+//! not test it); `glass_e_correlated` integrates exactly that (its module docs; its values
+//! match 25 shipped E and 4 E_avg values within 9.1e-6, brdf-lut tests/glass_correlated.rs).
+//! Two places differ from Cycles' shipped arrays by construction: x = 0 (r = 1e-4), where
+//! Cycles takes its smooth path (α² ≤ 5e-7) and stores 1 while these hold the rough integral
+//! at α = 1e-4 (1 − O(α²/μ²), but 0.72 to 0.92 at μ = 1e-4), and z = 0 (ior = 1 + 2e-8, 1 in f32),
+//! where Cycles refracts singularly (|η − 1| < 1e-4, weight 1) and these hold the η → 1
+//! limit (1 + Λ)/(1 + 2Λ).
 
 use crate::{Error, File};
-use brdf_lut::generate::glass::{glass_e, glass_e_avg};
+use brdf_lut::generate::glass::correlated::{glass_e_avg_correlated, glass_e_correlated};
 use brdf_lut::generate::INTEGRATION_TOL;
 use rayon::prelude::*;
 use serde_json::json;
@@ -67,7 +79,7 @@ struct Values {
 fn e_table(n: usize, inside: bool, progress: &(dyn Fn(u64) + Sync)) -> Values {
     table(n * n * n, progress, |idx| {
         let (r, mu, ior) = cycles_node(idx % n, idx / n % n, idx / (n * n), n);
-        glass_e(mu, r * r, eta_of(ior, inside), INTEGRATION_TOL)
+        glass_e_correlated(mu, r * r, eta_of(ior, inside), INTEGRATION_TOL)
     })
 }
 
@@ -75,7 +87,7 @@ fn e_table(n: usize, inside: bool, progress: &(dyn Fn(u64) + Sync)) -> Values {
 fn avg_table(n: usize, inside: bool, progress: &(dyn Fn(u64) + Sync)) -> Values {
     table(n * n, progress, |idx| {
         let (r, _, ior) = cycles_node(idx % n, 0, idx / n, n);
-        glass_e_avg(r * r, eta_of(ior, inside), INTEGRATION_TOL)
+        glass_e_avg_correlated(r * r, eta_of(ior, inside), INTEGRATION_TOL)
     })
 }
 
@@ -139,10 +151,11 @@ fn c_source(n: usize, tables: &Tables) -> String {
     let mut s = format!(
         "/* Rough-glass albedo tables for Cycles' microfacet_ggx_preserve_energy, {n}-node \
          axes,\n * written by brdf-kernels `cargo xtask lut engine cycles` \
-         (brdf_engine_assets::cycles).\n * Values: brdf-lut's converged GGX rough-dielectric \
-         integrals with SEPARABLE Smith G;\n * Cycles' closure uses the height-correlated G: \
-         see cycles_ggx_glass.json (\"masking\")\n * before replacing the arrays of the same \
-         names in intern/cycles/scene/shader.tables. */\n"
+         (brdf_engine_assets::cycles).\n * Values: converged integrals of Cycles' GGX glass \
+         closure (height-correlated Smith G2,\n * exact Fresnel); they differ from Cycles' own \
+         at r = 1e-4 and ior = 1 + 2e-8 (see\n * cycles_ggx_glass.json: narrow_limit, \
+         eta_near_1) before replacing the arrays of the same\n * names in \
+         intern/cycles/scene/shader.tables. */\n"
     );
     for (name, vals) in tables {
         s.push('\n');
@@ -155,10 +168,11 @@ fn c_source(n: usize, tables: &Tables) -> String {
 /// 2..=[`CYCLES_MAX_EDGE`]): `cycles_ggx_glass.tables` (C arrays `table_ggx_glass_E`,
 /// `table_ggx_glass_inv_E` of n³ values and, with `with_avg`, `table_ggx_glass_Eavg`,
 /// `table_ggx_glass_inv_Eavg` of n²) and the sidecar `cycles_ggx_glass.json`. Every value is
-/// R + T from [`glass_e`] / [`glass_e_avg`] at Cycles' node, each channel converged to
+/// R + T from [`glass_e_correlated`] / [`glass_e_avg_correlated`] at Cycles' node, each
+/// channel converged to
 /// [`INTEGRATION_TOL`], saturated to [0, 1] as Cycles does, rounded to f32. `progress(1)` per
-/// node. Cost (release, 2 shared cores): both 16³ E tables 143 s; E_avg from inside is the
-/// bulk (~3e8 integrand evaluations per node at α = 1, η = 1/99.5; docs/engines.md).
+/// node. Cost (release, 2 shared cores): both 16³ E tables 1.6 s, all four arrays 23 s
+/// (docs/engines.md).
 pub fn cycles(n: usize, with_avg: bool, progress: &(dyn Fn(u64) + Sync)) -> Result<Vec<File>> {
     if !(2..=CYCLES_MAX_EDGE).contains(&n) {
         return Err(Error::Size(n));
@@ -215,10 +229,10 @@ fn sidecar(
         },
         "arrays": arrays,
         "size": n,
-        "drop_in": if n == CYCLES_EDGE { "same names, sizes, nodes and index order as Cycles' tables; NOT the same model: see masking" } else { "no: Cycles' lookups hard-code 16 nodes per axis" },
-        "integral": "E(mu, r, eta) = R + T: the total single-scattering directional albedo of a GGX rough dielectric for light arriving along mu = cos(theta) from the side of index 1; R = integral of f_r |cos theta_i| over the near hemisphere, T = integral of the adjoint (energy) transmission f_t* |cos theta_i| over the far hemisphere (without the eta^2 radiance factor; Cycles' sample weight eval/pdf is the same energy fraction). E_avg = 2 * integral over [0, 1] of E(mu) mu dmu.",
-        "model": "rough dielectric of Walter, Marschner, Li, Torrance (EGSR 2007): GGX NDF, alpha = r^2, exact unpolarised dielectric Fresnel (total internal reflection included); brdf-core models::rough_dielectric through brdf_lut::generate::glass::{glass_e, glass_e_avg}",
-        "masking": "SEPARABLE Smith G = G1(wi) G1(wo) (the generator's only glass masking). Cycles' closure (bsdf_microfacet.h: eval = F D common / (1 + Lambda_i + Lambda_o)) uses the HEIGHT-CORRELATED G, and its shipped tables hold that model's E, which is larger at high roughness and grazing mu: at eta -> 1 the separable E is G1(mu) and the correlated E is (1 + Lambda)/(1 + 2 Lambda) (mu = 4/15, r = 1: limits 0.421 vs 0.633; at ior 1.0089 these arrays hold 0.427 where Cycles ships 0.6385). Used as is, these arrays make Cycles' energy compensation 1/E too strong there; a drop-in needs the correlated variant of the generator (not written: docs/engines.md).",
+        "drop_in": if n == CYCLES_EDGE { "same names, sizes, nodes, index order and model as Cycles' tables (the closure's height-correlated sample weight), but for the x = 0 column and the z = 0 slice: see narrow_limit and eta_near_1" } else { "no: Cycles' lookups hard-code 16 nodes per axis" },
+        "integral": "E(mu, r, eta) = R + T: the mean of the sample weight eval/pdf of Cycles' GGX glass closure for light arriving along mu = cos(theta) from the side of index 1 (what cycles_precompute.cpp averages): over the GGX visible normals h (Heitz 2018), F(wo.h) w(l) for the reflected ray l if it leaves above the surface plus (1 - F(wo.h)) w(t) for the refracted ray t wherever it exists (either side of the surface: Cycles does not test it), w(o) = G2/G1(wo) = (1 + Lambda(wo))/(1 + Lambda(wo) + Lambda(o)); the energy fraction (no eta^2 radiance factor). E_avg = 2 * integral over [0, 1] of E(mu) mu dmu",
+        "model": "Blender Cycles' microfacet glass closure (bsdf_microfacet.h, after Walter, Marschner, Li, Torrance, EGSR 2007): GGX NDF, alpha = r^2, exact unpolarised dielectric Fresnel (total internal reflection included), height-correlated Smith G2; brdf_lut::generate::glass::correlated::{glass_e_correlated, glass_e_avg_correlated}",
+        "masking": "HEIGHT-CORRELATED Smith G2 = 1/(1 + Lambda_i + Lambda_o), GGX Lambda(z) = (sqrt(1 + alpha^2 (1 - z^2)/z^2) - 1)/2 (Heitz 2014), as Cycles' closure evaluates it (eval = F D common/(1 + Lambda_i + Lambda_o), pdf = D common lobe/(1 + Lambda_i)); matches 25 shipped E values and 4 E_avg values of shader.tables within 9.1e-6 (brdf-lut tests/glass_correlated.rs). Not brdf-core's rough dielectric, which has the separable G1 G1 (brdf_lut::generate::glass::glass_e)",
         "axes": {
             "x": "fastest: r = clamp(i/(N - 1), 1e-4, 1), GGX alpha = r^2",
             "y": "mu = clamp(j/(N - 1), 1e-4, 1) (E tables only)",
@@ -227,11 +241,11 @@ fn sidecar(
         "orientation": "E: flat index i + N (j + N k) (x = r fastest, then y = mu, then z); E_avg: i + N k. Cycles reads them with lookup_table_read_3D(rough, mu, z) / lookup_table_read_2D(rough, z), z = sqrt(|ior - 1|/(ior + 1)) for the ior >= 1 table or with 1/ior for the inv table, linear between endpoint nodes",
         "encoding": "IEEE binary32 (f32), round to nearest of the saturated f64 value; printed as the shortest decimal that reads back to the same f32 (Cycles' own file prints 6 decimals)",
         "linear": true,
-        "texel_values": format!("each value = saturate(R + T) at its node, each channel converged by the generator's adaptive cap rule to {INTEGRATION_TOL:e} (largest estimates below), computed in f64 at the node coordinates above; Cycles' own values are Monte Carlo means (2^23 samples, 2^26 for E_avg) of the closure's sample weight in f32"),
+        "texel_values": format!("each value = saturate(R + T) at its node, each channel converged by the generator's adaptive ring rule to {INTEGRATION_TOL:e} (largest estimates below), computed in f64 at the node coordinates above; Cycles' own values are Sobol means (2^23 samples, 2^26 for E_avg) of the closure's sample weight in f32, printed with 6 decimals"),
         "integration_bound": bounds,
-        "narrow_limit": "x = 0 (r = 1e-4, alpha = 1e-8): the kernel floors alpha at 1e-4 (brdf_core::models::rough_dielectric::ALPHA_FLOOR), so these texels hold the rough integral at alpha = 1e-4: E = 1 - O(alpha^2/mu^2), i.e. within 5e-6 of 1 for mu >= 1/15 (both directions, measured at 16 nodes), but 0.66 to 0.90 at mu = 1e-4 (0.88 for most ior). Cycles' precompute takes its singular (smooth) path there (alpha_x alpha_y <= 5e-7) and stores 1.",
-        "eta_near_1": "z = 0 (ior = 1 + 2e-8): the rough integral's limit, R -> 0 and T -> G1(mu) (separable G: facets refract straight through, the second G1 masks), not 1; Cycles treats |eta - 1| < 1e-4 as singular refraction and stores ~1 there. Cycles interpolates this slice only for 1 < ior < 1.0089.",
-        "sources": "blender/blender intern/cycles/app/cycles_precompute.cpp (nodes, order, saturation, inv tables at 1/ior), kernel/closure/bsdf_microfacet.h (microfacet_ggx_preserve_energy; the closure's G), kernel/util/lookup_table.h (endpoint-node lookup), scene/shader.tables (the arrays); read, not copied",
+        "narrow_limit": "x = 0 (r = 1e-4, alpha = 1e-8): the generator floors alpha at 1e-4 (brdf_core::models::rough_dielectric::ALPHA_FLOOR), so these texels hold the rough integral at alpha = 1e-4: E = 1 - O(alpha^2/mu^2), within 5.3e-6 of 1 for mu >= 1/15 (both directions, measured at 16 nodes; 1e-5 for mu >= 0.5 tested), but 0.89 to 0.92 at mu = 1e-4 from outside and 0.72 to 0.89 from inside. Cycles' precompute takes its singular (smooth) path there (alpha_x alpha_y <= 5e-7) and stores 1 (0.999985 at mu = 1e-4)",
+        "eta_near_1": "z = 0 (ior = 1 + 2e-8): the rough integral's limit, R -> 0 and T -> (1 + Lambda(mu))/(1 + 2 Lambda(mu)) (facets refract straight through; = (1 + mu)/2 at r = 1), not 1; Cycles' ior there is 1 in f32 and it refracts singularly for |eta - 1| < 1e-4 (weight 1), storing ~1. Cycles interpolates this slice only for 1 < ior < 1.0089",
+        "sources": "blender/blender intern/cycles/app/cycles_precompute.cpp (nodes, order, saturation, inv tables at 1/ior, the averaged sample weight), kernel/closure/bsdf_microfacet.h (bsdf_microfacet_sample and _eval: G2, lobe choice, no side test of the refracted ray; microfacet_ggx_preserve_energy), kernel/util/lookup_table.h (endpoint-node lookup), scene/shader.tables (the arrays; compared values from commit 09cf4924cc65); read, not copied",
     });
     let mut b =
         serde_json::to_vec_pretty(&side).map_err(|e| Error::Encode(format!("json: {e}")))?;

@@ -31,9 +31,8 @@ pub enum Target {
     Glass,
     /// Blender Cycles' rough-glass albedo tables (`table_ggx_glass_E`, `_inv_E`; E_avg only
     /// through the library) as C arrays in Cycles' nodes and index order + JSON sidecar; --size N
-    /// gives N nodes per axis (default and drop-in: 16). Values from the generator's
-    /// separable-G rough dielectric (Cycles' closure uses the height-correlated G: the
-    /// sidecar's `masking`).
+    /// gives N nodes per axis (default and drop-in: 16). Values: Cycles' own closure
+    /// integrand, height-correlated G (`glass::correlated`; the sidecar's `masking`).
     Cycles,
     /// Blender EEVEE's rough-glass tables (`bsdf_ggx`, `btdf_ggx` of `eevee_lut.cc`) as C++
     /// arrays in EEVEE's nodes and order + JSON sidecar: each channel the converged integral

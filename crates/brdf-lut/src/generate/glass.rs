@@ -80,6 +80,7 @@ use brdf_core::models::rough_dielectric::{refract, ALPHA_FLOOR};
 use brdf_core::split_sum::converged::{integrate_cap, CapIntegrand, GgxSplitSum};
 use std::format;
 
+pub mod correlated;
 pub mod eevee;
 mod radial;
 mod rings;

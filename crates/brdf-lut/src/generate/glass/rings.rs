@@ -217,11 +217,16 @@ pub enum Weights {
     /// (1 − S) G1(|t|) with S = (1 − |h·v|)⁵ for η > 1, (1 − |h·t|)⁵ for η ≤ 1: the
     /// `transmission_factor` of `btdf_ggx` / `bsdf_ggx`.
     SchlickTransmission,
+    /// Blender Cycles' glass closure (`glass/correlated.rs`): the sampled weight
+    /// eval/pdf = G2(v, o)/G1(v) with the height-correlated G2 = 1/(1 + Λ(v) + Λ(o)), times
+    /// F (reflected, where l_z > 0) or 1 − F (refracted, wherever the refraction exists:
+    /// Cycles does not test the side of the refracted ray, so for η < 1 rays refracted
+    /// upwards, t_z > 0, count with Λ(|t_z|)).
+    HeightCorrelated,
 }
 
 /// The rays of one visible normal, as [`Weights::at`] takes them.
 #[derive(Clone, Copy)]
-#[allow(dead_code)] // c and s are for the variants that weight by them
 pub struct Rays {
     /// c = v·h > 0.
     pub c: f64,
@@ -231,10 +236,12 @@ pub struct Rays {
     pub f: f64,
     /// n·l of the reflected ray (its weight is 0 where l_z ≤ 0).
     pub lz: f64,
-    /// n·t of the refracted ray (its weight is 0 where t_z ≥ 0; 0 under TIR).
+    /// n·t of the refracted ray (0 under TIR; the separable weight is 0 where t_z ≥ 0).
     pub tz: f64,
     /// η (|h·t| = s/η).
     pub eta: f64,
+    /// Λ(v) of the node (Smith's masking exponent at μ; the correlated weights use it).
+    pub lambda_v: f64,
 }
 
 impl Weights {
@@ -264,8 +271,36 @@ impl Weights {
                 let cos = if r.eta > 1.0 { r.c } else { r.s / r.eta };
                 [g, (1.0 - schlick(cos)) * g]
             }
+            Weights::HeightCorrelated => [
+                if r.lz > 0.0 {
+                    r.f * g2_over_g1v(r.lz, a2, r.lambda_v)
+                } else {
+                    0.0
+                },
+                if r.s >= 0.0 {
+                    (1.0 - r.f) * g2_over_g1v(r.tz.abs(), a2, r.lambda_v)
+                } else {
+                    0.0
+                },
+            ],
         }
     }
+
+    /// Whether rays refracted upwards (t_z > 0, η < 1) carry weight: T's support on a ring
+    /// then starts at the TIR edge x_k, not at the refracted horizon x_t.
+    fn counts_upward_refraction(self) -> bool {
+        matches!(self, Weights::HeightCorrelated)
+    }
+}
+
+/// G2(v, o)/G1(v) = (1 + Λ(v))/(1 + Λ(v) + Λ(z)) at polar cosine z = |n·o| ∈ [0, 1] of the
+/// other ray, with GGX's Λ(z) = (√(1 + α²(1 − z²)/z²) − 1)/2 (Heitz 2014, eq. 72; G2 his §6):
+/// with q = 1 + 2Λ(v), (1 + q) z/(q z + √(z² + α²(1 − z²))), which → 0 linearly at z = 0.
+#[inline]
+fn g2_over_g1v(z: f64, a2: f64, lambda_v: f64) -> f64 {
+    let z = z.min(1.0);
+    let q = 1.0 + 2.0 * lambda_v;
+    (1.0 + q) * z / (q * z + (z * z + a2 * (1.0 - z) * (1.0 + z)).sqrt())
 }
 
 /// Schlick's factor (1 − cos)⁵ (Schlick 1994), cos clamped to [0, 1] as EEVEE saturates it.
@@ -286,6 +321,8 @@ struct Node {
     k: f64,
     /// 2 G1(v)/(π μ).
     pref: f64,
+    /// Λ(v) = 1/G1(v) − 1.
+    lambda_v: f64,
     /// The integrand's weights.
     weights: Weights,
 }
@@ -381,6 +418,7 @@ impl Node {
             eta,
             k,
             pref: 2.0 * g1v / (PI * mu),
+            lambda_v: <TrowbridgeReitz<f64> as Isotropic<f64>>::lambda_cos(mu, alpha),
             weights,
         }
     }
@@ -404,6 +442,7 @@ impl Node {
                 lz,
                 tz: ((c - s) * hz - self.mu) / self.eta,
                 eta: self.eta,
+                lambda_v: self.lambda_v,
             }
         } else {
             Rays {
@@ -413,6 +452,7 @@ impl Node {
                 lz,
                 tz: 0.0,
                 eta: self.eta,
+                lambda_v: self.lambda_v,
             }
         };
         let [r, t] = self.weights.at(&rays, self.alpha * self.alpha);
@@ -422,7 +462,8 @@ impl Node {
     /// The ring at τ with its edges (module docs' table) and its structure: the edges
     /// inside (visibility 1, reflected horizon 2, TIR 3, refracted horizon 4) in x order,
     /// three bits each. The pieces start where R or T can first be nonzero: min(x_r, T's
-    /// first x: 0 for η ≥ 1, else x_t where k h_z > μ, else x_k), or at x₋.
+    /// first x: 0 for η ≥ 1, else x_t where k h_z > μ, else x_k; always x_k for weights
+    /// that count upward refraction), or at x₋.
     fn ring(&self, tau: f64) -> (Ring, u32) {
         let q2 = 1.0 + tau * tau;
         let hz = 1.0 / q2.sqrt();
@@ -435,7 +476,11 @@ impl Node {
         } else {
             (f64::NAN, f64::NAN)
         };
-        let t0 = if k > 0.0 { xt.max(xk) } else { 0.0 };
+        let t0 = match (k > 0.0, self.weights.counts_upward_refraction()) {
+            (false, _) => 0.0,
+            (true, false) => xt.max(xk),
+            (true, true) => xk,
+        };
         let start = xr.min(t0);
         let mut e = [(0.0, 0u32); 4];
         let mut n = 0;
