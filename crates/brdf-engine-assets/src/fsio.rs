@@ -325,11 +325,14 @@ fn write_temp(
     std::fs::create_dir_all(&dir).map_err(|e| named(format!("creating {}", dir.display()), &e))?;
     let writing = |e: io::Error| named(format!("writing {}", shown.display()), &e);
     let name = target.file_name().unwrap_or_default().to_string_lossy();
-    let tmp = tempfile::Builder::new()
-        .prefix(&format!(".{name}."))
-        .suffix(".tmp")
-        .tempfile_in(&dir)
-        .map_err(writing)?;
+    let prefix = format!(".{name}.");
+    let mut b = tempfile::Builder::new();
+    b.prefix(&prefix).suffix(".tmp");
+    // The mode `File::create` gives (0o666 less the umask), not the temporary file's
+    // default 0o600: a written asset is as readable as any other new file.
+    #[cfg(unix)]
+    b.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o666));
+    let tmp = b.tempfile_in(&dir).map_err(writing)?;
     let mut w = FailAfter {
         inner: io::BufWriter::new(tmp.as_file()),
         left: faults.fail_after_bytes,
@@ -403,6 +406,10 @@ fn commit_one(
     inject: bool,
 ) -> io::Result<Option<TempPath>> {
     let err = |e: &io::Error| named(format!("writing {}", shown.display()), e);
+    if let Ok(m) = std::fs::metadata(path) {
+        // A replaced file keeps its mode.
+        let _ = tmp.as_file().set_permissions(m.permissions());
+    }
     let backup = if force && path.exists() {
         let name = path.file_name().unwrap_or_default().to_string_lossy();
         let b = tempfile::Builder::new()

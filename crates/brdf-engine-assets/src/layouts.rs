@@ -516,7 +516,7 @@ pub fn glass(n: [usize; 3], inside: bool, progress: &(dyn Fn(u64) + Sync)) -> Re
         "encoding": "IEEE binary16, round to nearest even, of the f64 integral",
         "linear": "linear data: no transfer function; never sample as sRGB",
         "sampler": "trilinear (LINEAR on all three axes), clamp-to-edge, one level",
-        "texel_values": "each texel = the integral at its own centre, computed by brdf-lut's generator (generate/glass.rs: converged adaptive Gauss-Kronrod on the GGX visible-normal spherical cap, each channel's estimate <= 2e-6), then rounded to binary16",
+        "texel_values": "each texel = the integral at its own centre, computed by brdf-lut's generator (generate/glass/rings.rs: rings of the half vector around the normal, every edge of the integrand cut in closed form, globally adaptive Gauss-Kronrod with each channel's estimate <= 2e-6; checked by lut verify against an independent radial rule, generate/glass/radial.rs), then rounded to binary16",
         "integration_bound": g.integration,
         "interpolation_error": { "max_abs": g.error.max_abs, "rms": g.error.rms, "samples": g.error.samples, "what": "trilinear lookup of the binary16 texels against the direct integral at random points" },
     });

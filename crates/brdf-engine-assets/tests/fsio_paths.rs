@@ -232,3 +232,27 @@ fn named_spellings() {
         run_case(export, &parts).unwrap();
     }
 }
+
+/// A written file gets the mode `File::create` gives a new file (not a temporary file's
+/// 0o600), and a replaced file keeps its own mode.
+#[test]
+fn written_files_have_the_mode_of_new_files() {
+    use std::os::unix::fs::PermissionsExt;
+    let d = tempfile::tempdir().unwrap();
+    let plain = d.path().join("plain");
+    std::fs::File::create(&plain).unwrap();
+    let want = std::fs::metadata(&plain).unwrap().permissions().mode() & 0o777;
+    let new = d.path().join("new.bin");
+    write_together(&[(new.clone(), b"x".to_vec())], &Policy::default()).unwrap();
+    let got = std::fs::metadata(&new).unwrap().permissions().mode() & 0o777;
+    assert_eq!(got, want, "{got:o} vs {want:o}");
+    std::fs::set_permissions(&new, std::fs::Permissions::from_mode(0o640)).unwrap();
+    let policy = Policy {
+        force: true,
+        ..Policy::default()
+    };
+    write_together(&[(new.clone(), b"y".to_vec())], &policy).unwrap();
+    let kept = std::fs::metadata(&new).unwrap().permissions().mode() & 0o777;
+    assert_eq!(kept, 0o640, "{kept:o}");
+    assert_eq!(std::fs::read(&new).unwrap(), b"y");
+}

@@ -29,8 +29,8 @@ pub enum Target {
     /// η) + BLUT + JSON sidecar, light from outside (`glass_e`, η ∈ [1, 3]) and from inside
     /// (`glass_e_inv`, η ∈ [1/3, 1]); --size N gives N³ (default 32).
     Glass,
-    /// Blender Cycles' rough-glass albedo tables (`table_ggx_glass_E`, `_inv_E`; E_avg only
-    /// through the library) as C arrays in Cycles' nodes and index order + JSON sidecar; --size N
+    /// Blender Cycles' rough-glass albedo tables (`table_ggx_glass_E`, `_inv_E`, `_Eavg`,
+    /// `_inv_Eavg`) as C arrays in Cycles' nodes and index order + JSON sidecar; --size N
     /// gives N nodes per axis (default and drop-in: 16). Values: Cycles' own closure
     /// integrand, height-correlated G (`glass::correlated`; the sidecar's `masking`).
     Cycles,
@@ -198,21 +198,20 @@ fn write_and_report(
     Ok(())
 }
 
-/// The Cycles E tables into `dir` (both directions), n nodes per axis. E_avg is left to
-/// the library call (`with_avg`): from inside at ior 99.5 it takes hours.
+/// The Cycles E and E_avg tables into `dir` (both directions), n nodes per axis.
 fn cycles(n: usize, dir: &Path, force: bool) -> Result<()> {
     let cap = brdf_engine_assets::cycles::CYCLES_MAX_EDGE;
     if !(2..=cap).contains(&n) {
         bail!("--size {n}: a Cycles table's edge must be between 2 and {cap} (Cycles: 16)");
     }
-    let bar = ProgressBar::new((2 * n * n * n) as u64);
+    let bar = ProgressBar::new((2 * n * n * (n + 1)) as u64);
     bar.set_style(
         ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} nodes, eta {eta}")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
     bar.set_message(format!("Cycles glass {n}³"));
     let t0 = std::time::Instant::now();
-    let files = brdf_engine_assets::cycles(n, false, &|k| bar.inc(k));
+    let files = brdf_engine_assets::cycles(n, true, &|k| bar.inc(k));
     bar.finish_and_clear();
     write_and_report("cycles", &format!("{n}³"), t0, dir, &files?, force)
 }
