@@ -179,6 +179,7 @@ fn measure_default_tables() {
         (Kind::GlassAlbedo, 1.0, 3.0),
         (Kind::GlassAlbedo, third, 1.0),
         (Kind::GlassAverageAlbedo, 1.0, 3.0),
+        (Kind::GlassAverageAlbedo, third, 1.0),
     ] {
         let mut spec = Spec::new(kind, Distribution::Ggx, Masking::SmithSeparable);
         spec.samples = 200;
