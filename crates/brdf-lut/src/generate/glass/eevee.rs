@@ -32,7 +32,7 @@
 //! ```
 //!
 //! The shader reads them as T = (1 − F0) transmission_factor and R = F0 scale + F90 bias.
-//! scale + bias = ∫ p G1(l) [l_z > 0]: GGX's directional albedo without Fresnel (the
+//! scale + bias = ∫ p G1(l) over l_z > 0: GGX's directional albedo without Fresnel (the
 //! split sum's A + B), independent of η.
 //!
 //! **α = 0** (EEVEE's slice r = 0): the facets are the mean surface, h = n, c = μ, every
