@@ -52,16 +52,10 @@ fn ior(k: usize, n: usize) -> f64 {
 }
 
 /// Exact unpolarised dielectric Fresnel reflectance at cos c for relative index η (Walter
-/// et al. 2007, eq. 22), 1 under total internal reflection.
+/// et al. 2007, eq. 22), 1 under total internal reflection: brdf-core's, not the ring
+/// rule's inlined copy.
 fn fresnel(c: f64, eta: f64) -> f64 {
-    let g2 = eta * eta - 1.0 + c * c;
-    if g2 <= 0.0 {
-        return 1.0;
-    }
-    let g = g2.sqrt();
-    let a = (g - c) / (g + c);
-    let b = (c * (g + c) - 1.0) / (c * (g - c) + 1.0);
-    0.5 * a * a * (1.0 + b * b)
+    brdf_core::fresnel::f_dielectric(eta, c)
 }
 
 /// E at η = 1: (1 + Λ)/(1 + 2Λ), GGX Λ(μ) = (√(1 + α²(1 − μ²)/μ²) − 1)/2 (Heitz 2014,
