@@ -458,68 +458,71 @@ pub fn khronos_sheen(n: usize, ek: &[f64], ash: &[f64]) -> Result<Vec<File>> {
     Ok(out)
 }
 
-/// The generator spec of a rough-glass engine texture: `glass-e` (R, T), GGX, perceptual
-/// roughness, n[0] × n[1] × n[2] texel centres over μ ∈ [0, 1], r ∈ [0, 1] and η ∈ [1, 3]
-/// (light from outside) or [1/3, 1] (`inside`: light from inside the glass), all linear;
-/// binary16 nodes (the texture's own encoding).
-pub fn glass_spec(n: [usize; 3], inside: bool) -> generate::Spec {
+/// The generator spec of a rough-glass engine texture: for n = [N0, N1, N2] `glass-e`
+/// (R, T) over μ ∈ [0, 1], r ∈ [0, 1] and η; for n = [N0, N1] `glass-e-avg` (R_avg, T_avg)
+/// over r and η; GGX, perceptual roughness, texel centres, all linear, η ∈ [1, 3] (light
+/// from outside) or [1/3, 1] (`inside`: light from inside the glass); binary16 nodes (the
+/// texture's own encoding).
+pub fn glass_spec(n: &[usize], inside: bool) -> generate::Spec {
     use brdf_lut::generate::{AxisSpec, Distribution, Kind, Masking, Spec};
     use brdf_lut::{Encoding, Interpolation, Placement, Warp};
-    let mut s = Spec::new(
-        Kind::GlassAlbedo,
-        Distribution::Ggx,
-        Masking::SmithSeparable,
-    );
+    let avg = n.len() == 2;
+    let kind = if avg {
+        Kind::GlassAverageAlbedo
+    } else {
+        Kind::GlassAlbedo
+    };
+    let mut s = Spec::new(kind, Distribution::Ggx, Masking::SmithSeparable);
     let (elo, ehi) = if inside { (1.0 / 3.0, 1.0) } else { (1.0, 3.0) };
     let axis = |k: usize, lo, hi| AxisSpec {
         placement: Placement::TexelCentre,
         ..AxisSpec::endpoint(n[k].min(u32::MAX as usize) as u32, lo, hi, Warp::Linear)
     };
-    s.axes = vec![axis(0, 0.0, 1.0), axis(1, 0.0, 1.0), axis(2, elo, ehi)];
+    s.axes = (0..n.len())
+        .map(|k| match n.len() - k {
+            1 => axis(k, elo, ehi),
+            _ => axis(k, 0.0, 1.0),
+        })
+        .collect();
     s.encoding = Encoding::F16;
     s.interpolation = Interpolation::Linear;
-    s.samples = 256;
+    s.samples = if avg { 64 } else { 256 };
     s
 }
 
-/// Rough glass (GGX rough dielectric, Walter et al. 2007): a 3-D KTX2 texture
-/// `glass_e[_inv].ktx2` (R16G16_SFLOAT: R = reflected, G = transmitted energy fraction;
-/// x = μ, y = roughness, z = η, texel centres), the BLUT file of the same nodes and bits
-/// (`.blut`, binary16) and the JSON sidecar. The level data of the KTX2 is the BLUT payload
-/// itself (both store axis 0 fastest, channels interleaved), so the two cannot disagree.
-pub fn glass(n: [usize; 3], inside: bool, progress: &(dyn Fn(u64) + Sync)) -> Result<Vec<File>> {
-    if n.iter().any(|&k| !(2..=256).contains(&k)) {
+/// Rough glass (GGX rough dielectric, Walter et al. 2007). For n = [N0, N1, N2]: a 3-D KTX2
+/// texture `glass_e[_inv].ktx2` (R16G16_SFLOAT: R = reflected, G = transmitted energy
+/// fraction; x = μ, y = roughness, z = η, texel centres); for n = [N0, N1]: the 2-D
+/// `glass_e_avg[_inv].ktx2` of their averages over μ (x = roughness, y = η). Each with the
+/// BLUT file of the same nodes and bits (`.blut`, binary16) and the JSON sidecar. The level
+/// data of the KTX2 is the BLUT payload itself (both store axis 0 fastest, channels
+/// interleaved), so the two cannot disagree.
+pub fn glass(n: &[usize], inside: bool, progress: &(dyn Fn(u64) + Sync)) -> Result<Vec<File>> {
+    if !(2..=3).contains(&n.len()) || n.iter().any(|&k| !(2..=256).contains(&k)) {
         return Err(Error::Size(*n.iter().max().unwrap_or(&0)));
     }
+    let avg = n.len() == 2;
     let spec = glass_spec(n, inside);
     let g = generate::generate(&spec, progress).map_err(Error::Generate)?;
     let view = brdf_lut::LutView::parse(&g.bytes).map_err(|e| Error::Encode(e.to_string()))?;
-    let stem = if inside { "glass_e_inv" } else { "glass_e" };
-    let ktx = crate::containers::ktx2_rg16f_dims(n, view.payload())?;
+    let stem = match (avg, inside) {
+        (false, false) => "glass_e",
+        (false, true) => "glass_e_inv",
+        (true, false) => "glass_e_avg",
+        (true, true) => "glass_e_avg_inv",
+    };
+    let dims = [n[0], n[1], n.get(2).copied().unwrap_or(0)];
+    let ktx = crate::containers::ktx2_rg16f_dims(dims, view.payload())?;
     let eta = if inside { "[1/3, 1]" } else { "[1, 3]" };
-    let side = json!({
-        "target": "glass",
-        "files": {
-            format!("{stem}.ktx2"): "KTX2, vkFormat 83 = R16G16_SFLOAT, 3-D (width = mu, height = roughness, depth = eta), 1 level, Zstandard supercompression (level 22): R = reflected R, G = transmitted T",
-            format!("{stem}.blut"): "the same nodes and binary16 bits as a BLUT file (kind glass-e; docs/lut-format.md), with its measured interpolation error and integration bound",
-        },
-        "size": n,
-        "integral": "directional albedo of a rough dielectric interface split into reflected and transmitted parts, for light arriving along mu = cos(theta) from the side of index 1: R(mu) = integral of f_r |cos theta_i| over the near hemisphere; T(mu) = integral of the adjoint (importance) transmission f_t* |cos theta_i| over the far hemisphere, i.e. the energy fraction transmitted, without the eta^2 radiance factor; R + T <= 1 (equality as roughness -> 0; the rest is lost to masking). Radiance crossing into the far medium is T * eta^2 per unit solid angle.",
-        "model": "rough dielectric of Walter, Marschner, Li, Torrance (EGSR 2007): GGX (Trowbridge-Reitz) NDF, separable Smith G = G1(wi) G1(wo), exact unpolarised dielectric Fresnel (total internal reflection included); brdf-core models::rough_dielectric",
-        "axes": {
-            "mu": "x: mu = (x + 0.5)/N0 in [0, 1]",
-            "roughness": "y: perceptual roughness r = (y + 0.5)/N1; GGX alpha = r^2, floored at 1e-4 as in the kernel",
-            "eta": format!("z: eta = lo + (z + 0.5)/N2 (hi - lo) over {eta}: the index of the far side over that of the side the light arrives from ({})", if inside { "light inside the glass going out: eta = 1/IOR" } else { "light outside entering the glass: eta = IOR" }),
-        },
-        "orientation": "KTXorientation rdi: texel (x, y, z) at byte offset 4 (x + N0 (y + N1 z)); the shader samples uvw = (mu, r, (eta - lo)/(hi - lo)) with clamp-to-edge",
-        "placement": "texel centres on every axis: texel i of N holds the value at (i + 0.5)/N of its range",
-        "encoding": "IEEE binary16, round to nearest even, of the f64 integral",
-        "linear": "linear data: no transfer function; never sample as sRGB",
-        "sampler": "trilinear (LINEAR on all three axes), clamp-to-edge, one level",
-        "texel_values": "each texel = the integral at its own centre, computed by brdf-lut's generator (generate/glass/rings.rs: rings of the half vector around the normal, every edge of the integrand cut in closed form, globally adaptive Gauss-Kronrod with each channel's estimate <= 2e-6; checked by lut verify against an independent radial rule, generate/glass/radial.rs), then rounded to binary16",
-        "integration_bound": g.integration,
-        "interpolation_error": { "max_abs": g.error.max_abs, "rms": g.error.rms, "samples": g.error.samples, "what": "trilinear lookup of the binary16 texels against the direct integral at random points" },
+    let mut side = glass_sidecar(avg, stem, inside, eta);
+    let kind = if avg { "glass-e-avg" } else { "glass-e" };
+    side["files"] = json!({
+        format!("{stem}.ktx2"): format!("KTX2, vkFormat 83 = R16G16_SFLOAT, {}, 1 level, Zstandard supercompression (level 22): R = reflected, G = transmitted", if avg { "2-D (width = roughness, height = eta)" } else { "3-D (width = mu, height = roughness, depth = eta)" }),
+        format!("{stem}.blut"): format!("the same nodes and binary16 bits as a BLUT file (kind {kind}; docs/lut-format.md), with its measured interpolation error and integration bound"),
     });
+    side["size"] = json!(n);
+    side["integration_bound"] = json!(g.integration);
+    side["interpolation_error"] = json!({ "max_abs": g.error.max_abs, "rms": g.error.rms, "samples": g.error.samples, "what": format!("{} lookup of the binary16 texels against the direct integral at random points", if avg { "bilinear" } else { "trilinear" }) });
     let mut side_bytes =
         serde_json::to_vec_pretty(&side).map_err(|e| Error::Encode(format!("json: {e}")))?;
     side_bytes.push(b'\n');
@@ -537,4 +540,39 @@ pub fn glass(n: [usize; 3], inside: bool, progress: &(dyn Fn(u64) + Sync)) -> Re
             bytes: side_bytes,
         },
     ])
+}
+
+/// The words of a rough-glass sidecar ([`glass`]): E (`avg` false) or E_avg.
+fn glass_sidecar(avg: bool, stem: &str, inside: bool, eta: &str) -> serde_json::Value {
+    let eta_axis = |c: &str, n: &str| {
+        format!("{c}: eta = lo + ({c} + 0.5)/{n} (hi - lo) over {eta}: the index of the far side over that of the side the light arrives from ({})", if inside { "light inside the glass going out: eta = 1/IOR" } else { "light outside entering the glass: eta = IOR" })
+    };
+    let r_axis = |c: &str, n: &str| {
+        format!("{c}: perceptual roughness r = ({c} + 0.5)/{n}; GGX alpha = r^2, floored at 1e-4 as in the kernel")
+    };
+    let integral = "directional albedo of a rough dielectric interface split into reflected and transmitted parts, for light arriving along mu = cos(theta) from the side of index 1: R(mu) = integral of f_r |cos theta_i| over the near hemisphere; T(mu) = integral of the adjoint (importance) transmission f_t* |cos theta_i| over the far hemisphere, i.e. the energy fraction transmitted, without the eta^2 radiance factor; R + T <= 1 (equality as roughness -> 0; the rest is lost to masking). Radiance crossing into the far medium is T * eta^2 per unit solid angle.";
+    let rule = "computed by brdf-lut's generator (generate/glass/rings.rs: rings of the half vector around the normal, every edge of the integrand cut in closed form, globally adaptive Gauss-Kronrod with each channel's estimate <= 2e-6; checked by lut verify against an independent radial rule, generate/glass/radial.rs)";
+    let mut side = json!({
+        "target": "glass",
+        "model": "rough dielectric of Walter, Marschner, Li, Torrance (EGSR 2007): GGX (Trowbridge-Reitz) NDF, separable Smith G = G1(wi) G1(wo), exact unpolarised dielectric Fresnel (total internal reflection included); brdf-core models::rough_dielectric",
+        "placement": "texel centres on every axis: texel i of N holds the value at (i + 0.5)/N of its range",
+        "encoding": "IEEE binary16, round to nearest even, of the f64 integral",
+        "linear": "linear data: no transfer function; never sample as sRGB",
+    });
+    if avg {
+        side["integral"] = json!(format!("the cosine-weighted averages over mu of the {stem} directional albedo: R_avg = 2 int_0^1 R(mu) mu dmu, T_avg = 2 int_0^1 T(mu) mu dmu, where {integral}"));
+        side["axes"] = json!({ "roughness": r_axis("x", "N0"), "eta": eta_axis("y", "N1") });
+        side["orientation"] = json!("KTXorientation rd: texel (x, y) at byte offset 4 (x + N0 y); the shader samples uv = (r, (eta - lo)/(hi - lo)) with clamp-to-edge");
+        side["sampler"] = json!("bilinear (LINEAR), clamp-to-edge, one level");
+        side["texel_values"] = json!(format!("each texel = the average at its own centre, its mu integral globally adaptive (Gauss-Kronrod on panels broken at the critical cosine) over E(mu) {rule}, then rounded to binary16"));
+    } else {
+        side["integral"] = json!(integral);
+        side["axes"] = json!({ "mu": "x: mu = (x + 0.5)/N0 in [0, 1]", "roughness": r_axis("y", "N1"), "eta": eta_axis("z", "N2") });
+        side["orientation"] = json!("KTXorientation rdi: texel (x, y, z) at byte offset 4 (x + N0 (y + N1 z)); the shader samples uvw = (mu, r, (eta - lo)/(hi - lo)) with clamp-to-edge");
+        side["sampler"] = json!("trilinear (LINEAR on all three axes), clamp-to-edge, one level");
+        side["texel_values"] = json!(format!(
+            "each texel = the integral at its own centre, {rule}, then rounded to binary16"
+        ));
+    }
+    side
 }

@@ -27,7 +27,8 @@ pub enum Target {
     All,
     /// Rough glass: 3-D KTX2 (R16G16_SFLOAT: reflected R, transmitted T over μ × roughness ×
     /// η) + BLUT + JSON sidecar, light from outside (`glass_e`, η ∈ [1, 3]) and from inside
-    /// (`glass_e_inv`, η ∈ [1/3, 1]); --size N gives N³ (default 32).
+    /// (`glass_e_inv`, η ∈ [1/3, 1]), and their averages over μ as 2-D KTX2 (`glass_e_avg`,
+    /// `glass_e_avg_inv`, roughness × η); --size N gives N³ and N² (default 32).
     Glass,
     /// Blender Cycles' rough-glass albedo tables (`table_ggx_glass_E`, `_inv_E`, `_Eavg`,
     /// `_inv_Eavg`) as C arrays in Cycles' nodes and index order + JSON sidecar; --size N
@@ -165,15 +166,19 @@ pub fn generate(e: Engine, n: usize, dir: &Path, force: bool, quiet: bool) -> Re
     Ok(secs)
 }
 
-/// The rough-glass files (both directions of light) into `dir`, N³ texels each.
+/// The rough-glass files (both directions of light) into `dir`: E at N³ texels and E_avg
+/// at N² each.
 fn glass(n: usize, dir: &Path, force: bool) -> Result<()> {
     if !(2..=256).contains(&n) {
         bail!("--size {n}: a glass table's edge must be between 2 and 256");
     }
     for inside in [false, true] {
-        let t0 = std::time::Instant::now();
-        let files = brdf_engine_assets::glass([n; 3], inside, &|_| {})?;
-        write_and_report("glass", &format!("{n}³"), t0, dir, &files, force)?;
+        for shape in [&[n; 3][..], &[n; 2][..]] {
+            let t0 = std::time::Instant::now();
+            let files = brdf_engine_assets::glass(shape, inside, &|_| {})?;
+            let size = format!("{n}{}", if shape.len() == 3 { "³" } else { "²" });
+            write_and_report("glass", &size, t0, dir, &files, force)?;
+        }
     }
     Ok(())
 }

@@ -603,7 +603,7 @@ pub fn prepare_glass(dir: &Path) -> Result<()> {
 fn glass_set(dir: &Path, inside: bool) -> Result<()> {
     let n = GLASS_N;
     let stem = if inside { "glass_e_inv" } else { "glass_e" };
-    let mut files = brdf_engine_assets::glass([n; 3], inside, &|_| {})?;
+    let mut files = brdf_engine_assets::glass(&[n; 3], inside, &|_| {})?;
     let get = |name: String| {
         files
             .iter()
