@@ -17,7 +17,9 @@
 // outside (glass_e, eta in [1, 3]) and from inside (glass_e_inv, eta in [1/3, 1]): the KTX2's
 // level 0 (R16G16_SFLOAT) as a TEXTURE_3D RG16F, compared with the f64 trilinear value of its
 // binary16 texels within 3 axes x 2^-9 x spread + f32, and with the BLUT's
-// GlassAlbedoTable::rt lookup within that bound plus the lookup's own f32 bound.
+// GlassAlbedoTable::rt lookup within that bound plus the lookup's own f32 bound. Their
+// averages over mu (glass_e_avg, glass_e_avg_inv: 12^2, (u, v) = (r, (eta - lo)/(hi - lo)))
+// the same way as a TEXTURE_2D RG16F, bilinear, against GlassAverageTable::rt_avg.
 //
 // Edited copies of the shader expressions were each seen to fail here: lut_sheen_E sampled
 // with u and v swapped, lut_charlie 0.1 texel off along mu, glass_e with v and w swapped or
@@ -37,6 +39,8 @@ const draw = useBrowser(lutDir, {
   '/sheen/lut_charlie.png': 'image/png',
   '/glass/glass_e.rg16f.bin': 'application/octet-stream',
   '/glass/glass_e_inv.rg16f.bin': 'application/octet-stream',
+  '/glass/glass_e_avg.rg16f.bin': 'application/octet-stream',
+  '/glass/glass_e_avg_inv.rg16f.bin': 'application/octet-stream',
   });
 
 test('sheen textures lut_charlie.png (B, 8-bit) and lut_sheen_E.png (R16F) sampled in WebGL2', async () => {
@@ -76,24 +80,27 @@ test('sheen textures lut_charlie.png (B, 8-bit) and lut_sheen_E.png (R16F) sampl
   points.forEach((_, k) => assert.equal(ash.values[4 * k + 1], 0));
 });
 
-for (const stem of ['glass_e', 'glass_e_inv']) {
-  test(`rough glass ${stem} (3-D RG16F) sampled with texture(sampler3D) in WebGL2`, async () => {
+for (const stem of ['glass_e', 'glass_e_inv', 'glass_e_avg', 'glass_e_avg_inv']) {
+  const is3d = !stem.includes('avg');
+  test(`rough glass ${stem} (${is3d ? '3-D' : '2-D'} RG16F) sampled with texture(${is3d ? 'sampler3D' : 'sampler2D'}) in WebGL2`, async () => {
     const dir = path.join(lutDir, 'glass');
     const { n, points } = JSON.parse(await readFile(path.join(dir, `${stem}_points.json`), 'utf8'));
+    const d = n.length;
+    assert.equal(d, is3d ? 3 : 2);
     assert.ok(points.length >= 2000, `${points.length} points`);
     const res = await draw({
-      points: points.map((p) => [p[0], p[1], p[2]]),
+      points: points.map((p) => p.slice(0, d)),
       tex: { kind: 'rg16f', url: `/glass/${stem}.rg16f.bin`, dims: n },
-      expr: 'texture(u_lut, x).rg',
+      expr: is3d ? 'texture(u_lut, x).rg' : 'texture(u_lut, x.xy).rg',
     });
     console.log(`${stem}: ${n.join('x')} on ${res.renderer}`);
-    // Row: [u, v, w, R, T, bound R, bound T, R_blut, T_blut, b_R, b_T].
+    // Row: [coordinates (d), R, T, bound R, bound T, R_blut, T_blut, b_R, b_T].
     for (const c of [0, 1]) {
       const name = `${stem}.${'RT'[c]}`;
       const gpu = (k) => res.values[4 * k + c];
-      const maxBound = check(`${name} vs table`, points, gpu, (p) => p[3 + c], (p) => p[5 + c], 'trilinear of its f16 texels');
-      check(`${name} vs BLUT rt`, points, gpu, (p) => p[7 + c], (p) => p[5 + c] + p[9 + c], 'GlassAlbedoTable::rt');
-      // Not vacuous: the values span [0, 1]; the bound is 3 x 2^-9 x the local spread + 1e-6.
+      const maxBound = check(`${name} vs table`, points, gpu, (p) => p[d + c], (p) => p[d + 2 + c], 'multilinear of its f16 texels');
+      check(`${name} vs BLUT lookup`, points, gpu, (p) => p[d + 4 + c], (p) => p[d + 2 + c] + p[d + 6 + c], 'the typed BLUT lookup');
+      // Not vacuous: the values span [0, 1]; the bound is d x 2^-9 x the local spread + 1e-6.
       assert.ok(maxBound < 0.01, `${name}: max bound ${maxBound}`);
     }
   });

@@ -579,31 +579,40 @@ pub fn prepare_sheen(dir: &Path) -> Result<()> {
 /// n ≤ 256 is below 1e-4.
 const RT_COORD_TEXELS: f64 = 1e-4;
 
-/// Writes, into `dir`, the rough-glass textures at [`GLASS_N`]³ (`brdf_engine_assets::glass`)
-/// for both directions of light: from outside (`glass_e`, η ∈ [1, 3]) and from inside
-/// (`glass_e_inv`, η ∈ [1/3, 1]). Per table: its files, `<stem>.rg16f.bin` (the KTX2's level
-/// 0, Zstandard-decoded here, checked equal to the BLUT payload: texel (x, y, z) at byte
-/// 4(x + N(y + N z)), R then G as little-endian binary16) and `<stem>_points.json`:
-/// [`POINTS`] random texture coordinates (u, v, w) = (μ, r, (η − lo)/(hi − lo)) as f32, every
-/// 20th outside [0, 1]³ (clamp to edge), each
-/// `[u, v, w, R, T, bound R, bound T, R_blut, T_blut, b_R, b_T]`: (R, T) the trilinear value
-/// in f64 of the f16 texels (clamp to edge), bound = 3 axes × 2⁻⁹ × the spread of the eight
-/// texels read + 1e-6 (f32 blend; the f16 texels are exact in f32); (R, T)_blut =
-/// `GlassAlbedoTable::rt(μ, r, η)` of the BLUT, checked here within b = 3 ×
-/// [`RT_COORD_TEXELS`] × spread + 1e-6 of the trilinear value (its axis map is the
-/// texture's: texel centres, linear, clamped).
+/// Writes, into `dir`, the rough-glass textures (`brdf_engine_assets::glass`) for both
+/// directions of light, from outside (η ∈ [1, 3]) and from inside (`_inv`, η ∈ [1/3, 1]):
+/// E at [`GLASS_N`]³ (`glass_e`: μ, r, η) and E_avg at [`GLASS_N`]² (`glass_e_avg`: r, η).
+/// Per table: its files, `<stem>.rg16f.bin` (the KTX2's level 0, Zstandard-decoded here,
+/// checked equal to the BLUT payload: texel (x, y[, z]) at byte 4(x + N(y [+ N z])), R then
+/// G as little-endian binary16) and `<stem>_points.json`: [`POINTS`] random texture
+/// coordinates (the last one (η − lo)/(hi − lo)) as f32, every 20th outside the unit box
+/// (clamp to edge), each `[coordinates…, R, T, bound R, bound T, R_blut, T_blut, b_R, b_T]`:
+/// (R, T) the multilinear value in f64 of the f16 texels (clamp to edge), bound = D axes ×
+/// 2⁻⁹ × the spread of the texels read + 1e-6 (f32 blend; the f16 texels are exact in f32);
+/// (R, T)_blut = the BLUT's typed lookup (`GlassAlbedoTable::rt`, `GlassAverageTable::rt_avg`),
+/// checked here within b = D × [`RT_COORD_TEXELS`] × spread + 1e-6 of the multilinear value
+/// (its axis map is the texture's: texel centres, linear, clamped).
 pub fn prepare_glass(dir: &Path) -> Result<()> {
     for inside in [false, true] {
-        glass_set(dir, inside)?;
+        glass_set::<3>(dir, inside)?;
+        glass_set::<2>(dir, inside)?;
     }
     Ok(())
 }
 
-/// One direction of [`prepare_glass`].
-fn glass_set(dir: &Path, inside: bool) -> Result<()> {
+/// The typed BLUT lookup of a glass table at texture coordinates with η physical.
+type GlassLookup<'a> = Box<dyn Fn(&[f32]) -> (f32, f32) + 'a>;
+
+/// One table of [`prepare_glass`]: D = 3 (E) or 2 (E_avg).
+fn glass_set<const D: usize>(dir: &Path, inside: bool) -> Result<()> {
     let n = GLASS_N;
-    let stem = if inside { "glass_e_inv" } else { "glass_e" };
-    let mut files = brdf_engine_assets::glass(&[n; 3], inside, &|_| {})?;
+    let stem = match (D, inside) {
+        (3, false) => "glass_e",
+        (3, true) => "glass_e_inv",
+        (_, false) => "glass_e_avg",
+        (_, true) => "glass_e_avg_inv",
+    };
+    let mut files = brdf_engine_assets::glass(&[n; D], inside, &|_| {})?;
     let get = |name: String| {
         files
             .iter()
@@ -611,18 +620,25 @@ fn glass_set(dir: &Path, inside: bool) -> Result<()> {
             .map(|f| f.bytes.clone())
             .with_context(|| format!("glass wrote no {name}"))
     };
-    let level = ktx2_level0(&get(format!("{stem}.ktx2"))?, n)?;
+    let level = ktx2_level0(&get(format!("{stem}.ktx2"))?, n, D)?;
     let blut_bytes = get(format!("{stem}.blut"))?;
-    let blut = brdf_lut::GlassAlbedoTable::parse(&blut_bytes[..])?;
-    if blut.view()?.payload() != &level[..] {
+    if brdf_lut::LutView::parse(&blut_bytes[..])?.payload() != &level[..] {
         bail!("{stem}.ktx2: level 0 differs from the BLUT payload");
     }
+    let lookup: GlassLookup = if D == 3 {
+        let t = brdf_lut::GlassAlbedoTable::parse(&blut_bytes[..])?;
+        Box::new(move |x| t.rt(x[0], x[1], x[2]))
+    } else {
+        let t = brdf_lut::GlassAverageTable::parse(&blut_bytes[..])?;
+        Box::new(move |x| t.rt_avg(x[0], x[1]))
+    };
     let f = |o: usize| half::f16::from_le_bytes([level[o], level[o + 1]]).to_f64();
-    let rt: [Vec<f64>; 2] = [0, 2].map(|c| (0..n * n * n).map(|k| f(4 * k + c)).collect());
+    let texels = n.pow(D as u32);
+    let rt: [Vec<f64>; 2] = [0, 2].map(|c| (0..texels).map(|k| f(4 * k + c)).collect());
     let eta = if inside { (1.0 / 3.0, 1.0) } else { (1.0, 3.0) };
-    let rows = glass_points()
+    let rows = glass_points::<D>()
         .iter()
-        .map(|&x| glass_row(&rt, &blut, eta, x))
+        .map(|&x| glass_row(&rt, &lookup, eta, x))
         .collect::<Result<Vec<_>>>()?;
     files.push(OutFile {
         name: format!("{stem}.rg16f.bin"),
@@ -630,37 +646,36 @@ fn glass_set(dir: &Path, inside: bool) -> Result<()> {
     });
     files.push(OutFile {
         name: format!("{stem}_points.json"),
-        bytes: serde_json::to_vec(&serde_json::json!({ "n": [n, n, n], "points": rows }))?,
+        bytes: serde_json::to_vec(&serde_json::json!({ "n": vec![n; D], "points": rows }))?,
     });
     write_set(dir, &files)
 }
 
-/// Level 0 of a Zstandard-supercompressed R16G16_SFLOAT n³ KTX2, decompressed.
-fn ktx2_level0(bytes: &[u8], n: usize) -> Result<Vec<u8>> {
+/// Level 0 of a Zstandard-supercompressed R16G16_SFLOAT texture of `d` axes of n texels
+/// (d = 3: n³; d = 2: n², depth 0), decompressed.
+fn ktx2_level0(bytes: &[u8], n: usize, d: usize) -> Result<Vec<u8>> {
     let rd = ktx2::Reader::new(bytes).map_err(|e| anyhow::anyhow!("ktx2: {e:?}"))?;
     let h = rd.header();
     let dims = [h.pixel_width, h.pixel_height, h.pixel_depth].map(|d| d as usize);
+    let want = [n, n, if d == 3 { n } else { 0 }];
     if h.format != Some(ktx2::Format::R16G16_SFLOAT)
-        || dims != [n; 3]
+        || dims != want
         || h.supercompression_scheme != Some(ktx2::SupercompressionScheme::Zstandard)
     {
-        bail!("ktx2: expected a zstd R16G16_SFLOAT {n}³ texture, got {dims:?}");
+        bail!("ktx2: expected a zstd R16G16_SFLOAT {want:?} texture, got {dims:?}");
     }
     let lv = rd.levels().next().context("ktx2: no level")?;
     let raw = zstd::decode_all(lv.data)?;
-    if raw.len() != n * n * n * 4 {
-        bail!(
-            "ktx2: level 0 is {} bytes, expected {}",
-            raw.len(),
-            n * n * n * 4
-        );
+    let bytes = n.pow(d as u32) * 4;
+    if raw.len() != bytes {
+        bail!("ktx2: level 0 is {} bytes, expected {bytes}", raw.len());
     }
     Ok(raw)
 }
 
 /// The glass test's texture coordinates as f32: every 20th with each coordinate in
 /// [−0.05, 1.05] (outside the texel-centre range, often outside [0, 1]), the rest uniform.
-fn glass_points() -> Vec<[f64; 3]> {
+fn glass_points<const D: usize>() -> Vec<[f64; D]> {
     let mut rng = rand_pcg::Pcg64::seed_from_u64(0x0EB6_1014);
     (0..POINTS)
         .map(|k| {
@@ -669,40 +684,40 @@ fn glass_points() -> Vec<[f64; 3]> {
             } else {
                 (0.0, 1.0)
             };
-            [0; 3].map(|_| rng.random_range(a..b) as f32 as f64)
+            [0; D].map(|_| rng.random_range(a..b) as f32 as f64)
         })
         .collect()
 }
 
 /// One row of `<stem>_points.json` (doc of [`prepare_glass`]) for the table over
-/// η ∈ [lo, hi]; fails when the BLUT lookup leaves its bound.
-fn glass_row(
+/// η ∈ [lo, hi] (the last coordinate); fails when the BLUT lookup leaves its bound.
+fn glass_row<const D: usize>(
     rt: &[Vec<f64>; 2],
-    blut: &brdf_lut::GlassAlbedoTable<&[u8]>,
+    lookup: &GlassLookup,
     (lo, hi): (f64, f64),
-    x: [f64; 3],
+    x: [f64; D],
 ) -> Result<serde_json::Value> {
-    let eta = (lo + (hi - lo) * x[2]) as f32;
-    let (br, bt) = blut.rt(x[0] as f32, x[1] as f32, eta);
+    let mut at: Vec<f32> = x.iter().map(|&v| v as f32).collect();
+    at[D - 1] = (lo + (hi - lo) * x[D - 1]) as f32;
+    let (br, bt) = lookup(&at);
     let mut out = [[0.0f64; 2]; 4];
     for (c, b) in [(0, br as f64), (1, bt as f64)] {
-        let (v, mn, mx) = lerp_nd([GLASS_N; 3], &rt[c], x);
-        let gpu = 3.0 * WEIGHT * (mx - mn) + F32_BLEND;
-        let brt = 3.0 * RT_COORD_TEXELS * (mx - mn) + F32_BLEND;
+        let (v, mn, mx) = lerp_nd([GLASS_N; D], &rt[c], x);
+        let gpu = D as f64 * WEIGHT * (mx - mn) + F32_BLEND;
+        let brt = D as f64 * RT_COORD_TEXELS * (mx - mn) + F32_BLEND;
         if (b - v).abs() > brt {
             bail!(
-                "glass BLUT over η ∈ [{lo}, {hi}]: rt at {x:?} channel {c} is {b}, the \
-                 texture's trilinear value {v} (bound {brt:e}): the axis maps differ"
+                "glass BLUT over η ∈ [{lo}, {hi}]: lookup at {x:?} channel {c} is {b}, the \
+                 texture's multilinear value {v} (bound {brt:e}): the axis maps differ"
             );
         }
         for (k, y) in [v, gpu, b, brt].into_iter().enumerate() {
             out[k][c] = y;
         }
     }
-    let [v, g, b, brt] = out;
-    Ok(serde_json::json!([
-        x[0], x[1], x[2], v[0], v[1], g[0], g[1], b[0], b[1], brt[0], brt[1]
-    ]))
+    let mut row: Vec<f64> = x.to_vec();
+    row.extend(out.iter().flatten());
+    Ok(serde_json::json!(row))
 }
 
 #[cfg(test)]
