@@ -23,7 +23,7 @@
 //
 // Edited copies of the shader expressions were each seen to fail here: lut_sheen_E sampled
 // with u and v swapped, lut_charlie 0.1 texel off along mu, glass_e with v and w swapped or
-// 0.05 texel off along eta.
+// 0.05 texel off along eta, glass_e_avg with u and v swapped.
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
