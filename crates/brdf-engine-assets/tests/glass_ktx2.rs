@@ -8,18 +8,21 @@ mod common;
 use brdf_lut::generate::glass::glass_e;
 use brdf_lut::generate::INTEGRATION_TOL;
 
+/// The file named `name` among `files`.
+fn file<'a>(files: &'a [brdf_engine_assets::File], name: &str) -> &'a brdf_engine_assets::File {
+    files
+        .iter()
+        .find(|f| f.name == name)
+        .unwrap_or_else(|| panic!("{name} missing"))
+}
+
 #[test]
 fn glass_ktx2_decodes_to_the_integrals_within_half_rounding() {
     let n = [3usize, 3, 2];
     for inside in [false, true] {
         let files = brdf_engine_assets::glass(&n, inside, &|_| {}).unwrap();
         let stem = if inside { "glass_e_inv" } else { "glass_e" };
-        let get = |ext: &str| {
-            files
-                .iter()
-                .find(|f| f.name == format!("{stem}.{ext}"))
-                .unwrap_or_else(|| panic!("{stem}.{ext} missing"))
-        };
+        let get = |ext: &str| file(&files, &format!("{stem}.{ext}"));
         let rd = ktx2::Reader::new(&get("ktx2").bytes[..]).unwrap();
         let h = rd.header();
         assert_eq!(h.format, Some(ktx2::Format::R16G16_SFLOAT));
@@ -95,12 +98,7 @@ fn glass_average_ktx2_holds_the_reference_averages() {
         } else {
             "glass_e_avg"
         };
-        let get = |ext: &str| {
-            files
-                .iter()
-                .find(|f| f.name == format!("{stem}.{ext}"))
-                .unwrap_or_else(|| panic!("{stem}.{ext} missing"))
-        };
+        let get = |ext: &str| file(&files, &format!("{stem}.{ext}"));
         let rd = ktx2::Reader::new(&get("ktx2").bytes[..]).unwrap();
         let h = rd.header();
         assert_eq!(h.format, Some(ktx2::Format::R16G16_SFLOAT));

@@ -14,6 +14,9 @@ use brdf_lut::{GlassAlbedoTable, GlassAverageTable, Lut};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 
+mod common;
+use common::within_estimates;
+
 /// The generator's tolerance per channel.
 const TOL: f64 = INTEGRATION_TOL;
 
@@ -318,33 +321,15 @@ fn bad_glass_specs_are_refused() {
     assert!(matches!(generate(&s, &|_| {}), Err(GenError::Invalid(_))));
 }
 
-/// A node of the default 32³ table (μ = 0.27093, r = 16/31, η = 55/31) where the cap
-/// integrator at 2e-6 returned R = 0.1383084645 with an estimate of 6.3e-7, while at every
-/// tolerance ≤ 1e-6 it gave 0.1383021739 (6.3e-6 off, 10× its estimate: a φ panel whose 15
-/// rows and embedded 7 all skipped a narrow feature). The generator's ring rule
-/// ([`glass_e`]) at its tolerance must lie within its estimate + the reference's of the cap
-/// integrator ([`glass_e_cap`], other coordinates, other cuts) at 2e-8.
+/// The hard points, both sides: grazing light (μ = cos 89°) and the narrow floor α = 1e-4
+/// (the lobe's edge ring at τ ≈ μ/2: the reflected horizon and the visibility edge both
+/// cross the GGX bump), and the default 32³ table's node where the cap integrator at 2e-6
+/// was 6.3e-6 off. The ring rule at the generator's tolerance lies within the two
+/// estimates of the cap integrator (other coordinates, other cuts) at 2e-8; the radial
+/// rule at `lut verify`'s 2e-8 (its estimate within it) within the two estimates of the
+/// ring rule at 1e-10.
 #[test]
-fn default_table_node_within_its_estimate() {
-    let (mu, r, eta) = (0.270_929_661_462_933_4, 16.0 / 31.0, 55.0 / 31.0);
-    let (v, w) = glass_e(mu, r * r, eta, TOL);
-    let (rf, wr) = glass_e_cap(mu, r * r, eta, 2e-8);
-    for c in 0..2 {
-        assert!(
-            (v[c] - rf[c]).abs() <= w.error + wr.error,
-            "channel {c}: {} vs {}",
-            v[c],
-            rf[c]
-        );
-    }
-}
-
-/// Grazing light (μ = cos 89°) and the narrow floor α = 1e-4, both sides: the ring rule
-/// within its estimate + the reference's of the cap integrator (other coordinates, other
-/// cuts) at 2e-7. At α = 1e-4 and μ = cos 89° the lobe's edge ring lies at τ ≈ μ/2, so the
-/// reflected horizon and the visibility edge both cross the GGX bump.
-#[test]
-fn grazing_and_narrow_agree_with_the_cap_rule() {
+fn hard_points_agree_with_both_references() {
     let mu = 89f64.to_radians().cos();
     for &(mu, alpha, eta) in &[
         (mu, 1e-4, 1.5),
@@ -353,19 +338,22 @@ fn grazing_and_narrow_agree_with_the_cap_rule() {
         (mu, 0.3, 0.7),
         (0.9, 1e-4, 0.6),
         (0.3, 1e-4, 3.0),
+        (
+            0.270_929_661_462_933_4,
+            (16.0f64 / 31.0).powi(2),
+            55.0 / 31.0,
+        ),
     ] {
-        let (v, w) = glass_e(mu, alpha, eta, TOL);
-        let (rf, wr) = glass_e_cap(mu, alpha, eta, 2e-7);
-        for c in 0..2 {
-            assert!(
-                (v[c] - rf[c]).abs() <= w.error + wr.error,
-                "({mu}, {alpha}, {eta}) channel {c}: {} vs {} (estimates {:e}, {:e})",
-                v[c],
-                rf[c],
-                w.error,
-                wr.error
-            );
-        }
+        let at = format!("({mu}, {alpha}, {eta})");
+        let ring = glass_e(mu, alpha, eta, TOL);
+        within_estimates(&at, &ring, &glass_e_cap(mu, alpha, eta, 2e-8));
+        let radial = glass_e_radial(mu, alpha, eta, 2e-8);
+        assert!(
+            radial.1.error <= 2e-8,
+            "{at}: estimate {:e}",
+            radial.1.error
+        );
+        within_estimates(&at, &glass_e(mu, alpha, eta, 1e-10), &radial);
     }
 }
 
