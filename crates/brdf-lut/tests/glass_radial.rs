@@ -13,33 +13,13 @@ use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 
 mod common;
-use common::within_estimates;
+use common::{within_estimates, BRUTE};
 
 /// The generator's tolerance per channel.
 const TOL: f64 = INTEGRATION_TOL;
 /// `lut verify`'s tolerance for the reference (100× tighter).
 const REF_TOL: f64 = 2e-8;
 
-/// The two inside points of tests/glass_tables.rs where the cap integrator was off (R by up
-/// to 5.4e-6): (μ, r, η, R, T), R and T from the brute-force midpoint rule on an
-/// 8000 × 8000 grid in the cap's (θ, φ) (tests/glass_measure.rs `brute`), whose 2000-,
-/// 4000- and 8000-point values agree to 2e-7.
-const BRUTE: [(f64, f64, f64, f64, f64); 2] = [
-    (
-        0.718_750_701_722_704_4,
-        0.390_912_995_894_539_43,
-        0.629_576_074_131_773,
-        0.739_691_834_0,
-        0.200_271_304_7,
-    ),
-    (
-        0.605_288_935_154_154_2,
-        0.948_475_569_600_138_7,
-        0.464_067_523_485_068,
-        0.295_206_505_7,
-        0.141_805_649_7,
-    ),
-];
 /// The brute-force rule's accuracy (the spread of its last values).
 const BRUTE_ACC: f64 = 2e-7;
 
@@ -90,6 +70,20 @@ fn estimate_bounds_the_error_at_the_brute_force_points() {
     }
 }
 
+/// A random (μ, r, η): μ log-uniform in [cos 89°, 1], r uniform, η uniform in [1/3, 1]
+/// (side 0) or [1, 3] (side 1).
+fn random_point(g: &mut Pcg64, side: usize) -> (f64, f64, f64) {
+    let mu_lo = 89f64.to_radians().cos();
+    let mu = mu_lo * (1.0 / mu_lo).powf(g.random::<f64>());
+    let r: f64 = g.random();
+    let eta = if side == 0 {
+        1.0 / 3.0 + g.random::<f64>() * (2.0 / 3.0)
+    } else {
+        1.0 + 2.0 * g.random::<f64>()
+    };
+    (mu, r, eta)
+}
+
 /// 100 seeded random (μ, α, η) per side (GLASS_N) (μ log-uniform in [cos 89°, 1], r uniform,
 /// α = r², η uniform in [1/3, 1] and [1, 3]): the ring rule at the generator's tolerance
 /// and the radial rule at `lut verify`'s lie within the sum of their estimates. Prints the
@@ -101,18 +95,11 @@ fn agrees_with_the_ring_rule_at_random_points() {
         .and_then(|s| s.parse().ok())
         .unwrap_or(100);
     let mut g = Pcg64::seed_from_u64(0x7ad1a1);
-    let mu_lo = 89f64.to_radians().cos();
     for side in 0..2 {
         let (mut ratio, mut worst) = (0f64, 0f64);
         let (mut ev, mut secs) = ([0u64; 2], [0f64; 2]);
         for _ in 0..n {
-            let mu = mu_lo * (1.0 / mu_lo).powf(g.random::<f64>());
-            let r: f64 = g.random();
-            let eta = if side == 0 {
-                1.0 / 3.0 + g.random::<f64>() * (2.0 / 3.0)
-            } else {
-                1.0 + 2.0 * g.random::<f64>()
-            };
+            let (mu, r, eta) = random_point(&mut g, side);
             let t0 = std::time::Instant::now();
             let (v, w) = glass_e(mu, r * r, eta, TOL);
             let t1 = std::time::Instant::now();
@@ -151,17 +138,10 @@ fn estimate_bounds_the_error_at_random_points() {
         .and_then(|s| s.parse().ok())
         .unwrap_or(40);
     let mut g = Pcg64::seed_from_u64(0xe57);
-    let mu_lo = 89f64.to_radians().cos();
     for side in 0..2 {
         let mut ratio = 0f64;
         for _ in 0..n {
-            let mu = mu_lo * (1.0 / mu_lo).powf(g.random::<f64>());
-            let r: f64 = g.random();
-            let eta = if side == 0 {
-                1.0 / 3.0 + g.random::<f64>() * (2.0 / 3.0)
-            } else {
-                1.0 + 2.0 * g.random::<f64>()
-            };
+            let (mu, r, eta) = random_point(&mut g, side);
             let (e, we) = glass_e(mu, r * r, eta, 1e-10);
             let (v, w) = glass_e_radial(mu, r * r, eta, REF_TOL);
             assert!(w.error <= REF_TOL, "({mu}, {r}, {eta}): {:e}", w.error);
@@ -218,7 +198,6 @@ fn average_reference_obeys_etendue() {
 #[ignore = "a measurement"]
 fn measure_against_the_cap_rule() {
     let mut g = Pcg64::seed_from_u64(0xca9);
-    let mu_lo = 89f64.to_radians().cos();
     let n: usize = std::env::var("GLASS_N")
         .ok()
         .and_then(|s| s.parse().ok())
@@ -226,13 +205,7 @@ fn measure_against_the_cap_rule() {
     for side in 0..2 {
         let (mut ev, mut secs, mut worst) = ([0u64; 2], [0f64; 2], [0f64; 2]);
         for _ in 0..n {
-            let mu = mu_lo * (1.0 / mu_lo).powf(g.random::<f64>());
-            let r: f64 = g.random();
-            let eta = if side == 0 {
-                1.0 / 3.0 + g.random::<f64>() * (2.0 / 3.0)
-            } else {
-                1.0 + 2.0 * g.random::<f64>()
-            };
+            let (mu, r, eta) = random_point(&mut g, side);
             let (e, _) = glass_e(mu, r * r, eta, 1e-10);
             let t0 = std::time::Instant::now();
             let (a, wa) = glass_e_cap(mu, r * r, eta, REF_TOL);

@@ -15,7 +15,7 @@ use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 
 mod common;
-use common::within_estimates;
+use common::{within_estimates, BRUTE};
 
 /// The generator's tolerance per channel.
 const TOL: f64 = INTEGRATION_TOL;
@@ -378,22 +378,7 @@ fn inside_reflection_agrees_with_a_brute_force_rule() {
 }
 
 fn brute_force_points(channels: &[usize]) {
-    for &(mu, r, eta, rr, tt) in &[
-        (
-            0.718_750_701_722_704_4,
-            0.390_912_995_894_539_43,
-            0.629_576_074_131_773,
-            0.739_691_834_0,
-            0.200_271_304_7,
-        ),
-        (
-            0.605_288_935_154_154_2,
-            0.948_475_569_600_138_7,
-            0.464_067_523_485_068,
-            0.295_206_505_7,
-            0.141_805_649_7,
-        ),
-    ] {
+    for &(mu, r, eta, rr, tt) in &BRUTE {
         let (v, w) = glass_e(mu, r * r, eta, TOL);
         for (c, want) in [rr, tt].into_iter().enumerate() {
             if !channels.contains(&c) {
