@@ -5,7 +5,7 @@
 use crate::{Error, SplitSumTexels};
 use half::f16;
 
-type Result<T> = std::result::Result<T, Error>;
+use crate::Result;
 
 fn png_err(e: png::EncodingError) -> Error {
     Error::Encode(format!("png: {e}"))

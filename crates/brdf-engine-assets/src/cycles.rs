@@ -40,7 +40,7 @@ use rayon::prelude::*;
 use serde_json::json;
 use std::fmt::Write as _;
 
-type Result<T> = std::result::Result<T, Error>;
+use crate::Result;
 
 /// Cycles' table edge (its lookups hard-code 16 × 16 × 16 and 16 × 16).
 pub const CYCLES_EDGE: usize = 16;
@@ -247,8 +247,5 @@ fn sidecar(
         "eta_near_1": "z = 0 (ior = 1 + 2e-8): the rough integral's limit, R -> 0 and T -> (1 + Lambda(mu))/(1 + 2 Lambda(mu)) (facets refract straight through; = (1 + mu)/2 at r = 1), not 1; Cycles' ior there is 1 in f32 and it refracts singularly for |eta - 1| < 1e-4 (weight 1), storing ~1. Cycles interpolates this slice only for 1 < ior < 1.0089",
         "sources": "blender/blender intern/cycles/app/cycles_precompute.cpp (nodes, order, saturation, inv tables at 1/ior, the averaged sample weight), kernel/closure/bsdf_microfacet.h (bsdf_microfacet_sample and _eval: G2, lobe choice, no side test of the refracted ray; microfacet_ggx_preserve_energy), kernel/util/lookup_table.h (endpoint-node lookup), scene/shader.tables (the arrays; compared values from commit 09cf4924cc65); read, not copied",
     });
-    let mut b =
-        serde_json::to_vec_pretty(&side).map_err(|e| Error::Encode(format!("json: {e}")))?;
-    b.push(b'\n');
-    Ok(b)
+    crate::sidecar::sidecar_bytes(&side)
 }

@@ -8,7 +8,7 @@
 //! **EEVEE's layout** (pinned from blender/blender
 //! `source/blender/draw/engines/eevee/shaders/eevee_lut_comp.glsl`, `main`,
 //! `ggx_btdf_gt_one` and `ggx_bsdf_split_sum`; read, not copied). Endpoint nodes
-//! u = i/(N − 1) on every axis; array index [k][j][i][channel] (x = i fastest):
+//! u = i/(N − 1) on every axis; array index `[k][j][i][channel]` (x = i fastest):
 //!
 //! ```text
 //! btdf_ggx (η > 1):  f = clamp(x², 1e-4, 0.9999),  η = (1 + f)/(1 − f)
@@ -26,7 +26,7 @@ use rayon::prelude::*;
 use serde_json::json;
 use std::fmt::Write as _;
 
-type Result<T> = std::result::Result<T, Error>;
+use crate::Result;
 
 /// EEVEE's x and y edge (64) and roughness slices (16).
 pub const EEVEE_EDGE: usize = 64;
@@ -220,8 +220,5 @@ fn sidecar(
         "shipped": "EEVEE's own arrays (eevee_lut.cc) agree with these within 1e-4 at the 21 values of tests/eevee.rs (largest 7.1e-5), except the transmission near normal incidence on rough slices, where the shipped values are higher by up to 2.0e-3 (btdf_ggx[12][8][0] 0.977961 vs 0.976159, bsdf_ggx[15][58][63][2] 0.886356 vs 0.884310) while an f64 emulation of the generator as its sources stand reproduces these integrals to 3e-6 (docs/engines.md)",
         "sources": "blender/blender source/blender/draw/engines/eevee/shaders/eevee_lut_comp.glsl (integrands, nodes), eevee_bxdf_microfacet_lib.glsl (sampling, weights), eevee_lut.hh (array shapes); read, not copied",
     });
-    let mut b =
-        serde_json::to_vec_pretty(&side).map_err(|e| Error::Encode(format!("json: {e}")))?;
-    b.push(b'\n');
-    Ok(b)
+    crate::sidecar::sidecar_bytes(&side)
 }

@@ -6,7 +6,7 @@ use crate::{centre, shaders, Engine, Error, File, SplitSumTexels};
 use brdf_lut::generate;
 use serde_json::{json, Map, Value};
 
-type Result<T> = std::result::Result<T, Error>;
+use crate::Result;
 
 /// What a layout adds to the common sidecar: the data files' descriptions and the
 /// engine-specific keys (encoding, orientation, …).
@@ -267,9 +267,7 @@ fn finish(e: Engine, g: &SplitSumTexels, stem: &str, d: Described) -> Result<Vec
         "shaders".into(),
         json!({ "glsl": glsl_name, "wgsl": wgsl_name, "function": sh.name }),
     );
-    let mut side_bytes = serde_json::to_vec_pretty(&Value::Object(side))
-        .map_err(|e| Error::Encode(format!("json: {e}")))?;
-    side_bytes.push(b'\n');
+    let side_bytes = crate::sidecar::sidecar_bytes(&Value::Object(side))?;
     let mut out = d.files;
     out.push(File {
         name: format!("{stem}.json"),
@@ -389,7 +387,7 @@ pub const SHEEN_TEXEL_TOL: [f64; 2] = [7e-6, 1.9e-3];
 
 /// The sheen albedo at the texel centres of an n × n Khronos grid (column μ = (i + ½)/n,
 /// row r = (j + ½)/n, row-major): [Estevez–Kulla, Ashikhmin], interpolated from converged
-/// nodes by [`brdf_lut::generate::sheen_grid`] to [`SHEEN_TEXEL_TOL`] (its estimate; nodes on
+/// nodes by [`brdf_lut::generate::sheen_grid`] to `SHEEN_TEXEL_TOL` (its estimate; nodes on
 /// all cores). About 4.3 s of CPU at n = 1024 (docs/lut-format.md, sheen grid route).
 pub fn sheen_texels(n: usize) -> Result<[Vec<f64>; 2]> {
     if !(2..=crate::MAX_SIZE).contains(&n) {
@@ -448,8 +446,7 @@ pub fn khronos_sheen(n: usize, ek: &[f64], ash: &[f64]) -> Result<Vec<File>> {
             "values": "linear: no transfer function; sample as linear data, never as an sRGB texture; values above 1 (grazing mu, small r) are clamped to 1",
             "texel_values": "each texel = the integral at its own centre in f64, interpolated by brdf_lut::generate::sheen_grid (tensor Chebyshev patches in ln mu, ln r through nodes by brdf_lut::generate::sheen_e to 4e-7; estimated error below 7e-6 for Estevez-Kulla, 1.9e-3 for Ashikhmin), rounded to nearest",
         });
-        let mut bytes = serde_json::to_vec_pretty(&side).map_err(|e| Error::Encode(format!("json: {e}")))?;
-        bytes.push(b'\n');
+        let bytes = crate::sidecar::sidecar_bytes(&side)?;
         out.push(File {
             name: format!("{stem}.json"),
             bytes,
@@ -523,9 +520,7 @@ pub fn glass(n: &[usize], inside: bool, progress: &(dyn Fn(u64) + Sync)) -> Resu
     side["size"] = json!(n);
     side["integration_bound"] = json!(g.integration);
     side["interpolation_error"] = json!({ "max_abs": g.error.max_abs, "rms": g.error.rms, "samples": g.error.samples, "what": format!("{} lookup of the binary16 texels against the direct integral at random points", if avg { "bilinear" } else { "trilinear" }) });
-    let mut side_bytes =
-        serde_json::to_vec_pretty(&side).map_err(|e| Error::Encode(format!("json: {e}")))?;
-    side_bytes.push(b'\n');
+    let side_bytes = crate::sidecar::sidecar_bytes(&side)?;
     Ok(vec![
         File {
             name: format!("{stem}.ktx2"),

@@ -2,7 +2,7 @@
 //! α = r² (r = perceptual roughness), in the container, channel layout, orientation, texel
 //! placement and roughness convention that one engine's shader samples, with a JSON sidecar
 //! and GLSL/WGSL sampling functions. One function per engine layout returns the files'
-//! names and bytes ([`khronos`], [`bevy`], [`filament`], [`threejs`], [`exr`]); writing them
+//! names and bytes ([`khronos`], [`bevy`], [`filament`], [`threejs`], [`exr()`]); writing them
 //! is the caller's; [`fsio::write_together`] writes them safely (temporary file + rename,
 //! no partial files, nothing replaced without `force`).
 //!
@@ -55,6 +55,9 @@ pub struct File {
     /// The file's bytes.
     pub bytes: Vec<u8>,
 }
+
+/// The crate's results.
+pub(crate) type Result<T> = std::result::Result<T, Error>;
 
 /// Why an engine table could not be made.
 #[derive(Debug)]
@@ -126,7 +129,7 @@ impl Engine {
         }
     }
     /// The engine's files for these texels (its layout function).
-    pub fn files(self, t: &SplitSumTexels) -> Result<Vec<File>, Error> {
+    pub fn files(self, t: &SplitSumTexels) -> Result<Vec<File>> {
         match self {
             Engine::Khronos => khronos(t),
             Engine::Bevy => bevy(t),
@@ -140,7 +143,7 @@ impl Engine {
     /// cloth channel filled ([`filament_cloth`]) and, for Khronos, the two sheen textures
     /// ([`sheen_texels`], [`khronos_sheen`]) at the same edge. The sheen values cost about 4 s
     /// of CPU whatever the edge (their converged nodes).
-    pub fn target_files(self, t: &SplitSumTexels) -> Result<Vec<File>, Error> {
+    pub fn target_files(self, t: &SplitSumTexels) -> Result<Vec<File>> {
         let mut files = match self {
             Engine::Filament => filament_cloth(t)?,
             _ => self.files(t)?,
@@ -190,10 +193,7 @@ pub fn integral(mu: f64, r: f64) -> (f64, f64) {
 
 /// All n² texel-centre integrals through the generator, on all cores; `progress(k)` is
 /// called with the number of texels just finished.
-pub fn split_sum_texels(
-    n: usize,
-    progress: &(dyn Fn(u64) + Sync),
-) -> Result<SplitSumTexels, Error> {
+pub fn split_sum_texels(n: usize, progress: &(dyn Fn(u64) + Sync)) -> Result<SplitSumTexels> {
     if !(2..=MAX_SIZE).contains(&n) {
         return Err(Error::Size(n));
     }

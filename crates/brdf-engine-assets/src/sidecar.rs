@@ -1,5 +1,14 @@
-//! The sidecars' `inverse_mapping`: one axis's physical value ↔ texture coordinate, read
-//! from the fields a sidecar states (warp, lo, hi, count, placement) and evaluated in f64.
+//! The JSON sidecars: their bytes as every layout writes them (`sidecar_bytes`) and their
+//! `inverse_mapping`: one axis's physical value ↔ texture coordinate, read from the fields a
+//! sidecar states (warp, lo, hi, count, placement) and evaluated in f64.
+
+/// A sidecar's bytes: pretty-printed JSON and a final newline.
+pub(crate) fn sidecar_bytes(side: &serde_json::Value) -> crate::Result<Vec<u8>> {
+    let mut b =
+        serde_json::to_vec_pretty(side).map_err(|e| crate::Error::Encode(format!("json: {e}")))?;
+    b.push(b'\n');
+    Ok(b)
+}
 
 /// One axis of the sidecar's `inverse_mapping`, read from its stated fields (warp, lo, hi,
 /// count, placement) and evaluated in f64 — not from the exporter's f32 constants.
