@@ -223,12 +223,26 @@ impl CapIntegrand<f64> for Refracted {
 /// ring rule (`glass/rings.rs`): values, the larger estimate, and the integrand evaluations. μ is
 /// clamped to [1e-9, 1] and α floored at 1e-4 (module docs).
 pub fn glass_e(mu: f64, alpha: f64, eta: f64, tol: f64) -> ([f64; 2], Work) {
+    clamped(mu, alpha, eta, |mu, alpha| {
+        rings::glass_e_rings(mu, alpha, eta, tol)
+    })
+}
+
+/// `rule(μ, α)` with μ clamped to [1e-9, 1] and α floored at the kernel's
+/// [`ALPHA_FLOOR`], as every rough-glass rule takes them; NaN values (no work) for a NaN μ
+/// or α or η ≤ 0.
+fn clamped(
+    mu: f64,
+    alpha: f64,
+    eta: f64,
+    rule: impl FnOnce(f64, f64) -> ([f64; 2], Work),
+) -> ([f64; 2], Work) {
     let mu = mu.clamp(1e-9, 1.0);
     let alpha = alpha.max(ALPHA_FLOOR);
     if mu.is_nan() || alpha.is_nan() || !(eta > 0.0) {
         return ([f64::NAN; 2], Work::default());
     }
-    rings::glass_e_rings(mu, alpha, eta, tol)
+    rule(mu, alpha)
 }
 
 /// (R, T) at (μ, α, η) to `tol` by the radial rule (`glass/radial.rs`: the half vector's
@@ -237,12 +251,9 @@ pub fn glass_e(mu: f64, alpha: f64, eta: f64, tol: f64) -> ([f64; 2], Work) {
 /// the larger estimate, and the integrand evaluations. μ clamped to [1e-9, 1], α floored at
 /// 1e-4.
 pub fn glass_e_radial(mu: f64, alpha: f64, eta: f64, tol: f64) -> ([f64; 2], Work) {
-    let mu = mu.clamp(1e-9, 1.0);
-    let alpha = alpha.max(ALPHA_FLOOR);
-    if mu.is_nan() || alpha.is_nan() || !(eta > 0.0) {
-        return ([f64::NAN; 2], Work::default());
-    }
-    radial::glass_e_radial(mu, alpha, eta, tol)
+    clamped(mu, alpha, eta, |mu, alpha| {
+        radial::glass_e_radial(mu, alpha, eta, tol)
+    })
 }
 
 /// (R, T) at (μ, α, η) to `tol` by the cap integrator (module docs, **Reference**): a

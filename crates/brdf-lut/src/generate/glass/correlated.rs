@@ -34,18 +34,14 @@
 
 use super::rings::{glass_rings_with, Weights};
 use super::{e_avg, Row, Work};
-use brdf_core::models::rough_dielectric::ALPHA_FLOOR;
 
 /// (R, T) of Cycles' glass integrand (module docs) at (μ, α, η) to the absolute tolerance
 /// `tol` per channel by the ring rule: values, the larger estimate, and the integrand
 /// evaluations. Clamped as [`super::glass_e`]: μ to [1e-9, 1], α floored at 1e-4.
 pub fn glass_e_correlated(mu: f64, alpha: f64, eta: f64, tol: f64) -> ([f64; 2], Work) {
-    let mu = mu.clamp(1e-9, 1.0);
-    let alpha = alpha.max(ALPHA_FLOOR);
-    if mu.is_nan() || alpha.is_nan() || !(eta > 0.0) {
-        return ([f64::NAN; 2], Work::default());
-    }
-    glass_rings_with(mu, alpha, eta, Weights::HeightCorrelated, tol)
+    super::clamped(mu, alpha, eta, |mu, alpha| {
+        glass_rings_with(mu, alpha, eta, Weights::HeightCorrelated, tol)
+    })
 }
 
 /// (R_avg, T_avg)(α, η) = 2∫₀¹ (R, T)(μ) μ dμ of [`glass_e_correlated`] to `tol` per
